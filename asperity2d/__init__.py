@@ -1,0 +1,25 @@
+"""asperity2d: friction at the asperity scale, in 2D, on pymunk.
+
+Public names (see README):
+
+* :func:`make_scene`, :class:`Scene` and its parts — scene specification (SI);
+* :func:`simulate` -> :class:`Result`, :func:`load`;
+* :func:`critical_force`, :func:`breakaway_force`, :func:`stick_slip_events`;
+* :mod:`asperity2d.belt` — masses on a moving belt with exact stick/slip;
+* :class:`SceneError`, :class:`SimulationError`.
+"""
+
+__version__ = "0.1.0"
+
+from .errors import SceneError, SimulationError
+from .geometry import Profile, RandomSpacing, RegularSpacing
+from .scene import (ConstantForce, Contact, LowerSurface, Scene, Slider, SpringDrive,
+                    make_scene)
+from .result import Result, load
+from .simulate import Passed, Stuck, Travelled, simulate
+
+__all__ = [
+    "__version__", "SceneError", "SimulationError", "Profile", "RegularSpacing",
+    "RandomSpacing", "ConstantForce", "Contact", "LowerSurface", "Scene", "Slider",
+    "SpringDrive", "make_scene", "Result", "load", "simulate", "Passed", "Stuck", "Travelled",
+]

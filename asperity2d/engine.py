@@ -1,0 +1,391 @@
+"""The pymunk adapter: the only module that imports pymunk.
+
+:class:`Engine` turns a :class:`~asperity2d.scene.Scene` (SI) into a pymunk
+``Space`` in internal units (:mod:`asperity2d.units`), steps it with a fixed
+dt, applies the drive and the normal load before every step (pymunk resets
+body forces after each step), and reads the state back in SI with
+``pymunk.batch`` (a Python loop over bodies would cost milliseconds at
+N = 1000).
+
+Bodies (seed 000 figures 5-8, DESIGN.md section 5):
+
+* each lower asperity is ``Body(m, inf)`` (it cannot rotate) on a vertical
+  ``GrooveJoint`` (the track, limited to the travel) with a vertical
+  ``DampedSpring`` to ground;
+* the slider is one ``Body(M, inf)`` carrying every upper triangle, either on
+  a horizontal groove (fixed height) or free vertically under a normal load;
+* a static floor at the bottom of the lower tracks stops upper tips from
+  falling through wide gaps; it touches only the slider;
+* shape filters keep lower asperities from touching each other.
+
+Static > kinetic friction: pymunk has one coefficient per contact (the product
+of the two shapes' coefficients). After every step the contacts are read in
+one batch call and each lower asperity's coefficient is set from the
+stick/slip state of its contact with the slider (vectorised; a per-contact
+``pre_solve`` callback cost ~20 us per contact per step): a stuck contact keeps ``mu_static``
+until it has slid ``slip_distance`` continuously (speed above
+``stick_speed`` every step), so a micro-slip of a step or two under a sudden
+load does not make it kinetic; a sliding contact sticks again when its slip
+speed drops below ``stick_speed``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pymunk
+from pymunk import batch
+
+from .scene import ConstantForce, Scene, SpringDrive
+from .units import Units, per_step_bias
+
+PYMUNK_VERSION = pymunk.version
+
+_LOWER, _SLIDER, _FLOOR = 1, 2, 4  # shape categories (bit masks)
+_SPRING_REST = 100.0  # rest length of the vertical track springs (internal units)
+_BODY_FIELDS = batch.BodyFields.POSITION | batch.BodyFields.VELOCITY
+_FRICTION_FIELDS = (batch.ArbiterFields.BODY_A_ID | batch.ArbiterFields.BODY_B_ID
+                    | batch.ArbiterFields.CONTACT_COUNT | batch.ArbiterFields.NORMAL)
+_ARB_FIELDS = (batch.ArbiterFields.BODY_A_ID | batch.ArbiterFields.BODY_B_ID
+               | batch.ArbiterFields.CONTACT_COUNT | batch.ArbiterFields.TOTAL_IMPULSE
+               | batch.ArbiterFields.NORMAL | batch.ArbiterFields.DISTANCE_1
+               | batch.ArbiterFields.DISTANCE_2)
+
+#: Solver settings in internal units (DESIGN.md section 5).
+COLLISION_SLOP = 1e-3  # base lengths of overlap left uncorrected
+CORRECTION_PER_STEP = 0.1  # fraction of overlap / joint error removed per step
+TRACK_TOLERANCE = 1e-9  # track drift (base lengths) left to the groove joint alone
+
+
+class Engine:
+    """A scene built in pymunk, stepped with a fixed ``dt`` (s).
+
+    ``iterations`` is pymunk's solver iteration count. Everything the caller
+    sees is SI.
+    """
+
+    def __init__(self, scene: Scene, dt: float, *, iterations: int = 20):
+        self.scene = scene
+        self.units = u = Units.for_scene(scene)
+        self.dt = dt / u.time
+        self.space = space = pymunk.Space(threaded=False)
+        space.iterations = iterations
+        space.gravity = (0.0, -scene.gravity / u.acceleration)
+        space.collision_slop = COLLISION_SLOP
+        space.collision_bias = per_step_bias(CORRECTION_PER_STEP, self.dt)
+        self._error_bias = per_step_bias(CORRECTION_PER_STEP, self.dt)
+        self._build_lower()
+        self._build_slider()
+        self._build_floor()
+        self._install_friction()
+        self._prepare_batch()
+        s = scene.slider
+        self._load = s.normal_load / u.force if s.track == "free" else 0.0
+        drive = scene.drive
+        if isinstance(drive, SpringDrive):
+            self._k = drive.stiffness / u.stiffness
+            self._c = drive.damping / u.damping
+            self._vd = drive.velocity / u.velocity
+        else:
+            self._force = drive.force / u.force
+        self._set_drive_origin()
+        self.step_count = 0
+        self.max_drift = 0.0  # largest solver drift off a track before projection (base units)
+
+    # -- building ------------------------------------------------------------
+    def _build_lower(self):
+        lower, u, space = self.scene.lower, self.units, self.space
+        verts = [(x / u.length, y / u.length) for x, y in lower.profile.vertices(upper=False)]
+        self.lower_x0 = lower.centers() / u.length
+        self.lower_apex_x = self.lower_x0 + lower.profile.apex_offset(upper=False) / u.length
+        self.lower_height = lower.profile.height / u.length
+        down, up = lower.travel_down / u.length, lower.travel_up / u.length
+        self.lower_bodies = []
+        flt = pymunk.ShapeFilter(categories=_LOWER, mask=_SLIDER)
+        for x0, m, k, c in zip(self.lower_x0, lower.mass, lower.stiffness, lower.damping):
+            body = pymunk.Body(m / u.mass, math.inf)
+            body.position = (x0, 0.0)
+            shape = pymunk.Poly(body, verts)
+            shape.filter, shape.collision_type = flt, _LOWER
+            groove = pymunk.GrooveJoint(space.static_body, body, (x0, -down), (x0, up), (0.0, 0.0))
+            spring = pymunk.DampedSpring(space.static_body, body, (x0, -_SPRING_REST), (0.0, 0.0),
+                                         _SPRING_REST, k / u.stiffness, c / u.damping)
+            for joint in (groove, spring):
+                joint.error_bias = self._error_bias
+            space.add(body, shape, groove, spring)
+            self.lower_bodies.append(body)
+
+    def _build_slider(self):
+        s, u, space = self.scene.slider, self.units, self.space
+        lower = self.scene.lower
+        h_up = s.profile.height / u.length
+        centers = s.centers() / u.length
+        self.upper_offsets = centers
+        self.upper_apex = centers + s.profile.apex_offset(upper=True) / u.length
+        body = pymunk.Body(s.mass / u.mass, math.inf)
+        if s.track == "fixed":
+            # Start left of the surface: the front asperity's base ends a tenth
+            # of a base before the first lower asperity's base begins.
+            x0 = (self.lower_x0[0] - lower.profile.base / u.length) - centers[-1] - 0.1
+            y0 = self.lower_height - s.interference / u.length + h_up
+        else:
+            # Start at the beginning of the surface, just clear of the tips:
+            # the first upper tip over the first valley (or, with a single lower
+            # asperity, over the middle of its front flank); settle() lowers it.
+            profile, apex = lower.profile, self.lower_apex_x
+            if len(apex) > 1:
+                x_tip = 0.5 * (apex[0] + apex[1])
+            else:
+                run = {"flat": 0.0, "full": 0.5, "half": 1.0}[profile.kind] * profile.base / u.length
+                x_tip = apex[0] - 0.5 * run
+            x0 = x_tip - self.upper_apex[0]
+            y0 = self.lower_height + h_up + 1e-3
+        body.position = (x0, y0)
+        self.slider_y0 = y0
+        flt = pymunk.ShapeFilter(categories=_SLIDER, mask=_LOWER | _FLOOR)
+        base_verts = s.profile.vertices(upper=True)
+        shapes = []
+        for c in centers:
+            shape = pymunk.Poly(body, [(c + x / u.length, y / u.length) for x, y in base_verts])
+            shape.filter, shape.collision_type = flt, _SLIDER
+            shapes.append(shape)
+        space.add(body, *shapes)
+        if s.track == "fixed":
+            groove = pymunk.GrooveJoint(space.static_body, body, (-1e6, y0), (1e6, y0), (0.0, 0.0))
+            groove.error_bias = self._error_bias
+            space.add(groove)
+        self.slider = body
+
+    def _build_floor(self):
+        # A guard at the bottom of the lower tracks: upper tips that sink into
+        # wide gaps (or half triangles that would fall through) land on it. It
+        # is deep enough never to carry load in ordinary contact.
+        y = -self.scene.lower.travel_down / self.units.length
+        x_lo = self.lower_x0[0] - 1e6
+        floor = pymunk.Segment(self.space.static_body, (x_lo, y), (-x_lo, y), 0.0)
+        floor.filter = pymunk.ShapeFilter(categories=_FLOOR, mask=_SLIDER)
+        floor.collision_type = _FLOOR
+        self.space.add(floor)
+
+    def _install_friction(self):
+        contact, u = self.scene.contact, self.units
+        self.mu_static, self.mu_kinetic = mu_s, mu_k = contact.mu_static, contact.mu_kinetic
+        for shape in self.space.shapes:
+            # Contact friction is the product of the two shapes' coefficients.
+            shape.friction = 1.0 if shape.collision_type == _SLIDER else mu_k
+        self.two_coefficients = mu_s != mu_k
+        n = len(self.lower_bodies)
+        self.lower_shapes = [next(iter(b.shapes)) for b in self.lower_bodies]
+        #: lower asperity index -> [stuck, distance slid since stuck] of its contact
+        self.contact_states: dict[int, list] = {}
+        self._mu_now = [mu_k] * n
+        self.slip_distance = (1e-3 * u.length if contact.slip_distance is None
+                              else contact.slip_distance) / u.length
+        if contact.stick_speed is not None:
+            self.stick_speed = contact.stick_speed / u.velocity
+        else:
+            self.stick_speed = 1e-4
+            if isinstance(self.scene.drive, SpringDrive):
+                self.stick_speed = min(self.stick_speed, 0.1 * self.scene.drive.velocity / u.velocity)
+
+    def _update_friction(self) -> None:
+        """Set each lower asperity's coefficient from its contact's stick/slip state.
+
+        Reads the contacts with one ``pymunk.batch`` call after a step and
+        loops over the few touching pairs in plain Python (cheaper than NumPy
+        for a handful of items, and than a per-contact ``pre_solve``
+        callback); a shape is touched only when its state changes. The new
+        coefficient acts from the next step, as a ``pre_solve`` would.
+        """
+        buf = self._fric_buf
+        buf.clear()
+        batch.get_space_arbiters(self.space, _FRICTION_FIELDS, buf)
+        ints = np.frombuffer(buf.int_buf(), dtype=np.uintp).tolist()
+        normals = np.frombuffer(buf.float_buf(), dtype=np.float64).tolist()
+        sid, index, bodies = self._slider_id, self._lower_index, self.lower_bodies
+        svx, svy = self.slider.velocity
+        slips: dict[int, float] = {}
+        for k in range(len(ints) // 3):
+            a, b, count = ints[3 * k: 3 * k + 3]
+            i = index.get(b if a == sid else a)
+            if i is None or count == 0:
+                continue
+            lvx, lvy = bodies[i].velocity
+            nx, ny = normals[2 * k], normals[2 * k + 1]
+            slip = abs((svx - lvx) * ny - (svy - lvy) * nx)
+            if slip > slips.get(i, -1.0):
+                slips[i] = slip
+        states, v_stick = self.contact_states, self.stick_speed
+        for i in [i for i in states if i not in slips]:
+            del states[i]
+            self._set_mu(i, self.mu_kinetic)
+        for i, slip in slips.items():
+            st = states.get(i)
+            if st is None:
+                st = states[i] = [slip < v_stick, 0.0]
+            elif st[0]:
+                if slip > v_stick:
+                    st[1] += slip * self.dt
+                    if st[1] > self.slip_distance:
+                        st[0] = False
+                else:
+                    st[1] = 0.0
+            elif slip < v_stick:
+                st[0], st[1] = True, 0.0
+            self._set_mu(i, self.mu_static if st[0] else self.mu_kinetic)
+
+    def _set_mu(self, i: int, mu: float) -> None:
+        if self._mu_now[i] != mu:
+            self.lower_shapes[i].friction = mu
+            self._mu_now[i] = mu
+
+    def _prepare_batch(self):
+        buf = batch.Buffer()
+        batch.get_space_bodies(self.space, batch.BodyFields.BODY_ID, buf)
+        ids = np.frombuffer(buf.int_buf(), dtype=np.uintp).copy()
+        where = {int(i): k for k, i in enumerate(ids)}
+        self._slider_row = where[self.slider.id]
+        self._slider_id = self.slider.id
+        self._lower_rows = np.array([where[b.id] for b in self.lower_bodies], dtype=np.intp)
+        self._lower_index = {b.id: i for i, b in enumerate(self.lower_bodies)}
+        self._fric_buf = batch.Buffer()
+        self._body_buf = batch.Buffer()
+        self._arb_buf = batch.Buffer()
+
+    def _set_drive_origin(self) -> None:
+        # The spring's far end starts where the spring holds its preload.
+        x = self.slider.position.x
+        if isinstance(self.scene.drive, SpringDrive):
+            x += self.scene.drive.preload / self.units.force / self._k
+        self.drive_origin = x
+
+    # -- stepping ------------------------------------------------------------
+    def drive_position(self) -> float:
+        """Far end of the drive spring (internal units) at the current step."""
+        return self.drive_origin + self._vd * self.step_count * self.dt
+
+    def step(self, n: int = 1) -> None:
+        """Advance ``n`` steps, applying the drive and the load before each."""
+        body, space, dt, load = self.slider, self.space, self.dt, self._load
+        spring = isinstance(self.scene.drive, SpringDrive)
+        if not spring:
+            force = (self._force, -load)
+        for _ in range(n):
+            if spring:
+                x_d = self.drive_origin + self._vd * self.step_count * dt
+                fx = self._k * (x_d - body.position.x) + self._c * (self._vd - body.velocity.x)
+                body.force = (fx, -load)
+            else:
+                body.force = force
+            space.step(dt)
+            self.step_count += 1
+            self._project_tracks()
+            if self.two_coefficients:
+                self._update_friction()
+
+    def _project_tracks(self) -> None:
+        """Put every lower asperity back on its vertical track (x = x0, vx = 0).
+
+        pymunk's iterative solver lets a groove joint drift sideways under
+        hard impacts (measured: up to 0.6 % of a base, insensitive to
+        iterations and bias). Projecting the positions and velocities onto the
+        constraint after each step (post-stabilisation) keeps the tracks within
+        ``TRACK_TOLERANCE`` of a base;
+        the groove still carries the reaction force during the step. The
+        drift removed is recorded as ``max_track_drift_fraction``.
+        """
+        buf = self._body_buf
+        buf.clear()
+        batch.get_space_bodies(self.space, _BODY_FIELDS, buf)
+        rows = np.frombuffer(buf.float_buf(), dtype=np.float64).reshape(-1, 4)
+        lower = self._lower_rows
+        drift = float(np.abs(rows[lower, 0] - self.lower_x0).max()) if len(lower) else 0.0
+        if drift > self.max_drift:
+            self.max_drift = drift
+        if drift > TRACK_TOLERANCE:
+            rows[lower, 0] = self.lower_x0
+            rows[lower, 2] = 0.0
+            batch.set_space_bodies(self.space, _BODY_FIELDS, buf)
+
+    def drive_force(self) -> float:
+        """Horizontal drive force on the slider (internal units) at the current state."""
+        if isinstance(self.scene.drive, ConstantForce):
+            return self._force
+        return (self._k * (self.drive_position() - self.slider.position.x)
+                + self._c * (self._vd - self.slider.velocity.x))
+
+    def settle(self, duration: float, *, damping_per_period: float = 0.5) -> None:
+        """Bring a free slider to rest under its load (``duration`` in internal time).
+
+        The slider's x is held while it comes down onto the surface. With a
+        spring drive, x is released for the second half so the slider finds
+        its equilibrium against the spring's preload; a constant-force slider
+        stays held (its force, not applied while settling, is applied
+        suddenly at t = 0). Global velocity damping removes the ringing
+        (settling undamped leaves the asperities ringing and lowers a
+        measured critical force by ~20 %).
+        """
+        space, body = self.space, self.slider
+        x0 = body.position.x
+        hold = pymunk.GrooveJoint(space.static_body, body, (x0, -1e6), (x0, 1e6), (0.0, 0.0))
+        space.add(hold)
+        space.damping = damping_per_period ** (1.0 / (2.0 * math.pi))
+        load = self._load
+        spring = isinstance(self.scene.drive, SpringDrive)
+        self._set_drive_origin()
+        steps = max(2, int(round(duration / self.dt)))
+        for i in range(steps):
+            if spring and i == steps // 2:
+                space.remove(hold)
+            fx = self._k * (self.drive_origin - body.position.x) if spring else 0.0
+            body.force = (fx, -load)
+            space.step(self.dt)
+            self._project_tracks()
+        if not spring:
+            space.remove(hold)
+        space.damping = 1.0
+        for b in self.lower_bodies:
+            b.velocity = (0.0, 0.0)
+        body.velocity = (0.0, 0.0)
+        if self.two_coefficients:
+            self._update_friction()  # contacts at rest start stuck, with mu_static
+
+    # -- reading -------------------------------------------------------------
+    def bodies(self) -> np.ndarray:
+        """All dynamic bodies' ``[x, y, vx, vy]`` rows (internal units)."""
+        buf = self._body_buf
+        buf.clear()
+        batch.get_space_bodies(self.space, _BODY_FIELDS, buf)
+        return np.frombuffer(buf.float_buf(), dtype=np.float64).reshape(-1, 4)
+
+    def contacts(self) -> tuple[float, float, float, int, float]:
+        """Contact forces on the slider from the last step's impulses (internal units).
+
+        Returns ``(fx, fy, f_tangential, count, max_overlap)``: the summed
+        contact force, the summed tangential (Coulomb) parts projected on each
+        contact's +x tangent with the sign flipped (resisting +x motion is
+        positive), the number of touching contacts and the deepest overlap
+        (length units).
+        """
+        buf = self._arb_buf
+        buf.clear()
+        batch.get_space_arbiters(self.space, _ARB_FIELDS, buf)
+        ints = np.frombuffer(buf.int_buf(), dtype=np.uintp).reshape(-1, 3)
+        if len(ints) == 0:
+            return 0.0, 0.0, 0.0, 0, 0.0
+        floats = np.frombuffer(buf.float_buf(), dtype=np.float64).reshape(-1, 6)
+        sign = np.where(ints[:, 0] == self._slider_id, 1.0, -1.0)
+        jx, jy = floats[:, 0] * sign, floats[:, 1] * sign
+        nx, ny = floats[:, 2], floats[:, 3]
+        jn = jx * nx + jy * ny
+        tx, ty = np.abs(ny), np.where(ny >= 0, -nx, nx)  # tangent with tx >= 0
+        jt = (jx - jn * nx) * tx + (jy - jn * ny) * ty
+        count = ints[:, 2].astype(np.intp)
+        depth = np.where(np.arange(2)[None, :] < count[:, None], -floats[:, 4:6], 0.0)
+        overlap = float(max(0.0, depth.max()))
+        inv_dt = 1.0 / self.dt
+        # fsum: the arbiters come in hash-set order, which varies between
+        # processes; an exactly rounded sum keeps the result bit-identical.
+        return (math.fsum(jx) * inv_dt, math.fsum(jy) * inv_dt, -math.fsum(jt) * inv_dt,
+                int(np.count_nonzero(count)), overlap)

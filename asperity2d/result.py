@@ -1,0 +1,177 @@
+"""The outcome of one asperity run: SI time series plus the metadata to reproduce it.
+
+A :class:`Result` is plain NumPy arrays in SI units on a small object that can
+save and load itself (one ``.npz`` file holding the arrays and a JSON metadata
+record: the scene, the run settings, package and pymunk versions), so a run is
+simulated once and then re-analysed or re-rendered any number of times.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ._io import atomic_write
+from .errors import SceneError
+
+#: Arrays every result carries, in the order they are written to CSV.
+SERIES = (
+    "t",  # s
+    "x",  # slider position, m (its reference point; see Scene docs)
+    "v",  # slider horizontal velocity, m/s
+    "y",  # slider vertical position, m
+    "vy",  # slider vertical velocity, m/s
+    "drive_x",  # far end of the drive spring (spring drive) or NaN, m
+    "drive_force",  # horizontal force the drive applies to the slider, N
+    "normal_force",  # vertical contact force on the slider (upward > 0), N
+    "friction_force",  # horizontal contact force resisting +x motion (= -Fx), N
+    "tangential_force",  # sum of the contacts' own tangential (Coulomb) forces, N
+    "contact_count",  # number of slider contacts at the sample
+)
+#: Per-asperity arrays, shape (N_lower, T).
+LOWER_SERIES = ("lower_dx", "lower_dy")
+
+
+@dataclass(eq=False)
+class Result:
+    """Time series of one run (SI units) and what produced them.
+
+    Attributes
+    ----------
+    t, x, v, y, vy : ndarray (T,)
+        Time (s), slider position (m), horizontal velocity (m/s), vertical
+        position (m) and vertical velocity (m/s).
+    drive_x : ndarray (T,)
+        Position of the moving end of the drive spring (m); NaN for a constant
+        force drive.
+    drive_force : ndarray (T,)
+        Horizontal force the drive applies to the slider (N).
+    normal_force, friction_force : ndarray (T,)
+        Total contact force of the lower surface on the slider, from the
+        contact impulses divided by the step: its upward component, and its
+        horizontal component with the sign flipped so that resistance to +x
+        motion is positive (N). This is the macroscopic friction: geometric
+        interlocking plus Coulomb friction at the flanks.
+    tangential_force : ndarray (T,)
+        Sum over contacts of the tangential (Coulomb) impulse / dt, projected
+        on the +x side of each contact tangent (N).
+    contact_count : ndarray (T,)
+        Contacts touching the slider at each sample.
+    lower_dx, lower_dy : ndarray (N, T)
+        Displacement of each lower asperity from its rest position (m).
+    scene : Scene
+        The scene that was run.
+    meta : dict
+        Run settings and diagnostics: ``dt``, ``record_every``, ``status``,
+        ``message``, ``max_overlap_fraction``, ``max_track_drift_fraction``,
+        ``units`` (internal scale), versions.
+    """
+
+    t: np.ndarray
+    x: np.ndarray
+    v: np.ndarray
+    y: np.ndarray
+    vy: np.ndarray
+    drive_x: np.ndarray
+    drive_force: np.ndarray
+    normal_force: np.ndarray
+    friction_force: np.ndarray
+    tangential_force: np.ndarray
+    contact_count: np.ndarray
+    lower_dx: np.ndarray
+    lower_dy: np.ndarray
+    scene: Any
+    meta: dict = field(default_factory=dict)
+
+    # -- convenience -------------------------------------------------------
+    @property
+    def status(self) -> str:
+        """Why the run ended: ``"duration"``, a stop condition's name, ..."""
+        return self.meta.get("status", "")
+
+    @property
+    def message(self) -> str:
+        return self.meta.get("message", "")
+
+    @property
+    def dt(self) -> float:
+        """Integration step (s)."""
+        return float(self.meta["dt"])
+
+    def __len__(self) -> int:
+        return len(self.t)
+
+    def __repr__(self) -> str:
+        return (
+            f"Result({len(self.t)} samples, t_end={self.t[-1] if len(self.t) else 0:.4g} s, "
+            f"status={self.status!r})"
+        )
+
+    # -- persistence -------------------------------------------------------
+    def save(self, path: str | os.PathLike) -> Path:
+        """Write the result to ``path`` (``.npz``) atomically and return the path.
+
+        The file holds every array plus a ``metadata`` entry: a JSON record of
+        the scene, the run settings and the package / pymunk versions.
+        """
+        path = Path(path)
+        if path.suffix != ".npz":
+            raise SceneError(f"`path` must end in .npz, got {str(path)!r}")
+        arrays = {name: np.asarray(getattr(self, name)) for name in SERIES + LOWER_SERIES}
+        meta = dict(self.meta)
+        meta["scene"] = self.scene.to_dict()
+        arrays["metadata"] = np.array(json.dumps(meta, sort_keys=True))
+
+        def write(fh):
+            buf = io.BytesIO()
+            np.savez_compressed(buf, **arrays)
+            fh.write(buf.getvalue())
+
+        return atomic_write(path, write)
+
+    def export(self, path: str | os.PathLike) -> Path:
+        """Export the slider time series as ``.csv`` or MATLAB ``.mat`` (by extension)."""
+        path = Path(path)
+        suffix = path.suffix.lower()
+        if suffix == ".csv":
+            table = np.column_stack([np.asarray(getattr(self, n), dtype=float) for n in SERIES])
+            header = ",".join(SERIES)
+
+            def write(fh):
+                np.savetxt(fh, table, delimiter=",", header=header, comments="", fmt="%.17g")
+
+            return atomic_write(path, write)
+        if suffix == ".mat":
+            from scipy.io import savemat
+
+            data = {n: np.asarray(getattr(self, n)) for n in SERIES + LOWER_SERIES}
+            data["metadata"] = json.dumps(self.meta, sort_keys=True, default=str)
+
+            def write(fh):
+                savemat(fh, data)
+
+            return atomic_write(path, write)
+        raise SceneError(f"`path` must end in .csv or .mat, got {str(path)!r}")
+
+
+def load(path: str | os.PathLike) -> Result:
+    """Read a :class:`Result` written by :meth:`Result.save`."""
+    from .scene import Scene
+
+    path = Path(path)
+    if not path.exists():
+        raise SceneError(f"`path` does not exist: {str(path)!r}")
+    try:
+        with np.load(path, allow_pickle=False) as data:
+            arrays = {name: data[name] for name in SERIES + LOWER_SERIES}
+            meta = json.loads(str(data["metadata"]))
+    except (OSError, KeyError, ValueError) as exc:
+        raise SceneError(f"`path` is not an asperity2d result file: {str(path)!r} ({exc})") from None
+    scene = Scene.from_dict(meta.pop("scene"))
+    return Result(**arrays, scene=scene, meta=meta)
