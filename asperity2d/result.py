@@ -113,6 +113,21 @@ class Result:
             f"status={self.status!r})"
         )
 
+    def summary(self) -> dict:
+        """A few headline numbers of the run (SI), JSON-ready."""
+        return {
+            "scene": self.scene.name,
+            "status": self.status,
+            "duration_s": float(self.t[-1]) if len(self.t) else 0.0,
+            "samples": int(len(self.t)),
+            "distance_m": float(self.x[-1] - self.x[0]) if len(self.x) else 0.0,
+            "peak_drive_force_N": float(np.max(self.drive_force)) if len(self.t) else 0.0,
+            "mean_friction_force_N": float(np.mean(self.friction_force)) if len(self.t) else 0.0,
+            "mean_normal_force_N": float(np.mean(self.normal_force)) if len(self.t) else 0.0,
+            "max_overlap_fraction": self.meta.get("max_overlap_fraction"),
+            "dt_s": self.meta.get("dt"),
+        }
+
     # -- persistence -------------------------------------------------------
     def save(self, path: str | os.PathLike) -> Path:
         """Write the result to ``path`` (``.npz``) atomically and return the path.

@@ -1,0 +1,164 @@
+"""Command line: ``asperity2d`` (also ``python -m asperity2d``).
+
+Thin by design: it parses, calls the library, prints. Every subcommand that
+computes something accepts ``--json`` and then prints exactly one JSON object.
+Bad input prints one line on stderr and exits with status 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import importlib.util
+import json
+import sys
+import tomllib
+from pathlib import Path
+
+from .errors import SceneError, SimulationError
+
+
+def _load_script(path: Path):
+    spec = importlib.util.spec_from_file_location(f"_asperity2d_scene_{path.stem}", path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module  # so worker processes can pickle its functions
+    spec.loader.exec_module(module)
+    return module
+
+
+def scene_from_toml(path: Path):
+    """A scene from a TOML file: make_scene's arguments, optionally under ``[scene]``."""
+    from .scene import make_scene
+
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except (OSError, tomllib.TOMLDecodeError) as exc:
+        raise SceneError(f"`scene` file {str(path)!r} could not be read: {exc}") from None
+    params = data.get("scene", data)
+    run = data.get("run", {})
+    return make_scene(**params), run
+
+
+def _emit(args, summary: dict, lines: list[str]) -> None:
+    if args.json:
+        print(json.dumps(summary, default=float))
+    else:
+        print("\n".join(lines))
+
+
+def cmd_run(args) -> int:
+    path = Path(args.scene)
+    if not path.exists():
+        raise SceneError(f"`scene` file does not exist: {str(path)!r}")
+    if path.suffix == ".py":
+        module = _load_script(path)
+        if not hasattr(module, "main"):
+            raise SceneError(f"`scene` script {str(path)!r} has no main(argv) function")
+        argv = list(args.script_args)
+        if args.json:
+            argv.append("--json")
+        if args.output:
+            argv += ["-o", args.output]
+        return int(module.main(argv) or 0)
+    if path.suffix != ".toml":
+        raise SceneError(f"`scene` must be a .py script or a .toml scene file, got {str(path)!r}")
+    from .simulate import simulate
+
+    scene, run = scene_from_toml(path)
+    duration = args.duration if args.duration is not None else run.get("duration")
+    result = simulate(scene, duration)
+    if args.save:
+        result.save(args.save)
+    if args.output:
+        from .render import render
+
+        render(result, args.output)
+    summary = result.summary()
+    _emit(args, summary, [f"{k}: {v}" for k, v in summary.items()])
+    return 0
+
+
+def cmd_analyze(args) -> int:
+    from .analysis import breakaway_force, event_statistics, stick_slip_events
+    from .result import load
+
+    result = load(args.result)
+    summary = result.summary()
+    events = stick_slip_events(result)
+    summary["events"] = event_statistics(events)
+    try:
+        summary["breakaway_force_N"] = breakaway_force(result)
+    except SceneError:  # constant-force drive, or no stick-to-slip transition
+        summary["breakaway_force_N"] = None
+    _emit(args, summary, [f"{k}: {v}" for k, v in summary.items()])
+    return 0
+
+
+def cmd_render(args) -> int:
+    from .render import render
+    from .result import load
+
+    out = render(load(args.result), args.output)
+    _emit(args, {"output": str(out)}, [f"wrote {out}"])
+    return 0
+
+
+def cmd_critical(args) -> int:
+    from .critical import critical_force_bracket
+
+    scene, _ = scene_from_toml(Path(args.scene))
+    bracket = critical_force_bracket(scene, rel_tol=args.rel_tol)
+    summary = {"critical_force_N": bracket.value, "stops_N": bracket.stops,
+               "passes_N": bracket.passes, "runs": bracket.runs}
+    _emit(args, summary, [f"{k}: {v}" for k, v in summary.items()])
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="asperity2d", description=__doc__.splitlines()[0])
+    sub = parser.add_subparsers(dest="command", required=True)
+
+    p = sub.add_parser("run", help="run a scene script (.py) or a TOML scene file")
+    p.add_argument("scene")
+    p.add_argument("script_args", nargs=argparse.REMAINDER, help="arguments passed to a script's main()")
+    p.add_argument("-o", "--output", help="render to this file (.gif, .png, .svg, .pdf)")
+    p.add_argument("--save", help="save the Result (.npz) (TOML scenes)")
+    p.add_argument("--duration", type=float, help="simulated time in s (TOML scenes)")
+    p.add_argument("--json", action="store_true")
+    p.set_defaults(func=cmd_run)
+
+    p = sub.add_parser("analyze", help="stick-slip events and breakaway force of a saved result")
+    p.add_argument("result")
+    p.add_argument("--json", action="store_true")
+    p.set_defaults(func=cmd_analyze)
+
+    p = sub.add_parser("render", help="render a saved result; the extension picks the renderer")
+    p.add_argument("result")
+    p.add_argument("-o", "--output", required=True)
+    p.add_argument("--json", action="store_true")
+    p.set_defaults(func=cmd_render)
+
+    p = sub.add_parser("critical", help="critical constant drive force of a TOML scene")
+    p.add_argument("scene")
+    p.add_argument("--rel-tol", type=float, default=0.01)
+    p.add_argument("--json", action="store_true")
+    p.set_defaults(func=cmd_critical)
+
+    for name in ("asperity2d.compare_cli", "asperity2d.belt.cli", "asperity2d.sweep.cli"):
+        try:
+            module = importlib.import_module(name)
+        except ImportError:
+            continue
+        module.add_parser(sub)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return int(args.func(args) or 0)
+    except (SceneError, SimulationError, FileNotFoundError) as exc:
+        print(f"asperity2d: error: {exc}", file=sys.stderr)
+        return 2
+

@@ -1,0 +1,54 @@
+"""Shared plumbing for the runnable scene scripts in ``scenes/``.
+
+Every script has ``main(argv=None) -> int`` and accepts ``--quick`` (small
+settings, used by the tests), ``--json`` (print one JSON object), ``-o DIR``
+(where outputs go, default ``renders/<script name>``) and ``--no-gif``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+from pathlib import Path
+
+from ._io import atomic_write_text
+
+
+def parser(description: str) -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(description=description)
+    p.add_argument("--quick", action="store_true", help="small, fast settings (tests, smoke runs)")
+    p.add_argument("--json", action="store_true", help="print one JSON summary object")
+    p.add_argument("-o", "--out-dir", help="output directory (default renders/<script>)")
+    p.add_argument("--no-gif", action="store_true", help="skip the animation")
+    p.add_argument("--frames", type=int, default=None, help="GIF frame count")
+    return p
+
+
+def out_dir(args, script_file: str) -> Path:
+    """The output directory for a script (created)."""
+    if args.out_dir:
+        path = Path(args.out_dir)
+    else:
+        root = Path(os.environ.get("ASPERITY2D_RENDERS", Path(script_file).resolve().parent.parent / "renders"))
+        path = root / Path(script_file).stem
+    path.mkdir(parents=True, exist_ok=True)
+    return path
+
+
+def finish(args, summary: dict, directory: Path, lines: list[str]) -> int:
+    """Write ``summary.json`` atomically and print the summary (JSON or text)."""
+    text = json.dumps(summary, indent=2, sort_keys=True, default=_plain)
+    atomic_write_text(directory / "summary.json", text + "\n")
+    if args.json:
+        print(json.dumps(summary, sort_keys=True, default=_plain))
+    else:
+        print("\n".join(lines + [f"outputs in {directory}"]))
+    return 0
+
+
+def _plain(value):
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        return str(value)
