@@ -17,9 +17,16 @@ from .scene import (ConstantForce, Contact, LowerSurface, Scene, Slider, SpringD
                     make_scene)
 from .result import Result, load
 from .simulate import Passed, Stuck, Travelled, simulate
+from .critical import CriticalForce, critical_force, critical_force_bracket
+from .analysis import (Event, breakaway_force, event_statistics, friction_traces,
+                       stick_slip_events)
+from .compare import Comparison, compare
+from .render import render
 
 __all__ = [
     "__version__", "SceneError", "SimulationError", "Profile", "RegularSpacing",
     "RandomSpacing", "ConstantForce", "Contact", "LowerSurface", "Scene", "Slider",
     "SpringDrive", "make_scene", "Result", "load", "simulate", "Passed", "Stuck", "Travelled",
+    "CriticalForce", "critical_force", "critical_force_bracket", "Event", "breakaway_force",
+    "event_statistics", "friction_traces", "stick_slip_events", "Comparison", "compare", "render",
 ]

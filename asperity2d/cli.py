@@ -114,6 +114,55 @@ def cmd_critical(args) -> int:
     return 0
 
 
+MEASURES = {"critical": "critical_force_of", "breakaway": "breakaway_force_of"}
+
+
+def _parse_set(items: list[str]) -> dict:
+    """``key=value`` pairs (values parsed as TOML scalars) into make_scene arguments."""
+    out = {}
+    for item in items:
+        key, sep, text = item.partition("=")
+        if not sep:
+            raise SceneError(f"`--set` takes key=value, got {item!r}")
+        try:
+            out[key.strip()] = tomllib.loads(f"v = {text}")["v"]
+        except tomllib.TOMLDecodeError:
+            out[key.strip()] = text
+    return out
+
+
+def cmd_compare(args) -> int:
+    from . import studies
+    from .compare import Comparison, compare
+
+    if args.load:
+        comparison = Comparison.load(args.load)
+    else:
+        if args.seeds < 1:
+            raise SceneError(f"`seeds` must be >= 1, got {args.seeds}")
+        measure = getattr(studies, MEASURES[args.measure])
+        variants = {name: {"spacing": name} for name in args.variants.split(",")}
+        comparison = compare(measure, variants, range(args.seeds), base=_parse_set(args.set),
+                             progress=not args.json, workers=args.workers)
+    if args.save:
+        comparison.save(args.save)
+    if args.output:
+        from .render.plots import plot_comparison
+
+        plot_comparison(comparison, args.output)
+    summary = {"measure": comparison.measure, "seeds": len(comparison.seeds),
+               "variants": comparison.summary()}
+    names = list(comparison.values)
+    if len(names) >= 2:
+        summary["mann_whitney_p"] = {f"{names[0]} vs {other}": comparison.mann_whitney(names[0], other)
+                                     for other in names[1:]}
+    lines = [f"{name}: mean {stats['mean']:.5g}, 95 % CI [{stats['ci_low']:.5g}, {stats['ci_high']:.5g}] "
+             f"(n = {stats['n']})" for name, stats in comparison.summary().items()]
+    lines += [f"Mann-Whitney U {pair}: p = {p:.3g}" for pair, p in summary.get("mann_whitney_p", {}).items()]
+    _emit(args, summary, lines)
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="asperity2d", description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="command", required=True)
@@ -144,12 +193,22 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--json", action="store_true")
     p.set_defaults(func=cmd_critical)
 
-    for name in ("asperity2d.compare_cli", "asperity2d.belt.cli", "asperity2d.sweep.cli"):
-        try:
-            module = importlib.import_module(name)
-        except ImportError:
-            continue
-        module.add_parser(sub)
+    p = sub.add_parser("compare", help="compare spacings over seeds (critical or breakaway force)")
+    p.add_argument("--measure", choices=sorted(MEASURES), default="breakaway")
+    p.add_argument("--variants", default="regular,random", help="comma-separated spacings")
+    p.add_argument("--seeds", type=int, default=20)
+    p.add_argument("--workers", type=int, default=1)
+    p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                   help="make_scene argument shared by every variant (repeatable)")
+    p.add_argument("--save", help="save the comparison (.json) to re-plot later")
+    p.add_argument("--load", help="re-use a saved comparison instead of running")
+    p.add_argument("-o", "--output", help="comparison plot (.png, .svg, .pdf)")
+    p.add_argument("--json", action="store_true")
+    p.set_defaults(func=cmd_compare)
+
+    for name in ("asperity2d.belt.cli", "asperity2d.sweep.cli"):
+        if importlib.util.find_spec(name) is not None:
+            importlib.import_module(name).add_parser(sub)
     return parser
 
 

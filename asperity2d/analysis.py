@@ -1,0 +1,303 @@
+"""Stick–slip events, breakaway force and friction traces: pure functions of a Result.
+
+Everything here reads a :class:`~asperity2d.result.Result` and returns plain
+data (floats, dicts of arrays, lists of frozen :class:`Event` records); nothing
+simulates. :func:`synthetic_stick_slip` is a seeded generator of a spring-driven
+stick–slip series whose true events are known (in the spirit of ruptures'
+``pw_constant``), used to test the detector.
+
+Segmentation (seed 000's stick–slip: the slider stops, the drive spring loads
+it, it breaks away and slips): a sample is *stick* when the slider is nearly at
+rest, ``|v| < stick_speed``, and *slip* when it moves clearly faster than the
+drive, ``v > slip_speed``; in between the previous state holds (hysteresis).
+Slips shorter than ``min_slip`` are noise; sticks shorter than ``min_stick``
+inside a slip are bounces off asperities, not re-sticking.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import SceneError
+from .scene import SpringDrive
+
+#: Default thresholds as multiples of the drive velocity V. A slider released
+#: from rest on an undamped drive spring with no friction peaks at exactly 2 V,
+#: so only a speed above that (3 V) shows a release of stored elastic energy.
+STICK_SPEED_FRACTION = 0.5
+SLIP_SPEED_FRACTION = 3.0
+#: Default minimum durations as fractions of the slider's period on the drive spring.
+MIN_STICK_PERIODS = 0.5
+MIN_SLIP_PERIODS = 0.1
+
+
+@dataclass(frozen=True)
+class Event:
+    """One stick–slip cycle (SI units).
+
+    ``t_stick`` (s): start of the stick phase; ``t_slip`` (s): stick-to-slip
+    transition (the sample where the drive force peaks, just before the slider
+    overtakes the drive); ``t_end`` (s): end of the slip (re-stick, or the end
+    of the run when ``complete`` is False); ``force_peak`` (N): drive force at
+    ``t_slip``; ``force_drop`` (N): peak minus the lowest drive force during
+    the slip; ``slip_distance`` (m): slider travel from ``t_slip`` to ``t_end``;
+    ``stick_duration`` (s) = ``t_slip - t_stick``.
+    """
+
+    t_stick: float
+    t_slip: float
+    t_end: float
+    force_peak: float
+    force_drop: float
+    slip_distance: float
+    stick_duration: float
+    complete: bool = True
+
+
+def _drive_scales(result) -> tuple[float | None, float | None]:
+    """(drive velocity m/s, slider period on the drive spring s), or Nones."""
+    drive = result.scene.drive
+    if not isinstance(drive, SpringDrive):
+        return None, None
+    return drive.velocity, 2.0 * math.pi * math.sqrt(result.scene.slider.mass / drive.stiffness)
+
+
+def _runs(state: np.ndarray) -> list[list[int]]:
+    """Runs of equal values as [value, start, stop) lists."""
+    if len(state) == 0:
+        return []
+    cuts = np.flatnonzero(np.diff(state)) + 1
+    starts = np.concatenate(([0], cuts))
+    stops = np.concatenate((cuts, [len(state)]))
+    return [[int(state[a]), int(a), int(b)] for a, b in zip(starts, stops)]
+
+
+def _merge(runs: list[list[int]]) -> list[list[int]]:
+    out: list[list[int]] = []
+    for run in runs:
+        if out and out[-1][0] == run[0]:
+            out[-1][2] = run[2]
+        else:
+            out.append(list(run))
+    return out
+
+
+def stick_slip_events(result, *, stick_speed: float | None = None, slip_speed: float | None = None,
+                      min_stick: float | None = None, min_slip: float | None = None) -> list[Event]:
+    """Segment the slider's motion into stick–slip events.
+
+    Parameters
+    ----------
+    result : Result
+        A run (spring drive for the defaults; any drive with explicit values).
+    stick_speed : float, optional
+        |v| below this (m/s) is stick. Default: 0.5 x the drive velocity.
+    slip_speed : float, optional
+        v above this (m/s) is slip. Default: 3 x the drive velocity (a
+        frictionless slider released from rest peaks at 2 V).
+    min_stick : float, optional
+        A stick shorter than this (s) between two slips is a bounce, merged
+        into the slip. Default: half the slider's period on the drive spring.
+    min_slip : float, optional
+        A slip shorter than this (s) is ignored. Default: 0.1 of that period.
+
+    Returns
+    -------
+    list of Event
+        In time order. The last one has ``complete=False`` when the run ended
+        during its slip. A slip needs a stick before it: motion before the
+        first stick is not an event.
+    """
+    speed, period = _drive_scales(result)
+    defaults = {"stick_speed": (stick_speed, STICK_SPEED_FRACTION, speed),
+                "slip_speed": (slip_speed, SLIP_SPEED_FRACTION, speed),
+                "min_stick": (min_stick, MIN_STICK_PERIODS, period),
+                "min_slip": (min_slip, MIN_SLIP_PERIODS, period)}
+    values = {}
+    for name, (given, fraction, scale) in defaults.items():
+        if given is None:
+            if scale is None:
+                raise SceneError(f"`{name}` must be given for a run without a spring drive")
+            given = fraction * scale
+        if not math.isfinite(given) or given < 0:
+            raise SceneError(f"`{name}` must be a finite number >= 0, got {given!r}")
+        values[name] = float(given)
+    if values["slip_speed"] <= values["stick_speed"]:
+        raise SceneError(f"`slip_speed` ({values['slip_speed']!r}) must be > "
+                         f"`stick_speed` ({values['stick_speed']!r})")
+    t, v, x, force = (np.asarray(a, dtype=float) for a in (result.t, result.v, result.x,
+                                                             result.drive_force))
+    if len(t) < 2:
+        return []
+    # +1 slip, -1 stick, 0 dead band (keeps the previous state); leading 0: unknown.
+    label = np.where(v > values["slip_speed"], 1, np.where(np.abs(v) < values["stick_speed"], -1, 0))
+    idx = np.where(label != 0, np.arange(len(v)), 0)
+    np.maximum.accumulate(idx, out=idx)
+    state = np.where(label[idx] != 0, label[idx], 0)
+    runs = _runs(state)
+    edge = np.append(t, t[-1] + (t[-1] - t[-2]))  # run [a, b) lasts edge[b] - edge[a]
+    runs = _merge([[-1 if (r[0] == 1 and edge[r[2]] - edge[r[1]] < values["min_slip"]) else r[0],
+                    r[1], r[2]] for r in runs])
+    for i, r in enumerate(runs):
+        if r[0] == -1 and i > 0 and runs[i - 1][0] == 1 and edge[r[2]] - edge[r[1]] < values["min_stick"]:
+            r[0] = 1  # a bounce inside a slip (or a stop too short to trust at the end)
+    runs = _merge(runs)
+
+    drive_velocity = speed if speed is not None else 0.0
+    events = []
+    for i in range(1, len(runs)):
+        (prev, s0, s1), (kind, a, b) = runs[i - 1], runs[i]
+        if kind != 1 or prev != -1:
+            continue
+        # Onset: the drive force peaks where the slider overtakes the drive; search the
+        # samples from the last one not yet faster than the drive to the first fast one.
+        slow = np.flatnonzero(v[s0:a] <= max(drive_velocity, values["stick_speed"]))
+        lo = s0 + (int(slow[-1]) if len(slow) else a - s0 - 1)
+        onset = lo + int(np.argmax(force[lo:a + 1]))
+        complete = b < len(t)
+        end = b if complete else len(t) - 1
+        peak = float(force[onset])
+        events.append(Event(
+            t_stick=float(t[s0]), t_slip=float(t[onset]), t_end=float(t[end]),
+            force_peak=peak, force_drop=peak - float(np.min(force[onset:end + 1])),
+            slip_distance=float(x[end] - x[onset]), stick_duration=float(t[onset] - t[s0]),
+            complete=complete))
+    return events
+
+
+def event_statistics(events: list[Event]) -> dict:
+    """Summary of stick–slip events.
+
+    Returns a dict: ``count``; ``force_drop_mean`` / ``force_drop_std`` (N)
+    and ``slip_distance_mean`` (m) over complete events (an unfinished last
+    slip has a truncated drop); ``stick_duration_mean`` / ``_std`` (s) over all
+    events; ``interval_mean`` (s) and ``regularity``: the coefficient of
+    variation (std / mean) of the intervals between successive ``t_slip``
+    (0 for perfectly periodic stick–slip). Standard deviations use ddof=1;
+    quantities with too few events are NaN.
+    """
+    def mean_std(values):
+        a = np.asarray(values, dtype=float)
+        mean = float(a.mean()) if len(a) else math.nan
+        return mean, (float(a.std(ddof=1)) if len(a) > 1 else math.nan)
+
+    complete = [e for e in events if e.complete]
+    drop_mean, drop_std = mean_std([e.force_drop for e in complete])
+    stick_mean, stick_std = mean_std([e.stick_duration for e in events])
+    intervals = np.diff([e.t_slip for e in events])
+    interval_mean, interval_std = mean_std(intervals)
+    return {
+        "count": len(events),
+        "force_drop_mean": drop_mean, "force_drop_std": drop_std,
+        "slip_distance_mean": mean_std([e.slip_distance for e in complete])[0],
+        "stick_duration_mean": stick_mean, "stick_duration_std": stick_std,
+        "interval_mean": interval_mean,
+        "regularity": interval_std / interval_mean if interval_mean > 0 else math.nan,
+    }
+
+
+def breakaway_force(result, *, stick_speed: float | None = None, slip_speed: float | None = None,
+                    min_stick: float | None = None, min_slip: float | None = None) -> float:
+    """Drive force (N) at the first stick-to-slip transition of a spring-driven run.
+
+    The keyword arguments are those of :func:`stick_slip_events`. For 45° flanks and regular
+    spacing the quasi-static value is L tan(45° + atan mu_s) (L: normal load).
+
+    Raises
+    ------
+    SceneError
+        The run is not spring-driven, or never breaks away (named `result`).
+    """
+    if not isinstance(getattr(getattr(result, "scene", None), "drive", None), SpringDrive):
+        raise SceneError("`result` must come from a spring-driven run (drive=\"spring\")")
+    events = stick_slip_events(result, stick_speed=stick_speed, slip_speed=slip_speed,
+                               min_stick=min_stick, min_slip=min_slip)
+    if not events:
+        raise SceneError("`result` has no stick-to-slip transition (the slider never broke away)")
+    return events[0].force_peak
+
+
+def friction_traces(result, *, bins: int = 40, dynamic_range: float = 1e4) -> dict[str, np.ndarray]:
+    """Friction force against displacement and velocity, for plots.
+
+    Returns arrays (SI): ``time``, ``displacement`` (x - x[0], m),
+    ``velocity`` (m/s), ``friction_force``, ``tangential_force`` and
+    ``drive_force`` (N); and a binned friction–velocity curve over positive
+    velocities from ``dynamic_range`` below the fastest one up to it
+    (log-spaced bins; slower samples are left out): ``velocity_centers``
+    (m/s), ``friction_mean`` (N) and ``bin_count``.
+    """
+    if int(bins) < 1:
+        raise SceneError(f"`bins` must be >= 1, got {bins!r}")
+    x, v = np.asarray(result.x, dtype=float), np.asarray(result.v, dtype=float)
+    friction = np.asarray(result.friction_force, dtype=float)
+    out = {"time": np.asarray(result.t, dtype=float), "displacement": x - x[0], "velocity": v,
+           "friction_force": friction,
+           "tangential_force": np.asarray(result.tangential_force, dtype=float),
+           "drive_force": np.asarray(result.drive_force, dtype=float)}
+    if not dynamic_range > 1:
+        raise SceneError(f"`dynamic_range` must be > 1, got {dynamic_range!r}")
+    moving = v > (v.max() / dynamic_range if len(v) else 0.0)
+    moving &= v > 0
+    if moving.sum() >= 2 and v[moving].max() > v[moving].min():
+        edges = np.geomspace(v[moving].min(), v[moving].max() * (1 + 1e-12), int(bins) + 1)
+        which = np.digitize(v[moving], edges) - 1
+        count = np.bincount(which, minlength=int(bins))[: int(bins)]
+        total = np.bincount(which, weights=friction[moving], minlength=int(bins))[: int(bins)]
+        keep = count > 0
+        out["velocity_centers"] = np.sqrt(edges[:-1] * edges[1:])[keep]
+        out["friction_mean"] = total[keep] / count[keep]
+        out["bin_count"] = count[keep]
+    else:
+        out["velocity_centers"] = out["friction_mean"] = np.empty(0)
+        out["bin_count"] = np.empty(0, dtype=int)
+    return out
+
+
+def synthetic_stick_slip(*, n_events: int = 8, seed: int = 0, noise: float = 0.0,
+                         samples_per_stick: tuple[int, int] = (80, 160), samples_per_slip: int = 20,
+                         scene=None):
+    """A spring-driven stick–slip series with known events (ground truth).
+
+    The slider creeps at 3 % of the drive velocity V while stuck; each slip is
+    a half-sine velocity pulse peaking at 40 V for ``samples_per_slip``
+    samples, so slip onsets are exact sample indices; the drive force is the
+    spring force k (x_drive - x). ``noise`` adds Gaussian noise of that many V
+    to v and of that many "force rises per sample" to the force. Stick lengths
+    are drawn with ``numpy.random.default_rng(seed)``.
+
+    Returns ``(result, truth)`` where ``truth`` holds the onset sample
+    indices ``slip_index`` and the re-stick indices ``end_index``.
+    """
+    from .result import Result
+    from .scene import make_scene
+
+    scene = make_scene(lower_count=2, upper_count=1) if scene is None else scene
+    V, k = scene.drive.velocity, scene.drive.stiffness
+    dt = 1e-3 * scene.base / V
+    rng = np.random.default_rng(seed)
+    pieces, slip_index, end_index, n = [], [], [], 0
+    for _ in range(n_events):
+        stick = int(rng.integers(samples_per_stick[0], samples_per_stick[1] + 1))
+        pieces.append(np.full(stick, 0.03 * V))
+        slip_index.append(n + stick - 1)  # last stick sample: the force peak
+        pulse = 40.0 * V * np.sin(np.pi * np.arange(1, samples_per_slip + 1) / (samples_per_slip + 1))
+        pieces.append(pulse)
+        n += stick + samples_per_slip
+        end_index.append(n)  # first sample of the next stick
+    pieces.append(np.full(samples_per_stick[0], 0.03 * V))
+    v = np.concatenate(pieces)
+    t = dt * np.arange(len(v))
+    x = np.concatenate(([0.0], np.cumsum(v[1:] * dt)))
+    drive_x = V * t
+    force = k * (drive_x - x) + rng.normal(0.0, noise * k * V * dt, len(v))
+    v = v + rng.normal(0.0, noise * V, len(v))
+    zeros, lower = np.zeros_like(t), np.zeros((scene.lower.count, len(t)))
+    result = Result(t=t, x=x, v=v, y=zeros, vy=zeros, drive_x=drive_x, drive_force=force,
+                    normal_force=zeros, friction_force=force, tangential_force=zeros,
+                    contact_count=zeros, lower_dx=lower, lower_dy=lower, scene=scene,
+                    meta={"dt": dt, "record_every": 1, "status": "synthetic"})
+    return result, {"slip_index": np.array(slip_index), "end_index": np.array(end_index)}

@@ -1,0 +1,49 @@
+"""Renderers chosen by the output file's extension (like pyinstrument's renderers).
+
+``render(result, "run.gif")`` writes an animated GIF (:mod:`.gif`, Pillow
+frames); ``.png`` / ``.svg`` / ``.pdf`` write the time-series plot
+(:mod:`.plots`, matplotlib, imported only when used). ``result`` may be a
+:class:`~asperity2d.result.Result` or the path of one saved with
+``Result.save``, so a run is rendered again without re-simulating.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+from ..errors import SceneError
+
+#: Output extensions and the renderer each selects.
+RENDERERS = {".gif": "gif", ".png": "plot", ".svg": "plot", ".pdf": "plot"}
+
+
+def render(result, path: str | os.PathLike, **options) -> Path:
+    """Render ``result`` to ``path``, choosing the renderer by extension.
+
+    ``options`` go to :func:`~asperity2d.render.gif.render_gif` (``.gif``)
+    or :func:`~asperity2d.render.plots.plot_run` (``.png``, ``.svg``, ``.pdf``).
+
+    Raises
+    ------
+    SceneError
+        Unknown extension (named `path`), or bad options.
+    """
+    path = Path(path)
+    kind = RENDERERS.get(path.suffix.lower())
+    if kind is None:
+        raise SceneError(f"`path` must end in one of {', '.join(RENDERERS)}, got {str(path)!r}")
+    if isinstance(result, (str, os.PathLike)):
+        from ..result import load
+
+        result = load(result)
+    if kind == "gif":
+        from .gif import render_gif
+
+        return render_gif(result, path, **options)
+    from .plots import plot_run
+
+    return plot_run(result, path, **options)
+
+
+__all__ = ["render", "RENDERERS"]

@@ -1,0 +1,178 @@
+"""Static plots of runs and comparisons (matplotlib, Agg back end, imported lazily).
+
+Every function writes one file (format from the extension: ``.png``, ``.svg``,
+``.pdf``) through a temporary file and a rename, and returns its path.
+Matplotlib is imported inside the functions so ``import asperity2d`` stays
+light and works headless.
+"""
+
+from __future__ import annotations
+
+import io
+import os
+from pathlib import Path
+
+import numpy as np
+
+from .._io import atomic_write
+from ..errors import SceneError
+
+FORMATS = (".png", ".svg", ".pdf")
+
+
+def _figure(rows: int, *, width: float = 7.0, height: float = 2.2, sharex: bool = True):
+    """A (figure, axes) pair on the Agg canvas, without pyplot's global state."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(width, height * rows), layout="constrained")
+    FigureCanvasAgg(fig)
+    axes = fig.subplots(rows, 1, sharex=sharex, squeeze=False)[:, 0]
+    return fig, axes
+
+
+def _save(fig, path: str | os.PathLike, dpi: int) -> Path:
+    path = Path(path)
+    fmt = path.suffix.lower()
+    if fmt not in FORMATS:
+        raise SceneError(f"`path` must end in one of {', '.join(FORMATS)}, got {str(path)!r}")
+
+    def write(fh):
+        buf = io.BytesIO()
+        fig.savefig(buf, format=fmt[1:], dpi=dpi)
+        fh.write(buf.getvalue())
+
+    return atomic_write(path, write)
+
+
+def plot_run(result, path: str | os.PathLike, *, events=None, dpi: int = 120) -> Path:
+    """Slider position, velocity and drive / friction force against time.
+
+    ``events``: stick–slip events to mark (slip onsets as red lines, stick
+    phases shaded); ``None`` detects them for a spring-driven run with
+    :func:`~asperity2d.analysis.stick_slip_events`; ``[]`` marks none.
+    Units on the axes: µs, µm, mN; velocity in drive velocities (spring
+    drive, symlog scale) or m/s. The force axis is scaled to the drive
+    force; the contact force's impact spikes are clipped.
+    """
+    from ..analysis import stick_slip_events
+    from ..scene import SpringDrive
+
+    if events is None:
+        events = stick_slip_events(result) if isinstance(result.scene.drive, SpringDrive) else []
+    events = list(events)
+    t = np.asarray(result.t) * 1e6
+    fig, (ax_x, ax_v, ax_f) = _figure(3)
+    ax_x.plot(t, np.asarray(result.x) * 1e6, color="C0", lw=1, label="slider")
+    if np.isfinite(result.drive_x).any():
+        ax_x.plot(t, np.asarray(result.drive_x) * 1e6, color="0.6", lw=1, ls="--", label="drive end")
+        ax_x.legend(loc="upper left", fontsize=8)
+    ax_x.set_ylabel("position (µm)")
+    spring = isinstance(result.scene.drive, SpringDrive)
+    v_unit = result.scene.drive.velocity if spring else 1.0
+    ax_v.plot(t, np.asarray(result.v) / v_unit, color="C1", lw=1)
+    ax_v.set_yscale("symlog", linthresh=1.0)  # stick (~0) and slip (>> drive speed) both show
+    ax_v.set_ylabel("velocity / drive velocity" if spring else "velocity (m/s)")
+    drive = np.asarray(result.drive_force) * 1e3
+    ax_f.plot(t, np.asarray(result.friction_force) * 1e3, color="C2", lw=0.8, alpha=0.6,
+              label="contact (friction)")
+    ax_f.plot(t, drive, color="C3", lw=1.2, label="drive")
+    lo, hi = float(np.nanmin(drive)), float(np.nanmax(drive))
+    pad = 0.3 * max(hi - lo, abs(hi), 1e-12)
+    ax_f.set_ylim(min(lo, 0.0) - pad, hi + pad)  # contact impulses spike far above: clipped
+    ax_f.set_ylabel("force (mN)")
+    ax_f.set_xlabel("time (µs)")
+    ax_f.legend(loc="upper left", fontsize=8)
+    for e in events:
+        for ax in (ax_x, ax_v, ax_f):
+            ax.axvspan(e.t_stick * 1e6, e.t_slip * 1e6, color="C0", alpha=0.07, lw=0)
+            ax.axvline(e.t_slip * 1e6, color="red", lw=0.7, alpha=0.8)
+        ax_f.plot([e.t_slip * 1e6], [e.force_peak * 1e3], "v", color="red", ms=4)
+    ax_x.set_title(f"{result.scene.name or 'run'}: {len(events)} stick–slip events", fontsize=10)
+    return _save(fig, path, dpi)
+
+
+def plot_force_displacement(result, path: str | os.PathLike, *, dpi: int = 120) -> Path:
+    """Contact (friction) and drive force against slider displacement, and
+    friction against velocity (raw samples and the binned mean of
+    :func:`~asperity2d.analysis.friction_traces`). The force axes stop at 1.3 x
+    the larger of the peak drive force and the 99th percentile of the contact
+    force, so single-sample impact spikes are clipped."""
+    from ..analysis import friction_traces
+
+    tr = friction_traces(result)
+    fig, (ax_d, ax_v) = _figure(2, height=2.8, sharex=False)
+    ax_d.plot(tr["displacement"] * 1e6, tr["friction_force"] * 1e3, lw=0.8, color="C2",
+              label="contact (friction)")
+    ax_d.plot(tr["displacement"] * 1e6, tr["drive_force"] * 1e3, lw=0.8, color="C3", label="drive")
+    top = max(float(np.nanmax(tr["drive_force"])), float(np.nanpercentile(tr["friction_force"], 99)))
+    bottom = min(0.0, float(np.nanmin(tr["drive_force"])),
+                 float(np.nanpercentile(tr["friction_force"], 1)))
+    if top > bottom:
+        pad = 0.3 * (top - bottom)
+        for ax in (ax_d, ax_v):  # single-sample impact spikes are clipped
+            ax.set_ylim((bottom - pad) * 1e3, (top + pad) * 1e3)
+    ax_d.set_xlabel("slider displacement (µm)")
+    ax_d.set_ylabel("force (mN)")
+    ax_d.legend(loc="upper left", fontsize=8)
+    centers = tr["velocity_centers"]
+    if len(centers):
+        v = tr["velocity"]
+        moving = v >= centers[0] / 2.0
+        ax_v.plot(v[moving], tr["friction_force"][moving] * 1e3, ".", ms=1.5,
+                  color="C2", alpha=0.3, label="samples")
+        ax_v.plot(centers, tr["friction_mean"] * 1e3, "-o", ms=3, color="k", label="binned mean")
+        ax_v.set_xscale("log")
+        ax_v.legend(loc="upper left", fontsize=8)
+    ax_v.set_xlabel("slider velocity (m/s)")
+    ax_v.set_ylabel("friction force (mN)")
+    return _save(fig, path, dpi)
+
+
+def plot_comparison(comparison, path: str | os.PathLike, *, reference: float | None = None,
+                    label: str | None = None, dpi: int = 120) -> Path:
+    """Strip and box plot of each variant's values, with the mean and its 95 % CI.
+
+    ``comparison`` is a :class:`~asperity2d.compare.Comparison`;
+    ``reference`` draws a horizontal line (e.g. the flank-law force);
+    ``label`` names the y axis (default: the measure's name).
+    """
+    names = list(comparison.values)
+    if not names:
+        raise SceneError("`comparison` has no variants to plot")
+    fig, (ax,) = _figure(1, width=max(4.0, 1.3 * len(names) + 2.0), height=3.6)
+    data = [comparison.finite(name) for name in names]
+    ax.boxplot(data, positions=range(len(names)), widths=0.5, showfliers=False,
+               medianprops={"color": "0.3"})
+    rng = np.random.default_rng(0)  # jitter only: fixed so the figure is reproducible
+    for i, (name, values) in enumerate(zip(names, data)):
+        ax.plot(i + rng.uniform(-0.15, 0.15, len(values)), values, "o", ms=3.5, alpha=0.6,
+                color=f"C{i % 10}")
+        if len(values) >= 2:
+            lo, hi = comparison.ci(name)
+            ax.errorbar([i + 0.32], [comparison.mean(name)], yerr=[[comparison.mean(name) - lo],
+                        [hi - comparison.mean(name)]], fmt="D", color="k", ms=4, capsize=3)
+    if reference is not None:
+        ax.axhline(reference, color="red", lw=0.8, ls="--", label=f"reference {reference:.4g}")
+        ax.legend(loc="best", fontsize=8)
+    ax.set_xticks(range(len(names)), names, rotation=20 if len(names) > 4 else 0)
+    ax.set_ylabel(label or comparison.measure)
+    ax.set_title(f"{len(comparison.seeds)} seeds per variant; diamonds: mean, 95 % CI",
+                 fontsize=9)
+    return _save(fig, path, dpi)
+
+
+def plot_positions(results, labels, path: str | os.PathLike, *, dpi: int = 120) -> Path:
+    """Slider position against time for several runs on one axis (seed 000 figure 10 style).
+
+    Plateaus are where a slider stopped on a flank. Units: µs and µm.
+    """
+    if len(results) != len(labels):
+        raise SceneError(f"`labels` must have one entry per result ({len(results)}), got {len(labels)}")
+    fig, (ax,) = _figure(1, height=3.2)
+    for result, label in zip(results, labels):
+        ax.plot(result.t * 1e6, (result.x - result.x[0]) * 1e6, label=label)
+    ax.set_xlabel("time (µs)")
+    ax.set_ylabel("slider travel (µm)")
+    ax.legend(loc="best", fontsize="small")
+    return _save(fig, path, dpi)

@@ -1,0 +1,38 @@
+"""Sweeps and ensembles: run a function over a parameter grid and seeds, at scale.
+
+A :class:`Study` names a run function by dotted path ``"module:function"``,
+a grid of parameters and a list of seeds. :func:`run_study` executes the runs
+that are not finished yet (locally in processes, or on a Dask cluster) and
+writes each one atomically to a resumable :class:`ResultStore`;
+:func:`summarize` and :func:`plot_summary` turn the store into statistics per
+grid point and a figure.
+"""
+
+from .executors import DaskExecutor, LocalExecutor, execute_run, make_executor
+from .report import Comparison, Summary, VariantStats, plot_summary, summarize
+from .runner import SweepSummary, run_study
+from .record import CorruptRunWarning, RunRecord
+from .store import ResultStore, StoreStatus
+from .study import RunSpec, Study, load_study, run_key
+
+__all__ = [
+    "Comparison",
+    "CorruptRunWarning",
+    "DaskExecutor",
+    "LocalExecutor",
+    "ResultStore",
+    "RunRecord",
+    "RunSpec",
+    "StoreStatus",
+    "Study",
+    "Summary",
+    "SweepSummary",
+    "VariantStats",
+    "execute_run",
+    "load_study",
+    "make_executor",
+    "plot_summary",
+    "run_key",
+    "run_study",
+    "summarize",
+]

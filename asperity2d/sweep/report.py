@@ -1,0 +1,219 @@
+"""Summaries of a finished (or partly finished) study: statistics, tests, a figure.
+
+For every grid point (*variant*) and quantity: the number of finite values,
+mean, sample standard deviation and the two-sided confidence interval of the
+mean from the t-distribution, ``mean ± t(1-α/2, n-1)·s/√n``.
+
+Comparisons: for every grid parameter with exactly two values (regular vs
+random spacing, full vs half profile, ...), each pair of variants that differ
+only in that parameter is compared with the two-sided Mann–Whitney U test
+(``scipy.stats.mannwhitneyu``). No multiple-comparison correction is applied.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .._io import atomic_write
+from ..errors import SceneError
+from .store import ResultStore, quantity_names
+from .study import variant_label
+
+Variant = tuple[tuple[str, Any], ...]
+
+
+@dataclass(frozen=True)
+class VariantStats:
+    """Statistics of one quantity over the done runs of one grid point."""
+
+    variant: Variant
+    quantity: str
+    n: int
+    mean: float
+    std: float
+    ci_low: float
+    ci_high: float
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """Mann–Whitney U test of one quantity between two variants differing in ``parameter``."""
+
+    parameter: str
+    variant_a: Variant
+    variant_b: Variant
+    quantity: str
+    n_a: int
+    n_b: int
+    u: float
+    p_value: float
+
+
+@dataclass(frozen=True)
+class Summary:
+    """Statistics of a study; ``counts`` maps each variant to (done, failed)."""
+
+    study: str
+    confidence: float
+    quantities: tuple[str, ...]
+    variants: tuple[Variant, ...]
+    counts: tuple[tuple[int, int], ...]
+    stats: tuple[VariantStats, ...]
+    comparisons: tuple[Comparison, ...]
+
+    def stat(self, variant: Variant | dict, quantity: str) -> VariantStats:
+        """The :class:`VariantStats` of ``quantity`` at ``variant``."""
+        variant = tuple(variant.items()) if isinstance(variant, dict) else tuple(variant)
+        for s in self.stats:
+            if s.variant == variant and s.quantity == quantity:
+                return s
+        raise SceneError(f"`variant` {variant!r} / `quantity` {quantity!r} not in the summary")
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-able dict; NaN becomes None."""
+        def num(x):
+            return None if isinstance(x, float) and not math.isfinite(x) else x
+
+        variants = []
+        for variant, (done, failed) in zip(self.variants, self.counts):
+            entry = {"params": dict(variant), "label": variant_label(variant),
+                     "done": done, "failed": failed, "quantities": {}}
+            for s in self.stats:
+                if s.variant == variant:
+                    entry["quantities"][s.quantity] = {
+                        "n": s.n, "mean": num(s.mean), "std": num(s.std),
+                        "ci": [num(s.ci_low), num(s.ci_high)],
+                    }
+            variants.append(entry)
+        comparisons = [
+            {"parameter": c.parameter, "a": dict(c.variant_a), "b": dict(c.variant_b),
+             "quantity": c.quantity, "n_a": c.n_a, "n_b": c.n_b, "u": num(c.u),
+             "p_value": num(c.p_value), "test": "mann-whitney-u two-sided"}
+            for c in self.comparisons
+        ]
+        return {"study": self.study, "confidence": self.confidence,
+                "quantities": list(self.quantities), "variants": variants,
+                "comparisons": comparisons}
+
+
+def mean_ci(values, *, confidence: float = 0.95) -> tuple[int, float, float, float, float]:
+    """``(n, mean, std, ci_low, ci_high)`` of the finite values (t-distribution CI)."""
+    x = np.asarray(values, dtype=float)
+    x = x[np.isfinite(x)]
+    n = len(x)
+    if n == 0:
+        return 0, math.nan, math.nan, math.nan, math.nan
+    mean = float(x.mean())
+    if n == 1:
+        return 1, mean, math.nan, math.nan, math.nan
+    std = float(x.std(ddof=1))
+    from scipy import stats  # imported here: scipy.stats costs ~1 s, runs never need it
+
+    half = float(stats.t.ppf(0.5 + confidence / 2, n - 1)) * std / math.sqrt(n)
+    return n, mean, std, mean - half, mean + half
+
+
+def summarize(store: str | Path | ResultStore, *, confidence: float = 0.95) -> Summary:
+    """Per-variant statistics and Mann–Whitney comparisons of a store's study."""
+    if not (isinstance(confidence, float) and 0.0 < confidence < 1.0):
+        raise SceneError(f"`confidence` must be a float in (0, 1), got {confidence!r}")
+    store = store if isinstance(store, ResultStore) else ResultStore(store)
+    study = store.study()
+    records = store.records(study)
+    names = tuple(quantity_names(study, records.values()))
+    by_variant: dict[Variant, list] = {v: [] for v in study.variants()}
+    for spec in study.runs():
+        if spec.key in records:
+            by_variant[spec.variant].append(records[spec.key])
+    values: dict[tuple[Variant, str], np.ndarray] = {}
+    all_stats, counts = [], []
+    for variant, recs in by_variant.items():
+        done = [r for r in recs if r.status == "done"]
+        counts.append((len(done), len(recs) - len(done)))
+        for q in names:
+            x = np.array([r.quantities.get(q, np.nan) for r in done], dtype=float)
+            values[variant, q] = x[np.isfinite(x)]
+            all_stats.append(VariantStats(variant, q, *mean_ci(x, confidence=confidence)))
+    from scipy import stats
+
+    comparisons = []
+    for param, options in study.grid.items():
+        if len(options) != 2:
+            continue
+        for variant in by_variant:
+            if dict(variant)[param] != options[0]:
+                continue
+            other = tuple((k, options[1] if k == param else v) for k, v in variant)
+            for q in names:
+                a, b = values[variant, q], values[other, q]
+                if len(a) and len(b):
+                    res = stats.mannwhitneyu(a, b, alternative="two-sided")
+                    u, p = float(res.statistic), float(res.pvalue)
+                else:
+                    u = p = math.nan
+                comparisons.append(Comparison(param, variant, other, q, len(a), len(b), u, p))
+    return Summary(study.name, confidence, names, tuple(by_variant), tuple(counts),
+                   tuple(all_stats), tuple(comparisons))
+
+
+def plot_summary(summary: Summary, path: str | Path) -> Path:
+    """Write a figure of mean and confidence band per variant, one panel per quantity.
+
+    When a single numeric grid parameter varies, variants are placed at its
+    values and joined by a line; otherwise they are categories on the x axis.
+    The format follows the extension of ``path`` (``.png``, ``.pdf``, ``.svg``).
+    """
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    path = Path(path)
+    fmt = path.suffix.lower().lstrip(".")
+    if fmt not in {"png", "pdf", "svg"}:
+        raise SceneError(f"`path` must end in .png, .pdf or .svg, got {str(path)!r}")
+    if not summary.quantities:
+        raise SceneError("`summary` has no quantities to plot (no run has finished)")
+    varying = [k for k, _ in summary.variants[0]
+               if len({dict(v)[k] for v in summary.variants}) > 1] if summary.variants[0] else []
+    numeric = len(varying) == 1 and all(
+        isinstance(dict(v)[varying[0]], (int, float)) and not isinstance(dict(v)[varying[0]], bool)
+        for v in summary.variants)
+    if numeric:
+        xs = np.array([float(dict(v)[varying[0]]) for v in summary.variants])
+    else:
+        xs = np.arange(len(summary.variants), dtype=float)
+    labels = [variant_label((k, val) for k, val in v if k in varying) for v in summary.variants]
+
+    nq = len(summary.quantities)
+    fig = Figure(figsize=(max(5.0, 1.2 * len(xs) + 2.5), 2.6 * nq + 0.6), layout="constrained")
+    FigureCanvasAgg(fig)
+    axes = fig.subplots(nq, 1, sharex=True, squeeze=False)[:, 0]
+    for ax, q in zip(axes, summary.quantities):
+        st = [summary.stat(v, q) for v in summary.variants]
+        mean = np.array([s.mean for s in st])
+        lo = np.array([s.ci_low for s in st])
+        hi = np.array([s.ci_high for s in st])
+        if numeric:
+            order = np.argsort(xs)
+            ax.fill_between(xs[order], lo[order], hi[order], alpha=0.3,
+                            label=f"{summary.confidence:.0%} CI")
+            ax.plot(xs[order], mean[order], "o-", label="mean")
+        else:
+            for i, (x, a, b) in enumerate(zip(xs, lo, hi)):
+                ax.fill_between([x - 0.3, x + 0.3], [a, a], [b, b], alpha=0.3, color="C0",
+                                label=f"{summary.confidence:.0%} CI" if i == 0 else None)
+            ax.plot(xs, mean, "o", color="C0", label="mean")
+        ax.set_ylabel(q)
+        ax.grid(alpha=0.3)
+    axes[0].set_title(f"{summary.study}: mean and {summary.confidence:.0%} CI per variant")
+    axes[0].legend(loc="best", fontsize="small")
+    if numeric:
+        axes[-1].set_xlabel(varying[0])
+    else:
+        axes[-1].set_xticks(xs, [f"{lab}\n(n={d})" for lab, (d, _) in zip(labels, summary.counts)],
+                            rotation=20 if len(xs) > 4 else 0, fontsize="small")
+    return atomic_write(path, lambda fh: fig.savefig(fh, format=fmt, dpi=110))

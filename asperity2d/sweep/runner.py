@@ -1,0 +1,161 @@
+"""Run a study into a results store: skip what is finished, stream the rest.
+
+:func:`run_study` is the one entry point. It expands the study, reads which
+runs are already finished (valid run files), sends only the others to the
+executor, and writes each run's file as soon as its result arrives. A study
+that is interrupted (Ctrl-C, SIGKILL, a lost node) resumes where it stopped
+when it is run again; a run that raises is recorded as failed and the study
+goes on.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import time
+from dataclasses import dataclass
+from typing import Iterator
+
+from ..errors import SceneError
+from .executors import (DaskExecutor, LocalExecutor, check_executor_args, execute_run, jobs_for,
+                        make_executor, resolve_run)
+from .progress import Progress
+from .record import RunRecord
+from .store import ResultStore
+from .study import Study, load_study
+
+try:  # advisory lock so two sessions never write one store; POSIX only
+    import fcntl
+except ImportError:  # pragma: no cover - Windows
+    fcntl = None
+
+
+@dataclass(frozen=True)
+class SweepSummary:
+    """What a session did: totals after it, and what it ran (``executed`` keys)."""
+
+    study: str
+    store: str
+    total: int
+    done: int
+    failed: int
+    pending: int
+    skipped: int
+    executed: tuple[str, ...]
+    wall_time: float
+    executor: str
+
+    @property
+    def ran(self) -> int:
+        """Number of runs executed in this session."""
+        return len(self.executed)
+
+    def to_dict(self) -> dict:
+        data = {k: v for k, v in self.__dict__.items() if k != "executed"}
+        data["ran"] = self.ran
+        return data
+
+
+@contextlib.contextmanager
+def _locked(store: ResultStore) -> Iterator[None]:
+    if store.path.exists() and not store.path.is_dir():
+        raise SceneError(f"`store` exists and is not a directory: {str(store.path)!r}")
+    store.path.mkdir(parents=True, exist_ok=True)
+    with open(store.path / ".lock", "a+b") as fh:
+        if fcntl is not None:
+            try:
+                fcntl.flock(fh.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except BlockingIOError:
+                raise SceneError(
+                    f"`store` {str(store.path)!r} is in use by another running sweep"
+                ) from None
+        # the kernel drops the lock if this process dies, even by SIGKILL
+        for stale in [*store.path.glob(".*.tmp"), *store.runs_dir.glob(".*.tmp")]:
+            with contextlib.suppress(OSError):
+                stale.unlink()  # half-written temporary files of a killed session
+        yield
+
+
+def run_study(
+    study: Study | str | os.PathLike,
+    *,
+    store: str | os.PathLike | ResultStore,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    progress: bool = True,
+    retry_failed: bool = False,
+    executor: LocalExecutor | DaskExecutor | None = None,
+) -> SweepSummary:
+    """Run every unfinished run of ``study`` and record it in ``store``.
+
+    Parameters
+    ----------
+    study : Study or path
+        The study, or a ``.toml`` / ``.py`` file describing it.
+    store : path or ResultStore
+        The study's results directory (created if missing).
+    workers : int, optional
+        Local worker processes (default ``os.cpu_count()``; 1 = in-process),
+        or the size of the cluster for ``scheduler="local"``.
+    scheduler : str, optional
+        Dask scheduler address ``"tcp://host:port"``, or ``"local"`` to start a
+        ``LocalCluster``. Default: the local process pool.
+    progress : bool
+        Show a progress bar on stderr.
+    retry_failed : bool
+        Also re-run runs recorded as failed (default: keep them).
+    executor : LocalExecutor or DaskExecutor, optional
+        An executor to use (and leave open) instead of ``workers``/``scheduler``,
+        e.g. to run several studies on one Dask client.
+    """
+    if executor is not None and (workers is not None or scheduler is not None):
+        raise SceneError("`executor` excludes `workers` and `scheduler`")
+    if not isinstance(study, Study):
+        study = load_study(study)
+    store = store if isinstance(store, ResultStore) else ResultStore(store)
+    check_executor_args(workers=workers, scheduler=scheduler)
+    resolve_run(study.run)  # fail fast on a bad dotted path, before any process starts
+    start = time.perf_counter()
+    with _locked(store):
+        store.check_study(study)
+        specs = study.runs()
+        finished = store.records(study)
+        if retry_failed:
+            finished = {k: r for k, r in finished.items() if r.status == "done"}
+        todo = [spec for spec in specs if spec.key not in finished]
+        done = sum(r.status == "done" for r in finished.values())
+        failed = len(finished) - done
+        executed: list[str] = []
+        owned = executor is None
+        if owned:
+            executor = make_executor(workers=workers, scheduler=scheduler) if todo else None
+        description = executor.description if executor else "none"
+        bar = None
+        try:
+            store.begin_session(study, executor=description)
+            bar = Progress(total=len(specs), done=done, failed=failed, label=study.name,
+                           enabled=progress)
+            if todo:
+                jobs = jobs_for(study.run, todo, study.quantities)
+                for index, outcome in executor.map_unordered(execute_run, jobs):
+                    record = RunRecord.from_outcome(todo[index], study.run, outcome)
+                    store.write_run(record)
+                    executed.append(record.key)
+                    bar.update(record.status)
+        finally:
+            if bar is not None:
+                bar.close()
+            if owned and executor is not None:
+                executor.close()
+    return SweepSummary(
+        study=study.name,
+        store=str(store.path),
+        total=len(specs),
+        done=bar.done,
+        failed=bar.failed,
+        pending=len(specs) - bar.done - bar.failed,
+        skipped=len(finished),
+        executed=tuple(executed),
+        wall_time=time.perf_counter() - start,
+        executor=description,
+    )

@@ -1,0 +1,119 @@
+"""``asperity2d sweep`` CLI, in-process: run / status / report / export and bad input."""
+
+import argparse
+import csv
+import json
+import math
+
+import numpy as np
+import pytest
+from scipy import stats
+
+from asperity2d.sweep import ResultStore
+from asperity2d.sweep.cli import add_parser, main, run
+from asperity2d.sweep.report import mean_ci
+
+STUDY_TOML = """\
+name = "cli"
+run = "sweep_fixtures:flaky_run"
+seeds = 5
+[grid]
+amplitude = [1.0, 2.0]
+label = ["a"]
+"""
+
+
+@pytest.fixture
+def store_dir(tmp_path, capsys):
+    study = tmp_path / "study.toml"
+    study.write_text(STUDY_TOML)
+    store = tmp_path / "store"
+    assert main(["run", str(study), "--store", str(store), "--workers", "1", "--no-progress",
+                 "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert (summary["done"], summary["failed"], summary["pending"], summary["ran"]) == (10, 0, 0, 10)
+    return store
+
+
+def test_status_json(store_dir, capsys):
+    assert main(["status", str(store_dir), "--json"]) == 0
+    status = json.loads(capsys.readouterr().out)
+    assert status["study"] == "cli"
+    assert {k: status[k] for k in ("done", "failed", "pending", "total")} == {
+        "done": 10, "failed": 0, "pending": 0, "total": 10}
+    store = ResultStore(store_dir)
+    store.run_path(next(iter(store.stored_keys()))).write_text("{")  # half-written
+    assert main(["status", str(store_dir), "--json"]) == 0
+    out, err = capsys.readouterr()
+    assert (json.loads(out)["pending"], json.loads(out)["corrupt"]) == (1, 1)
+    assert err.count("\n") == 1 and "warning" in err and "corrupt" in err
+
+
+def test_export_csv_and_npy(store_dir, tmp_path, capsys):
+    assert main(["export", str(store_dir), "-o", str(tmp_path / "runs.csv")]) == 0
+    rows = list(csv.DictReader((tmp_path / "runs.csv").open()))
+    table = ResultStore(store_dir).table()
+    assert len(rows) == 10 and [r["key"] for r in rows] == list(table["key"])
+    assert [float(r["peak"]) for r in rows] == list(table["peak"])
+    assert main(["export", str(store_dir), "-o", str(tmp_path / "runs.npy")]) == 0
+    loaded = np.load(tmp_path / "runs.npy")
+    assert loaded.dtype == table.dtype and (loaded == table).all()
+
+
+def test_report_json_stats_and_figure(store_dir, tmp_path, capsys):
+    figure = tmp_path / "summary.png"
+    assert main(["report", str(store_dir), "-o", str(figure), "--json"]) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert figure.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and report["figure"] == str(figure)
+    table = ResultStore(store_dir).table()
+    peaks = {a: table["peak"][table["amplitude"] == a] for a in (1.0, 2.0)}
+    (v1, v2) = report["variants"]
+    assert v1["params"] == {"amplitude": 1.0, "label": "a"} and v1["done"] == 5
+    assert v1["quantities"]["peak"]["mean"] == pytest.approx(peaks[1.0].mean(), rel=1e-12)
+    (cmp_peak,) = [c for c in report["comparisons"] if c["quantity"] == "peak"]
+    ref = stats.mannwhitneyu(peaks[1.0], peaks[2.0], alternative="two-sided")
+    assert cmp_peak["parameter"] == "amplitude" and cmp_peak["n_a"] == cmp_peak["n_b"] == 5
+    assert (cmp_peak["u"], cmp_peak["p_value"]) == pytest.approx((ref.statistic, ref.pvalue))
+    assert main(["report", str(store_dir)]) == 0  # text form, default figure path
+    assert "Mann-Whitney U" in capsys.readouterr().out
+    assert (store_dir / "summary.png").is_file()
+
+
+def test_mean_ci_closed_form():
+    n, mean, std, lo, hi = mean_ci([1.0, 2.0, 3.0, 4.0, float("nan")])
+    half = 3.182446305284263 * math.sqrt(5 / 3) / 2  # t(0.975, 3) * s / sqrt(n)
+    assert (n, mean, std) == (4, 2.5, pytest.approx(math.sqrt(5 / 3)))
+    assert (lo, hi) == pytest.approx((2.5 - half, 2.5 + half))
+    assert mean_ci([7.0])[:2] == (1, 7.0) and math.isnan(mean_ci([7.0])[3])
+
+
+@pytest.mark.parametrize(
+    "argv, needle",
+    [
+        (["status", "{tmp}/nowhere", "--json"], "`store` is not a sweep store"),
+        (["report", "{tmp}/nowhere"], "`store` is not a sweep store"),
+        (["export", "{store}", "-o", "{tmp}/x.xlsx"], "`output` must end in .csv or .npy"),
+        (["report", "{store}", "-o", "{tmp}/x.gif"], "`path` must end in .png"),
+        (["run", "{tmp}/missing.toml", "--store", "{tmp}/s"], "`study` file does not exist"),
+        (["run", "{study}", "--store", "{tmp}/s", "--workers", "0"], "`workers` must be"),
+        (["run", "{study}", "--store", "{tmp}/s", "--workers", "x"], "`workers` must be"),
+        (["run", "{study}", "--store", "{store}", "--scheduler", "tcp://h:1", "--workers", "2"],
+         "`workers` applies only"),
+        (["frobnicate"], "invalid choice"),
+    ],
+)
+def test_bad_input_one_line_exit_2(store_dir, tmp_path, capsys, argv, needle):
+    bad_study = tmp_path / "bad.toml"
+    bad_study.write_text('name = "cli"\nrun = "sweep_fixtures:flaky_run"\nseeds = 1\n')
+    fill = {"tmp": str(tmp_path), "store": str(store_dir), "study": str(bad_study)}
+    assert main([a.format(**fill) for a in argv]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err.count("\n") == 1 and needle in err and "Traceback" not in err
+
+
+def test_add_parser_wires_into_a_parent_cli(store_dir, capsys):
+    parser = argparse.ArgumentParser(prog="asperity2d")
+    add_parser(parser.add_subparsers(dest="command"))
+    args = parser.parse_args(["sweep", "status", str(store_dir), "--json"])
+    assert args.func is run and args.func(args) == 0
+    assert json.loads(capsys.readouterr().out)["done"] == 10
