@@ -90,6 +90,8 @@ class Engine:
         else:
             self._force = drive.force / u.force
         self._set_drive_origin()
+        self._slider_fixed = s.track == "fixed"
+        self._projected = self.tracked or self._slider_fixed
         self.step_count = 0
         self.max_drift = 0.0  # largest solver drift off a track before projection (base units)
 
@@ -103,18 +105,52 @@ class Engine:
         down, up = lower.travel_down / u.length, lower.travel_up / u.length
         self.lower_bodies = []
         flt = pymunk.ShapeFilter(categories=_LOWER, mask=_SLIDER)
+        self.tracked = not lower.is_lattice
         for x0, m, k, c in zip(self.lower_x0, lower.mass, lower.stiffness, lower.damping):
             body = pymunk.Body(m / u.mass, math.inf)
             body.position = (x0, 0.0)
             shape = pymunk.Poly(body, verts)
             shape.filter, shape.collision_type = flt, _LOWER
-            groove = pymunk.GrooveJoint(space.static_body, body, (x0, -down), (x0, up), (0.0, 0.0))
-            spring = pymunk.DampedSpring(space.static_body, body, (x0, -_SPRING_REST), (0.0, 0.0),
-                                         _SPRING_REST, k / u.stiffness, c / u.damping)
-            for joint in (groove, spring):
+            # The vertical spring hangs from far below, so it stays vertical
+            # (to 1e-2 rad per base of sideways motion in the lattice).
+            joints = [pymunk.DampedSpring(space.static_body, body, (x0, -_SPRING_REST), (0.0, 0.0),
+                                          _SPRING_REST, k / u.stiffness, c / u.damping)]
+            if self.tracked:
+                joints.append(pymunk.GrooveJoint(space.static_body, body, (x0, -down), (x0, up),
+                                                 (0.0, 0.0)))
+            for joint in joints:
                 joint.error_bias = self._error_bias
-            space.add(body, shape, groove, spring)
+            space.add(body, shape, *joints)
             self.lower_bodies.append(body)
+        if lower.is_lattice:
+            self._build_lattice()
+
+    def _build_lattice(self):
+        """Horizontal springs between neighbouring peaks and to the two walls.
+
+        Each is a ``DampedSpring`` between body centres (rest length: their
+        spacing); a wall link anchors to the static body one mean pitch
+        outside the end peak. For small displacements they act along x with
+        the stiffness matrix :meth:`LowerSurface.lateral_stiffness_matrix`;
+        a height difference dy between linked peaks tilts a link by dy/pitch.
+        """
+        lower, u, space = self.scene.lower, self.units, self.space
+        pitch = lower.spacing.mean_pitch / u.length
+        x = self.lower_x0
+        bodies = self.lower_bodies
+        for j, (k, c) in enumerate(zip(lower.lateral_stiffness, lower.lateral_damping)):
+            if k == 0 and c == 0:
+                continue
+            if j == 0:
+                link = pymunk.DampedSpring(space.static_body, bodies[0], (x[0] - pitch, 0.0),
+                                           (0.0, 0.0), pitch, k / u.stiffness, c / u.damping)
+            elif j == len(bodies):
+                link = pymunk.DampedSpring(bodies[-1], space.static_body, (0.0, 0.0),
+                                           (x[-1] + pitch, 0.0), pitch, k / u.stiffness, c / u.damping)
+            else:
+                link = pymunk.DampedSpring(bodies[j - 1], bodies[j], (0.0, 0.0), (0.0, 0.0),
+                                           x[j] - x[j - 1], k / u.stiffness, c / u.damping)
+            space.add(link)
 
     def _build_slider(self):
         s, u, space = self.scene.slider, self.units, self.space
@@ -285,27 +321,37 @@ class Engine:
                 self._update_friction()
 
     def _project_tracks(self) -> None:
-        """Put every lower asperity back on its vertical track (x = x0, vx = 0).
+        """Put bodies back on their tracks: lower asperities at x = x0 (vx = 0),
+        a fixed-track slider at y = y0 (vy = 0).
 
-        pymunk's iterative solver lets a groove joint drift sideways under
+        pymunk's iterative solver lets a groove joint drift off its line under
         hard impacts (measured: up to 0.6 % of a base, insensitive to
-        iterations and bias). Projecting the positions and velocities onto the
+        iterations and bias). Projecting positions and velocities onto the
         constraint after each step (post-stabilisation) keeps the tracks within
-        ``TRACK_TOLERANCE`` of a base;
-        the groove still carries the reaction force during the step. The
-        drift removed is recorded as ``max_track_drift_fraction``.
+        ``TRACK_TOLERANCE`` of a base; the groove still carries the reaction
+        force during the step. The largest drift removed is ``max_drift``.
         """
+        if not self._projected:
+            return
         buf = self._body_buf
         buf.clear()
         batch.get_space_bodies(self.space, _BODY_FIELDS, buf)
         rows = np.frombuffer(buf.float_buf(), dtype=np.float64).reshape(-1, 4)
-        lower = self._lower_rows
-        drift = float(np.abs(rows[lower, 0] - self.lower_x0).max()) if len(lower) else 0.0
+        drift = 0.0
+        if self.tracked and len(self._lower_rows):
+            lower = self._lower_rows
+            drift = float(np.abs(rows[lower, 0] - self.lower_x0).max())
+        if self._slider_fixed:
+            drift = max(drift, abs(rows[self._slider_row, 1] - self.slider_y0))
         if drift > self.max_drift:
             self.max_drift = drift
         if drift > TRACK_TOLERANCE:
-            rows[lower, 0] = self.lower_x0
-            rows[lower, 2] = 0.0
+            if self.tracked:
+                rows[self._lower_rows, 0] = self.lower_x0
+                rows[self._lower_rows, 2] = 0.0
+            if self._slider_fixed:
+                rows[self._slider_row, 1] = self.slider_y0
+                rows[self._slider_row, 3] = 0.0
             batch.set_space_bodies(self.space, _BODY_FIELDS, buf)
 
     def drive_force(self) -> float:

@@ -30,6 +30,14 @@ class LowerSurface:
     one value per asperity; they are stored as tuples. ``travel_down`` and
     ``travel_up`` (m) limit each track below / above the rest position
     (default: the asperity height).
+
+    ``lateral_stiffness`` (N/m) turns the tracks into seed 000's MATLAB
+    lattice (its figure 14, equations 9-18): the peaks then move in x and y,
+    each held by its vertical spring to ground and joined to its neighbours
+    and the two walls by horizontal springs: n + 1 values (wall-peak 1,
+    peak 1-peak 2, ..., peak n-wall; a scalar applies to all, 0 removes a
+    link), with ``lateral_damping`` (N s/m) in parallel. Track travel limits
+    do not apply to the lattice.
     """
 
     profile: Profile = field(default_factory=Profile)
@@ -39,12 +47,19 @@ class LowerSurface:
     damping: float | tuple[float, ...] = 0.0
     travel_down: float | None = None
     travel_up: float | None = None
+    lateral_stiffness: float | tuple[float, ...] | None = None
+    lateral_damping: float | tuple[float, ...] = 0.0
 
     def __post_init__(self):
         n = self.spacing.count
         object.__setattr__(self, "mass", per_item("mass", self.mass, n, allow_zero=False))
         object.__setattr__(self, "stiffness", per_item("stiffness", self.stiffness, n, allow_zero=False))
         object.__setattr__(self, "damping", per_item("damping", self.damping, n, allow_zero=True))
+        if self.lateral_stiffness is not None:
+            object.__setattr__(self, "lateral_stiffness", per_item(
+                "lateral_stiffness", self.lateral_stiffness, n + 1, allow_zero=True))
+        object.__setattr__(self, "lateral_damping", per_item(
+            "lateral_damping", self.lateral_damping, n + 1, allow_zero=True))
         for name in ("travel_down", "travel_up"):
             value = getattr(self, name)
             if value is None:
@@ -57,9 +72,22 @@ class LowerSurface:
     def count(self) -> int:
         return self.spacing.count
 
+    @property
+    def is_lattice(self) -> bool:
+        """True when the peaks move in x too (seed 000's MATLAB model)."""
+        return self.lateral_stiffness is not None
+
     def centers(self) -> np.ndarray:
         """Base-centre x positions (m)."""
         return self.spacing.centers(self.profile.base)
+
+    def lateral_stiffness_matrix(self) -> np.ndarray:
+        """The n x n horizontal stiffness matrix K (N/m) of the lattice's springs."""
+        n = self.count
+        k = np.asarray(self.lateral_stiffness if self.is_lattice else np.zeros(n + 1), dtype=float)
+        K = np.diag(k[:-1] + k[1:])
+        K -= np.diag(k[1:-1], 1) + np.diag(k[1:-1], -1)
+        return K
 
 
 @dataclass(frozen=True)
@@ -190,6 +218,10 @@ class Scene:
         """Angular natural frequencies (rad/s) of the scene's spring-mass pairs."""
         k, m = np.asarray(self.lower.stiffness), np.asarray(self.lower.mass)
         freqs = {"lower": float(np.max(np.sqrt(k / m)))}
+        if self.lower.is_lattice:
+            # Gershgorin bound on the lattice's highest horizontal mode.
+            row = np.abs(self.lower.lateral_stiffness_matrix()).sum(axis=1)
+            freqs["lattice"] = float(np.max(np.sqrt(row / m)))
         if isinstance(self.drive, SpringDrive):
             freqs["drive"] = math.sqrt(self.drive.stiffness / self.slider.mass)
         return freqs
@@ -268,6 +300,8 @@ DEFAULTS = {
     "damping_ratio": 0.1,  # c / (2 sqrt(k m))
     "travel_down": None,
     "travel_up": None,
+    "lateral_stiffness": None,  # N/m: seed 000's MATLAB lattice (peaks move in x too)
+    "lateral_damping": 0.0,
     "slider_mass": 2.88e-15,  # kg
     "track": "free",
     "normal_load": 0.01,  # N
@@ -363,6 +397,7 @@ def make_scene(*, spacing: str = "regular", seed: int = 0, profile: str = "full"
         spacing=make_spacing(lower_rand, p["lower_count"], p["lower_pitch"], lower_seed),
         mass=mass, stiffness=stiffness, damping=damping,
         travel_down=p["travel_down"], travel_up=p["travel_up"],
+        lateral_stiffness=p["lateral_stiffness"], lateral_damping=p["lateral_damping"],
     )
     slider = Slider(
         profile=make_profile(upper_kind),

@@ -221,7 +221,7 @@ class _Recorder:
         sx, sy, svx, svy = rows[e._slider_row]
         lower = rows[e._lower_rows]
         dx = lower[:, 0] - e.lower_x0
-        drift = float(np.abs(dx).max()) if len(dx) else 0.0
+        drift = float(np.abs(dx).max()) if len(dx) and e.tracked else 0.0
         if e.scene.slider.track == "fixed":
             drift = max(drift, abs(sy - e.slider_y0))
         self.max_drift = max(self.max_drift, drift)
@@ -280,7 +280,9 @@ class _Recorder:
         meta.update({
             "dt": self.dt, "record_every": self.k, "status": status, "message": message,
             "steps": e.step_count, "max_overlap_fraction": self.max_overlap,
-            "max_track_drift_fraction": self.max_drift, "units": e.units.as_dict(),
+            "max_track_drift_fraction": self.max_drift,
+            "max_solver_drift_fraction": e.max_drift,  # removed by projection each step
+            "units": e.units.as_dict(),
             "asperity2d_version": __version__, "pymunk_version": PYMUNK_VERSION,
             "numpy_version": np.__version__,
         })

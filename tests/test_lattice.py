@@ -1,0 +1,46 @@
+"""Seed 000's MATLAB contact model: lower peaks free in x and y, joined by horizontal springs."""
+
+import numpy as np
+import pytest
+
+import asperity2d as a
+from asperity2d.engine import Engine
+
+K = 37_200.0
+
+
+def test_lattice_small_displacement_stiffness_matches_the_spring_matrix():
+    links = [K, 20_000.0, 30_000.0, 10_000.0, K]  # wall, peak-peak x3, wall
+    scene = a.make_scene(lower_count=4, upper_count=1, track="fixed", lateral_stiffness=links,
+                         damping_ratio=0.5, lateral_damping=1e-6)
+    stiffness = scene.lower.lateral_stiffness_matrix()
+    assert stiffness[0, 0] == links[0] + links[1] and stiffness[1, 0] == -links[1]
+    force = 1e-4  # N, displaces a peak by ~3e-9 m = 0.3 % of a base: small
+    compliance = np.zeros((4, 4))
+    for j in range(4):
+        engine = Engine(scene, scene.shortest_period() / 50)
+        body, u = engine.lower_bodies[j], engine.units
+        for _ in range(20_000):  # damped to rest (~60 periods)
+            body.force = (force / u.force, 0.0)
+            engine.space.step(engine.dt)
+        dx = np.array([b.position.x for b in engine.lower_bodies]) - engine.lower_x0
+        compliance[:, j] = dx * u.length / force
+    measured = np.linalg.inv(compliance)
+    np.testing.assert_allclose(measured, stiffness, rtol=0.01, atol=0.01 * K)
+
+
+def test_contact_cases_come_from_the_rigid_body_contacts():
+    """The slider tip meets the peaks one after another (seed 000 Table 2), unscripted."""
+    scene = a.make_scene(lower_count=3, upper_count=1, track="fixed", lateral_stiffness=K,
+                         slider_mass=2.88e-16, drive_stiffness=K, drive_velocity=20.0)
+    result = a.simulate(scene)
+    assert result.status == "passed"
+    touching = result.contact_count > 0
+    # contact, no contact, contact, ...: at least three separate contact episodes
+    episodes = np.count_nonzero(np.diff(touching.astype(int)) == 1) + int(touching[0])
+    assert episodes >= 3
+    # pushing a peak sideways loads its neighbours through the horizontal springs
+    assert np.abs(result.lower_dx).max() > 1e-3 * scene.base
+    assert result.meta["max_track_drift_fraction"] < 1e-6  # the slider's own x track
+    with pytest.raises(a.SceneError, match="`lateral_stiffness`"):
+        a.make_scene(lower_count=3, lateral_stiffness=[K, K])
