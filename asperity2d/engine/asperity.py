@@ -1,4 +1,4 @@
-"""The pymunk adapter: the only module that imports pymunk.
+"""Asperity scenes in pymunk (part of the adapter, :mod:`asperity2d.engine`).
 
 :class:`Engine` turns a :class:`~asperity2d.scene.Scene` (SI) into a pymunk
 ``Space`` in internal units (:mod:`asperity2d.units`), steps it with a fixed
@@ -37,8 +37,8 @@ import numpy as np
 import pymunk
 from pymunk import batch
 
-from .scene import ConstantForce, Scene, SpringDrive
-from .units import Units, per_step_bias
+from ..scene import ConstantForce, Scene, SpringDrive
+from ..units import Units, per_step_bias
 
 PYMUNK_VERSION = pymunk.version
 
