@@ -163,14 +163,21 @@ def cmd_compare(args) -> int:
     return 0
 
 
+class _Parser(argparse.ArgumentParser):
+    """Usage errors as one line on stderr and exit status 2 (subparsers inherit this)."""
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {message}\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="asperity2d", description=__doc__.splitlines()[0])
+    parser = _Parser(prog="asperity2d", description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="command", required=True)
 
     p = sub.add_parser("run", help="run a scene script (.py) or a TOML scene file")
-    p.add_argument("scene")
-    p.add_argument("script_args", nargs=argparse.REMAINDER, help="arguments passed to a script's main()")
-    p.add_argument("-o", "--output", help="render to this file (.gif, .png, .svg, .pdf)")
+    p.add_argument("scene", help="scene script (.py; other arguments go to its main()) or .toml")
+    p.add_argument("-o", "--output",
+                   help="render to this file (.gif, .png, .svg, .pdf); a script's output directory")
     p.add_argument("--save", help="save the Result (.npz) (TOML scenes)")
     p.add_argument("--duration", type=float, help="simulated time in s (TOML scenes)")
     p.add_argument("--json", action="store_true")
@@ -214,7 +221,10 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
-    args = parser.parse_args(argv)
+    args, extra = parser.parse_known_args(argv)
+    if extra and not (args.command == "run" and args.scene.endswith(".py")):
+        parser.error(f"unrecognized arguments: {' '.join(extra)}")
+    args.script_args = extra
     try:
         return int(args.func(args) or 0)
     except (SceneError, SimulationError, FileNotFoundError) as exc:
