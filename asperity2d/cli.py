@@ -214,8 +214,13 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=cmd_compare)
 
     for name in ("asperity2d.belt.cli", "asperity2d.sweep.cli"):
-        if importlib.util.find_spec(name) is not None:
-            importlib.import_module(name).add_parser(sub)
+        try:
+            module = importlib.import_module(name)
+        except ModuleNotFoundError as exc:
+            if exc.name is None or not name.startswith(exc.name):
+                raise  # a missing dependency inside the module, not the module itself
+            continue
+        module.add_parser(sub)
     return parser
 
 
