@@ -298,6 +298,6 @@ def synthetic_stick_slip(*, n_events: int = 8, seed: int = 0, noise: float = 0.0
     zeros, lower = np.zeros_like(t), np.zeros((scene.lower.count, len(t)))
     result = Result(t=t, x=x, v=v, y=zeros, vy=zeros, drive_x=drive_x, drive_force=force,
                     normal_force=zeros, friction_force=force, tangential_force=zeros,
-                    contact_count=zeros, lower_dx=lower, lower_dy=lower, scene=scene,
-                    meta={"dt": dt, "record_every": 1, "status": "synthetic"})
+                    contact_count=zeros, lower_dx=lower, lower_dy=lower, lower_contact=lower > 0,
+                    scene=scene, meta={"dt": dt, "record_every": 1, "status": "synthetic"})
     return result, {"slip_index": np.array(slip_index), "end_index": np.array(end_index)}

@@ -35,7 +35,7 @@ SERIES = (
     "contact_count",  # number of slider contacts at the sample
 )
 #: Per-asperity arrays, shape (N_lower, T).
-LOWER_SERIES = ("lower_dx", "lower_dy")
+LOWER_SERIES = ("lower_dx", "lower_dy", "lower_contact")
 
 
 @dataclass(eq=False)
@@ -65,6 +65,8 @@ class Result:
         Contacts touching the slider at each sample.
     lower_dx, lower_dy : ndarray (N, T)
         Displacement of each lower asperity from its rest position (m).
+    lower_contact : ndarray of bool (N, T)
+        Which lower asperities touch the slider at each sample.
     scene : Scene
         The scene that was run.
     meta : dict
@@ -86,6 +88,7 @@ class Result:
     contact_count: np.ndarray
     lower_dx: np.ndarray
     lower_dy: np.ndarray
+    lower_contact: np.ndarray
     scene: Any
     meta: dict = field(default_factory=dict)
 

@@ -113,7 +113,7 @@ def default_duration(scene: Scene) -> float:
 def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = None,
              record_every: int = 10, stop: Callable | Iterable[Callable] | None = None,
              settle: bool | None = None, iterations: int = 20, unsafe_dt: bool = False,
-             progress: bool | None = None) -> Result:
+             progress: bool | None = None, energy: bool = False) -> Result:
     """Run ``scene`` with a fixed step and return its :class:`Result`.
 
     Parameters
@@ -138,6 +138,10 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
         pymunk solver iterations.
     progress : bool, optional
         Show a progress bar (default: only on a terminal, for long runs).
+    energy : bool
+        Meter every step's energy flows from the settled state on
+        (:class:`asperity2d.engine.energy.EnergyMeter`) and store its report
+        in ``result.meta["energy"]`` (costs about one more step's time per step).
 
     Raises
     ------
@@ -180,7 +184,15 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
         settle_time = 10.0 * scene.slowest_period()
         engine.settle(settle_time / engine.units.time)
     recorder = _Recorder(engine, duration, dt, record_every)
-    return recorder.run(stops, progress, meta={"settle_time": settle_time, "iterations": iterations})
+    meter = None
+    if energy:
+        from .engine.energy import EnergyMeter
+
+        meter = EnergyMeter(engine)
+    result = recorder.run(stops, progress, meta={"settle_time": settle_time, "iterations": iterations})
+    if meter is not None:
+        result.meta["energy"] = meter.report()
+    return result
 
 
 class _Recorder:
@@ -192,7 +204,7 @@ class _Recorder:
         self.capacity = min(self.n_steps // record_every + 2, 4096)
         n = engine.scene.lower.count
         self.cols = np.empty((11, self.capacity))
-        self.lower = np.empty((2, n, self.capacity))
+        self.lower = np.empty((3, n, self.capacity))
         self.size = 0
         u = engine.units
         s = engine.scene
@@ -213,7 +225,7 @@ class _Recorder:
             raise SimulationError(
                 f"run diverged at t = {t:.6g} s (non-finite or runaway speed); "
                 f"use a smaller dt (now {self.dt:.3g} s, default T/50)", time=t)
-        fx, fy, ft, count, overlap = e.contacts()
+        fx, fy, ft, count, overlap, touched = e.contacts()
         if overlap > MAX_OVERLAP:
             raise SimulationError(
                 f"run diverged at t = {t:.6g} s: asperities overlap by {overlap:.2f} of a base; "
@@ -238,6 +250,8 @@ class _Recorder:
         )
         self.lower[0, :, i] = dx * u.length
         self.lower[1, :, i] = lower[:, 1] * u.length
+        self.lower[2, :, i] = 0.0
+        self.lower[2, touched, i] = 1.0
         self.size += 1
         p = self.probe
         p.t, p.x, p.v, p.y, p.drive_force = t, sx * u.length, svx * u.velocity, sy * u.length, fd * u.force
@@ -287,4 +301,5 @@ class _Recorder:
             "numpy_version": np.__version__,
         })
         return Result(**arrays, lower_dx=self.lower[0, :, :m].copy(),
-                      lower_dy=self.lower[1, :, :m].copy(), scene=e.scene, meta=meta)
+                      lower_dy=self.lower[1, :, :m].copy(),
+                      lower_contact=self.lower[2, :, :m] > 0, scene=e.scene, meta=meta)

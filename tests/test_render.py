@@ -47,7 +47,8 @@ def test_gif_frames_exact_even_with_fewer_samples_than_frames(tmp_path):
     result, _ = synthetic_stick_slip(n_events=1)
     few = dataclasses.replace(result, **{n: getattr(result, n)[:5] for n in (
         "t", "x", "v", "y", "drive_x", "drive_force")},
-        lower_dx=result.lower_dx[:, :5], lower_dy=result.lower_dy[:, :5])
+        lower_dx=result.lower_dx[:, :5], lower_dy=result.lower_dy[:, :5],
+        lower_contact=result.lower_contact[:, :5])
     path = render_gif(few, tmp_path / "few.gif", frames=12, width=160, height=80)
     with Image.open(path) as im:
         assert im.n_frames == 12  # identical pictures would be merged by the GIF writer

@@ -94,6 +94,10 @@ class Engine:
         self._projected = self.tracked or self._slider_fixed
         self.step_count = 0
         self.max_drift = 0.0  # largest solver drift off a track before projection (base units)
+        #: Callables run after every step (after projection and friction
+        #: update), e.g. :class:`asperity2d.engine.energy.EnergyMeter`; empty
+        #: by default, which costs nothing.
+        self.step_hooks: list = []
 
     # -- building ------------------------------------------------------------
     def _build_lower(self):
@@ -309,8 +313,15 @@ class Engine:
             force = (self._force, -load)
         for _ in range(n):
             if spring:
-                x_d = self.drive_origin + self._vd * self.step_count * dt
-                fx = self._k * (x_d - body.position.x) + self._c * (self._vd - body.velocity.x)
+                # Symplectic Euler: pymunk moves bodies with the old velocity
+                # before it applies forces, so take the spring at the position
+                # the step will end at. (From the start position it would be
+                # forward Euler, which feeds energy into the slider's
+                # oscillation on the drive spring.)
+                x_d = self.drive_origin + self._vd * (self.step_count + 1) * dt
+                vx = body.velocity.x
+                x = body.position.x + vx * dt
+                fx = self._k * (x_d - x) + self._c * (self._vd - vx)
                 body.force = (fx, -load)
             else:
                 body.force = force
@@ -319,6 +330,22 @@ class Engine:
             self._project_tracks()
             if self.two_coefficients:
                 self._update_friction()
+            if self.step_hooks:
+                for hook in self.step_hooks:
+                    hook()
+
+    def set_drive_velocity(self, velocity: float) -> None:
+        """Change the spring drive's far-end velocity to ``velocity`` (m/s, any sign).
+
+        The far end stays where it is (its path is continuous; only its
+        speed changes), so a drive can reverse: used by the virtual
+        tribometer for sliding in -x and pre-sliding reversals.
+        """
+        if not isinstance(self.scene.drive, SpringDrive):
+            raise TypeError("set_drive_velocity needs a spring drive")
+        x_now = self.drive_position()
+        self._vd = velocity / self.units.velocity
+        self.drive_origin = x_now - self._vd * self.step_count * self.dt
 
     def _project_tracks(self) -> None:
         """Put bodies back on their tracks: lower asperities at x = x0 (vx = 0),
@@ -405,14 +432,15 @@ class Engine:
         batch.get_space_bodies(self.space, _BODY_FIELDS, buf)
         return np.frombuffer(buf.float_buf(), dtype=np.float64).reshape(-1, 4)
 
-    def contacts(self) -> tuple[float, float, float, int, float]:
+    def contacts(self) -> tuple[float, float, float, int, float, list[int]]:
         """Contact forces on the slider from the last step's impulses (internal units).
 
-        Returns ``(fx, fy, f_tangential, count, max_overlap)``: the summed
-        contact force, the summed tangential (Coulomb) parts projected on each
-        contact's +x tangent with the sign flipped (resisting +x motion is
-        positive), the number of touching contacts and the deepest overlap
-        (length units).
+        Returns ``(fx, fy, f_tangential, count, max_overlap, touched)``: the
+        summed contact force, the summed tangential (Coulomb) parts projected
+        on each contact's +x tangent with the sign flipped (resisting +x
+        motion is positive), the number of touching contacts, the deepest
+        overlap (length units) and the indices of the lower asperities
+        touching the slider.
         """
         buf = self._arb_buf
         buf.clear()
@@ -420,15 +448,18 @@ class Engine:
         # A handful of arbiters: plain Python beats NumPy's per-call overhead.
         ints = np.frombuffer(buf.int_buf(), dtype=np.uintp).tolist()
         floats = np.frombuffer(buf.float_buf(), dtype=np.float64).tolist()
-        fx, fy, ft = [], [], []
-        touching, overlap, sid = 0, 0.0, self._slider_id
+        fx, fy, ft, touched = [], [], [], []
+        touching, overlap, sid, index = 0, 0.0, self._slider_id, self._lower_index
         for k in range(len(ints) // 3):
             count = ints[3 * k + 2]
             if count == 0:
                 continue
             jx, jy, nx, ny, d1, d2 = floats[6 * k: 6 * k + 6]
+            other = ints[3 * k + 1]
             if ints[3 * k] != sid:
-                jx, jy = -jx, -jy
+                jx, jy, other = -jx, -jy, ints[3 * k]
+            if other in index:
+                touched.append(index[other])
             jn = jx * nx + jy * ny
             tx, ty = (abs(ny), -nx) if ny >= 0 else (abs(ny), nx)  # tangent with tx >= 0
             fx.append(jx)
@@ -440,4 +471,4 @@ class Engine:
         # fsum: the arbiters come in hash-set order, which varies between
         # processes; an exactly rounded sum keeps the result bit-identical.
         return (math.fsum(fx) * inv_dt, math.fsum(fy) * inv_dt, -math.fsum(ft) * inv_dt,
-                touching, overlap)
+                touching, overlap, touched)

@@ -1,0 +1,234 @@
+"""A virtual tribometer: the friction law that emerges from the asperities.
+
+The slider is velocity-controlled: a drive spring as stiff as the asperity
+springs (372,000 N/m, ten times the asperity's 37,200: its stretch at the
+friction force is ~5 nm, 0.5 % of a base, while its frequency stays at the
+asperities', so dt is unchanged) whose far end moves at the commanded
+velocity. The drive spring is evaluated symplectically (see ``Engine.step``).
+
+* :func:`steady_curve` -- for every velocity of a ladder, slide +x, then
+  reverse and slide -x over the same ground (both directions driven, no
+  symmetry assumed); after a transient of ``transient`` (m) the mean
+  friction force (contact force resisting the motion, N) is averaged over
+  whole pitches of travel, with its spread (standard deviation of the
+  per-pitch means, N).
+* :func:`reversal_loops` -- from rest, small back-and-forth drive strokes of
+  growing amplitude: the pre-sliding force-displacement hysteresis.
+* :func:`energy_window` -- one steady window with an
+  :class:`~asperity2d.engine.energy.EnergyMeter` attached: mean friction
+  force x distance slid against the energy dissipated plus the change in
+  stored energy.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ._validate import check_int, check_positive
+from .errors import SceneError
+from .scene import Scene
+
+#: Scene parameters of the tribometer (make_scene overrides): Table 1 steel,
+#: two upper tips at 1 mN each, a stiff drive.
+TRIBOMETER_SCENE = dict(base=1e-6, mass=2.88e-16, stiffness=37_200.0, flank_angle=45.0,
+                        lower_count=10, upper_count=2, normal_load=2e-3,
+                        drive_stiffness=372_000.0)
+
+
+@dataclass(frozen=True)
+class Protocol:
+    """What the tribometer does (SI).
+
+    ``velocities`` (m/s, > 0): the ladder, each driven in +x and then -x.
+    ``pitches``: whole pitches of travel averaged per direction;
+    ``transient_pitches``: travel discarded after each start or reversal.
+    ``samples_per_pitch``: force samples per pitch of travel.
+    ``amplitudes`` (m): reversal stroke amplitudes; ``reversal_velocity`` (m/s).
+    """
+
+    velocities: tuple = (1.0, 3.0, 10.0, 30.0, 100.0, 300.0, 1000.0, 3000.0, 10000.0)
+    pitches: int = 2
+    transient_pitches: float = 1.0
+    samples_per_pitch: int = 400
+    amplitudes: tuple = (5e-9, 2e-8, 5e-8, 1e-7)
+    reversal_velocity: float = 1.0
+
+    def __post_init__(self):
+        vel = tuple(float(v) for v in np.atleast_1d(self.velocities))
+        if not vel:
+            raise SceneError("`velocities` must not be empty")
+        for v in vel:
+            check_positive("velocities", v)
+        object.__setattr__(self, "velocities", vel)
+        check_int("pitches", self.pitches, minimum=1)
+        check_positive("transient_pitches", self.transient_pitches)
+        check_int("samples_per_pitch", self.samples_per_pitch, minimum=4)
+        amps = tuple(float(a) for a in np.atleast_1d(self.amplitudes))
+        for amp in amps:
+            check_positive("amplitudes", amp)
+        object.__setattr__(self, "amplitudes", amps)
+        check_positive("reversal_velocity", self.reversal_velocity)
+
+
+def make_tribometer_scene(**overrides) -> Scene:
+    """The tribometer's scene: :data:`TRIBOMETER_SCENE` updated with ``overrides``."""
+    from .scene import make_scene
+
+    return make_scene(spacing=overrides.pop("spacing", "regular"), seed=overrides.pop("seed", 0),
+                      drive="spring", **{**TRIBOMETER_SCENE, **overrides})
+
+
+def _engine(scene: Scene, velocity: float):
+    from .engine import Engine
+    from .simulate import DT_FRACTION
+
+    scene = scene.replace(drive=dataclasses.replace(scene.drive, velocity=velocity))
+    engine = Engine(scene, DT_FRACTION * scene.shortest_period())
+    engine.settle(10.0 * scene.slowest_period() / engine.units.time)
+    return engine
+
+
+def _stroke(engine, velocity: float, distance: float, every: int) -> np.ndarray:
+    """Drive at ``velocity`` (m/s, signed) for ``distance`` (m) of drive travel.
+
+    Returns rows ``(drive_x, slider_x, friction_force, normal_force)`` (m, m,
+    N, N) sampled every ``every`` steps; friction resists +x motion (> 0).
+    """
+    u = engine.units
+    engine.set_drive_velocity(velocity)
+    steps = max(1, int(round(distance / (abs(velocity) * engine.dt * u.time))))
+    rows = []
+    done = 0
+    while done < steps:
+        n = min(every, steps - done)
+        engine.step(n)
+        done += n
+        fx, fy, _, _, _, _ = engine.contacts()
+        rows.append((engine.drive_position() * u.length, engine.slider.position.x * u.length,
+                     -fx * u.force, fy * u.force))
+    return np.array(rows)
+
+
+def _window_stats(rows: np.ndarray, pitch: float, pitches: int, sign: float) -> tuple[float, float]:
+    """Mean and per-pitch spread of the force resisting the motion over whole pitches."""
+    force = sign * rows[:, 2]
+    travel = np.abs(rows[:, 1] - rows[0, 1])
+    means = [force[(travel >= j * pitch) & (travel < (j + 1) * pitch)].mean() for j in range(pitches)]
+    means = [m for m in means if np.isfinite(m)]
+    return float(np.mean(means)), float(np.std(means))
+
+
+@dataclass(frozen=True)
+class SteadyCurve:
+    """Steady-sliding friction (N) against velocity (m/s), both directions.
+
+    ``velocity`` holds -v and +v points sorted ascending; ``force`` the mean
+    friction force (signed: resisting +x motion is positive, so it has the
+    sign of the velocity); ``spread`` the standard deviation of the
+    per-pitch means; ``normal_load`` (N).
+    """
+
+    velocity: np.ndarray
+    force: np.ndarray
+    spread: np.ndarray
+    normal_load: float
+    meta: dict = field(default_factory=dict)
+
+    def as_dict(self) -> dict:
+        return {"velocity_m_per_s": self.velocity.tolist(), "friction_force_N": self.force.tolist(),
+                "spread_N": self.spread.tolist(), "normal_load_N": self.normal_load, **self.meta}
+
+
+def steady_curve(scene: Scene, protocol: Protocol = Protocol()) -> SteadyCurve:
+    """Mean steady friction at every ladder velocity, driven +x then -x."""
+    pitch = scene.lower.spacing.mean_pitch
+    v_out, f_out, s_out = [], [], []
+    for v in protocol.velocities:
+        engine = _engine(scene, v)
+        every = max(1, int(pitch / protocol.samples_per_pitch / (v * engine.dt * engine.units.time)))
+        for sign in (1.0, -1.0):
+            _stroke(engine, sign * v, protocol.transient_pitches * pitch, every)
+            rows = _stroke(engine, sign * v, protocol.pitches * pitch, every)
+            mean, spread = _window_stats(rows, pitch, protocol.pitches, sign)
+            v_out.append(sign * v)
+            f_out.append(sign * mean)
+            s_out.append(spread)
+    order = np.argsort(v_out)
+    return SteadyCurve(np.asarray(v_out)[order], np.asarray(f_out)[order], np.asarray(s_out)[order],
+                       float(scene.slider.normal_load),
+                       {"pitch_m": pitch, "pitches": protocol.pitches,
+                        "transient_pitches": protocol.transient_pitches})
+
+
+@dataclass(frozen=True)
+class ReversalLoops:
+    """Pre-sliding hysteresis: slider displacement (m) from rest and friction force (N) along the strokes."""
+
+    displacement: np.ndarray
+    force: np.ndarray
+    drive: np.ndarray
+    normal_load: float
+    amplitudes: tuple
+
+    def breakaway_displacement(self) -> float:
+        """Displacement (m) at which the force first reaches 95 % of its maximum."""
+        f = np.abs(self.force)
+        i = int(np.argmax(f >= 0.95 * f.max()))
+        return float(abs(self.displacement[i]))
+
+
+def reversal_loops(scene: Scene, protocol: Protocol = Protocol(), *, samples_per_stroke: int = 200) -> ReversalLoops:
+    """From rest, strokes 0 -> +a -> -a -> +a for each amplitude a (drive travel, m)."""
+    v = protocol.reversal_velocity
+    engine = _engine(scene, v)
+    u = engine.units
+    x0 = engine.slider.position.x * u.length
+    d0 = engine.drive_position() * u.length
+    parts = []
+    position = 0.0
+    for amp in protocol.amplitudes:
+        every = max(1, int(amp / samples_per_stroke / (v * engine.dt * u.time)))
+        for target in (amp, -amp, amp):
+            move = target - position
+            if move != 0:
+                parts.append(_stroke(engine, math.copysign(v, move), abs(move), every))
+            position = target
+        # back to zero for the next amplitude
+        parts.append(_stroke(engine, -v, amp, every))
+        position = 0.0
+    rows = np.concatenate(parts)
+    return ReversalLoops(displacement=rows[:, 1] - x0, force=rows[:, 2], drive=rows[:, 0] - d0,
+                         normal_load=float(scene.slider.normal_load), amplitudes=protocol.amplitudes)
+
+
+def energy_window(scene: Scene, *, velocity: float, pitches: int = 2, transient_pitches: float = 1.0) -> dict:
+    """Energy balance over ``pitches`` of steady sliding at ``velocity`` (m/s).
+
+    Returns the meter's report plus ``distance_m`` (slider travel),
+    ``friction_times_distance_J`` (exact time-mean contact friction force x
+    distance) and ``balance_error`` = |F·d - (dissipated + stored change)| /
+    (F·d). The two differ from the meter's exact balance (drive work =
+    dissipated + stored change) only by the slider's momentum change and
+    the drive spring's stretch change over the window.
+    """
+    from .engine.energy import EnergyMeter
+
+    pitch = scene.lower.spacing.mean_pitch
+    engine = _engine(scene, velocity)
+    every = 1000
+    _stroke(engine, velocity, transient_pitches * pitch, every)
+    meter = EnergyMeter(engine)
+    x0 = engine.slider.position.x
+    _stroke(engine, velocity, pitches * pitch, every)
+    report = meter.report()
+    meter.detach()
+    distance = (engine.slider.position.x - x0) * engine.units.length
+    fd = report["mean_friction_force_N"] * distance
+    rhs = report["dissipated_J"] + report["stored_energy_change_J"]
+    report.update(distance_m=distance, friction_times_distance_J=fd,
+                  balance_error=abs(fd - rhs) / abs(fd), velocity_m_per_s=velocity)
+    return report
