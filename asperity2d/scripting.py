@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 from pathlib import Path
 
@@ -37,14 +38,31 @@ def out_dir(args, script_file: str) -> Path:
 
 
 def finish(args, summary: dict, directory: Path, lines: list[str]) -> int:
-    """Write ``summary.json`` atomically and print the summary (JSON or text)."""
-    text = json.dumps(summary, indent=2, sort_keys=True, default=_plain)
+    """Write ``summary.json`` atomically and print the summary (JSON or text).
+
+    Undefined statistics (NaN, infinities) are written as ``null``: strict JSON.
+    """
+    summary = _strict(summary)
+    text = json.dumps(summary, indent=2, sort_keys=True, default=_plain, allow_nan=False)
     atomic_write_text(directory / "summary.json", text + "\n")
     if args.json:
-        print(json.dumps(summary, sort_keys=True, default=_plain))
+        print(json.dumps(summary, sort_keys=True, default=_plain, allow_nan=False))
     else:
         print("\n".join(lines + [f"outputs in {directory}"]))
     return 0
+
+
+def _strict(value):
+    """``value`` with every non-finite float (NumPy included) replaced by None."""
+    if isinstance(value, dict):
+        return {k: _strict(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_strict(v) for v in value]
+    if hasattr(value, "tolist") and not isinstance(value, (str, bytes)):
+        return _strict(value.tolist())
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
 
 
 def _plain(value):

@@ -1,0 +1,121 @@
+"""Seed 000: constant force vs spring drive (Working Model's constant push never gave stick-slip).
+
+Regular spacing, full 45° triangles, both set-ups (free slider under load;
+seed 000's fixed-height track). The critical constant force is bisected; the
+slider is then pushed with 0.95 x and 1.05 x that force (it should stop on a
+flank, or run away over the whole surface), and pulled by the default drive
+spring (far end at constant speed), which should give stick-slip: the drive
+force builds while the slider sticks and drops when it slips.
+
+A *restart* of a constant-force run is a return to forward motion (speed
+above 10 % of sqrt(F b / M), b the base, M the slider mass) after a stick:
+a stop (speed below 1 % of it) lasting at least the scene's slowest natural
+period -- what stick-slip under a constant force would need. Momentary stops
+(bounces off a flank) are counted separately. Writes the
+positions plot (seed figure 10 style), the spring run's time series and a GIF.
+
+    python scenes/seed000_drive.py
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+import asperity2d as a
+from asperity2d import scripting, studies
+from asperity2d.critical import critical_force_bracket
+from asperity2d.render.plots import plot_positions
+
+FACTORS = {"below": 0.95, "above": 1.05}
+
+
+def restarts(result, *, min_stop: float = 0.0) -> int:
+    """Times a constant-force slider moves forward again after having stopped for >= ``min_stop`` s.
+
+    ``min_stop=0`` also counts momentary stops (bounces off a flank, where the
+    velocity passes through zero).
+    """
+    scene = result.scene
+    v_char = math.sqrt(abs(scene.drive.force) * scene.base / scene.slider.mass)
+    moving, count, moved, t_stop = False, 0, False, 0.0
+    for t, v in zip(result.t, result.v):
+        if not moving and v > 0.1 * v_char:
+            count += 1 if moved and t - t_stop >= min_stop else 0
+            moving = moved = True
+        elif moving and abs(v) < 0.01 * v_char:
+            moving, t_stop = False, t
+    return count
+
+
+def run_setup(setup: str, size: dict) -> tuple[dict, dict, list[dict]]:
+    """Constant-force runs either side of the critical force and one spring-driven pass."""
+    base = {**size, **studies.SETUPS[setup]}
+    scene = a.make_scene(spacing="regular", drive="force", **base)
+    bracket = critical_force_bracket(scene)
+    runs = {k: a.simulate(scene.replace(drive=a.ConstantForce(force=f * bracket.value)))
+            for k, f in FACTORS.items()}
+    runs["spring"] = a.simulate(a.make_scene(spacing="regular", drive="spring", **base))
+    events = a.stick_slip_events(runs["spring"])
+    stats = a.event_statistics(events)
+    numbers = {"critical_force_N": bracket.value, "bracket_N": [bracket.stops, bracket.passes]}
+    for k in FACTORS:
+        r = runs[k]
+        numbers[k] = {"force_N": FACTORS[k] * bracket.value, "status": r.status,
+                      "travel_m": float(r.x[-1] - r.x[0]),
+                      "restarts_after_stick": restarts(r, min_stop=scene.slowest_period()),
+                      "momentary_stops_then_moving": restarts(r)}
+    numbers["spring"] = {"status": runs["spring"].status, "events": stats,
+                         "force_peaks_N": [e.force_peak for e in events],
+                         "force_drops_N": [e.force_drop for e in events],
+                         "breakaway_force_N": events[0].force_peak if events else math.nan}
+    const_ok = (runs["below"].status == "stuck" and runs["above"].status == "passed"
+                and numbers["below"]["restarts_after_stick"] == 0
+                and numbers["above"]["restarts_after_stick"] == 0)
+    claims = [
+        studies.claim(
+            "with a constant force the slider either stops on a flank (and stays stopped) or runs "
+            "away over the whole surface; no stick-slip", const_ok,
+            {k: numbers[k] for k in ("critical_force_N", "bracket_N", "below", "above")},
+            "direct: run status at 0.95 x / 1.05 x the critical force (stuck / passed) and no "
+            "forward restart after a stop of at least the scene's slowest period (a stick); "
+            "momentary stops (bounces) are counted separately", setup=setup),
+        studies.claim(
+            "a spring drive (far end at constant speed) gives stick-slip: force builds while stuck "
+            "and drops at each slip", stats["count"] >= 2 and stats["force_drop_mean"] > 0,
+            numbers["spring"], "direct: >= 2 detected stick-slip events with positive force drops "
+            "(asperity2d.stick_slip_events, default thresholds)", setup=setup),
+    ]
+    return numbers, runs, claims
+
+
+def main(argv=None) -> int:
+    args = scripting.parser(__doc__.splitlines()[0]).parse_args(argv)
+    out = scripting.out_dir(args, __file__)
+    size = studies.QUICK_SIZE if args.quick else studies.STUDY_SIZE
+    summary = {"size": size, "setups": studies.SETUPS, "results": {}, "claims": []}
+    lines = []
+    for setup in studies.SETUPS:
+        numbers, runs, claims = run_setup(setup, size)
+        summary["results"][setup] = numbers
+        summary["claims"] += claims
+        fc = numbers["critical_force_N"]
+        plot_positions([runs["below"], runs["above"], runs["spring"]],
+                       [f"constant {FACTORS['below']} x {fc * 1e3:.3g} mN ({runs['below'].status})",
+                        f"constant {FACTORS['above']} x {fc * 1e3:.3g} mN ({runs['above'].status})",
+                        f"spring drive ({numbers['spring']['events']['count']} stick-slip events)"],
+                       out / f"positions_{setup}.png")
+        a.render(runs["spring"], out / f"spring_{setup}.png")
+        ev = numbers["spring"]["events"]
+        lines.append(f"[{setup}] critical {fc * 1e3:.4g} mN: 0.95 x -> {runs['below'].status}, "
+                     f"1.05 x -> {runs['above'].status}; spring: {ev['count']} events, mean drop "
+                     f"{ev['force_drop_mean'] * 1e3:.3g} mN")
+        lines += [f"[{setup}] {c['claim']}: {c['verdict'].upper()}" for c in claims]
+        if setup == "free" and not args.no_gif:
+            a.render(runs["spring"], out / "spring_free.gif", frames=args.frames or (30 if args.quick else 120))
+    return scripting.finish(args, summary, out, lines)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
