@@ -221,7 +221,7 @@ class _Recorder:
         e, u = self.engine, self.engine.units
         rows = e.bodies()
         t = e.step_count * self.dt
-        if not np.isfinite(rows).all() or np.abs(rows[:, 2:]).max() > MAX_SPEED:
+        if not np.abs(rows[:, 2:]).max() <= MAX_SPEED:  # also true for NaN
             raise SimulationError(
                 f"run diverged at t = {t:.6g} s (non-finite or runaway speed); "
                 f"use a smaller dt (now {self.dt:.3g} s, default T/50)", time=t)
@@ -230,7 +230,7 @@ class _Recorder:
             raise SimulationError(
                 f"run diverged at t = {t:.6g} s: asperities overlap by {overlap:.2f} of a base; "
                 f"use a smaller dt (now {self.dt:.3g} s) or more iterations", time=t)
-        sx, sy, svx, svy = rows[e._slider_row]
+        sx, sy, svx, svy = rows[e._slider_row].tolist()
         lower = rows[e._lower_rows]
         dx = lower[:, 0] - e.lower_x0
         drift = float(np.abs(dx).max()) if len(dx) and e.tracked else 0.0
