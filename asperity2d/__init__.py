@@ -23,6 +23,18 @@ from .analysis import (Event, breakaway_force, event_statistics, friction_traces
 from .compare import Comparison, compare
 from .render import render
 
+_SUBPACKAGES = ("belt", "friction", "sweep", "tribometer", "fitting", "quasistatic", "studies")
+
+
+def __getattr__(name):
+    """Subpackages load on first use (``asperity2d.belt.simulate_chain``), keeping import light."""
+    if name in _SUBPACKAGES:
+        import importlib
+
+        return importlib.import_module(f".{name}", __name__)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
 __all__ = [
     "__version__", "SceneError", "SimulationError", "Profile", "RegularSpacing",
     "RandomSpacing", "ConstantForce", "Contact", "LowerSurface", "Scene", "Slider",

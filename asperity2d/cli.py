@@ -8,7 +8,6 @@ Bad input prints one line on stderr and exits with status 2.
 from __future__ import annotations
 
 import argparse
-import importlib
 import importlib.util
 import json
 import sys
@@ -213,14 +212,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--json", action="store_true")
     p.set_defaults(func=cmd_compare)
 
-    for name in ("asperity2d.belt.cli", "asperity2d.sweep.cli"):
-        try:
-            module = importlib.import_module(name)
-        except ModuleNotFoundError as exc:
-            if exc.name is None or not name.startswith(exc.name):
-                raise  # a missing dependency inside the module, not the module itself
-            continue
-        module.add_parser(sub)
+    from .belt.cli import add_parser as add_belt_parser
+    from .sweep.cli import add_parser as add_sweep_parser
+
+    add_belt_parser(sub)
+    add_sweep_parser(sub)
     return parser
 
 

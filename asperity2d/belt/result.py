@@ -1,0 +1,188 @@
+"""BeltResult: the time series of one belt-chain run, with save / load / CSV export.
+
+Mirrors :class:`asperity2d.result.Result`: plain SI NumPy arrays on a small
+object, saved as one ``.npz`` (arrays plus a JSON ``metadata`` entry holding
+the chain, the events, the exact stick intervals and the run settings).
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import os
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from .._io import atomic_write
+from ..errors import SceneError
+from .spec import ChainSpec, link_extension, link_force
+
+#: Per-mass arrays (n, T).
+MASS_SERIES = ("x", "v", "state", "friction_force", "spring_force", "damper_force")
+#: Scalar series (T,), all in J.
+ENERGY_SERIES = ("belt_work", "friction_dissipation", "damper_dissipation", "kinetic_energy", "spring_energy")
+
+
+@dataclass(frozen=True)
+class Event:
+    """A switch of one mass at time ``t`` (s): ``kind`` is "stick", "slip" or "reverse"; ``x`` its position (m)."""
+
+    t: float
+    mass: int
+    kind: str
+    x: float
+
+
+@dataclass(eq=False)
+class BeltResult:
+    """Time series of a chain on a belt (SI).
+
+    Attributes
+    ----------
+    t : (T,) sample times (s), uniform samples merged with the event times.
+    x, v : (n, T) positions (m, from the unstretched configuration) and velocities (m/s).
+    state : (n, T) 0 stuck, +1 / -1 slipping faster / slower than the belt.
+    friction_force : (n, T) friction on each mass (N), +x positive.
+    spring_force, damper_force : (n, T) net spring / damper force on each mass (N).
+    belt_work, friction_dissipation, damper_dissipation : (T,) cumulative energies (J).
+    kinetic_energy, spring_energy : (T,) stored energies (J).
+    stick_intervals : per mass, the list of (t_start, t_end) stick intervals (s).
+    events : list of :class:`Event`.
+    chain : the :class:`ChainSpec` (None when loaded with a callable belt speed).
+    meta : run settings and diagnostics.
+    """
+
+    t: np.ndarray
+    x: np.ndarray
+    v: np.ndarray
+    state: np.ndarray
+    friction_force: np.ndarray
+    spring_force: np.ndarray
+    damper_force: np.ndarray
+    belt_work: np.ndarray
+    friction_dissipation: np.ndarray
+    damper_dissipation: np.ndarray
+    kinetic_energy: np.ndarray
+    spring_energy: np.ndarray
+    stick_intervals: list
+    events: list
+    chain: ChainSpec | None
+    meta: dict = field(default_factory=dict)
+
+    @property
+    def n(self) -> int:
+        return self.x.shape[0]
+
+    @property
+    def stored_energy(self) -> np.ndarray:
+        """Kinetic plus spring energy (J)."""
+        return self.kinetic_energy + self.spring_energy
+
+    @property
+    def energy_residual(self) -> np.ndarray:
+        """(E - E0) - (W_belt - D_friction - D_damper) at every sample (J); zero for a closed balance."""
+        return (self.stored_energy - self.stored_energy[0]) - (
+            self.belt_work - self.friction_dissipation - self.damper_dissipation
+        )
+
+    def energy_balance_error(self) -> float:
+        """max |residual| over the largest energy flow or store (dimensionless)."""
+        scale = max(
+            np.max(np.abs(a))
+            for a in (self.belt_work, self.friction_dissipation, self.damper_dissipation, self.stored_energy)
+        )
+        return float(np.max(np.abs(self.energy_residual)) / max(scale, 1e-300))
+
+    def __repr__(self) -> str:
+        return f"BeltResult(n={self.n}, {self.t.size} samples, t_end={self.t[-1]:.4g} s, events={len(self.events)})"
+
+    # -- persistence -------------------------------------------------------
+    def save(self, path: str | os.PathLike) -> Path:
+        """Write the result to ``path`` (``.npz``) atomically and return the path."""
+        path = Path(path)
+        if path.suffix != ".npz":
+            raise SceneError(f"`path` must end in .npz, got {str(path)!r}")
+        arrays = {name: np.asarray(getattr(self, name)) for name in ("t",) + MASS_SERIES + ENERGY_SERIES}
+        meta = dict(self.meta)
+        meta["chain"] = self.chain.to_dict() if self.chain is not None else meta.get("chain")
+        meta["events"] = [asdict(e) for e in self.events]
+        meta["stick_intervals"] = [[list(iv) for iv in per] for per in self.stick_intervals]
+        arrays["metadata"] = np.array(json.dumps(meta, sort_keys=True))
+
+        def write(fh):
+            buf = io.BytesIO()
+            np.savez_compressed(buf, **arrays)
+            fh.write(buf.getvalue())
+
+        return atomic_write(path, write)
+
+    def export(self, path: str | os.PathLike) -> Path:
+        """Write a ``.csv`` table: t, then x_i, v_i, state_i, friction_i, spring_i per mass, then energies."""
+        path = Path(path)
+        if path.suffix.lower() != ".csv":
+            raise SceneError(f"`path` must end in .csv, got {str(path)!r}")
+        cols, names = [self.t], ["t"]
+        for i in range(self.n):
+            for name in ("x", "v", "state", "friction_force", "spring_force"):
+                cols.append(getattr(self, name)[i])
+                names.append(f"{name}_{i + 1}")
+        for name in ENERGY_SERIES:
+            cols.append(getattr(self, name))
+            names.append(name)
+        table = np.column_stack(cols)
+
+        def write(fh):
+            np.savetxt(fh, table, delimiter=",", header=",".join(names), comments="", fmt="%.17g")
+
+        return atomic_write(path, write)
+
+
+def assemble(spec: ChainSpec, out: dict) -> BeltResult:
+    """Build a BeltResult from a solver's raw arrays (adds forces and stored energies)."""
+    x, v = out["x"], out["v"]
+    ext = link_extension(x)
+    state = np.array(out["state"], dtype=np.int8)
+    frictionless = (spec.law.static_coefficient * spec.normal == 0) & (spec.law.kinetic_coefficient * spec.normal == 0)
+    if frictionless.any():
+        V = spec.belt_velocity(out["t"])
+        state[frictionless] = np.sign(v[frictionless] - V[None, :])
+    work = out["work"]
+    meta = dict(out["meta"])
+    meta["chain"] = spec.to_dict()
+    return BeltResult(
+        t=out["t"], x=x, v=v, state=state,
+        friction_force=out["friction_force"],
+        spring_force=link_force(spec.k, x),
+        damper_force=link_force(spec.c, v),
+        belt_work=work[0], friction_dissipation=work[1], damper_dissipation=work[2],
+        kinetic_energy=0.5 * (spec.m[:, None] * v**2).sum(axis=0),
+        spring_energy=0.5 * (spec.k[:, None] * ext**2).sum(axis=0),
+        stick_intervals=[[tuple(map(float, iv)) for iv in per] for per in out["stick_intervals"]],
+        events=list(out["events"]), chain=spec, meta=meta,
+    )
+
+
+def load(path: str | os.PathLike) -> BeltResult:
+    """Read a :class:`BeltResult` written by :meth:`BeltResult.save`."""
+    from ..friction import law_from_dict
+
+    path = Path(path)
+    if not path.exists():
+        raise SceneError(f"`path` does not exist: {str(path)!r}")
+    try:
+        with np.load(path, allow_pickle=False) as data:
+            arrays = {name: data[name] for name in ("t",) + MASS_SERIES + ENERGY_SERIES}
+            meta = json.loads(str(data["metadata"]))
+    except (OSError, KeyError, ValueError) as exc:
+        raise SceneError(f"`path` is not a belt result file: {str(path)!r} ({exc})") from None
+    events = [Event(**e) for e in meta.pop("events")]
+    intervals = [[tuple(iv) for iv in per] for per in meta.pop("stick_intervals")]
+    c = meta["chain"]
+    chain = None
+    if not isinstance(c["v_belt"], str):
+        law = law_from_dict(c["friction"])
+        chain = ChainSpec(c["masses"], c["springs"], c["dampers"], law.static_coefficient, None, c["v_belt"],
+                          c["x0"], c["v0"], c["t_end"], c["g"], c["normal_load"], law)
+    return BeltResult(**arrays, stick_intervals=intervals, events=events, chain=chain, meta=meta)

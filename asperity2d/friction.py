@@ -1,0 +1,299 @@
+"""Friction laws shared by the belt chains and by fits to measured data.
+
+Every law is a small frozen dataclass, validated on construction, with
+
+* ``curve(v)`` -- the steady-state friction force per unit normal load
+  (dimensionless, an odd function of the sliding velocity ``v`` in m/s,
+  positive when it resists motion in +x);
+* ``force(v_rel, normal)`` -- the friction force on the body (N) for a
+  relative velocity ``v_rel = v_body - v_surface`` (m/s) and a normal load
+  (N): ``-normal * curve(v_rel)``; set-valued laws return 0 at ``v_rel == 0``
+  (the static force is then decided by the caller's stick logic);
+* ``static_coefficient`` -- the largest force/normal the contact holds while
+  stuck (the stick limit used by the event-driven belt solver);
+* ``params`` / ``from_params(vector)`` / ``param_names`` -- the flat parameter
+  vector used by ``scipy.optimize.least_squares`` fits.
+
+State-variable laws (:class:`Dahl`, :class:`LuGre`) carry a bristle
+deflection ``z`` (m) with ``state_derivative(z, v_rel)`` and
+``state_force(z, v_rel, normal)``; they are continuous through zero velocity
+and their steady state reproduces :class:`Coulomb` / :class:`Stribeck`.
+Stiffness-like parameters are per unit normal load: ``sigma0`` in 1/m,
+``sigma1`` and ``sigma2`` in s/m.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import astuple, dataclass, fields
+
+import numpy as np
+
+from .errors import SceneError
+
+__all__ = ["Coulomb", "StaticKinetic", "CoulombViscous", "Stribeck", "Dahl", "LuGre", "FrictionLaw"]
+
+
+def _check(name: str, value: float, *, positive: bool = False) -> None:
+    """Raise SceneError unless ``value`` is a finite number >= 0 (or > 0)."""
+    if not isinstance(value, (int, float, np.floating, np.integer)) or isinstance(value, bool):
+        raise SceneError(f"`{name}` must be a number, got {value!r}")
+    if not math.isfinite(value):
+        raise SceneError(f"`{name}` must be finite, got {value!r}")
+    if positive and value <= 0:
+        raise SceneError(f"`{name}` must be > 0, got {value!r}")
+    if value < 0:
+        raise SceneError(f"`{name}` must be >= 0, got {value!r}")
+
+
+class FrictionLaw:
+    """Common behaviour; subclasses are frozen dataclasses of floats."""
+
+    #: True when the slip force is piecewise constant (exact closed-form solver applies).
+    piecewise_constant = False
+    #: True for laws with an internal state (Dahl, LuGre).
+    has_state = False
+
+    @property
+    def param_names(self) -> tuple[str, ...]:
+        return tuple(f.name for f in fields(self))
+
+    @property
+    def params(self) -> np.ndarray:
+        """The parameters as a float vector, in ``param_names`` order."""
+        return np.asarray(astuple(self), dtype=float)
+
+    @classmethod
+    def from_params(cls, vector) -> "FrictionLaw":
+        """Build the law from a parameter vector (``param_names`` order)."""
+        values = [float(p) for p in np.asarray(vector, dtype=float).ravel()]
+        if len(values) != len(fields(cls)):
+            raise SceneError(f"`vector` must have {len(fields(cls))} entries for {cls.__name__}, got {len(values)}")
+        return cls(*values)
+
+    def to_dict(self) -> dict:
+        return {"law": type(self).__name__, **dict(zip(self.param_names, self.params.tolist()))}
+
+    def curve(self, v):
+        """Steady-state friction force / normal load at sliding velocity ``v`` (m/s)."""
+        raise NotImplementedError
+
+    def force(self, v_rel, normal):
+        """Friction force on the body (N) at relative velocity ``v_rel`` (m/s)."""
+        return -np.asarray(normal, dtype=float) * self.curve(v_rel)
+
+    @property
+    def static_coefficient(self) -> float:
+        raise NotImplementedError
+
+    @property
+    def kinetic_coefficient(self) -> float:
+        """Force / normal load of the slip phase (piecewise-constant laws)."""
+        return self.static_coefficient
+
+
+def law_from_dict(record: dict) -> FrictionLaw:
+    """Inverse of ``FrictionLaw.to_dict``."""
+    record = dict(record)
+    cls = {c.__name__: c for c in (Coulomb, StaticKinetic, CoulombViscous, Stribeck, Dahl, LuGre)}.get(
+        record.pop("law", None)
+    )
+    if cls is None:
+        raise SceneError(f"`friction` names an unknown law: {record!r}")
+    return cls(**record)
+
+
+@dataclass(frozen=True)
+class Coulomb(FrictionLaw):
+    """Coulomb friction: |F| = mu·N while sliding, at most mu·N while stuck (mu dimensionless)."""
+
+    mu: float
+    piecewise_constant = True
+
+    def __post_init__(self):
+        _check("mu", self.mu)
+
+    def curve(self, v):
+        return self.mu * np.sign(v)
+
+    @property
+    def static_coefficient(self) -> float:
+        return float(self.mu)
+
+
+@dataclass(frozen=True)
+class StaticKinetic(FrictionLaw):
+    """Static limit mu_s·N while stuck, kinetic mu_k·N while sliding (mu_s >= mu_k >= 0)."""
+
+    mu_s: float
+    mu_k: float
+    piecewise_constant = True
+
+    def __post_init__(self):
+        _check("mu_s", self.mu_s)
+        _check("mu_k", self.mu_k)
+        if self.mu_k > self.mu_s:
+            raise SceneError(f"`mu_k` must be <= `mu_s` ({self.mu_s!r}), got {self.mu_k!r}")
+
+    def curve(self, v):
+        return self.mu_k * np.sign(v)
+
+    @property
+    def static_coefficient(self) -> float:
+        return float(self.mu_s)
+
+    @property
+    def kinetic_coefficient(self) -> float:
+        return float(self.mu_k)
+
+
+@dataclass(frozen=True)
+class CoulombViscous(FrictionLaw):
+    """Coulomb plus viscous: F/N = mu·sign(v) + sigma2·v (sigma2 in s/m, per unit normal load)."""
+
+    mu: float
+    sigma2: float
+
+    def __post_init__(self):
+        _check("mu", self.mu)
+        _check("sigma2", self.sigma2)
+
+    def curve(self, v):
+        v = np.asarray(v, dtype=float)
+        return self.mu * np.sign(v) + self.sigma2 * v
+
+    def slope(self, v):
+        """d(curve)/dv for v != 0 (s/m)."""
+        return np.full_like(np.asarray(v, dtype=float), self.sigma2)
+
+    @property
+    def static_coefficient(self) -> float:
+        return float(self.mu)
+
+
+@dataclass(frozen=True)
+class Stribeck(FrictionLaw):
+    """Stribeck curve: F/N = [mu_k + (mu_s - mu_k)·exp(-|v/v_s|^delta)]·sign(v) + sigma2·v.
+
+    ``v_s`` (m/s) is the Stribeck velocity, ``delta`` the shape exponent,
+    ``sigma2`` (s/m) the viscous term per unit normal load. The curve falls
+    from mu_s at rest to mu_k: its negative slope is what destabilises steady
+    sliding (see :meth:`slope`).
+    """
+
+    mu_s: float
+    mu_k: float
+    v_s: float
+    delta: float = 2.0
+    sigma2: float = 0.0
+
+    def __post_init__(self):
+        _check("mu_s", self.mu_s)
+        _check("mu_k", self.mu_k)
+        _check("v_s", self.v_s, positive=True)
+        _check("delta", self.delta, positive=True)
+        _check("sigma2", self.sigma2)
+        if self.mu_k > self.mu_s:
+            raise SceneError(f"`mu_k` must be <= `mu_s` ({self.mu_s!r}), got {self.mu_k!r}")
+
+    def g(self, v):
+        """Magnitude of the Coulomb-Stribeck part, mu_k..mu_s (dimensionless)."""
+        v = np.asarray(v, dtype=float)
+        return self.mu_k + (self.mu_s - self.mu_k) * np.exp(-np.abs(v / self.v_s) ** self.delta)
+
+    def curve(self, v):
+        v = np.asarray(v, dtype=float)
+        return self.g(v) * np.sign(v) + self.sigma2 * v
+
+    def slope(self, v):
+        """d(curve)/dv for v != 0 (s/m): the 'negative damping' of steady sliding."""
+        a = np.abs(np.asarray(v, dtype=float)) / self.v_s
+        dg = -(self.mu_s - self.mu_k) * self.delta * a ** (self.delta - 1) * np.exp(-(a**self.delta)) / self.v_s
+        return dg + self.sigma2
+
+    @property
+    def static_coefficient(self) -> float:
+        return float(self.mu_s)
+
+
+@dataclass(frozen=True)
+class Dahl(FrictionLaw):
+    """Dahl model: F/N = sigma0·z, dz/dt = v - sigma0·|v|·z/mu.
+
+    ``sigma0`` (1/m) is the pre-sliding stiffness per unit normal load, ``mu``
+    the Coulomb level reached in steady sliding (z -> mu·sign(v)/sigma0).
+    """
+
+    sigma0: float
+    mu: float
+    has_state = True
+
+    def __post_init__(self):
+        _check("sigma0", self.sigma0, positive=True)
+        _check("mu", self.mu, positive=True)
+
+    def curve(self, v):
+        return self.mu * np.sign(v)
+
+    def state_derivative(self, z, v_rel):
+        return v_rel - self.sigma0 * np.abs(v_rel) * z / self.mu
+
+    def state_force(self, z, v_rel, normal):
+        """Friction force on the body (N) for bristle deflection z (m)."""
+        return -np.asarray(normal, dtype=float) * self.sigma0 * z
+
+    def steady_state(self, v):
+        return self.mu * np.sign(v) / self.sigma0
+
+    @property
+    def static_coefficient(self) -> float:
+        return float(self.mu)
+
+
+@dataclass(frozen=True)
+class LuGre(FrictionLaw):
+    """LuGre model: F/N = sigma0·z + sigma1·dz/dt + sigma2·v, dz/dt = v - sigma0·|v|·z/g(v).
+
+    g(v) = mu_k + (mu_s - mu_k)·exp(-(v/v_s)^2): the steady state is the
+    :class:`Stribeck` curve with delta = 2. ``sigma0`` in 1/m, ``sigma1`` and
+    ``sigma2`` in s/m (all per unit normal load), ``v_s`` in m/s.
+    """
+
+    sigma0: float
+    sigma1: float
+    sigma2: float
+    mu_s: float
+    mu_k: float
+    v_s: float
+    has_state = True
+
+    def __post_init__(self):
+        _check("sigma0", self.sigma0, positive=True)
+        _check("sigma1", self.sigma1)
+        _check("sigma2", self.sigma2)
+        _check("mu_s", self.mu_s, positive=True)
+        _check("mu_k", self.mu_k, positive=True)
+        _check("v_s", self.v_s, positive=True)
+        if self.mu_k > self.mu_s:
+            raise SceneError(f"`mu_k` must be <= `mu_s` ({self.mu_s!r}), got {self.mu_k!r}")
+
+    def stribeck(self) -> Stribeck:
+        return Stribeck(self.mu_s, self.mu_k, self.v_s, 2.0, self.sigma2)
+
+    def curve(self, v):
+        return self.stribeck().curve(v)
+
+    def state_derivative(self, z, v_rel):
+        g = self.stribeck().g(v_rel)
+        return v_rel - self.sigma0 * np.abs(v_rel) * z / g
+
+    def state_force(self, z, v_rel, normal):
+        zdot = self.state_derivative(z, v_rel)
+        return -np.asarray(normal, dtype=float) * (self.sigma0 * z + self.sigma1 * zdot + self.sigma2 * v_rel)
+
+    def steady_state(self, v):
+        return self.stribeck().g(v) * np.sign(v) / self.sigma0
+
+    @property
+    def static_coefficient(self) -> float:
+        return float(self.mu_s)
