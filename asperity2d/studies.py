@@ -224,4 +224,28 @@ def claim(text: str, holds: bool, numbers: dict, test: str, *, setup: str | None
 __all__ = ["critical_force_of", "breakaway_force_of", "peak_spring_force_of", "critical_force_run",
            "stick_slip_run", "constant_force_travel_run", "spring_pass_run", "damping_travel_run",
            "run_many", "mean_ci", "versus_reference", "claim", "STUDY_SIZE", "QUICK_SIZE", "SETUPS",
-           "ConstantForce"]
+           "ConstantForce", "belt_chain_run"]
+
+
+def belt_chain_run(*, seed: int = 0, preset_name: str = "table2-3dof", ic_spread: float = 0.0,
+                   **overrides) -> dict:
+    """Sweep run for a seed-001 belt chain: regime and stick-slip measures.
+
+    ``preset_name`` is a :mod:`asperity2d.belt.presets` name; ``overrides``
+    replace its ``simulate_chain`` arguments (``v_belt``, ``mu_s``, ...). With
+    ``ic_spread`` > 0 the initial displacements get seeded uniform noise of
+    that half-width (m): a Monte-Carlo over initial conditions.
+    """
+    from .belt import presets, regime, simulate_chain
+    from .belt.studies import amplitude, total_stick
+
+    kwargs = presets.preset(preset_name, **overrides)
+    if ic_spread > 0:
+        rng = np.random.default_rng(seed)
+        x0 = np.asarray(kwargs["x0"], dtype=float)
+        kwargs["x0"] = list(x0 + rng.uniform(-ic_spread, ic_spread, len(x0)))
+    result = simulate_chain(**kwargs)
+    label = regime.classify(result)
+    return {"stick_slip": float(label == "stick-slip"), "quasi_harmonic": float(label == "quasi-harmonic"),
+            "total_stick_s": float(sum(total_stick(result))), "amplitude_m": float(max(amplitude(result))),
+            "energy_balance_error": float(result.energy_balance_error())}
