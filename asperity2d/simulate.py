@@ -242,7 +242,7 @@ class _Recorder:
             self._grow()
         i = self.size
         spring = isinstance(e.scene.drive, SpringDrive)
-        fd = e.drive_force()
+        fd = e.drive_force(sx, svx)
         self.cols[:, i] = (
             t, sx * u.length, svx * u.velocity, sy * u.length, svy * u.velocity,
             e.drive_position() * u.length if spring else np.nan, fd * u.force,
@@ -250,8 +250,9 @@ class _Recorder:
         )
         self.lower[0, :, i] = dx * u.length
         self.lower[1, :, i] = lower[:, 1] * u.length
-        self.lower[2, :, i] = 0.0
-        self.lower[2, touched, i] = 1.0
+        flags = self.lower[2, :, i]
+        flags[:] = 0.0
+        flags[touched] = 1.0
         self.size += 1
         p = self.probe
         p.t, p.x, p.v, p.y, p.drive_force = t, sx * u.length, svx * u.velocity, sy * u.length, fd * u.force

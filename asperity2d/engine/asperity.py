@@ -288,6 +288,9 @@ class Engine:
         self._slider_row = where[self.slider.id]
         self._slider_id = self.slider.id
         self._lower_rows = np.array([where[b.id] for b in self.lower_bodies], dtype=np.intp)
+        rows = self._lower_rows
+        if len(rows) and np.array_equal(rows, np.arange(rows[0], rows[0] + len(rows))):
+            self._lower_rows = slice(int(rows[0]), int(rows[0]) + len(rows))  # a view, not a copy
         self._lower_index = {b.id: i for i, b in enumerate(self.lower_bodies)}
         self._fric_buf = batch.Buffer()
         self._body_buf = batch.Buffer()
@@ -365,7 +368,7 @@ class Engine:
         batch.get_space_bodies(self.space, _BODY_FIELDS, buf)
         rows = np.frombuffer(buf.float_buf(), dtype=np.float64).reshape(-1, 4)
         drift = 0.0
-        if self.tracked and len(self._lower_rows):
+        if self.tracked and len(self.lower_bodies):
             lower = self._lower_rows
             drift = float(np.abs(rows[lower, 0] - self.lower_x0).max())
         if self._slider_fixed:
@@ -381,12 +384,14 @@ class Engine:
                 rows[self._slider_row, 3] = 0.0
             batch.set_space_bodies(self.space, _BODY_FIELDS, buf)
 
-    def drive_force(self) -> float:
-        """Horizontal drive force on the slider (internal units) at the current state."""
+    def drive_force(self, x: float | None = None, vx: float | None = None) -> float:
+        """Horizontal drive force on the slider (internal units) with the slider at
+        ``x`` moving at ``vx`` (default: its current state)."""
         if isinstance(self.scene.drive, ConstantForce):
             return self._force
-        return (self._k * (self.drive_position() - self.slider.position.x)
-                + self._c * (self._vd - self.slider.velocity.x))
+        x = self.slider.position.x if x is None else x
+        vx = self.slider.velocity.x if vx is None else vx
+        return self._k * (self.drive_position() - x) + self._c * (self._vd - vx)
 
     def settle(self, duration: float, *, damping_per_period: float = 0.5) -> None:
         """Bring a free slider to rest under its load (``duration`` in internal time).
