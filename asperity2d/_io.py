@@ -41,3 +41,26 @@ def _umask() -> int:
 def atomic_write_text(path: str | os.PathLike, text: str) -> Path:
     """Write ``text`` (UTF-8) to ``path`` atomically."""
     return atomic_write(path, lambda fh: fh.write(text.encode("utf-8")))
+
+
+def save_npz(path: str | os.PathLike, arrays: dict, meta: dict) -> Path:
+    """Write ``arrays`` plus a JSON ``metadata`` entry as one compressed ``.npz``, atomically."""
+    import io
+    import json
+
+    import numpy as np
+
+    from .errors import SceneError
+
+    path = Path(path)
+    if path.suffix != ".npz":
+        raise SceneError(f"`path` must end in .npz, got {str(path)!r}")
+    payload = {name: np.asarray(value) for name, value in arrays.items()}
+    payload["metadata"] = np.array(json.dumps(meta, sort_keys=True))
+
+    def write(fh):
+        buf = io.BytesIO()
+        np.savez_compressed(buf, **payload)
+        fh.write(buf.getvalue())
+
+    return atomic_write(path, write)

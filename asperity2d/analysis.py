@@ -149,7 +149,7 @@ def stick_slip_events(result, *, stick_speed: float | None = None, slip_speed: f
     drive_velocity = speed if speed is not None else 0.0
     events = []
     for i in range(1, len(runs)):
-        (prev, s0, s1), (kind, a, b) = runs[i - 1], runs[i]
+        (prev, s0, _), (kind, a, b) = runs[i - 1], runs[i]
         if kind != 1 or prev != -1:
             continue
         # Onset: the drive force peaks where the slider overtakes the drive; search the

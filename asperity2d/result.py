@@ -8,7 +8,6 @@ simulated once and then re-analysed or re-rendered any number of times.
 
 from __future__ import annotations
 
-import io
 import json
 import os
 from dataclasses import dataclass, field
@@ -17,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from ._io import atomic_write
+from ._io import atomic_write, save_npz
 from .errors import SceneError
 
 #: Arrays every result carries, in the order they are written to CSV.
@@ -138,20 +137,8 @@ class Result:
         The file holds every array plus a ``metadata`` entry: a JSON record of
         the scene, the run settings and the package / pymunk versions.
         """
-        path = Path(path)
-        if path.suffix != ".npz":
-            raise SceneError(f"`path` must end in .npz, got {str(path)!r}")
-        arrays = {name: np.asarray(getattr(self, name)) for name in SERIES + LOWER_SERIES}
-        meta = dict(self.meta)
-        meta["scene"] = self.scene.to_dict()
-        arrays["metadata"] = np.array(json.dumps(meta, sort_keys=True))
-
-        def write(fh):
-            buf = io.BytesIO()
-            np.savez_compressed(buf, **arrays)
-            fh.write(buf.getvalue())
-
-        return atomic_write(path, write)
+        meta = {**self.meta, "scene": self.scene.to_dict()}
+        return save_npz(path, {name: getattr(self, name) for name in SERIES + LOWER_SERIES}, meta)
 
     def export(self, path: str | os.PathLike) -> Path:
         """Export the slider time series as ``.csv`` or MATLAB ``.mat`` (by extension)."""

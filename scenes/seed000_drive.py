@@ -21,8 +21,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-
 import asperity2d as a
 from asperity2d import scripting, studies
 from asperity2d.critical import critical_force_bracket

@@ -7,7 +7,6 @@ the chain, the events, the exact stick intervals and the run settings).
 
 from __future__ import annotations
 
-import io
 import json
 import os
 from dataclasses import asdict, dataclass, field
@@ -15,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .._io import atomic_write
+from .._io import atomic_write, save_npz
 from ..errors import SceneError
 from .spec import ChainSpec, link_extension, link_force
 
@@ -101,22 +100,12 @@ class BeltResult:
     # -- persistence -------------------------------------------------------
     def save(self, path: str | os.PathLike) -> Path:
         """Write the result to ``path`` (``.npz``) atomically and return the path."""
-        path = Path(path)
-        if path.suffix != ".npz":
-            raise SceneError(f"`path` must end in .npz, got {str(path)!r}")
-        arrays = {name: np.asarray(getattr(self, name)) for name in ("t",) + MASS_SERIES + ENERGY_SERIES}
         meta = dict(self.meta)
         meta["chain"] = self.chain.to_dict() if self.chain is not None else meta.get("chain")
         meta["events"] = [asdict(e) for e in self.events]
         meta["stick_intervals"] = [[list(iv) for iv in per] for per in self.stick_intervals]
-        arrays["metadata"] = np.array(json.dumps(meta, sort_keys=True))
-
-        def write(fh):
-            buf = io.BytesIO()
-            np.savez_compressed(buf, **arrays)
-            fh.write(buf.getvalue())
-
-        return atomic_write(path, write)
+        names = ("t",) + MASS_SERIES + ENERGY_SERIES
+        return save_npz(path, {name: getattr(self, name) for name in names}, meta)
 
     def export(self, path: str | os.PathLike) -> Path:
         """Write a ``.csv`` table: t, then x_i, v_i, state_i, friction_i, spring_i per mass, then energies."""

@@ -25,7 +25,7 @@ from ..errors import SceneError, SimulationError
 from .events import EventFunctions, event_rows, find_event, resolve_modes
 from .linear import LinearPhase
 from .result import BeltResult, Event, assemble
-from .spec import ChainSpec, link_force
+from .spec import ChainSpec
 
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(10)
 
