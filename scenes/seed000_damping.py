@@ -16,8 +16,6 @@ half the seeds went farther undamped and p < 0.01.
 
 from __future__ import annotations
 
-import os
-
 import numpy as np
 
 import asperity2d as a
@@ -58,13 +56,8 @@ def analyse(setup: str, rows: list[dict]) -> tuple[dict, dict]:
 
 
 def main(argv=None) -> int:
-    p = scripting.parser(__doc__.splitlines()[0])
-    p.add_argument("--seeds", type=int, default=None, help="random-spacing seeds (default 20, quick 2)")
-    p.add_argument("--workers", type=int, default=min(2, os.cpu_count() or 1))
-    args = p.parse_args(argv)
-    n_seeds = args.seeds or (2 if args.quick else 20)
-    if n_seeds < 1:
-        raise SystemExit("seed000_damping: error: `seeds` must be >= 1")
+    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=20, minimum_seeds=1)
+    n_seeds = args.seeds
     out = scripting.out_dir(args, __file__)
     size = studies.QUICK_SIZE if args.quick else studies.STUDY_SIZE
     summary = {"size": size, "setups": studies.SETUPS, "results": {}, "claims": []}

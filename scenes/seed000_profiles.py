@@ -29,8 +29,6 @@ vertical back face, so there is none).
 
 from __future__ import annotations
 
-import os
-
 import numpy as np
 
 import asperity2d as a
@@ -102,13 +100,8 @@ def analyse(setup: str, data: dict) -> tuple[dict, list[dict]]:
 
 
 def main(argv=None) -> int:
-    p = scripting.parser(__doc__.splitlines()[0])
-    p.add_argument("--seeds", type=int, default=None, help="random-spacing seeds (default 10, quick 2)")
-    p.add_argument("--workers", type=int, default=min(2, os.cpu_count() or 1))
-    args = p.parse_args(argv)
-    n_seeds = args.seeds or (2 if args.quick else 10)
-    if n_seeds < 2:
-        raise SystemExit("seed000_profiles: error: `seeds` must be >= 2")
+    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=10, minimum_seeds=2)
+    n_seeds = args.seeds
     out = scripting.out_dir(args, __file__)
     size = studies.QUICK_SIZE if args.quick else studies.STUDY_SIZE
     summary = {"size": size, "seeds": n_seeds, "setups": studies.SETUPS, "results": {}, "claims": []}

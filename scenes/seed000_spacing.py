@@ -25,8 +25,6 @@ normal load (package default) and seed 000's fixed-height horizontal track.
 
 from __future__ import annotations
 
-import os
-
 import numpy as np
 
 import asperity2d as a
@@ -96,13 +94,8 @@ def claims_for(setup: str, comparisons: dict) -> list[dict]:
 
 
 def main(argv=None) -> int:
-    p = scripting.parser(__doc__.splitlines()[0])
-    p.add_argument("--seeds", type=int, default=None, help="seeds per random variant (default 20, quick 2)")
-    p.add_argument("--workers", type=int, default=min(2, os.cpu_count() or 1))
-    args = p.parse_args(argv)
-    n_seeds = args.seeds or (2 if args.quick else 20)
-    if n_seeds < 2:
-        raise SystemExit("seed000_spacing: error: `seeds` must be >= 2")
+    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=20, minimum_seeds=2)
+    n_seeds = args.seeds
     out = scripting.out_dir(args, __file__)
     size = studies.QUICK_SIZE if args.quick else studies.STUDY_SIZE
     seeds = list(range(n_seeds))

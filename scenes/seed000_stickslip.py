@@ -19,8 +19,6 @@ verdict changes with the drive stiffness is reported as ``drive_dependent``.
 
 from __future__ import annotations
 
-import os
-
 import numpy as np
 
 import asperity2d as a
@@ -56,13 +54,8 @@ def plot_amplitudes(results: dict, path) -> None:
 
 
 def main(argv=None) -> int:
-    p = scripting.parser(__doc__.splitlines()[0])
-    p.add_argument("--seeds", type=int, default=None, help="random-spacing seeds (default 10, quick 2)")
-    p.add_argument("--workers", type=int, default=min(2, os.cpu_count() or 1))
-    args = p.parse_args(argv)
-    n_seeds = args.seeds or (2 if args.quick else 10)
-    if n_seeds < 2:
-        raise SystemExit("seed000_stickslip: error: `seeds` must be >= 2")
+    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=10, minimum_seeds=2)
+    n_seeds = args.seeds
     out = scripting.out_dir(args, __file__)
     size = studies.QUICK_SIZE if args.quick else studies.STUDY_SIZE
     stiffnesses = (STIFFNESSES[0], STIFFNESSES[-1]) if args.quick else STIFFNESSES
