@@ -64,3 +64,27 @@ def save_npz(path: str | os.PathLike, arrays: dict, meta: dict) -> Path:
         fh.write(buf.getvalue())
 
     return atomic_write(path, write)
+
+
+def load_npz(path: str | os.PathLike, names, *, kind: str) -> tuple[dict, dict]:
+    """Read the arrays ``names`` and the JSON metadata of a :func:`save_npz` file.
+
+    A missing, unreadable or foreign file raises ``SceneError`` naming ``path``
+    (``kind`` says what was expected, e.g. "an asperity2d result file").
+    """
+    import json
+
+    import numpy as np
+
+    from .errors import SceneError
+
+    path = Path(path)
+    if not path.exists():
+        raise SceneError(f"`path` does not exist: {str(path)!r}")
+    try:
+        with np.load(path, allow_pickle=False) as data:
+            arrays = {name: data[name] for name in names}
+            meta = json.loads(str(data["metadata"]))
+    except (OSError, KeyError, ValueError) as exc:
+        raise SceneError(f"`path` is not {kind}: {str(path)!r} ({exc})") from None
+    return arrays, meta

@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from ._io import atomic_write, save_npz
+from ._io import atomic_write, load_npz, save_npz
 from .errors import SceneError
 
 #: Arrays every result carries, in the order they are written to CSV.
@@ -169,14 +169,6 @@ def load(path: str | os.PathLike) -> Result:
     """Read a :class:`Result` written by :meth:`Result.save`."""
     from .scene import Scene
 
-    path = Path(path)
-    if not path.exists():
-        raise SceneError(f"`path` does not exist: {str(path)!r}")
-    try:
-        with np.load(path, allow_pickle=False) as data:
-            arrays = {name: data[name] for name in SERIES + LOWER_SERIES}
-            meta = json.loads(str(data["metadata"]))
-    except (OSError, KeyError, ValueError) as exc:
-        raise SceneError(f"`path` is not an asperity2d result file: {str(path)!r} ({exc})") from None
+    arrays, meta = load_npz(path, SERIES + LOWER_SERIES, kind="an asperity2d result file")
     scene = Scene.from_dict(meta.pop("scene"))
     return Result(**arrays, scene=scene, meta=meta)

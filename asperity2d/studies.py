@@ -52,31 +52,6 @@ def critical_force_run(*, seed: int = 0, **params) -> dict:
     return {"critical_force_N": critical_force(scene)}
 
 
-def stick_slip_run(*, seed: int = 0, **params) -> dict:
-    """Sweep run: a full spring-driven pass; breakaway force and event statistics."""
-    scene = make_scene(seed=seed, drive="spring", **params)
-    result = simulate(scene)
-    events = stick_slip_events(result)
-    stats = event_statistics(events)
-    try:
-        breakaway = breakaway_force(result)
-    except SceneError:
-        breakaway = math.nan
-    return {"breakaway_force_N": breakaway, "events": float(stats["count"]),
-            "force_drop_mean_N": stats["force_drop_mean"], "force_drop_std_N": stats["force_drop_std"],
-            "mean_drive_force_N": float(result.drive_force.mean())}
-
-
-def constant_force_travel_run(*, seed: int = 0, force: float, **params) -> dict:
-    """Sweep run: how far a constant ``force`` (N) carries the slider before it stops."""
-    scene = make_scene(seed=seed, drive="force", drive_force=force, **params)
-    result = simulate(scene)
-    return {"travel_m": float(result.x[-1] - result.x[0]), "passed": float(result.status == "passed")}
-
-
-
-# -- seed-000 studies ------------------------------------------------------------
-
 #: Scene size of the seed-000 studies (lower / upper asperities) and the quick (test) size.
 STUDY_SIZE = {"lower_count": 10, "upper_count": 3}
 QUICK_SIZE = {"lower_count": 4, "upper_count": 2}
@@ -222,9 +197,9 @@ def claim(text: str, holds: bool, numbers: dict, test: str, *, setup: str | None
 
 
 __all__ = ["critical_force_of", "breakaway_force_of", "peak_spring_force_of", "critical_force_run",
-           "stick_slip_run", "constant_force_travel_run", "spring_pass_run", "damping_travel_run",
+           "spring_pass_run", "damping_travel_run",
            "run_many", "mean_ci", "versus_reference", "claim", "STUDY_SIZE", "QUICK_SIZE", "SETUPS",
-           "ConstantForce", "belt_chain_run"]
+           "belt_chain_run"]
 
 
 def belt_chain_run(*, seed: int = 0, preset_name: str = "table2-3dof", ic_spread: float = 0.0,

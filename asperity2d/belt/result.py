@@ -7,14 +7,13 @@ the chain, the events, the exact stick intervals and the run settings).
 
 from __future__ import annotations
 
-import json
 import os
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from .._io import atomic_write, save_npz
+from .._io import atomic_write, load_npz, save_npz
 from ..errors import SceneError
 from .spec import ChainSpec, link_extension, link_force
 
@@ -157,15 +156,7 @@ def load(path: str | os.PathLike) -> BeltResult:
     """Read a :class:`BeltResult` written by :meth:`BeltResult.save`."""
     from ..friction import law_from_dict
 
-    path = Path(path)
-    if not path.exists():
-        raise SceneError(f"`path` does not exist: {str(path)!r}")
-    try:
-        with np.load(path, allow_pickle=False) as data:
-            arrays = {name: data[name] for name in ("t",) + MASS_SERIES + ENERGY_SERIES}
-            meta = json.loads(str(data["metadata"]))
-    except (OSError, KeyError, ValueError) as exc:
-        raise SceneError(f"`path` is not a belt result file: {str(path)!r} ({exc})") from None
+    arrays, meta = load_npz(path, ("t",) + MASS_SERIES + ENERGY_SERIES, kind="a belt result file")
     events = [Event(**e) for e in meta.pop("events")]
     intervals = [[tuple(iv) for iv in per] for per in meta.pop("stick_intervals")]
     c = meta["chain"]
