@@ -113,13 +113,14 @@ def _stroke(engine, velocity: float, distance: float, every: int) -> np.ndarray:
     return np.array(rows)
 
 
-def _window_stats(rows: np.ndarray, pitch: float, pitches: int, sign: float) -> tuple[float, float]:
-    """Mean and per-pitch spread of the force resisting the motion over whole pitches."""
+def _window_stats(rows: np.ndarray, pitch: float, pitches: int, sign: float) -> tuple[float, float, float]:
+    """Mean and per-pitch spread of the force resisting the motion over whole pitches,
+    and the fraction of samples with the slider in contact (normal force > 0)."""
     force = sign * rows[:, 2]
     travel = np.abs(rows[:, 1] - rows[0, 1])
     means = [force[(travel >= j * pitch) & (travel < (j + 1) * pitch)].mean() for j in range(pitches)]
     means = [m for m in means if np.isfinite(m)]
-    return float(np.mean(means)), float(np.std(means))
+    return float(np.mean(means)), float(np.std(means)), float(np.mean(rows[:, 3] > 0))
 
 
 @dataclass(frozen=True)
@@ -129,7 +130,10 @@ class SteadyCurve:
     ``velocity`` holds -v and +v points sorted ascending; ``force`` the mean
     friction force (signed: resisting +x motion is positive, so it has the
     sign of the velocity); ``spread`` the standard deviation of the
-    per-pitch means; ``normal_load`` (N).
+    per-pitch means; ``normal_load`` (N); ``contact`` the fraction of the
+    window's samples with the slider touching the lower surface (below 1
+    the slider lifts off the tips: not steady contact sliding). ``None``
+    means not measured (treated as always in contact).
     """
 
     velocity: np.ndarray
@@ -137,31 +141,36 @@ class SteadyCurve:
     spread: np.ndarray
     normal_load: float
     meta: dict = field(default_factory=dict)
+    contact: np.ndarray | None = None
 
     def as_dict(self) -> dict:
+        contact = None if self.contact is None else np.asarray(self.contact).tolist()
         return {"velocity_m_per_s": self.velocity.tolist(), "friction_force_N": self.force.tolist(),
-                "spread_N": self.spread.tolist(), "normal_load_N": self.normal_load, **self.meta}
+                "spread_N": self.spread.tolist(), "contact_fraction": contact,
+                "normal_load_N": self.normal_load, **self.meta}
 
 
 def steady_curve(scene: Scene, protocol: Protocol = Protocol()) -> SteadyCurve:
     """Mean steady friction at every ladder velocity, driven +x then -x."""
     pitch = scene.lower.spacing.mean_pitch
-    v_out, f_out, s_out = [], [], []
+    v_out, f_out, s_out, c_out = [], [], [], []
     for v in protocol.velocities:
         engine = _engine(scene, v)
         every = max(1, int(pitch / protocol.samples_per_pitch / (v * engine.dt * engine.units.time)))
         for sign in (1.0, -1.0):
             _stroke(engine, sign * v, protocol.transient_pitches * pitch, every)
             rows = _stroke(engine, sign * v, protocol.pitches * pitch, every)
-            mean, spread = _window_stats(rows, pitch, protocol.pitches, sign)
+            mean, spread, contact = _window_stats(rows, pitch, protocol.pitches, sign)
             v_out.append(sign * v)
             f_out.append(sign * mean)
             s_out.append(spread)
+            c_out.append(contact)
     order = np.argsort(v_out)
     return SteadyCurve(np.asarray(v_out)[order], np.asarray(f_out)[order], np.asarray(s_out)[order],
                        float(scene.slider.normal_load),
                        {"pitch_m": pitch, "pitches": protocol.pitches,
-                        "transient_pitches": protocol.transient_pitches})
+                        "transient_pitches": protocol.transient_pitches},
+                       np.asarray(c_out)[order])
 
 
 @dataclass(frozen=True)
