@@ -240,14 +240,16 @@ def belt_period(law: FrictionLaw, *, mass: float, stiffness: float, velocity: fl
 
     f_s = law.static_coefficient * normal_load
     t_est = 2.0 * f_s / (stiffness * velocity) + 2 * math.pi * math.sqrt(mass / stiffness)
+    t_end = (cycles + 2) * t_est
     res = simulate_chain([mass], [stiffness, 0.0], [0.0, 0.0], friction=law, normal_load=[normal_load],
-                         v_belt=velocity, x0=[0.0], v0=[velocity], t_end=(cycles + 2) * t_est,
-                         n_samples=4001)
-    starts = np.array([a for a, _ in res.stick_intervals[0]])
-    ends = np.array([b for _, b in res.stick_intervals[0]])
-    if len(ends) < 4:
-        return {"period_s": math.nan, "cycles": int(len(ends))}
-    ends = ends[:-1]  # the last stick interval is cut by t_end, not ended by a breakaway
-    periods = np.diff(ends[1:])  # breakaway to breakaway, skipping the first (from rest)
-    return {"period_s": float(np.mean(periods)), "cycles": int(len(periods)),
-            "force_drop_N": float(stiffness * (ends[-1] - starts[-1]) * velocity) if len(starts) else math.nan}
+                         v_belt=velocity, x0=[0.0], v0=[velocity], t_end=t_end, n_samples=4001)
+    # a stick interval still open at t_end was not ended by a breakaway; the
+    # first starts from rest
+    intervals = [(a, b) for a, b in res.stick_intervals[0] if b < t_end * (1 - 1e-9)]
+    if len(intervals) < 3:
+        return {"period_s": math.nan, "cycles": max(len(intervals) - 1, 0), "force_drop_N": math.nan}
+    ends = np.array([b for _, b in intervals[1:]])
+    sticks = np.array([b - a for a, b in intervals[1:]])
+    # stuck, the mass moves with the belt: the spring force rises k V per second
+    return {"period_s": float(np.mean(np.diff(ends))), "cycles": int(len(ends) - 1),
+            "force_drop_N": float(stiffness * velocity * np.mean(sticks))}

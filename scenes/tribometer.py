@@ -2,8 +2,11 @@
 
 Velocity-controlled sliding (stiff drive) at a ladder of speeds over four
 decades, both directions; pre-sliding reversal loops from rest; fits of
-Coulomb + viscous, Stribeck, Dahl and LuGre; the fitted Stribeck law run in
-the belt solver against the spring-driven asperity scene's stick-slip period.
+Coulomb + viscous, Stribeck, Dahl and LuGre. Then the same asperities on a
+soft drive spring (stick-slip): a static/kinetic law fitted to the cycles at
+1000 N/m is run in the belt solver and predicts the stick-slip period at
+held-out drive stiffnesses and speeds; the steady-sliding Stribeck law is
+run too, to show why it cannot.
 
     python scenes/tribometer.py [--quick] [--json]
 """
@@ -37,6 +40,70 @@ def _plots(curve, loops, fits, path):
     return _save(fig, path, 120)
 
 
+#: (drive stiffness N/m, drive speed m/s, lower asperities): the calibration
+#: run first, then held-out ones (enough asperities for >= 2 whole cycles).
+STICK_SLIP_RUNS = ((1000.0, 10.0, 16), (500.0, 10.0, 24), (2000.0, 10.0, 12), (3720.0, 10.0, 12),
+                   (1000.0, 3.0, 16), (1000.0, 30.0, 16))
+QUICK_STICK_SLIP_RUNS = ((1000.0, 10.0, 16), (2000.0, 10.0, 12))
+
+
+def _stick_slip_periods(stribeck, *, quick: bool) -> dict:
+    """Stick-slip periods of the asperity scene vs the belt solver with the calibrated law."""
+    runs = []
+    law = calibration = None
+    for stiffness, velocity, count in (QUICK_STICK_SLIP_RUNS if quick else STICK_SLIP_RUNS):
+        scene = tb.make_tribometer_scene(drive_stiffness=stiffness, drive_velocity=velocity, lower_count=count)
+        result = a.simulate(scene)
+        if law is None:
+            fit = ft.fit_stick_slip(result)
+            law = fit.law
+            calibration = {**fit.as_dict(), "stiffness_N_per_m": stiffness, "velocity_m_per_s": velocity}
+        cycles = ft.stick_slip_cycles(result)
+        common = dict(mass=scene.slider.mass, stiffness=stiffness, velocity=velocity,
+                      normal_load=scene.slider.normal_load)
+        belt = ft.belt_period(law, **common)["period_s"]
+        steady = ft.belt_period(stribeck, **common)["period_s"]
+        pitch = scene.lower.spacing.mean_pitch
+        runs.append({"stiffness_N_per_m": stiffness, "velocity_m_per_s": velocity,
+                     "held_out": bool(runs), "cycles": len(cycles["periods_s"]),
+                     "asperity_period_s": cycles["period_s"], "belt_period_s": belt,
+                     "asperity_pitches": cycles["period_s"] * velocity / pitch,
+                     "belt_pitches": belt * velocity / pitch, "ratio": belt / cycles["period_s"],
+                     "stribeck_ratio": steady / cycles["period_s"],
+                     "net_drop_over_load": float(np.mean(cycles["breakaway_N"] - cycles["restick_N"])
+                                                 / cycles["normal_load_N"])})
+    velocity = STICK_SLIP_RUNS[0][1]
+    grid = np.geomspace(400.0, 5000.0, 24)
+    line = [ft.belt_period(law, mass=scene.slider.mass, stiffness=float(k), velocity=velocity,
+                           normal_load=scene.slider.normal_load)["period_s"] * velocity / pitch for k in grid]
+    return {"calibration": calibration, "runs": runs,
+            "belt_curve": {"velocity_m_per_s": velocity, "stiffness_N_per_m": grid.tolist(), "pitches": line}}
+
+
+def _period_plot(periods, path):
+    """Stick-slip period in pitches against drive stiffness: asperities vs belt solver."""
+    from asperity2d.render.plots import _figure, _save
+
+    fig, (ax,) = _figure(1, height=3.0)
+    line = periods["belt_curve"]
+    ax.plot(line["stiffness_N_per_m"], line["pitches"], "-", lw=0.8, color="gray",
+            label=f"belt solver, calibrated law, {line['velocity_m_per_s']:g} m/s")
+    for velocity in sorted({r["velocity_m_per_s"] for r in periods["runs"]}):
+        rows = [r for r in periods["runs"] if r["velocity_m_per_s"] == velocity]
+        ax.plot([r["stiffness_N_per_m"] for r in rows], [r["asperity_pitches"] for r in rows], "o",
+                label=f"asperities, {velocity:g} m/s")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("drive spring stiffness (N/m)")
+    ax.set_ylabel("stick-slip period x V / pitch")
+    ax.legend(fontsize=7)
+    return _save(fig, path, 120)
+
+
+def _ratio(value: float) -> str:
+    return "gives no stick-slip" if not np.isfinite(value) else f"{value:.2f}"
+
+
 def main(argv=None) -> int:
     args = scripting.parser(__doc__.splitlines()[0]).parse_args(argv)
     out = scripting.out_dir(args, __file__)
@@ -51,26 +118,26 @@ def main(argv=None) -> int:
             "dahl": ft.fit_dahl(loops)}
     fits["lugre"] = ft.fit_lugre(loops, fits["stribeck"].law)
     energy = tb.energy_window(scene, velocity=30.0)
-    # the asperity scene the law came from, spring-driven (3720 N/m at 10 m/s)
-    driven = tb.make_tribometer_scene(drive_stiffness=3_720.0, drive_velocity=10.0, lower_count=12)
-    run = a.simulate(driven)
-    t_slip = [e.t_slip for e in a.stick_slip_events(run) if e.complete]
-    asperity_period = float(np.mean(np.diff(t_slip))) if len(t_slip) > 2 else float("nan")
-    belt = ft.belt_period(fits["stribeck"].law, mass=driven.slider.mass, stiffness=3_720.0,
-                          velocity=10.0, normal_load=driven.slider.normal_load)
+    periods = _stick_slip_periods(fits["stribeck"].law, quick=args.quick)
     _plots(curve, loops, fits, out / "friction_law.png")
+    _period_plot(periods, out / "stick_slip_period.png")
     low = int(np.searchsorted(curve.velocity, 0.0))  # first +v point; low - 1 is the first -v
     summary = {"curve": curve.as_dict(), "static_coefficient": mu_s,
                "breakaway_displacement_m": loops.breakaway_displacement(),
                "fits": {k: f.as_dict() for k, f in fits.items()}, "energy": energy,
-               "asperity_period_s": asperity_period, "belt": belt,
-               "period_ratio": belt["period_s"] / asperity_period,
+               "stick_slip": periods,
                "force_limit_at_zero_N": [float(curve.force[low - 1]), float(curve.force[low])]}
+    cal = periods["calibration"]
     lines = [f"steady friction at +-{abs(curve.velocity[low]):g} m/s: {curve.force[low - 1]:.3g} / "
              f"{curve.force[low]:.3g} N; breakaway {mu_s:.3g} L over {loops.breakaway_displacement():.2g} m",
-             *(f"{k}: relative RMS {f.relative_rms:.2%}" for k, f in fits.items()),
+             *(f"{k}: relative RMS {f.relative_rms:.2%} on {f.points} points" for k, f in fits.items()),
              f"energy balance error {energy['balance_error']:.2%}",
-             f"stick-slip period: asperities {asperity_period:.3g} s, belt (Stribeck) {belt['period_s']:.3g} s"]
+             f"stick-slip law from the cycles at {cal['stiffness_N_per_m']:g} N/m: mu_s {cal['mu_s']:.3f}, "
+             f"mu_k {cal['mu_k']:.3f} (steady sliding: {fits['stribeck'].law.mu_k:.3f})",
+             *(f"  k {r['stiffness_N_per_m']:g} N/m, V {r['velocity_m_per_s']:g} m/s: asperities "
+               f"{r['asperity_pitches']:.3f} pitches, belt {r['belt_pitches']:.3f} "
+               f"(ratio {r['ratio']:.3f}; steady Stribeck law {_ratio(r['stribeck_ratio'])})"
+               for r in periods["runs"])]
     return scripting.finish(args, summary, out, lines)
 
 

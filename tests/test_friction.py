@@ -72,3 +72,22 @@ def test_parameter_vector_roundtrip(law):
 def test_validation_names_the_parameter(make, name):
     with pytest.raises(SceneError, match=f"`{name}`"):
         make()
+
+
+def test_micro_scale_stribeck_chain_matches_the_static_kinetic_limit():
+    """A Stribeck law whose slip speeds are 1e6 x v_s is static/kinetic during slip.
+
+    Micro-scale chain (2.88e-15 kg, 1000 N/m, 2 mN load, 10 m/s): positions
+    ~1e-6 m and speeds ~100 m/s. The ODE path (Stribeck) must give the exact
+    path's (StaticKinetic) period; with one absolute tolerance shared by x
+    and v it used to fail in LSODA (regression).
+    """
+    from asperity2d.fitting import belt_period
+
+    common = dict(mass=2.88e-15, stiffness=1000.0, velocity=10.0, normal_load=2e-3)
+    ode = belt_period(Stribeck(1.9, 0.47, 4e-4, 0.2, 0.0), **common)
+    exact = belt_period(StaticKinetic(1.9, 0.47), **common)
+    assert exact["cycles"] >= 5
+    assert ode["period_s"] == pytest.approx(exact["period_s"], rel=1e-4)
+    # stuck, the spring force rises by the full Coulomb drop 2 (F_s - F_k)
+    assert exact["force_drop_N"] == pytest.approx(2 * (1.9 - 0.47) * 2e-3, rel=1e-6)

@@ -24,6 +24,7 @@ def test_energy_balance_of_steady_sliding_within_one_percent(scene):
 def test_steady_friction_is_odd_in_velocity_and_loops_reach_the_wedge_law(scene):
     curve = tb.steady_curve(scene, tb.Protocol(velocities=(10.0, 100.0), pitches=2))
     assert np.all(np.sign(curve.force) == np.sign(curve.velocity))
+    assert np.all(curve.contact >= 0.9)  # sliding on the tips, no lift-off at these speeds
     neg, pos = curve.force[:2][::-1], curve.force[2:]
     s_neg, s_pos = curve.spread[:2][::-1], curve.spread[2:]
     # both directions driven over a regular surface: |F(-v)| = F(v) within the per-pitch scatter

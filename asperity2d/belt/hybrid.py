@@ -28,11 +28,31 @@ def _fastest_rate(spec) -> float:
     return float(max(np.max(np.abs(np.linalg.eigvals(A))), 1e-12))
 
 
+def _scales(spec) -> tuple[float, float]:
+    """(length m, velocity m/s) scales of the chain's motion, for absolute tolerances.
+
+    The velocity scale is the slip-event scale of the exact solver (belt
+    speed, initial speeds, the speed swing of a static-friction release);
+    the length scale is that speed over the fastest natural frequency (at
+    least the static deflection F_s / k) or the initial offsets. Separate
+    scales matter at the micro scale, where positions are 1e-6 m and speeds
+    10 m/s: one shared absolute tolerance is then coarser than the motion.
+    """
+    from .solver import velocity_scale
+
+    v_scale = velocity_scale(spec)
+    omega = np.sqrt(np.max(spec.k[:-1] + spec.k[1:]) / np.min(spec.m)) if spec.k.any() else 1.0
+    length = max(float(np.max(np.abs(spec.x0))), v_scale / max(omega, 1e-300))
+    return length, v_scale
+
+
 def _atol(spec, rtol, atol):
+    """Absolute tolerance for the state ``[x, v]``: given, or 1e-2 rtol of each part's scale."""
     if atol is not None:
         return atol
-    scale = max(np.max(np.abs(spec.x0)), np.max(np.abs(spec.v0)), abs(spec.belt_velocity(0.0)), 1e-3)
-    return rtol * 1e-2 * scale
+    length, speed = _scales(spec)
+    n = spec.n
+    return rtol * 1e-2 * np.concatenate([np.full(n, length), np.full(n, speed)])
 
 
 def make_ode_phase(spec, *, rtol, atol, integrator):
@@ -148,8 +168,14 @@ def run_state_law(spec, samples, *, rtol, atol, integrator):
 
     y0 = np.concatenate([spec.x0, spec.v0, np.zeros(n), np.zeros(3)])
     method = integrator if integrator in ("Radau", "BDF", "LSODA") else "Radau"
-    sol = solve_ivp(rhs, (0.0, spec.t_end), y0, method=method, t_eval=samples, rtol=rtol,
-                    atol=_atol(spec, rtol, atol) * 1e-3)
+    if atol is None:
+        # x and v from their scales, the bristle deflections z at the length
+        # scale, the three work accumulators at force scale x length scale
+        length, _ = _scales(spec)
+        work = float(np.max(law.static_coefficient * normal)) * length
+        atol = np.concatenate([_atol(spec, rtol, None), np.full(n, rtol * 1e-2 * length),
+                               np.full(3, rtol * 1e-2 * work)]) * 1e-3
+    sol = solve_ivp(rhs, (0.0, spec.t_end), y0, method=method, t_eval=samples, rtol=rtol, atol=atol)
     if not sol.success:
         raise SimulationError(f"integrator failed: {sol.message}", time=float(sol.t[-1]))
     x, v, z = sol.y[:n], sol.y[n : 2 * n], sol.y[2 * n : 3 * n]
