@@ -47,8 +47,8 @@ STICK_SLIP_RUNS = ((1000.0, 10.0, 16), (500.0, 10.0, 24), (2000.0, 10.0, 12), (3
 QUICK_STICK_SLIP_RUNS = ((1000.0, 10.0, 16), (2000.0, 10.0, 12))
 
 
-def _stick_slip_periods(stribeck, *, quick: bool) -> dict:
-    """Stick-slip periods of the asperity scene vs the belt solver with the calibrated law."""
+def _stick_slip_periods(stribeck, *, quick: bool) -> tuple:
+    """(calibrated law, report): stick-slip periods of the asperity scene vs the belt solver."""
     runs = []
     law = calibration = None
     for stiffness, velocity, count in (QUICK_STICK_SLIP_RUNS if quick else STICK_SLIP_RUNS):
@@ -76,8 +76,8 @@ def _stick_slip_periods(stribeck, *, quick: bool) -> dict:
     grid = np.geomspace(400.0, 5000.0, 24)
     line = [ft.belt_period(law, mass=scene.slider.mass, stiffness=float(k), velocity=velocity,
                            normal_load=scene.slider.normal_load)["period_s"] * velocity / pitch for k in grid]
-    return {"calibration": calibration, "runs": runs,
-            "belt_curve": {"velocity_m_per_s": velocity, "stiffness_N_per_m": grid.tolist(), "pitches": line}}
+    return law, {"calibration": calibration, "runs": runs,
+                 "belt_curve": {"velocity_m_per_s": velocity, "stiffness_N_per_m": grid.tolist(), "pitches": line}}
 
 
 def _period_plot(periods, path):
@@ -88,16 +88,42 @@ def _period_plot(periods, path):
     line = periods["belt_curve"]
     ax.plot(line["stiffness_N_per_m"], line["pitches"], "-", lw=0.8, color="gray",
             label=f"belt solver, calibrated law, {line['velocity_m_per_s']:g} m/s")
+    markers = iter([dict(marker="o", ms=9, mfc="none"), dict(marker="o", ms=5), dict(marker="s", ms=5)] * 3)
     for velocity in sorted({r["velocity_m_per_s"] for r in periods["runs"]}):
         rows = [r for r in periods["runs"] if r["velocity_m_per_s"] == velocity]
-        ax.plot([r["stiffness_N_per_m"] for r in rows], [r["asperity_pitches"] for r in rows], "o",
-                label=f"asperities, {velocity:g} m/s")
+        ax.plot([r["stiffness_N_per_m"] for r in rows], [r["asperity_pitches"] for r in rows], ls="none",
+                label=f"asperities, {velocity:g} m/s", **next(markers))
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("drive spring stiffness (N/m)")
     ax.set_ylabel("stick-slip period x V / pitch")
     ax.legend(fontsize=7)
     return _save(fig, path, 120)
+
+
+def _macroscopic_chain(law, out) -> dict:
+    """Seed 001's 3-DOF chain (Table 2, from rest) with the asperity-measured law.
+
+    Written as a chain file (``asperity2d belt <file>`` runs it again), read
+    back through the same loader, solved exactly and plotted.
+    """
+    import json
+
+    from asperity2d._io import atomic_write_text
+    from asperity2d.belt import cli as belt_cli
+    from asperity2d.belt import presets, simulate_chain
+    from asperity2d.belt.plots import plot_chain
+
+    chain = {k: v for k, v in presets.preset("table2-3dof-rest", t_end=120.0).items() if k not in ("mu_s", "mu_k")}
+    lines = ["# seed 001 Table 2 chain (from rest) with friction measured on the asperities"]
+    lines += [f"{key} = {json.dumps(value)}" for key, value in chain.items()]
+    lines += ["", "[friction]", *(f"{key} = {json.dumps(value)}" for key, value in law.to_dict().items())]
+    path = atomic_write_text(out / "asperity_law_chain.toml", "\n".join(lines) + "\n")
+    result = simulate_chain(**belt_cli.load_chain(path))
+    plot_chain(result, out / "asperity_law_chain.png", title="3-DOF belt chain, friction from the asperities")
+    ends = [b for _, b in result.stick_intervals[0] if b < chain["t_end"]]
+    return {"chain_file": str(path), "stick_intervals_mass1": len(result.stick_intervals[0]),
+            "period_mass1_s": float(np.mean(np.diff(ends[1:]))) if len(ends) > 2 else float("nan")}
 
 
 def _ratio(value: float) -> str:
@@ -118,16 +144,17 @@ def main(argv=None) -> int:
             "dahl": ft.fit_dahl(loops)}
     fits["lugre"] = ft.fit_lugre(loops, fits["stribeck"].law)
     energy = tb.energy_window(scene, velocity=30.0)
-    periods = _stick_slip_periods(fits["stribeck"].law, quick=args.quick)
+    law, periods = _stick_slip_periods(fits["stribeck"].law, quick=args.quick)
+    cal = periods["calibration"]
+    chain = _macroscopic_chain(law, out)
     _plots(curve, loops, fits, out / "friction_law.png")
     _period_plot(periods, out / "stick_slip_period.png")
     low = int(np.searchsorted(curve.velocity, 0.0))  # first +v point; low - 1 is the first -v
     summary = {"curve": curve.as_dict(), "static_coefficient": mu_s,
                "breakaway_displacement_m": loops.breakaway_displacement(),
                "fits": {k: f.as_dict() for k, f in fits.items()}, "energy": energy,
-               "stick_slip": periods,
+               "stick_slip": periods, "macroscopic_chain": chain,
                "force_limit_at_zero_N": [float(curve.force[low - 1]), float(curve.force[low])]}
-    cal = periods["calibration"]
     lines = [f"steady friction at +-{abs(curve.velocity[low]):g} m/s: {curve.force[low - 1]:.3g} / "
              f"{curve.force[low]:.3g} N; breakaway {mu_s:.3g} L over {loops.breakaway_displacement():.2g} m",
              *(f"{k}: relative RMS {f.relative_rms:.2%} on {f.points} points" for k, f in fits.items()),
@@ -137,7 +164,9 @@ def main(argv=None) -> int:
              *(f"  k {r['stiffness_N_per_m']:g} N/m, V {r['velocity_m_per_s']:g} m/s: asperities "
                f"{r['asperity_pitches']:.3f} pitches, belt {r['belt_pitches']:.3f} "
                f"(ratio {r['ratio']:.3f}; steady Stribeck law {_ratio(r['stribeck_ratio'])})"
-               for r in periods["runs"])]
+               for r in periods["runs"]),
+             f"3-DOF belt chain with that law: mass 1 stick-slip period {chain['period_mass1_s']:.3g} s "
+             f"({chain['chain_file']})"]
     return scripting.finish(args, summary, out, lines)
 
 

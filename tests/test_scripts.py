@@ -49,3 +49,18 @@ def test_toml_scene_runs_saves_and_reanalyses(tmp_path, capsys):
     assert analysis["events"]["count"] >= 1
     assert main(["render", str(saved), "-o", str(tmp_path / "again.gif"), "--json"]) == 0
     assert (tmp_path / "again.gif").stat().st_size > 0
+
+
+def test_tribometer_script_hands_the_stick_slip_law_to_a_belt_chain(tmp_path, capsys):
+    """scenes/tribometer.py --quick: held-out period within 5 %, and its chain file runs via the CLI."""
+    module = _load_script(SCENES / "tribometer.py")
+    assert module.main(["--quick", "--json", "-o", str(tmp_path)]) == 0
+    summary = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
+    runs = summary["stick_slip"]["runs"]
+    assert [r["held_out"] for r in runs] == [False] + [True] * (len(runs) - 1)
+    assert all(r["ratio"] == pytest.approx(1.0, abs=0.05) for r in runs)
+    assert (tmp_path / "stick_slip_period.png").stat().st_size > 0
+    chain = summary["macroscopic_chain"]
+    assert main(["belt", chain["chain_file"], "--json"]) == 0
+    belt = json.loads(capsys.readouterr().out)
+    assert len(belt["stick_intervals"][0]) == chain["stick_intervals_mass1"] >= 4
