@@ -13,7 +13,10 @@ velocity. The drive spring is evaluated symplectically (see ``Engine.step``).
   whole pitches of travel, with its spread (standard deviation of the
   per-pitch means, N).
 * :func:`reversal_loops` -- from rest, small back-and-forth drive strokes of
-  growing amplitude: the pre-sliding force-displacement hysteresis.
+  growing amplitude: force against slider displacement at reversals. On the
+  Table 1 scene the slider does not move inside the static cone (the rigid
+  contacts have no tangential compliance) and advances in nm micro-slips
+  beyond it: there is no smooth elastic pre-sliding branch.
 * :func:`energy_window` -- one steady window with an
   :class:`~asperity2d.engine.energy.EnergyMeter` attached: mean friction
   force x distance slid against the energy dissipated plus the change in

@@ -33,6 +33,12 @@ def test_steady_friction_is_odd_in_velocity_and_loops_reach_the_wedge_law(scene)
     wedge = scene.slider.normal_load * 1.3 / 0.7  # L tan(45 deg + atan 0.3)
     assert np.abs(loops.force).max() == pytest.approx(wedge, rel=0.05)
     assert 0 < loops.breakaway_displacement() < 0.05 * scene.base
+    # inside the static cone the contacts hold: the 5 nm strokes load the slider to ~0.93 L
+    # (drive 372,000 N/m x 5 nm) against a 1.86 L limit and it must not move (no pre-sliding
+    # compliance in the rigid model; 1e-4 base allows the solver's position correction)
+    first = slice(0, int(np.argmax(np.abs(loops.drive) > 1.01 * 5e-9)))
+    assert np.abs(loops.force[first]).max() > 0.9 * scene.slider.normal_load
+    assert np.abs(loops.displacement[first]).max() < 1e-4 * scene.base
 
 
 def test_protocol_validation_names_the_parameter():
