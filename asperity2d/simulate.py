@@ -211,6 +211,10 @@ class _Recorder:
         self.probe = Probe(base=s.base, last_apex_x=float(engine.lower_apex_x[-1]) * u.length)
         self.max_overlap = 0.0
         self.max_drift = 0.0
+        # unit scales as plain floats: Units computes them on every access
+        self._m, self._mps, self._n = u.length, u.velocity, u.force
+        self._spring = isinstance(s.drive, SpringDrive)
+        self._fixed = s.slider.track == "fixed"
 
     def _grow(self):
         self.capacity *= 2
@@ -218,7 +222,8 @@ class _Recorder:
         self.lower = np.concatenate([self.lower, np.empty_like(self.lower)], axis=2)
 
     def sample(self) -> None:
-        e, u = self.engine, self.engine.units
+        e = self.engine
+        m, mps, n = self._m, self._mps, self._n
         rows = e.bodies()
         t = e.step_count * self.dt
         if not np.abs(rows[:, 2:]).max() <= MAX_SPEED:  # also true for NaN
@@ -234,29 +239,28 @@ class _Recorder:
         lower = rows[e._lower_rows]
         dx = lower[:, 0] - e.lower_x0
         drift = float(np.abs(dx).max()) if len(dx) and e.tracked else 0.0
-        if e.scene.slider.track == "fixed":
+        if self._fixed:
             drift = max(drift, abs(sy - e.slider_y0))
-        self.max_drift = max(self.max_drift, drift)
-        self.max_overlap = max(self.max_overlap, overlap)
+        if drift > self.max_drift:
+            self.max_drift = drift
+        if overlap > self.max_overlap:
+            self.max_overlap = overlap
         if self.size == self.capacity:
             self._grow()
         i = self.size
-        spring = isinstance(e.scene.drive, SpringDrive)
-        fd = e.drive_force(sx, svx)
-        self.cols[:, i] = (
-            t, sx * u.length, svx * u.velocity, sy * u.length, svy * u.velocity,
-            e.drive_position() * u.length if spring else np.nan, fd * u.force,
-            fy * u.force, -fx * u.force, ft * u.force, count,
-        )
-        self.lower[0, :, i] = dx * u.length
-        self.lower[1, :, i] = lower[:, 1] * u.length
+        fd = e.drive_force(sx, svx) * n
+        x, v, y = sx * m, svx * mps, sy * m
+        self.cols[:, i] = (t, x, v, y, svy * mps, e.drive_position() * m if self._spring else np.nan, fd,
+                           fy * n, -fx * n, ft * n, count)
+        self.lower[0, :, i] = dx * m
+        self.lower[1, :, i] = lower[:, 1] * m
         flags = self.lower[2, :, i]
         flags[:] = 0.0
         flags[touched] = 1.0
         self.size += 1
         p = self.probe
-        p.t, p.x, p.v, p.y, p.drive_force = t, sx * u.length, svx * u.velocity, sy * u.length, fd * u.force
-        p.rear_apex_x = (sx + e.upper_apex[0]) * u.length
+        p.t, p.x, p.v, p.y, p.drive_force = t, x, v, y, fd
+        p.rear_apex_x = (sx + e.upper_apex[0]) * m
 
     def run(self, stops, progress, meta) -> Result:
         from tqdm.auto import tqdm
