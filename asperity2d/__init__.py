@@ -13,8 +13,8 @@ __version__ = "0.1.0"
 
 from .errors import SceneError, SimulationError
 from .geometry import Profile, RandomSpacing, RegularSpacing
-from .scene import (ConstantForce, Contact, LowerSurface, Scene, Slider, SpringDrive,
-                    make_scene)
+from .scene import ConstantForce, Contact, LowerSurface, Scene, Slider, SpringDrive
+from .builders import make_scene
 from .result import Result, load
 from .simulate import Passed, Stuck, Travelled, simulate
 from .critical import CriticalForce, critical_force, critical_force_bracket

@@ -273,7 +273,7 @@ def synthetic_stick_slip(*, n_events: int = 8, seed: int = 0, noise: float = 0.0
     indices ``slip_index`` and the re-stick indices ``end_index``.
     """
     from .result import Result
-    from .scene import make_scene
+    from .builders import make_scene
 
     scene = make_scene(lower_count=2, upper_count=1) if scene is None else scene
     V, k = scene.drive.velocity, scene.drive.stiffness

@@ -27,7 +27,7 @@ def _load_script(path: Path):
 
 def scene_from_toml(path: Path):
     """A scene from a TOML file: make_scene's arguments, optionally under ``[scene]``."""
-    from .scene import make_scene
+    from .builders import make_scene
 
     try:
         data = tomllib.loads(path.read_text(encoding="utf-8"))

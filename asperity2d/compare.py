@@ -34,7 +34,7 @@ FORMAT = "asperity2d.comparison/1"
 
 def _evaluate(measure: Callable, kwargs: dict) -> float:
     """Build one scene and measure it (module level, so worker processes can run it)."""
-    from .scene import make_scene
+    from .builders import make_scene
 
     return float(measure(make_scene(**kwargs)))
 
@@ -206,7 +206,7 @@ def compare(measure: Callable, variants: dict[str, dict], seeds: Iterable[int], 
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
         raise SceneError(f"`workers` must be an integer >= 1, got {workers!r}")
     tasks = [(name, {**base, **(kw or {}), "seed": s}) for name, kw in variants.items() for s in seeds]
-    from .scene import make_scene
+    from .builders import make_scene
 
     for _, kwargs in tasks[:: len(seeds)]:
         make_scene(**kwargs)  # bad arguments fail here, before any run starts

@@ -22,7 +22,8 @@ import numpy as np
 from .analysis import breakaway_force, event_statistics, stick_slip_events
 from .critical import critical_force
 from .errors import SceneError
-from .scene import ConstantForce, Scene, SpringDrive, make_scene
+from .builders import make_scene
+from .scene import ConstantForce, Scene, SpringDrive
 from .simulate import Travelled, simulate
 
 

@@ -79,7 +79,7 @@ class Protocol:
 
 def make_tribometer_scene(**overrides) -> Scene:
     """The tribometer's scene: :data:`TRIBOMETER_SCENE` updated with ``overrides``."""
-    from .scene import make_scene
+    from .builders import make_scene
 
     return make_scene(spacing=overrides.pop("spacing", "regular"), seed=overrides.pop("seed", 0),
                       drive="spring", **{**TRIBOMETER_SCENE, **overrides})
