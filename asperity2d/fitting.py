@@ -17,7 +17,6 @@ residual (RMS residual / RMS of the data).
   g(v); sigma1 = 0 (the loops are quasi-static, where sigma1 does not act:
   it is not identifiable from them); sigma2 and the Stribeck part from
   :func:`fit_stribeck`.
-
 * :func:`fit_stick_slip`: a static/kinetic law from the stick-slip cycles of
   a spring-driven asperity run (:func:`stick_slip_cycles`). The steady
   curve cannot give the period of stick-slip: a slip ends when the tips are
