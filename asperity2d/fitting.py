@@ -210,16 +210,28 @@ def stick_slip_cycles(result, *, skip: int = 1) -> dict:
 def fit_stick_slip(result, *, skip: int = 1) -> Fit:
     """Static/kinetic law (per unit load) from the stick-slip cycles of ``result``.
 
+    ``result`` is one spring-driven run or a sequence of them (same normal
+    load), e.g. several seeds of a random surface: their cycles are pooled,
+    so the law describes the surface's statistics, not one realisation.
+
     mu_s = mean breakaway force / load; mu_k = mu_s - mean(breakaway -
     re-stick) / (2 load): an undamped Coulomb oscillator on the same spring
     re-sticks at 2 F_k - F_s, so this law has the measured force drop, hence
     the measured stick time. The residuals are the RMS over cycles of the
     breakaway and half-drop deviations from the law (per unit load).
     """
-    cycles = stick_slip_cycles(result, skip=skip)
-    load = cycles["normal_load_N"]
-    peak = cycles["breakaway_N"] / load
-    half_drop = (cycles["breakaway_N"] - cycles["restick_N"]) / (2.0 * load)
+    runs = [result] if hasattr(result, "drive_force") else list(result)
+    if not runs:
+        raise SceneError("`result` must be a run or a non-empty sequence of runs")
+    cycles = [stick_slip_cycles(r, skip=skip) for r in runs]
+    loads = {c["normal_load_N"] for c in cycles}
+    if len(loads) > 1:
+        raise SceneError(f"`result` runs must share one normal load, got {sorted(loads)}")
+    load = loads.pop()
+    breakaway = np.concatenate([c["breakaway_N"] for c in cycles])
+    restick = np.concatenate([c["restick_N"] for c in cycles])
+    peak = breakaway / load
+    half_drop = (breakaway - restick) / (2.0 * load)
     mu_s = float(np.mean(peak))
     mu_k = mu_s - float(np.mean(half_drop))
     r = np.concatenate([peak - mu_s, half_drop - (mu_s - mu_k)])

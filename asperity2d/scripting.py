@@ -26,18 +26,19 @@ def parser(description: str) -> argparse.ArgumentParser:
     return p
 
 
-def study_args(description: str, argv, *, default_seeds: int, minimum_seeds: int = 2):
+def study_args(description: str, argv, *, default_seeds: int, minimum_seeds: int = 2,
+               quick_seeds: int = 2):
     """Parse a seed study's arguments: the common ones plus ``--seeds`` and ``--workers``.
 
-    ``args.seeds`` is resolved (``default_seeds``, or 2 with ``--quick``); fewer than
-    ``minimum_seeds`` is a usage error (one line, exit status 2).
+    ``args.seeds`` is resolved (``default_seeds``, or ``quick_seeds`` with ``--quick``);
+    fewer than ``minimum_seeds`` is a usage error (one line, exit status 2).
     """
     p = parser(description)
     p.add_argument("--seeds", type=int, default=None,
-                   help=f"seeds per random variant (default {default_seeds}, quick 2)")
+                   help=f"seeds per random variant (default {default_seeds}, quick {quick_seeds})")
     p.add_argument("--workers", type=int, default=min(2, os.cpu_count() or 1))
     args = p.parse_args(argv)
-    args.seeds = args.seeds or (2 if args.quick else default_seeds)
+    args.seeds = args.seeds or (quick_seeds if args.quick else default_seeds)
     if args.seeds < minimum_seeds:
         p.error(f"`seeds` must be >= {minimum_seeds}, got {args.seeds}")
     if args.workers < 1:

@@ -64,3 +64,14 @@ def test_tribometer_script_hands_the_stick_slip_law_to_a_belt_chain(tmp_path, ca
     assert main(["belt", chain["chain_file"], "--json"]) == 0
     belt = json.loads(capsys.readouterr().out)
     assert len(belt["stick_intervals"][0]) == chain["stick_intervals_mass1"] >= 4
+
+
+@pytest.mark.slow
+def test_stick_slip_law_script_transfers_the_pooled_law_to_held_out_seeds(tmp_path, capsys):
+    """scenes/stick_slip_law.py --quick (4 random seeds): held-out periods within 10 %."""
+    module = _load_script(SCENES / "stick_slip_law.py")
+    assert module.main(["--quick", "--json", "--no-gif", "--workers", "1", "-o", str(tmp_path)]) == 0
+    summary = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
+    assert summary["held_out_ratio"]["max_abs_error"] < 0.10
+    assert summary["gap"]["random"]["mean"] > summary["gap"]["regular"]
+    assert (tmp_path / "stick_slip_law.png").stat().st_size > 0

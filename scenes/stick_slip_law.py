@@ -1,0 +1,135 @@
+"""The stick-slip friction law of regular and random surfaces (Table 1 steel, belt-solver check).
+
+The tribometer's asperities (Table 1 steel, two tips at 1 mN) on a 1000 N/m
+drive spring at 10 m/s: the regular surface, and random surfaces (both
+surfaces random, seed 000's case) over seeds. For every run, the
+static/kinetic law of its stick-slip cycles (``fitting.fit_stick_slip``) and
+its mean period. Then:
+
+* **transfer**: the random seeds are split in two; the law pooled over the
+  first half (calibration) is run in the belt solver and predicts the mean
+  stick-slip period of every held-out seed. The law of the regular surface
+  is run against them too.
+* **the emergent static/kinetic gap** mu_s - mu_k of the random surfaces
+  against the regular one (one-sample Wilcoxon over seeds).
+
+    python scenes/stick_slip_law.py [--seeds 8] [--workers 2] [--quick]
+"""
+
+from __future__ import annotations
+
+from concurrent.futures import ProcessPoolExecutor
+
+import numpy as np
+
+import asperity2d as a
+from asperity2d import fitting as ft
+from asperity2d import scripting
+from asperity2d import tribometer as tb
+from asperity2d.compare import Comparison
+
+STIFFNESS = 1000.0  # N/m, drive spring
+VELOCITY = 10.0  # m/s, drive speed (quasi-static: see scenes/tribometer.py)
+LOWER_COUNT = 32  # lower asperities: ~10 cycles of ~3 pitches on a random surface
+
+
+def run_surface(spacing: str, seed: int, lower_count: int):
+    """One spring-driven run of the tribometer scene (a picklable job)."""
+    scene = tb.make_tribometer_scene(drive_stiffness=STIFFNESS, drive_velocity=VELOCITY,
+                                     lower_count=lower_count, spacing=spacing, seed=seed)
+    return a.simulate(scene)
+
+
+def _describe(result, law) -> dict:
+    """A run's own law, its mean period and what ``law`` predicts for it in the belt solver."""
+    scene = result.scene
+    own = ft.fit_stick_slip(result)
+    cycles = ft.stick_slip_cycles(result)
+    belt = ft.belt_period(law, mass=scene.slider.mass, stiffness=STIFFNESS, velocity=VELOCITY,
+                          normal_load=scene.slider.normal_load)["period_s"]
+    pitch = scene.lower.spacing.mean_pitch
+    return {"mu_s": own.law.mu_s, "mu_k": own.law.mu_k, "gap": own.law.mu_s - own.law.mu_k,
+            "cycles": len(cycles["periods_s"]), "period_s": cycles["period_s"],
+            "period_pitches": cycles["period_s"] * VELOCITY / pitch,
+            "period_cv": float(np.std(cycles["periods_s"]) / cycles["period_s"]),
+            "predicted_period_s": belt, "ratio": belt / cycles["period_s"]}
+
+
+def _plot(table, path):
+    from asperity2d.render.plots import _figure, _save
+
+    fig, (ax_gap, ax_period) = _figure(2, height=2.6, sharex=False)
+    regular = table["regular"][0]
+    rows = table["random"]
+    seeds = [r["seed"] for r in rows]
+    ax_gap.axhline(regular["gap"], color="gray", lw=0.8, label="regular surface")
+    ax_gap.plot(seeds, [r["gap"] for r in rows], "o", label="random surfaces")
+    ax_gap.set_xlabel("seed")
+    ax_gap.set_xticks(seeds)
+    ax_gap.set_ylabel("mu_s - mu_k (per load)")
+    ax_gap.legend(fontsize=7)
+    held = [r for r in rows if r["held_out"]]
+    measured = [r["period_pitches"] for r in held]
+    ax_period.plot(measured, [r["period_pitches"] * r["ratio"] for r in held], "o",
+                   label="pooled random law (held-out seeds)")
+    ax_period.plot(measured, [r["period_pitches"] * r["regular_law_ratio"] for r in held], "x",
+                   label="regular-surface law")
+    everything = measured + [r["period_pitches"] * q for r in held for q in (r["ratio"], r["regular_law_ratio"])]
+    lo, hi = 0.95 * min(everything), 1.05 * max(everything)
+    ax_period.plot([lo, hi], [lo, hi], color="gray", lw=0.8)
+    ax_period.set_xlabel("asperity stick-slip period (pitches)")
+    ax_period.set_ylabel("belt solver (pitches)")
+    ax_period.legend(fontsize=7)
+    return _save(fig, path, 120)
+
+
+def main(argv=None) -> int:
+    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=8, minimum_seeds=4,
+                                quick_seeds=4)
+    out = scripting.out_dir(args, __file__)
+    count = 24 if args.quick else LOWER_COUNT
+    seeds = list(range(args.seeds))
+    jobs = [("regular", 0)] + [("random", s) for s in seeds]
+    if args.workers > 1:
+        with ProcessPoolExecutor(args.workers) as pool:
+            results = list(pool.map(run_surface, *zip(*jobs), [count] * len(jobs)))
+    else:
+        results = [run_surface(s, seed, count) for s, seed in jobs]
+    regular, randoms = results[0], results[1:]
+    half = len(seeds) // 2
+    calibration = ft.fit_stick_slip(randoms[:half])
+    regular_law = ft.fit_stick_slip(regular).law
+    table = {"regular": [{"seed": 0, **_describe(regular, regular_law)}], "random": []}
+    for seed, result in zip(seeds, randoms):
+        row = {"seed": seed, "held_out": seed >= seeds[half], **_describe(result, calibration.law)}
+        row["regular_law_ratio"] = _describe(result, regular_law)["ratio"]
+        table["random"].append(row)
+    held = [r for r in table["random"] if r["held_out"]]
+    gaps = Comparison(values={"random": tuple(r["gap"] for r in table["random"])}, seeds=tuple(seeds),
+                      measure="mu_s - mu_k")
+    reg = table["regular"][0]
+    summary = {
+        "drive_stiffness_N_per_m": STIFFNESS, "drive_velocity_m_per_s": VELOCITY, "lower_count": count,
+        "runs": table, "calibration": {**calibration.as_dict(), "seeds": seeds[:half]},
+        "held_out_ratio": {"mean": float(np.mean([r["ratio"] for r in held])),
+                           "max_abs_error": float(np.max(np.abs([r["ratio"] - 1 for r in held])))},
+        "regular_law_on_random_ratio": float(np.mean([r["regular_law_ratio"] for r in held])),
+        "gap": {"regular": reg["gap"], "random": gaps.summary()["random"],
+                "wilcoxon_p_vs_regular": gaps.one_sample("random", reg["gap"])},
+    }
+    _plot(table, out / "stick_slip_law.png")
+    if not args.no_gif:
+        a.render(randoms[0], out / "run.gif", frames=args.frames or (30 if args.quick else 90))
+    g = summary["gap"]["random"]
+    lines = [f"regular surface: mu_s {reg['mu_s']:.3f}, mu_k {reg['mu_k']:.3f}, period {reg['period_pitches']:.2f} pitches",
+             f"random surfaces ({len(seeds)} seeds): mu_s - mu_k {g['mean']:.3f} [{g['ci_low']:.3f}, {g['ci_high']:.3f}] "
+             f"vs regular {reg['gap']:.3f} (Wilcoxon p = {summary['gap']['wilcoxon_p_vs_regular']:.3g})",
+             f"law pooled over seeds {seeds[:half]}: mu_s {calibration.law.mu_s:.3f}, mu_k {calibration.law.mu_k:.3f}",
+             *(f"  seed {r['seed']}: asperities {r['period_pitches']:.3f} pitches, belt ratio {r['ratio']:.3f} "
+               f"(regular-surface law {r['regular_law_ratio']:.3f})" for r in held),
+             f"held-out max error {summary['held_out_ratio']['max_abs_error']:.1%}"]
+    return scripting.finish(args, summary, out, lines)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
