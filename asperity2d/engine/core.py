@@ -181,6 +181,11 @@ class Engine:
             self._rows = self._row_store[:4 * len(self.layout.space.bodies)].reshape(-1, 4)
             self._body_buf = buf = batch.Buffer()
             buf.set_float_buf(self._row_store)
+            rows = self.layout.lower_rows
+            if not isinstance(rows, slice):  # pymunk keeps bodies in insertion order
+                raise RuntimeError("the lower asperities are not contiguous in the batch rows")
+            self._lower_x = self._rows[rows, 0]  # a view: it follows every read
+            self._lower_off = np.empty(len(self.layout.lower_bodies))
         buf.clear()
         batch.get_space_bodies(self.layout.space, BODY_FIELDS, buf)
         self._slider = self._rows[self.layout.slider_row].tolist()
@@ -200,7 +205,10 @@ class Engine:
         layout = self.layout
         drift = 0.0
         if layout.tracked and len(layout.lower_bodies):
-            drift = float(np.abs(rows[layout.lower_rows, 0] - layout.lower_x0).max())
+            off = self._lower_off
+            np.subtract(self._lower_x, layout.lower_x0, out=off)
+            np.abs(off, out=off)
+            drift = float(np.maximum.reduce(off))
         if layout.fixed_slider:
             drift = max(drift, abs(self._slider[1] - layout.slider_y0))
         if drift > self.max_solver_drift:

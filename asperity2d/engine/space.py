@@ -69,6 +69,7 @@ class Layout:
     slider_row: int = 0
     lower_rows: slice | np.ndarray | None = None
     lower_index: dict | None = None
+    lower_row_of: list | None = None
     slider_id: int = 0
     masses: np.ndarray | None = None  # per batch row (internal units)
 
@@ -86,6 +87,7 @@ class Layout:
         else:
             self.lower_rows = rows
         self.lower_index = {b.id: i for i, b in enumerate(self.lower_bodies)}
+        self.lower_row_of = rows.tolist()  # batch row of each lower asperity
         by_id = {b.id: b for b in self.space.bodies}
         self.masses = np.array([by_id[int(i)].mass if int(i) in by_id else 0.0 for i in ids])
 
