@@ -18,8 +18,8 @@ from .builders import make_scene
 from .result import Result, load
 from .simulate import Passed, Stuck, Travelled, simulate
 from .critical import CriticalForce, critical_force, critical_force_bracket
-from .analysis import (Event, breakaway_force, event_statistics, friction_traces,
-                       stick_slip_events)
+from .analysis import (Event, breakaway_force, event_statistics, friction_traces, mean_stick_force,
+                       peak_stick_force, stick_slip_events)
 from .compare import Comparison, compare
 from .render import render
 
@@ -40,5 +40,5 @@ __all__ = [
     "RandomSpacing", "ConstantForce", "Contact", "LowerSurface", "Scene", "Slider",
     "SpringDrive", "make_scene", "Result", "load", "simulate", "Passed", "Stuck", "Travelled",
     "CriticalForce", "critical_force", "critical_force_bracket", "Event", "breakaway_force",
-    "event_statistics", "friction_traces", "stick_slip_events", "Comparison", "compare", "render",
+    "peak_stick_force", "mean_stick_force", "event_statistics", "friction_traces", "stick_slip_events", "Comparison", "compare", "render",
 ]

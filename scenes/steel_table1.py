@@ -31,7 +31,7 @@ FACTOR = 2000.0
 
 
 def build_scene(quick: bool = False, **overrides):
-    params = dict(TABLE1, lower_count=6 if quick else 8, upper_count=4, normal_load=4e-3,
+    params = dict(TABLE1, lower_count=6 if quick else 8, upper_count=4, normal_load=4e-3, track="free",
                   drive_velocity=qs.SEED_DRIVE_VELOCITY * FACTOR, name="steel-table1")
     params.update(overrides)
     return a.make_scene(spacing="regular", drive="spring", **params)

@@ -12,7 +12,7 @@ from asperity2d.compare import Comparison, compare
 
 def last_lower_centre(scene):
     """A cheap, seed-dependent measure (m): no simulation needed."""
-    return float(scene.lower.centers()[-1])
+    return float(scene.lower.tips()[-1])
 
 
 VARIANTS = {"regular": {"spacing": "regular"}, "random": {"spacing": "random"},

@@ -47,7 +47,8 @@ def per_step_bias(fraction: float, dt: float) -> float:
 class Layout:
     """A built space and where everything is in it (internal units).
 
-    ``rows`` index the rows of ``pymunk.batch.get_space_bodies``:
+    ``rows`` index the ``n_rows`` rows of ``pymunk.batch.get_space_bodies``
+    (the static body has one):
     ``slider_row`` and ``lower_rows`` (a slice when contiguous);
     ``lower_index`` maps a body id (a pointer value) to its lower asperity index.
     ``lower_x0`` / ``lower_apex_x``
@@ -71,13 +72,15 @@ class Layout:
     lower_index: dict | None = None
     lower_row_of: list | None = None
     slider_id: int = 0
-    masses: np.ndarray | None = None  # per batch row (internal units)
+    masses: np.ndarray | None = None  # per batch row (internal units; 0 for the static body)
+    n_rows: int = 0
 
     def index(self) -> None:
         """Find the batch rows and ids of the bodies (after building or copying)."""
         buf = batch.Buffer()
         batch.get_space_bodies(self.space, batch.BodyFields.BODY_ID, buf)
         ids = np.frombuffer(buf.int_buf(), dtype=np.uintp).copy()
+        self.n_rows = len(ids)  # the static body has a row too
         where = {int(i): k for k, i in enumerate(ids)}
         self.slider_row = where[self.slider.id]
         self.slider_id = self.slider.id
@@ -136,7 +139,7 @@ def build(scene, units: Units, dt: float, *, iterations: int, friction: float) -
 def _build_lower(space, scene, u: Units, bias: float, friction: float) -> dict:
     lower = scene.lower
     verts = [(x / u.length, y / u.length) for x, y in lower.profile.vertices(upper=False)]
-    x0 = lower.centers() / u.length
+    x0 = lower.tips() / u.length
     down, up = lower.travel_down / u.length, lower.travel_up / u.length
     flt = pymunk.ShapeFilter(categories=LOWER, mask=SLIDER)
     bodies, shapes = [], []
@@ -159,7 +162,7 @@ def _build_lower(space, scene, u: Units, bias: float, friction: float) -> dict:
     if lower.is_lattice:
         _build_lattice(space, lower, u, x0, bodies)
     return {"bodies": bodies, "shapes": shapes, "x0": x0, "height": lower.profile.height / u.length,
-            "apex": x0 + lower.profile.apex_offset(upper=False) / u.length}
+            "apex": x0, "left": lower.profile.runs(upper=False)[0] / u.length}
 
 
 def _build_lattice(space, lower, u: Units, x, bodies) -> None:
@@ -190,16 +193,15 @@ def _build_lattice(space, lower, u: Units, x, bodies) -> None:
 
 def _build_slider(space, scene, u: Units, bias: float, lower: dict) -> dict:
     s = scene.slider
-    profile = scene.lower.profile
     h_up = s.profile.height / u.length
-    centers = s.centers() / u.length
-    apex = centers + s.profile.apex_offset(upper=True) / u.length
+    apex = s.tips() / u.length  # relative to the slider's reference point, the rear tip
     body = pymunk.Body(s.mass / u.mass, math.inf)
     x_lower, apex_lower = lower["x0"], lower["apex"]
     if s.track == "fixed":
         # Start left of the surface: the front asperity's base ends a tenth
         # of a base before the first lower asperity's base begins.
-        x0 = (x_lower[0] - profile.base / u.length) - centers[-1] - 0.1
+        right = s.profile.runs(upper=True)[1] / u.length
+        x0 = x_lower[0] - lower["left"] - right - apex[-1] - 0.1
         y0 = lower["height"] - s.interference / u.length + h_up
     else:
         # Start at the beginning of the surface, just clear of the tips: the
@@ -208,15 +210,15 @@ def _build_slider(space, scene, u: Units, bias: float, lower: dict) -> dict:
         if len(apex_lower) > 1:
             x_tip = 0.5 * (apex_lower[0] + apex_lower[1])
         else:
-            run = {"flat": 0.0, "full": 0.5, "half": 1.0}[profile.kind] * profile.base / u.length
-            x_tip = apex_lower[0] - 0.5 * run
+            flat = scene.lower.profile.kind == "flat"
+            x_tip = apex_lower[0] - (0.0 if flat else 0.5 * lower["left"])
         x0 = x_tip - apex[0]
         y0 = lower["height"] + h_up + 1e-3
     body.position = (x0, y0)
     flt = pymunk.ShapeFilter(categories=SLIDER, mask=LOWER | FLOOR)
     verts = s.profile.vertices(upper=True)
     shapes = []
-    for c in centers:
+    for c in apex:
         shape = pymunk.Poly(body, [(c + x / u.length, y / u.length) for x, y in verts])
         shape.filter, shape.collision_type, shape.friction = flt, SLIDER, 1.0
         shapes.append(shape)

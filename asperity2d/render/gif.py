@@ -60,8 +60,8 @@ class Layout:
         self.result, self.width, self.height = result, width, height
         self.lower_poly = np.asarray(scene.lower.profile.vertices(upper=False))
         self.upper_poly = np.asarray(scene.slider.profile.vertices(upper=True))
-        self.lower_centers = scene.lower.centers()
-        self.upper_centers = scene.slider.centers()
+        self.lower_centers = scene.lower.tips()
+        self.upper_centers = scene.slider.tips()
         self.base, h = scene.base, scene.lower.profile.height
         self.pitch = scene.lower.spacing.mean_pitch
         span = self.upper_centers[-1] + scene.slider.profile.base
