@@ -179,11 +179,14 @@ class Run:
 
     ``fork()`` returns an independent run continuing from the current state
     with an empty record: settle once, run many (forks of one run are
-    bit-identical to each other).
+    bit-identical to each other). ``engaged=True`` starts a fixed-track slider
+    over the surface instead of before it (:meth:`settle` lowers its track
+    into contact); a free slider always starts on the surface.
     """
 
     def __init__(self, scene: Scene, *, dt: float | None = None, record_every: int = 10,
-                 iterations: int = 20, unsafe_dt: bool = False, max_steps: int = MAX_STEPS):
+                 iterations: int = 20, unsafe_dt: bool = False, max_steps: int = MAX_STEPS,
+                 engaged: bool = False):
         if not isinstance(scene, Scene):
             raise SceneError(f"`scene` must be a Scene (see make_scene), got {type(scene).__name__}")
         period = scene.shortest_period()
@@ -205,7 +208,7 @@ class Run:
         self.iterations = check_int("iterations", iterations, minimum=1, maximum=10_000)
         self.max_steps = check_int("max_steps", max_steps, minimum=1, maximum=None)
         self.scene, self.dt = scene, dt
-        self.engine = Engine(scene, dt, iterations=self.iterations)
+        self.engine = Engine(scene, dt, iterations=self.iterations, engaged=engaged)
         self.settle_time = 0.0
         self.status, self.message = "duration", "nothing run yet"
         self._reset_record()
@@ -299,7 +302,7 @@ class Run:
         dx = lower[:, 0] - layout.lower_x0
         drift = float(np.abs(dx).max()) if len(dx) and layout.tracked else 0.0
         if layout.fixed_slider:
-            drift = max(drift, abs(sy - layout.slider_y0))
+            drift = max(drift, abs(sy - layout.slider_y_track))
         self.max_drift = max(self.max_drift, drift)
         self.max_overlap = max(self.max_overlap, overlap)
         i = self._size

@@ -6,7 +6,7 @@ The per-table scripts ``belt_stiffness.py`` ... call this with ``--only``.
 
 import numpy as np
 
-from asperity2d.belt import studies as S
+from asperity2d.studies import seed001 as S
 
 DEC = lambda v: bool(np.all(np.diff(v) < 0))  # noqa: E731
 INC = lambda v: bool(np.all(np.diff(v) > 0))  # noqa: E731
