@@ -26,7 +26,7 @@ from typing import Callable, Iterable
 
 import numpy as np
 
-from ._io import atomic_write_text
+from ._io import FileError, atomic_write_text, read_text
 from .errors import SceneError
 
 FORMAT = "asperity2d.comparison/1"
@@ -153,10 +153,11 @@ class Comparison:
 
     @classmethod
     def load(cls, path: str | os.PathLike) -> "Comparison":
-        """Read a comparison written by :meth:`save`."""
+        """Read a comparison written by :meth:`save`; a file that is not one raises ``SceneError``."""
         path = Path(path)
+        text = read_text("path", path)
         try:
-            data = json.loads(path.read_text(encoding="utf-8"))
+            data = json.loads(text)
             if data.get("format") != FORMAT:
                 raise ValueError(f"format is {data.get('format')!r}, expected {FORMAT!r}")
             values = {k: tuple(math.nan if v is None else float(v) for v in vals)
@@ -164,8 +165,8 @@ class Comparison:
             return cls(values=values, seeds=tuple(int(s) for s in data["seeds"]),
                        variants=data.get("variants", {}), base=data.get("base", {}),
                        measure=data.get("measure", "value"))
-        except (OSError, ValueError, KeyError, TypeError, AttributeError) as exc:
-            raise SceneError(f"`path` is not a comparison file: {str(path)!r} ({exc})") from None
+        except (ValueError, KeyError, TypeError, AttributeError) as exc:
+            raise FileError("path", path, "is not a comparison file", str(exc)) from None
 
 
 def compare(measure: Callable, variants: dict[str, dict], seeds: Iterable[int], *,
