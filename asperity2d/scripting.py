@@ -2,7 +2,10 @@
 
 Every script has ``main(argv=None) -> int`` and accepts ``--quick`` (small
 settings, used by the tests), ``--json`` (print one JSON object), ``-o DIR``
-(where outputs go, default ``renders/<script name>``) and ``--no-gif``.
+(where outputs go, default ``renders/<script name>``) and ``--no-gif``. Its
+parser is the command line's (:class:`asperity2d.cli.Parser`): a bad argument
+is one line on stderr and exit status 2, whether the script runs as
+``python scenes/X.py`` or as ``asperity2d run scenes/X.py``.
 """
 
 from __future__ import annotations
@@ -17,7 +20,10 @@ from ._io import atomic_write_text
 
 
 def parser(description: str) -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(description=description)
+    """The common arguments of a scene script; ``p.error(message)`` reports a bad value."""
+    from .cli import Parser
+
+    p = Parser(description=description)
     p.add_argument("--quick", action="store_true", help="small, fast settings (tests, smoke runs)")
     p.add_argument("--json", action="store_true", help="print one JSON summary object")
     p.add_argument("-o", "--out-dir", help="output directory (default renders/<script>)")

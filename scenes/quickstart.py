@@ -27,7 +27,7 @@ def main(argv=None) -> int:
     p.add_argument("--workers", type=int, default=min(2, os.cpu_count() or 1))
     args = p.parse_args(argv)
     if args.seeds < 2:
-        raise SystemExit("quickstart: error: `seeds` must be >= 2")
+        p.error(f"`seeds` must be >= 2, got {args.seeds}")
     out = scripting.out_dir(args, __file__)
     base = {"lower_count": 8, "upper_count": 3} if args.quick else {}
 
