@@ -238,3 +238,6 @@ def main(argv: list[str] | None = None) -> int:
             return fail(exc)
         except SystemExit as exc:  # a scene script's own sys.exit / argparse error
             return _exit_status(exc)
+        except KeyboardInterrupt:
+            print(f"{PROG}: interrupted", file=sys.stderr)
+            return 130

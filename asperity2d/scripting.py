@@ -16,7 +16,7 @@ import math
 import os
 from pathlib import Path
 
-from ._io import atomic_write_text
+from ._io import atomic_write_text, output_dir, writing
 
 
 def parser(description: str) -> argparse.ArgumentParser:
@@ -53,13 +53,15 @@ def study_args(description: str, argv, *, default_seeds: int, minimum_seeds: int
 
 
 def out_dir(args, script_file: str) -> Path:
-    """The output directory for a script (created)."""
+    """The output directory for a script (created); ``SceneError`` naming ``-o`` if it cannot be."""
     if args.out_dir:
         path = Path(args.out_dir)
     else:
         root = Path(os.environ.get("ASPERITY2D_RENDERS", Path(script_file).resolve().parent.parent / "renders"))
         path = root / Path(script_file).stem
-    path.mkdir(parents=True, exist_ok=True)
+    output_dir("-o", path)
+    with writing("-o", path):
+        path.mkdir(parents=True, exist_ok=True)
     return path
 
 
