@@ -135,6 +135,8 @@ CASES = [
     ("sweep export -o DIR", ["sweep", "export", "{store}", "-o", "{adir.csv}"], "`--output` is a directory"),
     ("script's own bad argument", ["run", str(SCENES / "stick_slip.py"), "--bogus"], "--bogus"),
     ("script's own bad value", ["run", str(SCENES / "quickstart.py"), "--seeds", "1"], "`seeds`"),
+    ("script -o a file", ["run", str(SCENES / "stick_slip.py"), "--quick", "-o", "{notes.txt}"],
+     "`-o` is not a directory"),
     # -- misleading messages ---------------------------------------------------------------
     ("analyze text file", ["analyze", "{notes.txt}"], "not an .npz"),
     ("sweep run DIR as study", ["sweep", "run", "{adir}", "--store", "{root}/s1"], "`study` is a directory"),
