@@ -87,7 +87,7 @@ def run(args) -> int:
     if path.suffix != ".toml":
         raise SceneError(f"`scene` must be a .py script or a .toml scene file, got {str(path)!r}")
     save = args.save and _io.output_path("--save", args.save, suffixes=(".npz",))
-    output = args.output and _io.output_path("--output", args.output, suffixes=(".gif", *PLOT_SUFFIXES))
+    output = args.output and _io.output_path("--output", args.output, suffixes=_render_suffixes())
     scene, settings = scene_from_toml(path)
     if args.duration is not None:
         duration = _checked_duration(scene, args.duration, "--duration")
@@ -129,6 +129,12 @@ def _run_script(path: Path, args) -> int:
         sys.argv = saved
 
 
+def _render_suffixes() -> tuple[str, ...]:
+    from .render import RENDERERS
+
+    return tuple(RENDERERS)
+
+
 def _load_result(arg: str, path):
     from .result import load
 
@@ -155,7 +161,7 @@ def render(args) -> int:
     """``asperity2d render RESULT -o FILE``: render a saved run again."""
     from .render import render as render_result
 
-    output = _io.output_path("--output", args.output, suffixes=(".gif", *PLOT_SUFFIXES))
+    output = _io.output_path("--output", args.output, suffixes=_render_suffixes())
     result = _load_result("result", args.result)
     with _io.argument("--output"), _io.writing("--output", output):
         out = render_result(result, output)
