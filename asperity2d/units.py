@@ -10,7 +10,6 @@ and the same scene scaled up then produce the same internal numbers.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -56,8 +55,3 @@ class Units:
     def as_dict(self) -> dict:
         return {"length_m": self.length, "mass_kg": self.mass, "time_s": self.time,
                 "force_N": self.force, "velocity_m_per_s": self.velocity}
-
-
-def per_step_bias(fraction: float, dt: float) -> float:
-    """pymunk bias (error left after one time unit) that removes ``fraction`` per step of ``dt``."""
-    return math.pow(1.0 - fraction, 1.0 / dt)
