@@ -20,7 +20,7 @@ from .errors import SceneError
 #: Keys of a TOML scene's ``[run]`` table.
 RUN_KEYS = ("duration",)
 #: ``run`` refuses a requested duration longer than this many steps of the default dt
-#: (~1e9 steps is a day of CPU at the ~100 us a 20-asperity step costs).
+#: (~1e9 steps is hours to a day of CPU at the 10-100 us a step of a small scene costs).
 MAX_STEPS = 1e9
 MEASURES = {"critical": "critical_force_of", "breakaway": "breakaway_force_of"}
 
@@ -70,9 +70,9 @@ def _emit(args, summary: dict, lines: list[str]) -> None:
 
 def _checked_duration(scene, duration: float, arg: str) -> float:
     """``duration`` if it is at most :data:`MAX_STEPS` steps of the scene's default dt."""
-    from .simulate import DT_FRACTION
+    from .simulate import default_dt
 
-    dt = DT_FRACTION * scene.shortest_period()
+    dt = default_dt(scene)
     if duration > MAX_STEPS * dt:
         raise SceneError(f"`{arg}` = {duration:.3g} s is more than {MAX_STEPS:.0e} steps of the default "
                          f"dt ({dt:.3g} s) of this scene: at most {MAX_STEPS * dt:.3g} s")
