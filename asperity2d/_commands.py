@@ -171,7 +171,10 @@ def render(args) -> int:
 
 def critical(args) -> int:
     """``asperity2d critical SCENE``: the critical constant drive force (bisection)."""
-    scene, _ = scene_from_toml(args.scene)
+    path = _io.input_path("scene", args.scene)
+    if path.suffix != ".toml":
+        raise SceneError(f"`scene` must be a .toml scene file, got {str(path)!r}")
+    scene, _ = scene_from_toml(path)
     from .critical import critical_force_bracket
 
     bracket = critical_force_bracket(scene, rel_tol=args.rel_tol)

@@ -165,6 +165,7 @@ CASES = [
     ("render wrong suffix", ["render", "{result.npz}", "-o", "{root}/x.bmp"], "`--output`"),
     ("critical missing", ["critical", "{missing}.toml"], "`scene` does not exist"),
     ("critical DIR", ["critical", "{adir.toml}"], "`scene` is a directory"),
+    ("critical a script", ["critical", "{latin1.py}"], "`scene` must be a .toml"),
     ("critical --rel-tol 0", ["critical", "{scene.toml}", "--rel-tol", "0"], "--rel-tol"),
     ("belt missing", ["belt", "{missing}.toml"], "`chain` does not exist"),
     ("belt not TOML", ["belt", "{notoml.toml}"], "not valid TOML"),
