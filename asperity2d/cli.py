@@ -91,14 +91,18 @@ def build_parser() -> Parser:
     sub = parser.add_subparsers(dest="command", required=True, metavar="command")
 
     # allow_abbrev=False: a script's own --out must not be read as an abbreviated --output
-    p = sub.add_parser("run", help="run a scene script (.py) or a TOML scene file", allow_abbrev=False)
-    p.add_argument("scene", help="scene script (.py; other arguments go to its main()) or .toml")
+    p = sub.add_parser("run", help="run a scene script (.py) or a TOML scene file", allow_abbrev=False,
+                       add_help=False)
+    p.add_argument("-h", "--help", action="store_true", dest="run_help",
+                   help="show this help; after a .py script, the script's own help")
+    p.add_argument("scene", nargs="?",
+                   help="scene script (.py; other arguments go to its main()) or .toml")
     p.add_argument("-o", "--output",
                    help="render to this file (.gif, .png, .svg, .pdf); a script's output directory")
     p.add_argument("--save", help="save the Result (.npz) (TOML scenes)")
     p.add_argument("--duration", type=positive_float, help="simulated time in s (TOML scenes)")
     _json_flag(p)
-    p.set_defaults(handler="asperity2d._commands:run")
+    p.set_defaults(handler="asperity2d._commands:run", print_run_help=p.print_help)
 
     p = sub.add_parser("analyze", help="stick-slip events and breakaway force of a saved result")
     p.add_argument("result", help="a result saved with --save / Result.save (.npz)")
@@ -223,7 +227,15 @@ def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     try:
         args, extra = parser.parse_known_args(argv)
-        if extra and not (args.command == "run" and args.scene.endswith(".py")):
+        script = args.command == "run" and (args.scene or "").endswith(".py")
+        if args.command == "run" and args.run_help:
+            if not script:
+                args.print_run_help()
+                return 0
+            extra.append("--help")  # `asperity2d run x.py --help`: the script's own help
+        if args.command == "run" and args.scene is None:
+            parser.error("the following arguments are required: scene")
+        if extra and not script:
             parser.error(f"unrecognized arguments: {' '.join(extra)}")
     except SystemExit as exc:  # --help, --version, or a usage error already printed
         return _exit_status(exc)

@@ -196,6 +196,7 @@ CASES = [
     ("sweep export missing", ["sweep", "export", "{missing}", "-o", "{root}/x.csv"], "`store` does not exist"),
     ("sweep export -o under a file", ["sweep", "export", "{store}", "-o", "{notes.txt}/x.csv"], "`--output`"),
     ("no command", [], "command"),
+    ("run without a scene", ["run", "--json"], "required: scene"),
     ("unknown option", ["analyze", "{result.npz}", "--bogus"], "--bogus"),
 ]
 
@@ -268,6 +269,13 @@ def test_sweep_export_takes_json(files, tmp_path, capsys):
     summary = json.loads(capsys.readouterr().out)
     assert summary == {"output": str(out), "runs": 0}
     assert out.read_text().startswith("key,spacing,seed,status")
+
+
+def test_run_help_is_the_scripts_own_after_a_script(capsys):
+    assert main(["run", str(SCENES / "stick_slip.py"), "--help"]) == 0
+    assert capsys.readouterr().out.startswith("usage: stick_slip.py")
+    assert main(["run", "--help"]) == 0
+    assert capsys.readouterr().out.startswith("usage: asperity2d run")
 
 
 def test_chain_file_runs(files, capsys):
