@@ -32,10 +32,10 @@ from typing import Callable, Iterable
 import numpy as np
 
 from . import stats
-from ._io import atomic_write_text
+from ._io import FileError, atomic_write_text, read_text
 from ._validate import check_int, show
 from .errors import SceneError, SimulationError
-from .scene import ConstantForce, Scene, SpringDrive
+from .scene import Scene, SpringDrive
 
 FORMAT = "asperity2d.comparison/1"
 
@@ -199,10 +199,11 @@ class Comparison:
 
     @classmethod
     def load(cls, path: str | os.PathLike) -> "Comparison":
-        """Read a comparison written by :meth:`save`."""
+        """Read a comparison written by :meth:`save`; a file that is not one raises ``SceneError``."""
         path = Path(path)
+        text = read_text("path", path)
         try:
-            data = json.loads(path.read_text(encoding="utf-8"))
+            data = json.loads(text)
             if not isinstance(data, dict) or data.get("format") != FORMAT:
                 raise ValueError(f"format is {data.get('format') if isinstance(data, dict) else None!r}, "
                                  f"expected {FORMAT!r}")
@@ -211,8 +212,8 @@ class Comparison:
             return cls(values=values, seeds=tuple(int(s) for s in data["seeds"]),
                        variants=data.get("variants", {}), base=data.get("base", {}),
                        measure=data.get("measure", "value"))
-        except (OSError, UnicodeDecodeError, ValueError, KeyError, TypeError, AttributeError) as exc:
-            raise SceneError(f"`path` is not a comparison file: {str(path)!r} ({exc})") from None
+        except (ValueError, KeyError, TypeError, AttributeError) as exc:
+            raise FileError("path", path, "is not a comparison file", str(exc)) from None
 
 
 # -- running it -------------------------------------------------------------------------------------

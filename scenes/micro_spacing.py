@@ -21,7 +21,7 @@ import os
 import numpy as np
 
 import asperity2d as a
-from asperity2d import scripting
+from asperity2d.studies import scripting
 from asperity2d.compare import Comparison
 from asperity2d.sweep.executors import map_calls
 from asperity2d.quasistatic import SEED_DRIVE_VELOCITY

@@ -22,7 +22,7 @@ from __future__ import annotations
 import math
 
 import asperity2d as a
-from asperity2d import scripting
+from asperity2d.studies import scripting
 from asperity2d.compare import measure_label
 from asperity2d.render.plots import plot_comparison
 from asperity2d.studies import claims

@@ -19,7 +19,8 @@ from __future__ import annotations
 import numpy as np
 
 import asperity2d as a
-from asperity2d import scripting, stats
+from asperity2d import stats
+from asperity2d.studies import scripting
 from asperity2d.studies.claims import claim
 from asperity2d.studies import seed000 as studies
 from asperity2d.sweep.executors import map_calls

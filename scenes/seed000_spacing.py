@@ -30,7 +30,7 @@ under a normal load.
 from __future__ import annotations
 
 import asperity2d as a
-from asperity2d import scripting
+from asperity2d.studies import scripting
 from asperity2d.compare import Comparison, measure_label
 from asperity2d.render.plots import plot_comparison
 from asperity2d.studies import claims

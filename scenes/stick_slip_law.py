@@ -23,7 +23,7 @@ import numpy as np
 
 import asperity2d as a
 from asperity2d import fitting as ft
-from asperity2d import scripting
+from asperity2d.studies import scripting
 from asperity2d import tribometer as tb
 from asperity2d import stats
 from asperity2d.sweep.executors import map_calls

@@ -120,3 +120,10 @@ def test_bad_files_and_shapes(tmp_path):
         Comparison.load(tmp_path / "missing.json")
     with pytest.raises(a.SceneError, match="`values`"):
         Comparison(values={"a": (1.0, 2.0)}, seeds=(0,))
+
+
+def test_the_command_line_offers_exactly_the_standard_measures():
+    from asperity2d.cli import COMPARE_MEASURES
+    from asperity2d.compare import MEASURES
+
+    assert COMPARE_MEASURES == tuple(MEASURES)

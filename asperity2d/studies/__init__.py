@@ -6,5 +6,7 @@ Study code, kept apart from the model a user imports:
   ``summary.json``, and its plain-language verdict line;
 * :mod:`.seed000` -- seed 000's asperity studies: the two slider set-ups,
   scene sizes and the sweep run functions of the ``scenes/seed000_*`` scripts;
-* :mod:`.seed001` -- seed 001's belt-chain studies (``scenes/belt_*``).
+* :mod:`.seed001` -- seed 001's belt-chain studies (``scenes/belt_*``);
+* :mod:`.scripting` -- the plumbing every ``scenes/*.py`` script shares
+  (arguments, output folder, ``summary.json``).
 """
