@@ -20,6 +20,7 @@ import numpy as np
 from ._validate import check_finite, check_int, check_positive
 from ._version import __version__
 from .engine import PYMUNK_VERSION, Engine
+from .engine.energy import EnergyMeter
 from .errors import SceneError, SimulationError
 from .result import Result
 from .scene import ConstantForce, Scene, SpringDrive
@@ -518,8 +519,6 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
         run.settle(progress=progress)
     meter = None
     if energy:
-        from .engine.energy import EnergyMeter
-
         meter = EnergyMeter(run.engine)
     run.advance(duration, stop=stops, progress=progress)
     if stops and run.status == "duration":
