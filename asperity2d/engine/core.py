@@ -83,6 +83,8 @@ class Engine:
         self.step_hooks: list = []
         self._body_buf, self._arb_buf = None, batch.Buffer()
         self._arbiters = None  # the last step's contacts, when read
+        self._changes = 0  # counts what changes the space: forks of an unchanged engine share a snapshot
+        self._snapshot = None
         self._read_bodies()
         self.drive.start(self._slider[0])
 
@@ -150,6 +152,7 @@ class Engine:
         layout, d, dt, load = self.layout, self.drive, self.dt_internal, self.load_internal
         space, body, switch = layout.space, layout.slider, self.switch
         hooks = self.step_hooks
+        self._changes += 1
         for _ in range(n):
             x, _, vx, _ = self._slider
             if d.spring:
@@ -254,6 +257,7 @@ class Engine:
         """
         layout, d, dt = self.layout, self.drive, self.dt_internal
         space, body = layout.space, layout.slider
+        self._changes += 1
         free = self.scene.slider.track == "free"
         lowering = layout.fixed_slider and layout.slider_y_track != layout.slider_y0
         phases = (["drop"] if free or lowering else []) + (["spring"] if d.spring else []) + \
@@ -320,9 +324,11 @@ class Engine:
         Copies of one engine step bit-identically to each other (they differ
         from the original in the last bits: pymunk rebuilds the contact cache).
         """
+        if self._snapshot is None or self._snapshot[0] != self._changes:
+            self._snapshot = (self._changes, self.layout.snapshot())
         out = object.__new__(Engine)
         out.__dict__.update(self.__dict__)
-        out.layout = self.layout.copy()
+        out.layout = self.layout.copy(self._snapshot[1])
         out.switch = self.switch.copy_to(out.layout)
         out.drive = object.__new__(Drive)
         out.drive.__dict__.update(self.drive.__dict__)
