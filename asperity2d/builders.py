@@ -51,6 +51,7 @@ DEFAULTS = {
     "mu_kinetic": None,  # default: two thirds of mu_static
     "slip_distance": None,
     "stick_speed": None,
+    "restitution": 0.0,  # contact elasticity in [0, 1]: 0 inelastic impacts, 1 no impact loss
     "drive_force": 0.02,  # N, drive="force"
     "drive_stiffness": 3_720.0,  # N/m, drive="spring"
     "drive_velocity": 20.0,  # m/s = 1.8e-3 * omega * base: quasi-static regime
@@ -156,6 +157,6 @@ def make_scene(*, spacing: str = "regular", seed: int = 0, profile: str = "full"
     if p["mu"] is not None:
         mu_s = mu_k = p["mu"]
     contact = Contact(mu_static=mu_s, mu_kinetic=mu_k, slip_distance=p["slip_distance"],
-                      stick_speed=p["stick_speed"])
+                      stick_speed=p["stick_speed"], restitution=p["restitution"])
     name = p["name"] or f"{spacing}-{profile}-{drive}-seed{seed}"
     return Scene(lower=lower, slider=slider, drive=drv, contact=contact, gravity=p["gravity"], name=name)

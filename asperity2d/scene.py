@@ -169,12 +169,18 @@ class Contact:
     speed alone. A sliding
     contact sticks again when its slip speed falls below ``stick_speed``
     (m/s, default 1e-4 of base x natural frequency).
+
+    ``restitution`` (in [0, 1], pymunk's elasticity) is the ratio of the
+    normal relative speed after an impact to that before: 0 (the default) is
+    a perfectly inelastic impact, which loses the normal part of the relative
+    kinetic energy; 1 loses nothing.
     """
 
     mu_static: float = 0.3
     mu_kinetic: float | None = None
     slip_distance: float | None = None
     stick_speed: float | None = None
+    restitution: float = 0.0
 
     def __post_init__(self):
         check_nonnegative("mu_static", self.mu_static)
@@ -189,6 +195,8 @@ class Contact:
             check_nonnegative("slip_distance", self.slip_distance)
         if self.stick_speed is not None:
             check_positive("stick_speed", self.stick_speed)
+        if check_nonnegative("restitution", self.restitution) > 1:
+            raise SceneError(f"`restitution` must be <= 1, got {self.restitution!r}")
 
 
 @dataclass(frozen=True)

@@ -16,16 +16,15 @@ Energy removed (J, positive = taken out of the books), one channel each:
 * ``friction_work`` -- tangential (Coulomb) contact impulses, -sum J_t·v_rel;
 * ``normal_work`` -- normal contact impulses, -sum J_n·v_rel: the impact loss
   (contact restitution 0 loses the normal part of the relative kinetic energy
-  at every impact; restitution 1 keeps it);
+  at every impact; restitution 1 keeps it). Both count what pymunk applied,
+  not what it reports: see :func:`_remembered` (a reported impulse measured
+  up to 700 x a step's load impulse with restitution 1 was never applied);
 * ``damper_work`` -- the track / lattice dampers and the drive damper;
 * ``stop_work`` -- the travel stops: a lower asperity that reaches the end of
   its groove (``travel_down`` / ``travel_up``) is stopped by a perfectly
   inelastic constraint impulse;
-* ``constraint_work`` -- every other impulse pymunk applied that is not metered
-  above: the track (groove) reactions, whose work is the solver's drift off the
-  track, and the difference between the contact impulses pymunk reports and the
-  ones it applied (a contact that touches again within three steps of
-  separating reports an impulse remembered from before it separated);
+* ``constraint_work`` -- the track (groove) reactions elsewhere, whose work is
+  the solver's drift off the track and the joints' error correction;
 * ``position_correction`` -- pymunk pushes overlapping shapes apart by moving
   them without giving them velocity; the springs, load and drive gain or lose
   energy over that move with no force doing work (negative: energy created);
@@ -38,18 +37,15 @@ Energy removed (J, positive = taken out of the books), one channel each:
   (|C| <= dt/2·|F||v|) that does not grow with the distance slid.
 
 Impulses act on the step's mean velocity (v_n + v_n+1)/2, which makes each
-body's kinetic-energy change exact. Every impulse on a body that is not a
-spring, load, drive or contact impulse is its groove joint's, so each body's
-momentum change minus the metered impulses is its constraint impulse
-(``stop_work`` where a lower asperity sits at a travel end,
-``constraint_work`` elsewhere). The report checks that attribution against
-pymunk's own record: ``unmatched_impulse_fraction`` is the share of those
-impulses that the groove joints do not report (the contact read-out quirk
-above, whose error in ``normal_work`` it cancels; measured <= 4e-4).
-``residual = drive_work - removed - (stored_energy - stored_energy_0)`` is
-then what the accounting leaves out: the track springs' geometric
-nonlinearity (they hang from far below) and a change of the drive's speed or
-force between steps; it stays below 1e-6 of the drive work.
+body's kinetic-energy change exact. Every impulse that is not a spring, load,
+drive or contact impulse is a groove joint's, so each body's momentum change
+minus the metered impulses is its constraint impulse (``stop_work`` at a
+travel end, ``constraint_work`` elsewhere); ``unmatched_impulse_fraction``
+checks that against pymunk's own record, the share of it the groove joints do
+not report (measured <= 1e-12). ``residual = drive_work - removed -
+(stored_energy - stored_energy_0)`` is what the accounting leaves out (the
+hanging track springs' geometric nonlinearity, a change of drive speed or
+force between steps): below 1e-6 of the drive work.
 """
 
 from __future__ import annotations
@@ -71,6 +67,36 @@ REMOVED = ("friction_work", "normal_work", "damper_work", "stop_work", "constrai
 #: Of those, the physical losses (the rest are the numerical method's).
 PHYSICAL = ("friction_work", "normal_work", "damper_work", "stop_work")
 TOTALS = ("drive_work", *REMOVED, "friction_impulse", "time", "remainder_impulse", "unmatched_impulse")
+
+
+class _Remembered(list):
+    """One step's remembered contact impulses ``(id_a, id_b, jx, jy, nx, ny)``.
+
+    ``Space.copy`` pickles collision handlers with their data; a copy is
+    inert, so a copied engine never collects them (detach before copying).
+    """
+
+    active = True
+
+    def __reduce__(self):
+        return _inert, ()
+
+
+def _inert() -> _Remembered:
+    out = _Remembered()
+    out.active = False
+    return out
+
+
+def _remembered(arbiter, space, phantoms: _Remembered) -> None:
+    """pre_solve: a contact touching again within pymunk's collision persistence (3 steps)
+    of separating starts from the impulse it remembered from before; pymunk does not apply
+    that impulse (no warm start on a first contact) but reports it in the total."""
+    if phantoms.active and arbiter.is_first_contact:
+        j = arbiter.total_impulse  # before the solve: the remembered impulse
+        if j.x or j.y:
+            a, b = arbiter.bodies
+            phantoms.append((a.id, b.id, j.x, j.y, *arbiter.normal))
 
 
 class EnergyMeter:
@@ -116,6 +142,8 @@ class EnergyMeter:
         self._grooves = grooves
         self._groove_rows = np.array([self._row.get(c.b.id, nb) for c in grooves], dtype=np.intp)
         self._arb = batch.Buffer()
+        self._phantoms = _Remembered()
+        space.on_collision(None, None, pre_solve=_remembered, data=self._phantoms)
         self._pre = np.zeros((nb + 1, 4))
         self.totals = dict.fromkeys(TOTALS, 0.0)  # internal units while running
         self._P, self._V = self._state(rows)
@@ -127,12 +155,13 @@ class EnergyMeter:
         e.step_hooks.append(self)
 
     def detach(self) -> None:
-        """Stop metering (remove the hooks)."""
+        """Stop metering (remove the hooks and the space's ``pre_solve`` callback)."""
         e = self.engine
         if self in e.step_hooks:
             e.step_hooks.remove(self)
-        if self._before_projection in e.projection_hooks:
             e.projection_hooks.remove(self._before_projection)
+            e.layout.space.on_collision(None, None, pre_solve=pymunk.empty_callback)
+            self._phantoms.clear()
 
     # -- the model -------------------------------------------------------------
     def _state(self, rows):
@@ -223,19 +252,18 @@ class EnergyMeter:
             tot["position_correction"] -= h * float(
                 np.dot(f_p, (dv * nvec).sum(axis=1)) - np.dot(f_f, (dv * n_f).sum(axis=1)))
         self._contacts(vm, J)
-        # what is left is each body's groove impulse: travel stops or track reactions
+        # what is left is each body's groove impulse: at a travel end, or a track reaction;
+        # cross-check its size against what the grooves report
         w = (J * vm).sum(axis=1)[:-1]
-        # cross-check: the remainder is what the grooves report (magnitudes), nothing on other bodies
         mag = np.hypot(J[:-1, 0], J[:-1, 1])
         groove = np.zeros(self._nb + 1)
         np.add.at(groove, self._groove_rows, [c.impulse for c in self._grooves])
         tot["remainder_impulse"] += float(mag.sum())
         tot["unmatched_impulse"] += float(np.abs(mag - groove[:-1]).sum())
-        stop = np.zeros(self._nb, dtype=bool)
         y = Pp[self._lower, 1]
-        stop[self._lower] = (y <= self._down) | (y >= self._up)
-        tot["stop_work"] -= float(w[stop].sum())
-        tot["constraint_work"] -= float(w[~stop].sum())
+        w_stop = float(w[self._lower[(y <= self._down) | (y >= self._up)]].sum())
+        tot["stop_work"] -= w_stop
+        tot["constraint_work"] -= float(w.sum()) - w_stop
         # position correction (Pf -> Pp), integrator shadow term, projection (Pp -> P1)
         uf, cf = self._elastic(Pf, Vp, X1)
         up, cp = self._elastic(Pp, Vp, X1)
@@ -248,26 +276,30 @@ class EnergyMeter:
         self._P, self._V, self._X = P1, V1, X1
 
     def _contacts(self, vm, J) -> None:
-        """Meter the contact impulses (friction, normal) and take them out of ``J``."""
-        tot, buf = self.totals, self._arb
+        """Meter the contact impulses pymunk applied (friction, normal) and take them out of ``J``."""
+        buf, row, nb = self._arb, self._row, self._nb
         buf.clear()
         batch.get_space_arbiters(self.engine.layout.space, _ARB_FIELDS, buf)
         ints = np.frombuffer(buf.int_buf(), dtype=np.uintp).reshape(-1, 3)
-        if not len(ints):
-            return
         floats = np.frombuffer(buf.float_buf(), dtype=np.float64).reshape(-1, 4)
         live = ints[:, 2] > 0  # cached arbiters (not touching) report nothing
-        row, nb = self._row, self._nb
-        ra = np.array([row.get(int(i), nb) for i in ints[live, 0]], dtype=np.intp)
-        rb = np.array([row.get(int(i), nb) for i in ints[live, 1]], dtype=np.intp)
-        j, n = floats[live, :2], floats[live, 2:]  # impulse on body A, contact normal
+        ids_a, ids_b, j, n = ints[live, 0], ints[live, 1], floats[live, :2], floats[live, 2:]
+        if self._phantoms:  # reported but never applied: take them off as negative contacts
+            ph = self._phantoms
+            ids_a = np.concatenate([ids_a, np.array([p[0] for p in ph], dtype=np.uintp)])
+            ids_b = np.concatenate([ids_b, np.array([p[1] for p in ph], dtype=np.uintp)])
+            vec = np.array([p[2:] for p in ph], dtype=float)
+            j, n = np.concatenate([j, -vec[:, :2]]), np.concatenate([n, vec[:, 2:]])
+            self._phantoms.clear()
+        if not len(j):
+            return
+        ra = np.array([row.get(int(i), nb) for i in ids_a], dtype=np.intp)  # impulse j is on A
+        rb = np.array([row.get(int(i), nb) for i in ids_b], dtype=np.intp)
         v_rel = vm[ra] - vm[rb]
-        jn = (j * n).sum(axis=1)
-        w_total = (j * v_rel).sum(axis=1)
-        w_normal = jn * (n * v_rel).sum(axis=1)
+        w_normal = (j * n).sum(axis=1) * (n * v_rel).sum(axis=1)
+        tot, s = self.totals, self._s
         tot["normal_work"] -= float(w_normal.sum())
-        tot["friction_work"] -= float((w_total - w_normal).sum())
-        s = self._s
+        tot["friction_work"] -= float(((j * v_rel).sum(axis=1) - w_normal).sum())
         tot["friction_impulse"] -= float(j[ra == s, 0].sum() - j[rb == s, 0].sum())
         np.subtract.at(J, ra, j)
         np.add.at(J, rb, j)
@@ -288,11 +320,11 @@ class EnergyMeter:
         out["time_s"] = t["time"] * self._time
         stored = float(self.stored_energy())
         out["stored_energy_J"] = stored
-        out["stored_energy_change_J"] = stored - self.stored_energy_0
+        out["stored_energy_change_J"] = float(stored - self.stored_energy_0)
         out["dissipated_J"] = sum(out[f"{k}_J"] for k in PHYSICAL)
         out["numerical_J"] = sum(out[f"{k}_J"] for k in REMOVED if k not in PHYSICAL)
         removed = out["dissipated_J"] + out["numerical_J"]
-        out["residual_J"] = out["drive_work_J"] - removed - out["stored_energy_change_J"]
+        out["residual_J"] = float(out["drive_work_J"] - removed - out["stored_energy_change_J"])
         scale = max(abs(out["drive_work_J"]), abs(removed), 1e-300)
         out["residual_fraction"] = float(abs(out["residual_J"]) / scale)
         out["mean_friction_force_N"] = (out["friction_impulse_Ns"] / out["time_s"]

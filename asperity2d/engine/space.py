@@ -112,7 +112,8 @@ def build(scene, units: Units, dt: float, *, iterations: int, friction: float) -
     """Build ``scene`` in a new space stepped with ``dt`` (internal units).
 
     ``friction`` is the lower shapes' initial coefficient (the slider's shapes
-    have 1.0, so a contact's coefficient is the lower shape's).
+    have 1.0, so a contact's coefficient is the lower shape's); their
+    elasticity is the scene's contact ``restitution`` (the slider's is 1.0).
     """
     space = pymunk.Space(threaded=False)  # threaded stepping is not reproducible
     space.iterations = iterations
@@ -143,6 +144,7 @@ def _build_lower(space, scene, u: Units, bias: float, friction: float) -> dict:
         body.position = (x, 0.0)
         shape = pymunk.Poly(body, verts)
         shape.filter, shape.collision_type, shape.friction = flt, LOWER, friction
+        shape.elasticity = scene.contact.restitution  # x the slider's 1.0
         # The vertical spring hangs from far below, so it stays vertical
         # (to 1e-2 rad per base of sideways motion in the lattice).
         joints = [pymunk.DampedSpring(space.static_body, body, (x, -_SPRING_REST), (0.0, 0.0),
@@ -217,6 +219,7 @@ def _build_slider(space, scene, u: Units, bias: float, lower: dict) -> dict:
     for c in centers:
         shape = pymunk.Poly(body, [(c + x / u.length, y / u.length) for x, y in verts])
         shape.filter, shape.collision_type, shape.friction = flt, SLIDER, 1.0
+        shape.elasticity = 1.0
         shapes.append(shape)
     space.add(body, *shapes)
     if s.track == "fixed":
@@ -235,4 +238,5 @@ def _build_floor(space, scene, u: Units, x_lower, friction: float) -> None:
     floor = pymunk.Segment(space.static_body, (x_lo, y), (-x_lo, y), 0.0)
     floor.filter = pymunk.ShapeFilter(categories=FLOOR, mask=SLIDER)
     floor.collision_type, floor.friction = FLOOR, friction
+    floor.elasticity = scene.contact.restitution
     space.add(floor)
