@@ -114,24 +114,39 @@ def spring_pass_run(*, seed: int = 0, **params) -> dict:
     }
 
 
+#: Energy channels :func:`damping_travel_run` reports for each run (J, see
+#: :mod:`asperity2d.engine.energy`); ``numerical`` sums the method's channels.
+DAMPING_CHANNELS = ("drive_work", "stored_energy_change", "friction_work", "normal_work", "damper_work",
+                    "stop_work", "numerical")
+
+
 def damping_travel_run(*, seed: int = 0, factor: float = 0.9, **params) -> dict:
     """Seed 000 figure 12: constant force ``factor`` x the damped critical force, damped vs undamped.
 
     The critical force is bisected on the damped scene (``params`` as given);
-    the same force then pushes the damped scene and the scene with undamped
-    lower asperities (``damping_ratio=0``). Returns the force (N), each
-    slider's final travel from its start (m) and whether it passed (1/0).
+    the same force then pushes three scenes: ``damped`` (as given),
+    ``undamped`` (track dampers off, ``damping_ratio=0``) and ``elastic``
+    (dampers off and contact ``restitution=1``: no impact loss either).
+    Returns the force (N), each slider's final travel from its start
+    (``travel_<label>_m``, m), whether it passed or came to rest
+    (``passed_<label>``, ``stuck_<label>``, 1/0; neither: the time limit) and
+    its energy books (``<label>_<channel>_J`` for :data:`DAMPING_CHANNELS`).
     """
     params = {k: v for k, v in params.items() if k != "damping"}
     damped = make_scene(seed=seed, drive="force", **params)
     critical = critical_force(damped)
     force = factor * critical
     out = {"critical_force_N": critical, "force_N": force}
-    undamped = make_scene(seed=seed, drive="force", **{**params, "damping_ratio": 0.0})
-    for label, scene in (("damped", damped), ("undamped", undamped)):
-        result = simulate(scene.replace(drive=ConstantForce(force=force)))
+    undamped = {**params, "damping_ratio": 0.0}
+    scenes = {"damped": damped, "undamped": make_scene(seed=seed, drive="force", **undamped),
+              "elastic": make_scene(seed=seed, drive="force", **{**undamped, "restitution": 1.0})}
+    for label, scene in scenes.items():
+        result = simulate(scene.replace(drive=ConstantForce(force=force)), energy=True)
         out[f"travel_{label}_m"] = float(result.x[-1] - result.x[0])
         out[f"passed_{label}"] = float(result.status == "passed")
+        out[f"stuck_{label}"] = float(result.status == "stuck")
+        books = result.meta["energy"]
+        out.update({f"{label}_{k}_J": float(books[f"{k}_J"]) for k in DAMPING_CHANNELS})
     return out
 
 
