@@ -127,10 +127,11 @@ def damping_travel_run(*, seed: int = 0, factor: float = 0.9, **params) -> dict:
     the same force then pushes three scenes: ``damped`` (as given),
     ``undamped`` (track dampers off, ``damping_ratio=0``) and ``elastic``
     (dampers off and contact ``restitution=1``: no impact loss either).
-    Returns the force (N), each slider's final travel from its start
-    (``travel_<label>_m``, m), whether it passed or came to rest
-    (``passed_<label>``, ``stuck_<label>``, 1/0; neither: the time limit) and
-    its energy books (``<label>_<channel>_J`` for :data:`DAMPING_CHANNELS`).
+    Returns the force (N), each slider's final travel from its start and the
+    farthest it got (``travel_<label>_m``, ``reach_<label>_m``, m), whether
+    it passed or came to rest (``passed_<label>``, ``stuck_<label>``, 1/0;
+    neither: the time limit) and its energy books (``<label>_<channel>_J``
+    for :data:`DAMPING_CHANNELS`).
     """
     params = {k: v for k, v in params.items() if k != "damping"}
     damped = make_scene(seed=seed, drive="force", **params)
@@ -143,6 +144,7 @@ def damping_travel_run(*, seed: int = 0, factor: float = 0.9, **params) -> dict:
     for label, scene in scenes.items():
         result = simulate(scene.replace(drive=ConstantForce(force=force)), energy=True)
         out[f"travel_{label}_m"] = float(result.x[-1] - result.x[0])
+        out[f"reach_{label}_m"] = float(result.x.max() - result.x[0])
         out[f"passed_{label}"] = float(result.status == "passed")
         out[f"stuck_{label}"] = float(result.status == "stuck")
         books = result.meta["energy"]

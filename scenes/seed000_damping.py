@@ -15,8 +15,10 @@ the seeds went farther and p < 0.01.
 
 Mechanism: every run is metered (:mod:`asperity2d.engine.energy`); the
 summary gives each energy channel as a share of the drive work (force x
-travel), so the channel that changes between damped and undamped is the one
-that decides the travel.
+travel, pooled over the seeds), so the channel that changes between damped
+and undamped is the one that decides the travel. A slider that neither passes
+nor comes to rest (it rattles in a valley: elastic impacts return it) is
+counted where the time limit finds it; ``reach`` is the farthest it got.
 
     python scenes/seed000_damping.py [--seeds 20] [--workers 2]
 """
@@ -37,12 +39,10 @@ LOSSES = ("friction_work", "normal_work", "damper_work", "stop_work")
 
 
 def shares(rows: list[dict], label: str) -> dict:
-    """Mean share of the drive work per energy channel over the seeds (dimensionless)."""
-    out = {}
-    for k in studies.DAMPING_CHANNELS[1:]:
-        values = [r[f"{label}_{k}_J"] / r[f"{label}_drive_work_J"] for r in rows]
-        out[k] = studies.mean_ci(values)
-    return out
+    """Share of the drive work per energy channel, pooled over the seeds (sum of the channel /
+    sum of the drive work: a run that barely moved does not weigh like one that crossed)."""
+    work = sum(r[f"{label}_drive_work_J"] for r in rows)
+    return {k: sum(r[f"{label}_{k}_J"] for r in rows) / work for k in studies.DAMPING_CHANNELS[1:]}
 
 
 def analyse(setup: str, rows: list[dict]) -> tuple[dict, list[dict]]:
@@ -53,6 +53,7 @@ def analyse(setup: str, rows: list[dict]) -> tuple[dict, list[dict]]:
     numbers = {"seeds": len(rows), "force_factor": FACTOR,
                "critical_force_damped_N": studies.mean_ci([r["critical_force_N"] for r in rows]),
                "travel_damped_m": studies.mean_ci(damped),
+               "reach_damped_m": studies.mean_ci([r["reach_damped_m"] for r in rows]),
                "fraction_passed_damped": float(np.mean([r["passed_damped"] for r in rows])),
                "energy_shares": {label: shares(rows, label) for label in LABELS}, "per_seed": rows}
     claims = []
@@ -61,6 +62,7 @@ def analyse(setup: str, rows: list[dict]) -> tuple[dict, list[dict]]:
         diff = travel - damped
         p = float(stats.wilcoxon(diff, alternative="greater").pvalue) if np.any(diff) else 1.0
         n = {"travel_m": studies.mean_ci(travel), "travel_difference_m": studies.mean_ci(diff),
+             "reach_m": studies.mean_ci([r[f"reach_{reading}_m"] for r in rows]),
              "fraction_farther": float(np.mean(diff > 0)), "fraction_equal": float(np.mean(diff == 0)),
              "fraction_passed": float(np.mean([r[f"passed_{reading}"] for r in rows])),
              "fraction_time_limit": float(np.mean([1 - r[f"passed_{reading}"] - r[f"stuck_{reading}"]
@@ -77,6 +79,10 @@ def analyse(setup: str, rows: list[dict]) -> tuple[dict, list[dict]]:
             f"paired Wilcoxon signed-rank of {reading} - damped travel, one-sided (greater), "
             f"p = {p:.3g}; holds if the fraction of seeds going farther is > 0.5 and p < {ALPHA}",
             setup=setup))
+    u = numbers["undamped"]  # the first reading under the names the study has always used
+    numbers.update(travel_undamped_m=u["travel_m"], travel_difference_m=u["travel_difference_m"],
+                   fraction_undamped_farther=u["fraction_farther"], fraction_equal=u["fraction_equal"],
+                   fraction_passed_undamped=u["fraction_passed"], p_paired_wilcoxon=u["p_paired_wilcoxon"])
     return numbers, claims
 
 
@@ -85,7 +91,7 @@ def mechanism_line(setup: str, numbers: dict) -> str:
     sh = numbers["energy_shares"]
     parts = []
     for label in LABELS:
-        s = {k: sh[label][k]["mean"] * 100 for k in sh[label]}
+        s = {k: v * 100 for k, v in sh[label].items()}
         parts.append(f"{label}: friction {s['friction_work']:.0f}, impacts {s['normal_work']:.0f}, "
                      f"dampers {s['damper_work']:.0f}, stops {s['stop_work']:.0f}, stored "
                      f"{s['stored_energy_change']:.0f}, numerical {s['numerical']:+.0f}")
@@ -93,7 +99,7 @@ def mechanism_line(setup: str, numbers: dict) -> str:
 
 
 def plot_shares(summary: dict, path) -> None:
-    """Stacked bars: where the drive work went, per set-up and reading (mean shares, %)."""
+    """Stacked bars: where the drive work went, per set-up and reading (pooled shares, %)."""
     import io
 
     from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -113,7 +119,7 @@ def plot_shares(summary: dict, path) -> None:
             ticks.append((x, f"{setup}\n{label}"))
             up = down = 0.0  # positive shares stack up, negative ones down
             for k, (name, text) in enumerate(zip(names, legend)):
-                v = numbers["energy_shares"][label][name]["mean"] * 100
+                v = numbers["energy_shares"][label][name] * 100
                 ax.bar(x, v, bottom=up if v >= 0 else down, color=f"C{k}", label=text if x == 0 else None)
                 up, down = (up + v, down) if v >= 0 else (up, down + v)
     ax.set_xticks([t for t, _ in ticks], [s for _, s in ticks], fontsize="small")
@@ -147,7 +153,7 @@ def main(argv=None) -> int:
             n = numbers[reading]
             lines.append(
                 f"[{setup}] {READINGS[reading]}: travel damped {numbers['travel_damped_m']['mean'] * 1e6:.3g} um, "
-                f"{reading} {n['travel_m']['mean'] * 1e6:.3g} um; farther in {n['fraction_farther']:.0%} of "
+                f"{reading} {n['travel_m']['mean'] * 1e6:.3g} um (reach {n['reach_m']['mean'] * 1e6:.3g}); farther in {n['fraction_farther']:.0%} of "
                 f"{n_seeds} seeds (equal {n['fraction_equal']:.0%}, time limit {n['fraction_time_limit']:.0%}), "
                 f"p = {n['p_paired_wilcoxon']:.2g}: {claim['verdict'].upper()}")
         lines.append(mechanism_line(setup, numbers))
