@@ -131,8 +131,14 @@ def damping_travel_run(*, seed: int = 0, factor: float = 0.9, **params) -> dict:
     farthest it got (``travel_<label>_m``, ``reach_<label>_m``, m), whether
     it passed or came to rest (``passed_<label>``, ``stuck_<label>``, 1/0;
     neither: the time limit) and its energy books (``<label>_<channel>_J``
-    for :data:`DAMPING_CHANNELS`).
+    for :data:`DAMPING_CHANNELS`), also over the damped slider's travel only
+    (``<label>_same_<channel>_J``: the books when it first got as far as the
+    damped one stopped; NaN if it never did), which compares the channels
+    over one path.
     """
+    from .engine.energy import EnergyMeter
+    from .simulate import Run, default_duration, default_stops
+
     params = {k: v for k, v in params.items() if k != "damping"}
     damped = make_scene(seed=seed, drive="force", **params)
     critical = critical_force(damped)
@@ -142,13 +148,28 @@ def damping_travel_run(*, seed: int = 0, factor: float = 0.9, **params) -> dict:
     scenes = {"damped": damped, "undamped": make_scene(seed=seed, drive="force", **undamped),
               "elastic": make_scene(seed=seed, drive="force", **{**undamped, "restitution": 1.0})}
     for label, scene in scenes.items():
-        result = simulate(scene.replace(drive=ConstantForce(force=force)), energy=True)
+        scene = scene.replace(drive=ConstantForce(force=force))
+        run = Run(scene)  # as simulate() runs it, metered, with a look at the damped travel
+        if scene.slider.track == "free":
+            run.settle()
+        meter = EnergyMeter(run.engine)
+        stops, duration = default_stops(scene), default_duration(scene)
+        same = {}
+        if label != "damped" and out["travel_damped_m"] > 0:
+            if run.advance(duration, stop=[*stops, Travelled(out["travel_damped_m"])]) == "travelled":
+                same = meter.report()
+                run.advance(duration - run.time, stop=stops)
+        else:
+            run.advance(duration, stop=stops)
+        books, result = meter.report(), run.result()
+        same = books if label == "damped" else same
         out[f"travel_{label}_m"] = float(result.x[-1] - result.x[0])
         out[f"reach_{label}_m"] = float(result.x.max() - result.x[0])
-        out[f"passed_{label}"] = float(result.status == "passed")
-        out[f"stuck_{label}"] = float(result.status == "stuck")
-        books = result.meta["energy"]
-        out.update({f"{label}_{k}_J": float(books[f"{k}_J"]) for k in DAMPING_CHANNELS})
+        out[f"passed_{label}"] = float(run.status == "passed")
+        out[f"stuck_{label}"] = float(run.status == "stuck")
+        for k in DAMPING_CHANNELS:
+            out[f"{label}_{k}_J"] = float(books[f"{k}_J"])
+            out[f"{label}_same_{k}_J"] = float(same.get(f"{k}_J", math.nan))
     return out
 
 

@@ -15,8 +15,11 @@ the seeds went farther and p < 0.01.
 
 Mechanism: every run is metered (:mod:`asperity2d.engine.energy`); the
 summary gives each energy channel as a share of the drive work (force x
-travel, pooled over the seeds), so the channel that changes between damped
-and undamped is the one that decides the travel. A slider that neither passes
+travel, pooled over the seeds), over the whole run and over the damped
+slider's path only (up to where it stopped). Over one path the drive work is
+the same, so what the undamped slider keeps (``kept``: stored, kinetic
+included) is what the damped one lost in the channels that differ: those
+decide the travel. A slider that neither passes
 nor comes to rest (it rattles in a valley: elastic impacts return it) is
 counted where the time limit finds it; ``reach`` is the farthest it got.
 
@@ -24,6 +27,8 @@ counted where the time limit finds it; ``reach`` is the farthest it got.
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 
@@ -38,11 +43,19 @@ LABELS = ("damped", *READINGS)
 LOSSES = ("friction_work", "normal_work", "damper_work", "stop_work")
 
 
-def shares(rows: list[dict], label: str) -> dict:
+def shares(rows: list[dict], label: str, *, same_path: bool = False) -> dict:
     """Share of the drive work per energy channel, pooled over the seeds (sum of the channel /
-    sum of the drive work: a run that barely moved does not weigh like one that crossed)."""
-    work = sum(r[f"{label}_drive_work_J"] for r in rows)
-    return {k: sum(r[f"{label}_{k}_J"] for r in rows) / work for k in studies.DAMPING_CHANNELS[1:]}
+    sum of the drive work: a run that barely moved does not weigh like one that crossed).
+
+    ``same_path``: over the damped slider's travel only, from the seeds whose slider got
+    that far (``seeds`` says how many).
+    """
+    key = f"{label}_same_" if same_path else f"{label}_"
+    rows = [r for r in rows if np.isfinite(r[f"{key}drive_work_J"])]
+    work = sum(r[f"{key}drive_work_J"] for r in rows)
+    out = {k: (sum(r[f"{key}{k}_J"] for r in rows) / work if rows else math.nan)
+           for k in studies.DAMPING_CHANNELS[1:]}
+    return {**out, "seeds": len(rows)}
 
 
 def analyse(setup: str, rows: list[dict]) -> tuple[dict, list[dict]]:
@@ -55,7 +68,9 @@ def analyse(setup: str, rows: list[dict]) -> tuple[dict, list[dict]]:
                "travel_damped_m": studies.mean_ci(damped),
                "reach_damped_m": studies.mean_ci([r["reach_damped_m"] for r in rows]),
                "fraction_passed_damped": float(np.mean([r["passed_damped"] for r in rows])),
-               "energy_shares": {label: shares(rows, label) for label in LABELS}, "per_seed": rows}
+               "energy_shares": {label: shares(rows, label) for label in LABELS},
+               "energy_shares_same_path": {label: shares(rows, label, same_path=True) for label in LABELS},
+               "per_seed": rows}
     claims = []
     for reading, meaning in READINGS.items():
         travel = np.array([r[f"travel_{reading}_m"] for r in rows])
@@ -75,7 +90,8 @@ def analyse(setup: str, rows: list[dict]) -> tuple[dict, list[dict]]:
             f"damped ones (figure 12), at {FACTOR} x the damped critical force", holds,
             {"reading": reading, **n, "travel_damped_m": numbers["travel_damped_m"],
              "energy_shares_damped": numbers["energy_shares"]["damped"],
-             f"energy_shares_{reading}": numbers["energy_shares"][reading]},
+             f"energy_shares_{reading}": numbers["energy_shares"][reading],
+             f"energy_shares_same_path_{reading}": numbers["energy_shares_same_path"][reading]},
             f"paired Wilcoxon signed-rank of {reading} - damped travel, one-sided (greater), "
             f"p = {p:.3g}; holds if the fraction of seeds going farther is > 0.5 and p < {ALPHA}",
             setup=setup))
@@ -87,19 +103,20 @@ def analyse(setup: str, rows: list[dict]) -> tuple[dict, list[dict]]:
 
 
 def mechanism_line(setup: str, numbers: dict) -> str:
-    """Which channels carry the drive work in each reading (means over seeds, % of drive work)."""
-    sh = numbers["energy_shares"]
+    """Where the drive work went over the damped slider's path, per reading (% of it)."""
     parts = []
     for label in LABELS:
-        s = {k: v * 100 for k, v in sh[label].items()}
-        parts.append(f"{label}: friction {s['friction_work']:.0f}, impacts {s['normal_work']:.0f}, "
-                     f"dampers {s['damper_work']:.0f}, stops {s['stop_work']:.0f}, stored "
-                     f"{s['stored_energy_change']:.0f}, numerical {s['numerical']:+.0f}")
-    return f"[{setup}] energy, % of the drive work: " + "; ".join(parts)
+        sh = numbers["energy_shares_same_path"][label]
+        s = {k: v * 100 for k, v in sh.items() if k != "seeds"}
+        parts.append(f"{label} ({sh['seeds']} seeds): friction {s['friction_work']:.0f}, impacts "
+                     f"{s['normal_work']:.0f}, dampers {s['damper_work']:.0f}, stops {s['stop_work']:.0f}, "
+                     f"kept {s['stored_energy_change']:.0f}, numerical {s['numerical']:+.0f}")
+    return f"[{setup}] over the damped slider's path, % of the drive work: " + "; ".join(parts)
 
 
 def plot_shares(summary: dict, path) -> None:
-    """Stacked bars: where the drive work went, per set-up and reading (pooled shares, %)."""
+    """Stacked bars: where the drive work went over the damped slider's path, per set-up and
+    reading (pooled shares, %; "stored" includes the kinetic energy the slider still has)."""
     import io
 
     from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -119,11 +136,12 @@ def plot_shares(summary: dict, path) -> None:
             ticks.append((x, f"{setup}\n{label}"))
             up = down = 0.0  # positive shares stack up, negative ones down
             for k, (name, text) in enumerate(zip(names, legend)):
-                v = numbers["energy_shares"][label][name] * 100
+                v = numbers["energy_shares_same_path"][label][name] * 100
                 ax.bar(x, v, bottom=up if v >= 0 else down, color=f"C{k}", label=text if x == 0 else None)
                 up, down = (up + v, down) if v >= 0 else (up, down + v)
     ax.set_xticks([t for t, _ in ticks], [s for _, s in ticks], fontsize="small")
     ax.set_ylabel("share of the drive work (%)")
+    ax.set_title("over the damped slider's path (to where it stopped)", fontsize="small")
     ax.axhline(0.0, color="k", lw=0.5)
     ax.legend(fontsize="x-small", ncol=3, loc="upper center", bbox_to_anchor=(0.5, -0.22))
 
