@@ -174,35 +174,32 @@ class EnergyMeter:
         e = self.engine
         return e.drive.position(e.step_count, e.dt_internal)
 
-    def _springs_at(self, P):
-        """Unit vectors a -> b, lengths and spring forces on b (along the unit vector)."""
-        d = (P[self._rb] + self._anchor_b) - (P[self._ra] + self._anchor_a)
-        length = np.hypot(d[:, 0], d[:, 1])
-        return d / np.maximum(length, 1e-300)[:, None], length, self._k * (self._rest - length)
-
     def _elastic(self, P, V, X):
-        """Potential energy U and the integrator's shadow term C = -(dt/2) sum F·v (internal units)."""
-        e, s, d = self.engine, self._s, self.engine.drive
-        nvec, length, f = self._springs_at(P)
-        u = 0.5 * float(np.dot(self._k, (length - self._rest) ** 2))
-        v_rel = ((V[self._rb] - V[self._ra]) * nvec).sum(axis=1)
-        fv = float(np.dot(f, v_rel)) - e.load_internal * V[s, 1]
-        u += e.load_internal * (P[s, 1] - self._y_ref)
+        """Kinetic energy T, potential energy U and the integrator's shadow term
+        C = -(dt/2) sum F·v of states stacked on the first axis (``P``, ``V``: (k, rows, 2)),
+        with the springs' unit vectors a -> b and forces on b (internal units)."""
+        e, s, d, m = self.engine, self._s, self.engine.drive, self._mass
+        gap = (P[:, self._rb] + self._anchor_b) - (P[:, self._ra] + self._anchor_a)
+        length = np.sqrt((gap * gap).sum(-1))
+        nvec = gap / np.maximum(length, 1e-300)[..., None]
+        f = self._k * (self._rest - length)
+        u = 0.5 * (self._k * (length - self._rest) ** 2).sum(-1) + e.load_internal * (P[:, s, 1] - self._y_ref)
+        fv = (f * ((V[:, self._rb] - V[:, self._ra]) * nvec).sum(-1)).sum(-1) - e.load_internal * V[:, s, 1]
         if self._g:
-            u += self._g * float(np.dot(self._mass, P[:, 1]))
-            fv -= self._g * float(np.dot(self._mass, V[:, 1]))
+            u = u + self._g * (P[..., 1] @ m)
+            fv = fv - self._g * (V[..., 1] @ m)
         if self._spring_drive:
-            stretch = X - P[s, 0]
-            u += 0.5 * d.k * stretch ** 2
-            fv += d.k * stretch * (V[s, 0] - d.v)
+            stretch = X - P[:, s, 0]
+            u = u + 0.5 * d.k * stretch ** 2
+            fv = fv + d.k * stretch * (V[:, s, 0] - d.v)
         else:
-            fv += d.force * V[s, 0]
-        return u, -0.5 * e.dt_internal * fv
+            fv = fv + d.force * V[:, s, 0]
+        return 0.5 * ((V * V).sum(-1) @ m), u, -0.5 * e.dt_internal * fv, nvec, f
 
     def _energies(self, P, V, X):
-        """Stored energy E = kinetic + potential and the shadow term C (internal units)."""
-        u, c = self._elastic(P, V, X)
-        return 0.5 * float(np.dot(self._mass, (V ** 2).sum(axis=1))) + u, c
+        """Stored energy E = kinetic + potential and the shadow term C of one state (internal units)."""
+        t, u, c, _, _ = self._elastic(P[None], V[None], X)
+        return float(t[0] + u[0]), float(c[0])
 
     def stored_energy(self) -> float:
         """Kinetic + spring + load/gravity potential energy now (J)."""
@@ -222,6 +219,8 @@ class EnergyMeter:
         X1 = self._anchor()
         vm = 0.5 * (V0 + Vp)
         Pf = P0 + h * V0  # where the bodies' velocities alone moved them
+        # free, corrected (pymunk's), projected states: one vectorised evaluation
+        T, U, C, nvec, f = self._elastic(np.stack([Pf, Pp, P1]), np.stack([Vp, Vp, V1]), X1)
         J = self._mass[:, None] * (Vp - V0)  # every impulse of the step, per body
         # drive (applied from the start-of-step state, Engine.step) and load, gravity
         if self._spring_drive:
@@ -239,18 +238,15 @@ class EnergyMeter:
             J[:, 1] += self._g * self._mass * h
         # springs: pymunk's accumulated impulse = spring part (at Pp) + damping part
         if self._springs:
-            nvec, _, f_p = self._springs_at(Pp)
             j_total = np.array([c.impulse for c in self._springs])
-            j_damp = j_total - f_p * h
-            tot["damper_work"] -= float(np.dot(j_damp, ((vm[self._rb] - vm[self._ra]) * nvec).sum(axis=1)))
-            jv = nvec * j_total[:, None]
+            dv = vm[self._rb] - vm[self._ra]
+            v_p, v_f = (dv * nvec[1]).sum(-1), (dv * nvec[0]).sum(-1)
+            tot["damper_work"] -= float(np.dot(j_total - f[1] * h, v_p))
+            jv = nvec[1] * j_total[:, None]
             np.subtract.at(J, self._rb, jv)
             np.add.at(J, self._ra, jv)
             # the springs acted at the corrected positions, not the free ones: position correction
-            n_f, _, f_f = self._springs_at(Pf)
-            dv = vm[self._rb] - vm[self._ra]
-            tot["position_correction"] -= h * float(
-                np.dot(f_p, (dv * nvec).sum(axis=1)) - np.dot(f_f, (dv * n_f).sum(axis=1)))
+            tot["position_correction"] -= h * float(np.dot(f[1], v_p) - np.dot(f[0], v_f))
         self._contacts(vm, J)
         # what is left is each body's groove impulse: at a travel end, or a track reaction;
         # cross-check its size against what the grooves report
@@ -265,13 +261,10 @@ class EnergyMeter:
         tot["stop_work"] -= w_stop
         tot["constraint_work"] -= float(w.sum()) - w_stop
         # position correction (Pf -> Pp), integrator shadow term, projection (Pp -> P1)
-        uf, cf = self._elastic(Pf, Vp, X1)
-        up, cp = self._elastic(Pp, Vp, X1)
-        tot["position_correction"] -= (up - uf) + (cp - cf)
-        tot["integrator"] += cp - self._C
-        e_pre = 0.5 * float(np.dot(self._mass, (Vp ** 2).sum(axis=1))) + up
-        self._E, self._C = self._energies(P1, V1, X1)
-        tot["projection"] += e_pre - self._E
+        tot["position_correction"] -= float((U[1] - U[0]) + (C[1] - C[0]))
+        tot["integrator"] += float(C[1]) - self._C
+        self._E, self._C = float(T[2] + U[2]), float(C[2])
+        tot["projection"] += float(T[1] + U[1]) - self._E
         tot["time"] += h
         self._P, self._V, self._X = P1, V1, X1
 
