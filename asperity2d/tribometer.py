@@ -37,7 +37,7 @@ from .scene import Scene
 
 #: Scene parameters of the tribometer (make_scene overrides): Table 1 steel,
 #: two upper tips at 1 mN each, a stiff drive.
-TRIBOMETER_SCENE = dict(base=1e-6, mass=2.88e-16, stiffness=37_200.0, flank_angle=45.0,
+TRIBOMETER_SCENE = dict(base=1e-6, mass=2.88e-16, stiffness=37_200.0, flank_angle=45.0, track="free",
                         lower_count=10, upper_count=2, normal_load=2e-3,
                         drive_stiffness=372_000.0)
 

@@ -39,7 +39,7 @@ def engaged_run(scene) -> Run:
     run = Run(scene)
     if scene.slider.track == "free":
         run.settle()
-    span = scene.slider.centers()[-1] + 2 * scene.base
+    span = scene.slider.tips()[-1] + 2 * scene.base
     run.advance(span / scene.drive.velocity, record_every=1000)
     return run
 

@@ -33,8 +33,12 @@ import math
 import numpy as np
 
 import asperity2d as a
-from asperity2d import scripting, studies
+from asperity2d import stats
 from asperity2d.render.plots import plot_positions
+from asperity2d.studies import scripting
+from asperity2d.studies import seed000 as studies
+from asperity2d.studies.claims import claim
+from asperity2d.sweep.executors import map_calls
 
 FACTOR = 0.9
 ALPHA = 0.01
@@ -60,13 +64,11 @@ def shares(rows: list[dict], label: str, *, same_path: bool = False) -> dict:
 
 def analyse(setup: str, rows: list[dict]) -> tuple[dict, list[dict]]:
     """Travel statistics, energy shares and the figure-12 claim (one per reading) for one set-up."""
-    from scipy import stats
-
     damped = np.array([r["travel_damped_m"] for r in rows])
     numbers = {"seeds": len(rows), "force_factor": FACTOR,
-               "critical_force_damped_N": studies.mean_ci([r["critical_force_N"] for r in rows]),
-               "travel_damped_m": studies.mean_ci(damped),
-               "reach_damped_m": studies.mean_ci([r["reach_damped_m"] for r in rows]),
+               "critical_force_damped_N": stats.describe([r["critical_force_N"] for r in rows]),
+               "travel_damped_m": stats.describe(damped),
+               "reach_damped_m": stats.describe([r["reach_damped_m"] for r in rows]),
                "fraction_passed_damped": float(np.mean([r["passed_damped"] for r in rows])),
                "energy_shares": {label: shares(rows, label) for label in LABELS},
                "energy_shares_same_path": {label: shares(rows, label, same_path=True) for label in LABELS},
@@ -75,9 +77,9 @@ def analyse(setup: str, rows: list[dict]) -> tuple[dict, list[dict]]:
     for reading, meaning in READINGS.items():
         travel = np.array([r[f"travel_{reading}_m"] for r in rows])
         diff = travel - damped
-        p = float(stats.wilcoxon(diff, alternative="greater").pvalue) if np.any(diff) else 1.0
-        n = {"travel_m": studies.mean_ci(travel), "travel_difference_m": studies.mean_ci(diff),
-             "reach_m": studies.mean_ci([r[f"reach_{reading}_m"] for r in rows]),
+        p = stats.wilcoxon(travel, damped, alternative="greater")
+        n = {"travel_m": stats.describe(travel), "travel_difference_m": stats.describe(diff),
+             "reach_m": stats.describe([r[f"reach_{reading}_m"] for r in rows]),
              "fraction_farther": float(np.mean(diff > 0)), "fraction_equal": float(np.mean(diff == 0)),
              "fraction_passed": float(np.mean([r[f"passed_{reading}"] for r in rows])),
              "fraction_time_limit": float(np.mean([1 - r[f"passed_{reading}"] - r[f"stuck_{reading}"]
@@ -85,7 +87,7 @@ def analyse(setup: str, rows: list[dict]) -> tuple[dict, list[dict]]:
              "p_paired_wilcoxon": p}
         numbers[reading] = n
         holds = n["fraction_farther"] > 0.5 and p < ALPHA
-        claims.append(studies.claim(
+        claims.append(claim(
             f"undamped lower asperities ({meaning}) let the constant-force slider travel farther than "
             f"damped ones (figure 12), at {FACTOR} x the damped critical force", holds,
             {"reading": reading, **n, "travel_damped_m": numbers["travel_damped_m"],
@@ -162,8 +164,8 @@ def main(argv=None) -> int:
     lines = []
     for setup in studies.SETUPS:
         base = {**size, **studies.SETUPS[setup], "spacing": "random", "factor": FACTOR}
-        rows = studies.run_many(studies.damping_travel_run,
-                                [dict(base, seed=s) for s in range(n_seeds)], workers=args.workers)
+        rows = map_calls(studies.damping_travel_run, [dict(base, seed=s) for s in range(n_seeds)],
+                         workers=args.workers)
         numbers, claims = analyse(setup, rows)
         summary["results"][setup] = numbers
         summary["claims"].extend(claims)

@@ -22,7 +22,8 @@ def impact(restitution: float) -> dict:
     scene = a.make_scene(track="fixed", lower_count=1, upper_count=1, mu=0.0, damping_ratio=0.0,
                          drive="force", drive_force=0.01, restitution=restitution)
     run = Run(scene, record_every=1)
-    run.advance(1.0, stop=Travelled(0.5 * scene.base))  # run-up, still clear of the flank
+    run_up = math.sqrt(2 * 0.5 * scene.base * scene.slider.mass / 0.01)  # s, 0.5 base at 0.01 N
+    run.advance(2 * run_up, stop=Travelled(0.5 * scene.base))  # still clear of the flank
     run.set_drive_force(0.0)  # then coast: no force during the impact
     engine = run.engine
     v0 = engine.slider_state()[2]

@@ -32,34 +32,32 @@ ARBITER_FIELDS = (batch.ArbiterFields.BODY_A_ID | batch.ArbiterFields.BODY_B_ID
 
 
 class Arbiters:
-    """The slider's touching contacts after one step (internal units), from one batch read.
+    """The slider's contacts after one step (internal units), from one batch read.
 
-    ``pairs()`` gives each contact's lower asperity index (-1: the floor) and
-    normal, cheap enough for every step; :meth:`forces` and :meth:`touched`
-    derive the rest when a sample is recorded.
+    Held as two flat Python lists (a slider makes a handful of contacts: plain
+    Python beats NumPy's per-call overhead for them, measured in
+    ``benchmarks/bench_core.py``). :meth:`pairs` serves the stick/slip switch
+    every step; :meth:`forces` and :meth:`touched` serve the recorder.
     """
 
     __slots__ = ("_ints", "_floats", "_slider_id", "_index")
 
     def __init__(self, buf: batch.Buffer, layout):
-        ints = np.frombuffer(buf.int_buf(), dtype=np.uintp).reshape(-1, 3)
-        floats = np.frombuffer(buf.float_buf(), dtype=np.float64).reshape(-1, 6)
-        if len(ints) and not ints[:, 2].all():  # cached arbiters with no contact points
-            keep = ints[:, 2] > 0
-            ints, floats = ints[keep], floats[keep]
-        self._ints, self._floats = ints, floats
+        # memoryview: cheaper than NumPy for a few dozen numbers
+        self._ints = memoryview(buf.int_buf()).cast("N").tolist()  # a, b, count per contact
+        self._floats = memoryview(buf.float_buf()).cast("d").tolist()  # jx jy nx ny d1 d2
         self._slider_id, self._index = layout.slider_id, layout.lower_index
 
     def __len__(self) -> int:
-        return len(self._ints)
+        return len(self._ints) // 3
 
     def pairs(self) -> list[tuple[int, float, float]]:
-        """``(lower index, nx, ny)`` of every contact (index -1: the floor)."""
+        """``(lower index, nx, ny)`` of every touching contact (index -1: the floor)."""
         # Every arbiter is the slider against a lower asperity or the floor (shape
         # filters), so a + b - slider is the other body's id.
-        sid, index = self._slider_id, self._index
-        return [(index.get(a + b - sid, -1), nx, ny)
-                for (a, b, _), (nx, ny) in zip(self._ints.tolist(), self._floats[:, 2:4].tolist())]
+        ints, floats, sid, index = self._ints, self._floats, self._slider_id, self._index
+        return [(index.get(ints[k] + ints[k + 1] - sid, -1), floats[2 * k + 2], floats[2 * k + 3])
+                for k in range(0, len(ints), 3) if ints[k + 2]]
 
     def forces(self, dt: float) -> tuple[float, float, float, int, float]:
         """``(fx, fy, f_tangential, count, max_overlap)`` on the slider (internal units).
@@ -69,22 +67,27 @@ class Arbiters:
         tangent with the sign flipped (resisting +x motion is positive);
         ``count``: touching contacts; ``max_overlap``: the deepest overlap (0 if none).
         """
-        if not len(self._ints):
-            return 0.0, 0.0, 0.0, 0, 0.0
-        ints, floats = self._ints, self._floats
-        # impulses are on body A: flip those where the slider is body B
-        j = np.where((ints[:, 0] == self._slider_id)[:, None], floats[:, 0:2], -floats[:, 0:2])
-        nx, ny = floats[:, 2], floats[:, 3]
-        jn = j[:, 0] * nx + j[:, 1] * ny
-        ty = np.where(ny >= 0, -nx, nx)  # the tangent (|ny|, ty) points to +x
-        ft = (j[:, 0] - jn * nx) * np.abs(ny) + (j[:, 1] - jn * ny) * ty
-        # distances are negative when overlapping; a single-point contact has no second one
-        depth = np.maximum(-floats[:, 4], np.where(ints[:, 2] > 1, -floats[:, 5], 0.0))
+        ints, floats, sid = self._ints, self._floats, self._slider_id
+        fx, fy, ft = [], [], []
+        overlap = 0.0
+        for k in range(len(ints) // 3):
+            count = ints[3 * k + 2]
+            if count == 0:
+                continue
+            jx, jy, nx, ny, d1, d2 = floats[6 * k: 6 * k + 6]
+            if ints[3 * k] != sid:  # impulses are on body A
+                jx, jy = -jx, -jy
+            jn = jx * nx + jy * ny
+            ty = -nx if ny >= 0 else nx  # the tangent (|ny|, ty) points to +x
+            fx.append(jx)
+            fy.append(jy)
+            ft.append((jx - jn * nx) * abs(ny) + (jy - jn * ny) * ty)
+            # distances are negative when overlapping; one-point contacts have no second
+            overlap = max(overlap, -d1, -d2 if count > 1 else 0.0)
         inv_dt = 1.0 / dt
         # fsum: the arbiters come in hash-set order, which varies between
         # processes; an exactly rounded sum keeps the result bit-identical.
-        return (math.fsum(j[:, 0]) * inv_dt, math.fsum(j[:, 1]) * inv_dt, -math.fsum(ft) * inv_dt,
-                len(self._ints), max(0.0, float(depth.max())))
+        return (math.fsum(fx) * inv_dt, math.fsum(fy) * inv_dt, -math.fsum(ft) * inv_dt, len(fx), overlap)
 
     def touched(self, n: int) -> np.ndarray:
         """Boolean mask of the ``n`` lower asperities touching the slider."""
@@ -103,12 +106,14 @@ def read_arbiters(space, buf: batch.Buffer, layout) -> Arbiters:
 class StickSlip:
     """Per-contact static / kinetic friction (internal units).
 
-    The state of each lower asperity's contact with the slider is kept in
-    NumPy arrays (``stuck``, ``slid``, ``mu_now``, one entry per lower
-    asperity); each step updates only the few asperities in contact, in
-    plain Python on the shared batch reads (measured cheaper than whole-array
-    NumPy operations for the handful of contacts a slider makes: see
-    ``benchmarks/bench_core.py``).
+    The state of each lower asperity's contact with the slider (stuck or
+    sliding, distance slid since it stuck, current coefficient) is kept per
+    lower asperity; :attr:`stuck`, :attr:`slid` and :attr:`mu` give it as
+    NumPy arrays. Each step updates only the asperities in contact, in plain
+    Python on the shared batch reads: for the handful of contacts a slider
+    makes that is cheaper than whole-array NumPy operations (measured:
+    ``benchmarks/bench_core.py``), and pymunk is touched only for the shapes
+    whose coefficient changes.
     """
 
     def __init__(self, scene, units, layout, dt: float):
@@ -118,10 +123,8 @@ class StickSlip:
         self.dt = dt
         n = len(layout.lower_bodies)
         self.shapes = layout.lower_shapes
-        self.stuck = np.zeros(n, dtype=bool)
-        self.slid = np.zeros(n)  # distance slid since the contact last stuck
-        self.mu_now = np.full(n, self.mu_kinetic)
-        self._present: list[int] = []  # lower asperities in contact after the last update
+        self._stuck, self._slid, self._mu = [False] * n, [0.0] * n, [self.mu_kinetic] * n
+        self._present = {}.keys()  # lower asperities in contact after the last update
         self.slip_distance = (1e-3 * units.length if contact.slip_distance is None
                               else contact.slip_distance) / units.length
         if contact.stick_speed is not None:
@@ -131,39 +134,58 @@ class StickSlip:
             if isinstance(scene.drive, SpringDrive):
                 self.stick_speed = min(self.stick_speed, 0.1 * scene.drive.velocity / units.velocity)
 
+    @property
+    def stuck(self) -> np.ndarray:
+        """Whether each lower asperity's contact is stuck (False when not in contact)."""
+        return np.array(self._stuck)
+
+    @property
+    def slid(self) -> np.ndarray:
+        """Distance each contact has slid since it last stuck (internal length units)."""
+        return np.array(self._slid)
+
+    @property
+    def mu(self) -> np.ndarray:
+        """Each lower asperity's current friction coefficient."""
+        return np.array(self._mu)
+
     def copy_to(self, layout) -> "StickSlip":
         """This switch's state, re-pointed at the shapes of ``layout`` (a copied space)."""
         out = object.__new__(StickSlip)
         out.__dict__.update(self.__dict__)
         out.shapes = layout.lower_shapes
-        out.stuck, out.slid, out.mu_now = self.stuck.copy(), self.slid.copy(), self.mu_now.copy()
-        out._present = list(self._present)
+        out._stuck, out._slid, out._mu = list(self._stuck), list(self._slid), list(self._mu)
+        out._present = dict.fromkeys(self._present).keys()
         return out
 
-    def update(self, arbiters: "Arbiters", rows: np.ndarray, layout) -> None:
+    def update(self, arbiters: Arbiters, rows: np.ndarray, layout) -> None:
         """Set each lower asperity's coefficient from its contact's stick/slip state.
 
         ``rows`` are the bodies' ``[x, y, vx, vy]`` after the step (internal units).
         """
-        if not len(arbiters) and not self._present:
+        pairs = arbiters.pairs()
+        present = self._present
+        if not pairs and not present:
             return
+        r = layout.slider_row
+        svx, svy = rows.item(r, 2), rows.item(r, 3)
+        row_of = layout.lower_row_of
         slips: dict[int, float] = {}
-        lower_v = rows[layout.lower_rows]
-        svx, svy = rows[layout.slider_row, 2:4].tolist()
-        for i, nx, ny in arbiters.pairs():
-            if i < 0:
-                continue
-            lvx, lvy = lower_v[i, 2:4].tolist()
-            slip = abs((svx - lvx) * ny - (svy - lvy) * nx)
-            if slip > slips.get(i, -1.0):
-                slips[i] = slip
-        stuck, slid, v_stick = self.stuck, self.slid, self.stick_speed
-        for i in self._present:
+        for i, nx, ny in pairs:
+            if i >= 0:
+                r = row_of[i]
+                slip = abs((svx - rows.item(r, 2)) * ny - (svy - rows.item(r, 3)) * nx)
+                if slip > slips.get(i, -1.0):  # a lower asperity may touch two tips
+                    slips[i] = slip
+        stuck, slid, mu_now = self._stuck, self._slid, self._mu
+        v_stick, mu_s, mu_k = self.stick_speed, self.mu_static, self.mu_kinetic
+        for i in present:
             if i not in slips:  # contact lost
                 stuck[i], slid[i] = False, 0.0
-                self._set_mu(i, self.mu_kinetic)
+                if mu_now[i] != mu_k:
+                    self.shapes[i].friction = mu_now[i] = mu_k
         for i, slip in slips.items():
-            if i not in self._present:  # a new contact
+            if i not in present:  # a new contact
                 stuck[i], slid[i] = slip < v_stick, 0.0
             elif stuck[i]:
                 if slip > v_stick:
@@ -174,10 +196,7 @@ class StickSlip:
                     slid[i] = 0.0
             elif slip < v_stick:
                 stuck[i], slid[i] = True, 0.0
-            self._set_mu(i, self.mu_static if stuck[i] else self.mu_kinetic)
-        self._present = list(slips)
-
-    def _set_mu(self, i: int, mu: float) -> None:
-        if self.mu_now[i] != mu:
-            self.shapes[i].friction = mu
-            self.mu_now[i] = mu
+            mu = mu_s if stuck[i] else mu_k
+            if mu_now[i] != mu:
+                self.shapes[i].friction = mu_now[i] = mu
+        self._present = slips.keys()

@@ -23,7 +23,7 @@ import pymunk
 from pymunk import batch
 
 from ..scene import Scene, SpringDrive
-from ..units import Units
+from ..units import Units, check_scales
 from .contacts import StickSlip, read_arbiters
 from .space import build
 
@@ -65,15 +65,18 @@ class Engine:
     switch), e.g. :class:`asperity2d.engine.energy.EnergyMeter`;
     ``projection_hooks`` are called with the bodies' rows just before the
     track projection (so a meter can see what the projection removes).
+    ``engaged`` starts a fixed-track slider over the surface, its track
+    raised, for :meth:`settle` to lower it into contact.
     """
 
-    def __init__(self, scene: Scene, dt: float, *, iterations: int = 20):
+    def __init__(self, scene: Scene, dt: float, *, iterations: int = 20, engaged: bool = False):
         self.scene = scene
         self.units = u = Units.for_scene(scene)
+        check_scales(scene, u)  # before pymunk sees a value it cannot represent
         self.dt = dt  # s
         self.dt_internal = dt / u.time
         self.layout = build(scene, u, self.dt_internal, iterations=iterations,
-                            friction=scene.contact.mu_kinetic)
+                            friction=scene.contact.mu_kinetic, engaged=engaged)
         self.switch = StickSlip(scene, u, self.layout, self.dt_internal)
         self.drive = Drive(scene, u)
         self.load_internal = scene.slider.normal_load / u.force if scene.slider.track == "free" else 0.0
@@ -182,10 +185,16 @@ class Engine:
         if buf is None:
             # Sized with room to spare: pymunk grows (reallocates) its array when a
             # write comes within two entries of the end, which must never happen to ours.
-            self._row_store = np.zeros(4 * len(self.layout.space.bodies) + 8)
-            self._rows = self._row_store[:4 * len(self.layout.space.bodies)].reshape(-1, 4)
+            n = 4 * self.layout.n_rows
+            self._row_store = np.zeros(n + 8)
+            self._rows = self._row_store[:n].reshape(-1, 4)
             self._body_buf = buf = batch.Buffer()
             buf.set_float_buf(self._row_store)
+            rows = self.layout.lower_rows
+            if not isinstance(rows, slice):  # pymunk keeps bodies in insertion order
+                raise RuntimeError("the lower asperities are not contiguous in the batch rows")
+            self._lower_x = self._rows[rows, 0]  # a view: it follows every read
+            self._lower_off = np.empty(len(self.layout.lower_bodies))
         buf.clear()
         batch.get_space_bodies(self.layout.space, BODY_FIELDS, buf)
         self._slider = self._rows[self.layout.slider_row].tolist()
@@ -205,9 +214,12 @@ class Engine:
         layout = self.layout
         drift = 0.0
         if layout.tracked and len(layout.lower_bodies):
-            drift = float(np.abs(rows[layout.lower_rows, 0] - layout.lower_x0).max())
+            off = self._lower_off
+            np.subtract(self._lower_x, layout.lower_x0, out=off)
+            np.abs(off, out=off)
+            drift = float(np.maximum.reduce(off))
         if layout.fixed_slider:
-            drift = max(drift, abs(self._slider[1] - layout.slider_y0))
+            drift = max(drift, abs(self._slider[1] - layout.slider_y_track))
         if drift > self.max_solver_drift:
             self.max_solver_drift = drift
         if drift > TRACK_TOLERANCE:
@@ -218,39 +230,76 @@ class Engine:
                 rows[layout.lower_rows, 0] = layout.lower_x0
                 rows[layout.lower_rows, 2] = 0.0
             if layout.fixed_slider:
-                rows[layout.slider_row, 1] = layout.slider_y0
+                rows[layout.slider_row, 1] = layout.slider_y_track
                 rows[layout.slider_row, 3] = 0.0
             batch.set_space_bodies(layout.space, BODY_FIELDS, self._body_buf)
             self._slider = rows[layout.slider_row].tolist()
 
-    def settle(self, duration: float, *, damping_per_period: float = 0.5) -> None:
-        """Bring a free slider to rest under its load (``duration`` in s, before t = 0).
+    def settle(self, max_time: float, *, push: float = 0.0, damping_per_period: float = 0.5,
+               rest_speed: float = 1e-7, on_steps=None) -> float:
+        """Bring the scene to rest before t = 0, in phases; return the time spent (s).
 
-        The slider's x is held while it comes down onto the surface. With a
-        spring drive, x is released for the second half so the slider finds
-        its equilibrium against the spring's preload; a constant-force slider
-        stays held (its force, not applied while settling, is applied
-        suddenly at t = 0). Global velocity damping removes the ringing
-        (settling undamped leaves the asperities ringing and lowers a
-        measured critical force by ~20 %).
+        * a free slider comes down onto the surface under its load, its x held;
+          a fixed-track slider started over the surface (``engaged``) has its
+          track lowered into place over one slowest period, its x held;
+        * with a spring drive, x is then released so the slider finds its
+          equilibrium against the spring's preload;
+        * with ``push`` (N), x is released and the slider pushed along +x with
+          that force until it rests against the lower flanks (the "from rest in
+          contact" start of :func:`asperity2d.critical_force`).
+
+        Global velocity damping removes the ringing (settling undamped leaves
+        the asperities ringing and lowers a measured critical force by ~20 %):
+        half the velocity per fastest period, but never more than critical
+        damping of the slowest mode (a heavier damping overdamps a heavy
+        slider so much that it creeps for thousands of periods).
+        A phase ends when every body has stayed slower than ``rest_speed``
+        (internal units, base x omega) for one slowest period, or when it has
+        used its share of ``max_time`` (s). ``on_steps(n)`` reports progress.
         """
         layout, d, dt = self.layout, self.drive, self.dt_internal
         space, body = layout.space, layout.slider
-        x0 = self._slider[0]
-        hold = pymunk.GrooveJoint(space.static_body, body, (x0, -1e6), (x0, 1e6), (0.0, 0.0))
-        space.add(hold)
-        space.damping = damping_per_period ** (1.0 / (2.0 * math.pi))
-        load = self.load_internal
-        d.start(x0)
-        steps = max(2, int(round(duration / self.units.time / dt)))
-        for i in range(steps):
-            if d.spring and i == steps // 2:
+        free = self.scene.slider.track == "free"
+        lowering = layout.fixed_slider and layout.slider_y_track != layout.slider_y0
+        phases = (["drop"] if free or lowering else []) + (["spring"] if d.spring else []) + \
+            (["push"] if push else [])
+        if not phases:
+            return 0.0
+        period = max(1, int(self.scene.slowest_period() / self.dt))
+        window = max(1, period // 4)  # checks per slowest period: 4
+        share = max(2, int(max_time / self.dt) // len(phases))
+        load, push_i = self.load_internal, push / self.units.force
+        rate = -math.log(damping_per_period) / (2.0 * math.pi)  # per internal time unit
+        slowest = 2.0 * math.pi * self.units.time / self.scene.slowest_period()
+        space.damping = math.exp(-min(rate, 2.0 * slowest))
+        d.start(self._slider[0])
+        x_hold = self._slider[0]
+        hold = pymunk.GrooveJoint(space.static_body, body, (x_hold, -1e6), (x_hold, 1e6), (0.0, 0.0))
+        held = False
+        spent = 0
+        for phase in phases:
+            if phase == "drop" and not held:
+                space.add(hold)
+                held = True
+            elif phase != "drop" and held:
                 space.remove(hold)
-            fx = d.k * (d.origin - self._slider[0]) if d.spring else 0.0
-            body.force = (fx, -load)
-            space.step(dt)
-            self._project(self._read_bodies())
-        if not d.spring:
+                held = False
+            calm, done = 0, 0
+            while done < share and calm < 4:
+                n = min(window, share - done)
+                if phase == "drop" and lowering:
+                    self._lower_track(min(1.0, (done + n) / period))
+                for _ in range(n):
+                    fx = d.k * (d.origin - self._slider[0]) if d.spring else 0.0
+                    body.force = (fx + (push_i if phase == "push" else 0.0), -load)
+                    space.step(dt)
+                    self._project(self._read_bodies())
+                done += n
+                calm = calm + 1 if float(np.abs(self._rows[:, 2:]).max()) < rest_speed else 0
+                if on_steps is not None:
+                    on_steps(n)
+            spent += done
+        if held:
             space.remove(hold)
         space.damping = 1.0
         for b in layout.lower_bodies:
@@ -260,6 +309,15 @@ class Engine:
         if self.switch.active:  # contacts at rest start stuck, with mu_static
             self._arbiters = read_arbiters(space, self._arb_buf, layout)
             self.switch.update(self._arbiters, rows, layout)
+        return spent * self.dt
+
+    def _lower_track(self, fraction: float) -> None:
+        """Move the fixed track ``fraction`` of the way from its start to its working height."""
+        layout = self.layout
+        y = layout.slider_y_start + fraction * (layout.slider_y0 - layout.slider_y_start)
+        layout.slider_groove.groove_a = (-1e6, y)
+        layout.slider_groove.groove_b = (1e6, y)
+        layout.slider_y_track = y
 
     def copy(self) -> "Engine":
         """An independent engine continuing from this one's state (hooks are not copied).

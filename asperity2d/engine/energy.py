@@ -119,10 +119,11 @@ class EnergyMeter:
         buf = batch.Buffer()
         batch.get_space_bodies(space, batch.BodyFields.BODY_ID, buf)
         ids = np.frombuffer(buf.int_buf(), dtype=np.uintp)
-        # rows 0..nb-1 are the dynamic bodies; row nb is a virtual static body (at rest, origin)
-        self._row = {int(i): k for k, i in enumerate(ids[:nb])}
-        self._nb = nb
+        # rows 0..nb-1 are the batch rows (a static body's row has mass 0 and is not used);
+        # row nb is a virtual static body (at rest at the origin) that every static id maps to
         self._mass = np.append(layout.masses[:nb], 0.0)
+        self._row = {int(i): k for k, i in enumerate(ids[:nb]) if self._mass[k] > 0}
+        self._nb = nb
         springs = [c for c in space.constraints if isinstance(c, pymunk.DampedSpring)]
         self._springs = springs
         self._ra = np.array([self._row.get(c.a.id, nb) for c in springs], dtype=np.intp)

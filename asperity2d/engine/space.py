@@ -47,7 +47,8 @@ def per_step_bias(fraction: float, dt: float) -> float:
 class Layout:
     """A built space and where everything is in it (internal units).
 
-    ``rows`` index the rows of ``pymunk.batch.get_space_bodies``:
+    ``rows`` index the ``n_rows`` rows of ``pymunk.batch.get_space_bodies``
+    (the static body has one):
     ``slider_row`` and ``lower_rows`` (a slice when contiguous);
     ``lower_index`` maps a body id (a pointer value) to its lower asperity index.
     ``lower_x0`` / ``lower_apex_x``
@@ -66,17 +67,23 @@ class Layout:
     slider_y0: float
     tracked: bool  # lower asperities on vertical grooves (False: MATLAB lattice)
     fixed_slider: bool
+    slider_groove: pymunk.GrooveJoint | None = None  # the fixed track
+    slider_y_start: float = 0.0  # where the slider starts (above slider_y0 when lowered onto the surface)
+    slider_y_track: float = 0.0  # the fixed track's height now (projection target)
     slider_row: int = 0
     lower_rows: slice | np.ndarray | None = None
     lower_index: dict | None = None
+    lower_row_of: list | None = None
     slider_id: int = 0
-    masses: np.ndarray | None = None  # per batch row (internal units)
+    masses: np.ndarray | None = None  # per batch row (internal units; 0 for the static body)
+    n_rows: int = 0
 
     def index(self) -> None:
         """Find the batch rows and ids of the bodies (after building or copying)."""
         buf = batch.Buffer()
         batch.get_space_bodies(self.space, batch.BodyFields.BODY_ID, buf)
         ids = np.frombuffer(buf.int_buf(), dtype=np.uintp).copy()
+        self.n_rows = len(ids)  # the static body has a row too
         where = {int(i): k for k, i in enumerate(ids)}
         self.slider_row = where[self.slider.id]
         self.slider_id = self.slider.id
@@ -86,6 +93,7 @@ class Layout:
         else:
             self.lower_rows = rows
         self.lower_index = {b.id: i for i, b in enumerate(self.lower_bodies)}
+        self.lower_row_of = rows.tolist()  # batch row of each lower asperity
         by_id = {b.id: b for b in self.space.bodies}
         self.masses = np.array([by_id[int(i)].mass if int(i) in by_id else 0.0 for i in ids])
 
@@ -98,7 +106,12 @@ class Layout:
         body_at = {id(b): k for k, b in enumerate(self.space.bodies)}
         shape_at = {id(s): k for k, s in enumerate(self.space.shapes)}
         bodies, shapes = list(space.bodies), list(space.shapes)
-        out = Layout(space=space, slider=bodies[body_at[id(self.slider)]],
+        groove = None
+        if self.slider_groove is not None:
+            at = [id(c) for c in self.space.constraints].index(id(self.slider_groove))
+            groove = list(space.constraints)[at]
+        out = Layout(space=space, slider=bodies[body_at[id(self.slider)]], slider_groove=groove,
+                     slider_y_start=self.slider_y_start, slider_y_track=self.slider_y_track,
                      lower_bodies=[bodies[body_at[id(b)]] for b in self.lower_bodies],
                      lower_shapes=[shapes[shape_at[id(s)]] for s in self.lower_shapes],
                      lower_x0=self.lower_x0, lower_apex_x=self.lower_apex_x,
@@ -108,12 +121,17 @@ class Layout:
         return out
 
 
-def build(scene, units: Units, dt: float, *, iterations: int, friction: float) -> Layout:
+def build(scene, units: Units, dt: float, *, iterations: int, friction: float,
+          engaged: bool = False) -> Layout:
     """Build ``scene`` in a new space stepped with ``dt`` (internal units).
 
     ``friction`` is the lower shapes' initial coefficient (the slider's shapes
     have 1.0, so a contact's coefficient is the lower shape's); their
     elasticity is the scene's contact ``restitution`` (the slider's is 1.0).
+    A fixed-track slider starts before the surface, or with ``engaged`` over
+    it (its rear tip above the first lower valley, like a free slider) with
+    its track raised clear of the tips, to be lowered onto the surface by
+    ``Engine.settle``.
     """
     space = pymunk.Space(threaded=False)  # threaded stepping is not reproducible
     space.iterations = iterations
@@ -122,12 +140,14 @@ def build(scene, units: Units, dt: float, *, iterations: int, friction: float) -
     space.collision_bias = per_step_bias(CORRECTION_PER_STEP, dt)
     bias = per_step_bias(CORRECTION_PER_STEP, dt)
     lower = _build_lower(space, scene, units, bias, friction)
-    slider = _build_slider(space, scene, units, bias, lower)
+    slider = _build_slider(space, scene, units, bias, lower, engaged)
     _build_floor(space, scene, units, lower["x0"], friction)
     layout = Layout(space=space, slider=slider["body"], lower_bodies=lower["bodies"],
                     lower_shapes=lower["shapes"], lower_x0=lower["x0"], lower_apex_x=lower["apex"],
                     lower_height=lower["height"], upper_apex=slider["apex"], slider_y0=slider["y0"],
-                    tracked=not scene.lower.is_lattice, fixed_slider=scene.slider.track == "fixed")
+                    tracked=not scene.lower.is_lattice, fixed_slider=scene.slider.track == "fixed",
+                    slider_groove=slider["groove"], slider_y_start=slider["y_start"],
+                    slider_y_track=slider["y_start"])
     layout.index()
     return layout
 
@@ -135,7 +155,7 @@ def build(scene, units: Units, dt: float, *, iterations: int, friction: float) -
 def _build_lower(space, scene, u: Units, bias: float, friction: float) -> dict:
     lower = scene.lower
     verts = [(x / u.length, y / u.length) for x, y in lower.profile.vertices(upper=False)]
-    x0 = lower.centers() / u.length
+    x0 = lower.tips() / u.length
     down, up = lower.travel_down / u.length, lower.travel_up / u.length
     flt = pymunk.ShapeFilter(categories=LOWER, mask=SLIDER)
     bodies, shapes = [], []
@@ -159,7 +179,7 @@ def _build_lower(space, scene, u: Units, bias: float, friction: float) -> dict:
     if lower.is_lattice:
         _build_lattice(space, lower, u, x0, bodies)
     return {"bodies": bodies, "shapes": shapes, "x0": x0, "height": lower.profile.height / u.length,
-            "apex": x0 + lower.profile.apex_offset(upper=False) / u.length}
+            "apex": x0, "left": lower.profile.runs(upper=False)[0] / u.length}
 
 
 def _build_lattice(space, lower, u: Units, x, bodies) -> None:
@@ -188,19 +208,19 @@ def _build_lattice(space, lower, u: Units, x, bodies) -> None:
         space.add(link)
 
 
-def _build_slider(space, scene, u: Units, bias: float, lower: dict) -> dict:
+def _build_slider(space, scene, u: Units, bias: float, lower: dict, engaged: bool) -> dict:
     s = scene.slider
-    profile = scene.lower.profile
     h_up = s.profile.height / u.length
-    centers = s.centers() / u.length
-    apex = centers + s.profile.apex_offset(upper=True) / u.length
+    apex = s.tips() / u.length  # relative to the slider's reference point, the rear tip
     body = pymunk.Body(s.mass / u.mass, math.inf)
     x_lower, apex_lower = lower["x0"], lower["apex"]
-    if s.track == "fixed":
+    clear = lower["height"] + h_up + 1e-3  # the tips just clear of the lower tips
+    if s.track == "fixed" and not engaged:
         # Start left of the surface: the front asperity's base ends a tenth
         # of a base before the first lower asperity's base begins.
-        x0 = (x_lower[0] - profile.base / u.length) - centers[-1] - 0.1
-        y0 = lower["height"] - s.interference / u.length + h_up
+        right = s.profile.runs(upper=True)[1] / u.length
+        x0 = x_lower[0] - lower["left"] - right - apex[-1] - 0.1
+        y0 = y_start = lower["height"] - s.interference / u.length + h_up
     else:
         # Start at the beginning of the surface, just clear of the tips: the
         # first upper tip over the first valley (or, with a single lower
@@ -208,25 +228,28 @@ def _build_slider(space, scene, u: Units, bias: float, lower: dict) -> dict:
         if len(apex_lower) > 1:
             x_tip = 0.5 * (apex_lower[0] + apex_lower[1])
         else:
-            run = {"flat": 0.0, "full": 0.5, "half": 1.0}[profile.kind] * profile.base / u.length
-            x_tip = apex_lower[0] - 0.5 * run
+            flat = scene.lower.profile.kind == "flat"
+            x_tip = apex_lower[0] - (0.0 if flat else 0.5 * lower["left"])
         x0 = x_tip - apex[0]
-        y0 = lower["height"] + h_up + 1e-3
-    body.position = (x0, y0)
+        y0 = y_start = clear
+        if s.track == "fixed":  # the track's height; the slider starts above it
+            y0 = lower["height"] - s.interference / u.length + h_up
+    body.position = (x0, y_start)
     flt = pymunk.ShapeFilter(categories=SLIDER, mask=LOWER | FLOOR)
     verts = s.profile.vertices(upper=True)
     shapes = []
-    for c in centers:
+    for c in apex:
         shape = pymunk.Poly(body, [(c + x / u.length, y / u.length) for x, y in verts])
         shape.filter, shape.collision_type, shape.friction = flt, SLIDER, 1.0
         shape.elasticity = 1.0
         shapes.append(shape)
     space.add(body, *shapes)
+    groove = None
     if s.track == "fixed":
-        groove = pymunk.GrooveJoint(space.static_body, body, (-1e6, y0), (1e6, y0), (0.0, 0.0))
+        groove = pymunk.GrooveJoint(space.static_body, body, (-1e6, y_start), (1e6, y_start), (0.0, 0.0))
         groove.error_bias = bias
         space.add(groove)
-    return {"body": body, "apex": apex, "y0": y0}
+    return {"body": body, "apex": apex, "y0": y0, "y_start": y_start, "groove": groove}
 
 
 def _build_floor(space, scene, u: Units, x_lower, friction: float) -> None:
