@@ -41,6 +41,7 @@ DEFAULTS = {
     "mu": None,  # sets both coefficients
     "mu_kinetic": None,  # default: two thirds of mu_static
     "slip_distance": None, "stick_speed": None,
+    "restitution": 0.0,  # contact elasticity in [0, 1]: 0 inelastic impacts, 1 no impact loss
     "drive_damping": 0.0,
     "drive_preload": 0.0,  # N, initial spring force
     "gravity": 0.0,  # m/s^2; negligible at the micrometre scale
@@ -179,6 +180,6 @@ def make_scene(*, spacing: str = "regular", seed: int = 0, profile: str = "full"
         mu_s = p["mu_static"]
         mu_k = kinetic_default(mu_s) if p["mu_kinetic"] is None else p["mu_kinetic"]
     contact = Contact(mu_static=mu_s, mu_kinetic=mu_k, slip_distance=p["slip_distance"],
-                      stick_speed=p["stick_speed"])
+                      stick_speed=p["stick_speed"], restitution=p["restitution"])
     name = p["name"] or f"{spacing}-{profile}-{drive}-{p['track']}-seed{seed}"
     return Scene(lower=lower, slider=slider, drive=drv, contact=contact, gravity=p["gravity"], name=name)

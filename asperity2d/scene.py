@@ -212,12 +212,18 @@ class Contact:
     ``slip_distance=0`` switches on the instantaneous slip speed alone. A
     sliding contact sticks again when its slip speed falls below
     ``stick_speed`` (m/s, default 1e-4 of base x natural frequency).
+
+    ``restitution`` (in [0, 1], pymunk's elasticity) is the ratio of the
+    normal relative speed after an impact to that before: 0 (the default) is
+    a perfectly inelastic impact, which loses the normal part of the relative
+    kinetic energy; 1 loses nothing.
     """
 
     mu_static: float = SEED_000["mu_static"]
     mu_kinetic: float | None = None
     slip_distance: float | None = None
     stick_speed: float | None = None
+    restitution: float = 0.0
 
     def __post_init__(self):
         s = object.__setattr__
@@ -232,6 +238,9 @@ class Contact:
             s(self, "slip_distance", check_nonnegative("slip_distance", self.slip_distance))
         if self.stick_speed is not None:
             s(self, "stick_speed", check_positive("stick_speed", self.stick_speed))
+        s(self, "restitution", check_nonnegative("restitution", self.restitution))
+        if self.restitution > 1:
+            raise SceneError(f"`restitution` must be <= 1, got {self.restitution!r}")
 
 
 @dataclass(frozen=True)

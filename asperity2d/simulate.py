@@ -490,7 +490,7 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
     energy : bool
         Meter every step's energy flows from the settled state on
         (:class:`asperity2d.engine.energy.EnergyMeter`) and store its report
-        in ``result.meta["energy"]`` (costs about one more step's time per step).
+        in ``result.meta["energy"]`` (a metered step costs about 7 plain steps).
     max_steps : int
         Step budget (settling included), checked before anything runs.
 
