@@ -3,6 +3,7 @@
     asperity2d belt --preset table2-3dof --json
     asperity2d belt chain.toml -o run.png          # plot chosen by extension (.png/.svg/.pdf)
     asperity2d belt --preset table3-k20 -o run.npz # or save the result (.npz) / export (.csv)
+    asperity2d belt basins --preset table2-3dof -o basins.png   # initial-condition basin map
 
 A chain file holds the keyword arguments of ``simulate_chain`` at top level
 (masses, springs, dampers, mu_s, mu_k, v_belt, x0, v0, t_end, g, normal_load,
@@ -36,6 +37,9 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     p.add_argument("-o", "--output", type=Path, help="plot (.png/.svg/.pdf), result (.npz) or table (.csv)")
     p.add_argument("--json", action="store_true", help="print one JSON summary object")
     p.set_defaults(func=run)
+    from ..dynamics.cli import add_basins_arguments  # `belt basins ...` (asperity2d.dynamics.cli)
+
+    add_basins_arguments(p)
     return p
 
 
@@ -64,6 +68,10 @@ def run(args) -> int:
     """Run the subcommand; 0 on success, 2 on bad input (one line on stderr)."""
     from . import presets
 
+    if args.chain is not None and str(args.chain) == "basins":
+        from ..dynamics.cli import run_basins
+
+        return run_basins(args)
     try:
         if args.list_presets:
             for name in presets.names():

@@ -2,7 +2,8 @@
 
 ``render(result, "run.gif")`` writes an animated GIF (:mod:`.gif`, Pillow
 frames); ``.png`` / ``.svg`` / ``.pdf`` write the time-series plot
-(:mod:`.plots`, matplotlib, imported only when used). ``result`` may be a
+(:mod:`.plots`, matplotlib, imported only when used); ``.wav`` writes the
+sound of the run and its spectrogram (:mod:`.sound`). ``result`` may be a
 :class:`~asperity2d.result.Result` or the path of one saved with
 ``Result.save``, so a run is rendered again without re-simulating.
 """
@@ -15,14 +16,15 @@ from pathlib import Path
 from ..errors import SceneError
 
 #: Output extensions and the renderer each selects.
-RENDERERS = {".gif": "gif", ".png": "plot", ".svg": "plot", ".pdf": "plot"}
+RENDERERS = {".gif": "gif", ".png": "plot", ".svg": "plot", ".pdf": "plot", ".wav": "sound"}
 
 
 def render(result, path: str | os.PathLike, **options) -> Path:
     """Render ``result`` to ``path``, choosing the renderer by extension.
 
-    ``options`` go to :func:`~asperity2d.render.gif.render_gif` (``.gif``)
-    or :func:`~asperity2d.render.plots.plot_run` (``.png``, ``.svg``, ``.pdf``).
+    ``options`` go to :func:`~asperity2d.render.gif.render_gif` (``.gif``),
+    :func:`~asperity2d.render.plots.plot_run` (``.png``, ``.svg``, ``.pdf``)
+    or :func:`~asperity2d.render.sound.write_wav` (``.wav``).
 
     Raises
     ------
@@ -37,6 +39,10 @@ def render(result, path: str | os.PathLike, **options) -> Path:
         from ..result import load
 
         result = load(result)
+    if kind == "sound":
+        from .sound import write_wav
+
+        return write_wav(result, path, **options).path
     if kind == "gif":
         from .gif import render_gif
 
