@@ -20,14 +20,8 @@ The thresholds are those of :func:`asperity2d.belt.regime.classify` (1e-3).
 The grid runs through the sweep machinery (:mod:`asperity2d.sweep`): one
 run per grid point in a resumable store, in local processes or on Dask.
 
-**Asperity runs** (:func:`asperity_basins`): the builder places the slider
-relative to the first lower asperity, so shifting the lower surface's
-spacing ``offset`` moves the whole scene and changes nothing. The initial
-condition that can be varied through the public API is the drive spring's
-initial force ``drive_preload`` (N): it sets where the slider's drive point
-starts relative to the slider, hence how fast the slider meets the
-surface. Each run is classified on its drive force (see
-:func:`classify_asperity`).
+Asperity runs have their own scan over the drive preload in
+:mod:`.asperity_basins` (the same classes, the same store and executors).
 """
 
 from __future__ import annotations
@@ -43,7 +37,6 @@ from .cycles import chain_cycle, limit_cycle
 
 LABELS = ("rest", "pure slip", "stick-slip", "irregular")
 RUN = "asperity2d.dynamics.basins:chain_basin_run"
-ASPERITY_RUN = "asperity2d.dynamics.basins:asperity_basin_run"
 
 
 def coordinate(name: str, n: int, *, param: str = "axis") -> tuple[str, int]:
@@ -166,16 +159,18 @@ class BasinMap:
         lab = self.values["label"]
         stick = lab == 2
         done = lab >= 0
-        last = self.values["last_stick"][done]
-        return {
+        out = {
             "x_name": self.x_name, "x_range": [float(self.x_values[0]), float(self.x_values[-1])],
             "y_name": self.y_name, "y_range": [float(self.y_values[0]), float(self.y_values[-1])],
             "shape": list(lab.shape), "t_end_s": self.t_end, "counts": self.counts(),
             "periods_s": sorted({round(float(p), 9) for p in self.values["period"][stick]}),
-            "last_stick_s": {"median": float(np.median(last)) if last.size else None,
-                             "max": float(np.max(last)) if last.size else None},
-            "run_seconds_total": self.wall_time, "run_seconds_mean": self.wall_time / max(lab.size, 1),
+            "run_seconds_total": self.wall_time, "run_seconds_mean": self.wall_time / max(int(done.sum()), 1),
         }
+        if "last_stick" in self.values:
+            last = self.values["last_stick"][done]
+            out["last_stick_s"] = {"median": float(np.median(last)) if last.size else None,
+                                   "max": float(np.max(last)) if last.size else None}
+        return out
 
 
 def chain_basins(chain: dict, *, x: tuple, y: tuple, t_end: float | None = None, rtol: float = 1e-6,
@@ -212,7 +207,9 @@ def chain_basins(chain: dict, *, x: tuple, y: tuple, t_end: float | None = None,
         raise SceneError(f"`rtol` must be > 0, got {rtol!r}")
     study = Study(name="basins", run=RUN, grid={"x_value": xs, "y_value": ys},
                   fixed={"chain": _encode_chain(chain), "x_name": x_name, "y_name": y_name, "rtol": float(rtol)})
-    values, failed, wall = _run(study, store, workers, scheduler, progress, (len(xs), len(ys)), _CHAIN_KEYS)
+    ix, iy = {v: i for i, v in enumerate(xs)}, {v: j for j, v in enumerate(ys)}
+    values, failed, wall = _run(study, store, workers, scheduler, progress, (len(xs), len(ys)), _CHAIN_KEYS,
+                                lambda spec: (ix[spec.params["x_value"]], iy[spec.params["y_value"]]))
     return BasinMap(x_name, np.array(xs), y_name, np.array(ys), values, float(chain["t_end"]), failed, wall)
 
 
@@ -232,7 +229,11 @@ def _axis(axis, which):
     return name, values
 
 
-def _run(study, store, workers, scheduler, progress, shape, keys):
+def _run(study, store, workers, scheduler, progress, shape, keys, locate):
+    """Run ``study`` into ``store`` (a temporary one if None) and gather ``keys`` into arrays of ``shape``.
+
+    ``locate(spec)`` gives the grid index of a run. Failed runs get label -1 and NaN elsewhere.
+    """
     from ..sweep import ResultStore, run_study
 
     with tempfile.TemporaryDirectory(prefix="asperity2d-basins-") as tmp:
@@ -241,16 +242,14 @@ def _run(study, store, workers, scheduler, progress, shape, keys):
         records = rs.records(study)
     values = {k: np.full(shape, np.nan) for k in keys}
     values["label"][:] = -1
-    index = {name: {v: i for i, v in enumerate(vals)} for name, vals in study.grid.items()}
-    names = list(study.grid)
     failed, wall = 0, 0.0
     for spec in study.runs():
         rec = records.get(spec.key)
-        ij = tuple(index[name][spec.params[name]] for name in names)
         if rec is None or rec.status != "done":
             failed += 1
             continue
         wall += rec.wall_time
+        ij = locate(spec)
         for k in keys:
             values[k][ij] = rec.quantities[k]
     return values, failed, wall

@@ -1,15 +1,16 @@
 """``asperity2d belt basins``: an initial-condition basin map of a belt chain.
 
-    asperity2d belt basins --preset table2-3dof --x x1 --x-range -0.3,0.9 \\
-        --y v1 --y-range -0.6,0.6 --grid 41 --t-end 100 -o basins.png --json
+    asperity2d belt basins --preset table2-3dof --x x1 --x-range=-0.3,0.9 \\
+        --y v1 --y-range=-0.6,0.6 --grid 41 --t-end 100 -o basins.png --json
 
 writes the map (``basins.png``), a JSON summary beside it (``basins.json``)
 and keeps every run in a resumable sweep store (``basins.runs/`` unless
 ``--store`` says otherwise): run the same command again and only unfinished
 grid points are computed. ``--workers N`` local processes, or ``--scheduler``
-a Dask address. The options are registered on the ``belt`` parser (which
-owns ``--preset``, ``--t-end``, ``-o`` and ``--json``) and used only after
-the word ``basins``.
+a Dask address. Write a range that starts with a minus sign with ``=``
+(``--x-range=-0.3,0.9``), or argparse takes it for an option. The options
+are registered on the ``belt`` parser (which owns ``--preset``, ``--t-end``,
+``-o`` and ``--json``) and used only after the word ``basins``.
 """
 
 from __future__ import annotations
@@ -26,7 +27,8 @@ def add_basins_arguments(parser) -> None:
     g = parser.add_argument_group("basins (asperity2d belt basins ...)")
     g.add_argument("--x", dest="basins_x", default="x1", help="first coordinate: x1..xn (m) or v1..vn (m/s)")
     g.add_argument("--y", dest="basins_y", default="v1", help="second coordinate (default v1)")
-    g.add_argument("--x-range", dest="basins_x_range", default="-0.5,0.5", help="LO,HI of the first coordinate")
+    g.add_argument("--x-range", dest="basins_x_range", default="-0.5,0.5",
+                   help="LO,HI of the first coordinate (write --x-range=-0.5,0.5 when LO < 0)")
     g.add_argument("--y-range", dest="basins_y_range", default="-0.5,0.5", help="LO,HI of the second coordinate")
     g.add_argument("--grid", dest="basins_grid", default="41", help="points per axis: N or NX,NY")
     g.add_argument("--chain-file", dest="basins_chain", type=Path, help="TOML chain file (instead of --preset)")

@@ -1,19 +1,12 @@
-"""Poincaré sections, limit-cycle detection and steady-state (transient) detection.
+"""Limit-cycle detection on Poincaré sections, and steady-state (transient) detection.
 
-A **Poincaré section** is where a trajectory crosses a plane ``s(t) = 0`` in a
-chosen direction. For belt chains the natural plane is a mass's velocity
-equal to the belt speed, crossed from below: on the exact solver's output
-that is the stick onset itself, sampled exactly (the solver records a sample
-at every switching instant, with v = V to the last bit in a stick), so the
-section times are exact. Elsewhere a crossing is located by a cubic through
-the four samples around it (linear where a cubic does not bracket it), and
-the other coordinates are interpolated linearly at that time.
-
-**Limit cycles** are found on the sequence of section points P_k: the run is
-periodic with multiplicity n (a period-n orbit, n crossings per period) if
-``|P_{k+n} - P_k| <= rtol`` (each coordinate relative to its largest
-magnitude over the section) for the last ``min_repeats·n`` k, with n the
-smallest such number up to ``max_multiplicity``. The period is the mean of
+**Limit cycles** are found on the Poincaré section points P_k
+(:mod:`.sections`): the run is periodic with multiplicity n (a period-n
+orbit, n crossings per period) if ``|P_{k+n} - P_k| <= rtol`` times a scale
+for the last ``min_repeats·n`` k, with n the smallest such number up to
+``max_multiplicity``. The scale of each coordinate is the size of the motion
+over the last quarter of the run (its peak-to-peak; for a bare sequence,
+its largest magnitude), so a decay towards rest never counts as periodic. The period is the mean of
 ``T_{k+n} - T_k`` over those k. Otherwise the answer is *not periodic within
 the run*, which covers chaos, quasi-periodic motion and transients longer
 than the run alike; the message says which test failed.
@@ -26,17 +19,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import SceneError
-from .signals import belt_speed, check_series, is_belt
-
-
-@dataclass(frozen=True)
-class Section:
-    """Crossings of a Poincaré plane: ``t`` (K,) s, ``points`` (K, d) SI, ``names`` of the d coordinates."""
-
-    t: np.ndarray
-    points: np.ndarray
-    names: tuple
-    description: str
+from .sections import chain_section, crossings, poincare_section
+from .signals import check_series
 
 
 @dataclass(frozen=True)
@@ -69,84 +53,6 @@ class Cycle:
         return dict(self.__dict__)
 
 
-def crossings(t, s, *, direction: int = 1) -> np.ndarray:
-    """Times (s) where ``s`` crosses zero upward (``direction=1``), downward (-1) or either (0).
-
-    An upward crossing is a sample with s >= 0 after one with s < 0; a
-    sample exactly at zero is the crossing time itself.
-    """
-    t, s = np.asarray(t, dtype=float), np.asarray(s, dtype=float)
-    if direction not in (-1, 0, 1):
-        raise SceneError(f"`direction` must be -1, 0 or 1, got {direction!r}")
-    sg = np.sign(s)
-    up = (sg[:-1] < 0) & (sg[1:] >= 0)
-    down = (sg[:-1] > 0) & (sg[1:] <= 0)
-    mask = up if direction == 1 else down if direction == -1 else (up | down)
-    return np.array([_root(t, s, k) for k in np.flatnonzero(mask) + 1])
-
-
-def _root(t, s, k) -> float:
-    """Zero of s between samples k-1 and k: exact sample, cubic through k-2..k+1, or linear."""
-    if s[k] == 0:
-        return float(t[k])
-    a, b = t[k - 1], t[k]
-    linear = a + (b - a) * s[k - 1] / (s[k - 1] - s[k])
-    if k < 2 or k + 1 >= t.size or b <= a:
-        return float(linear)
-    tt, ss = t[k - 2:k + 2], s[k - 2:k + 2]
-    if np.any(np.diff(tt) <= 0) or np.any(ss == 0):
-        return float(linear)
-    u = (tt - a) / (b - a)
-    roots = np.roots(np.polyfit(u, ss, 3))
-    real = roots[np.abs(roots.imag) < 1e-9].real
-    real = real[(real >= 0) & (real <= 1)]
-    if real.size != 1:
-        return float(linear)
-    return float(a + real[0] * (b - a))
-
-
-def poincare_section(t, states, *, plane: int = 0, level: float = 0.0, direction: int = 1,
-                     names=None) -> Section:
-    """Crossings of ``states[plane] = level`` by the trajectory ``states`` (d, T) sampled at ``t``."""
-    states = np.atleast_2d(np.asarray(states, dtype=float))
-    t, _ = check_series(t, states[0], minimum=2)
-    if states.shape[1] != t.size:
-        raise SceneError(f"`states` must have {t.size} columns (one per time), got shape {states.shape}")
-    if not 0 <= plane < states.shape[0]:
-        raise SceneError(f"`plane` must be a row index 0..{states.shape[0] - 1}, got {plane!r}")
-    names = tuple(names) if names is not None else tuple(f"y{i}" for i in range(states.shape[0]))
-    times = crossings(t, states[plane] - level, direction=direction)
-    points = np.array([np.interp(times, t, row) for row in states]).T.reshape(times.size, states.shape[0])
-    points[:, plane] = level
-    return Section(times, points, names, f"{names[plane]} = {level:g} ({_dir(direction)})")
-
-
-def chain_section(result, *, mass: int = 0, direction: int = 1) -> Section:
-    """Section of a belt run where mass ``mass`` (0-based) reaches the belt speed (stick onsets for +1).
-
-    Points are the full state (x_1..x_n in m, v_1..v_n in m/s) at the crossing.
-    """
-    if not is_belt(result):
-        raise SceneError("`result` must be a belt-chain result (BeltResult)")
-    if isinstance(mass, bool) or not isinstance(mass, (int, np.integer)) or not 0 <= mass < result.n:
-        raise SceneError(f"`mass` must be an index 0..{result.n - 1}, got {mass!r}")
-    t = result.t
-    slip = result.v[mass] - belt_speed(result, t)
-    times = crossings(t, slip, direction=direction)
-    states = np.vstack([result.x, result.v])
-    idx = np.searchsorted(t, times)
-    exact = (idx < t.size) & (t[np.minimum(idx, t.size - 1)] == times)
-    points = np.array([np.interp(times, t, row) for row in states]).T.reshape(times.size, states.shape[0])
-    # a crossing on a sample (the stick onset) takes that sample itself, not an interpolation
-    points[exact] = states[:, idx[exact]].T
-    names = tuple(f"x{i + 1}" for i in range(result.n)) + tuple(f"v{i + 1}" for i in range(result.n))
-    return Section(times, points, names, f"v{mass + 1} = belt speed ({_dir(direction)})")
-
-
-def _dir(direction):
-    return {1: "upward", -1: "downward", 0: "both ways"}[direction]
-
-
 def detect_period(points, times=None, *, scale=None, rtol: float = 1e-4, max_multiplicity: int = 8,
                   min_repeats: int = 3) -> tuple:
     """``(n, period, k_start, mismatch)`` of a sequence of section points, or ``(0, nan, -1, best)``.
@@ -158,7 +64,7 @@ def detect_period(points, times=None, *, scale=None, rtol: float = 1e-4, max_mul
     """
     _check_detect(rtol, max_multiplicity, min_repeats)
     P = np.asarray(points, dtype=float)
-    P = P.reshape(P.shape[0], -1)
+    P = P[:, None] if P.ndim == 1 else P.reshape(P.shape[0], int(np.prod(P.shape[1:])))
     K = P.shape[0]
     T = np.arange(K, dtype=float) if times is None else np.asarray(times, dtype=float)
     if scale is None:
@@ -193,8 +99,9 @@ def _check_detect(rtol, max_multiplicity, min_repeats):
 
 def _cycle(n, period, k0, mismatch, times, signal_t, signal_y, count, description, rtol, max_n, why=None):
     if n:
-        last = signal_t >= signal_t[-1] - period
-        amp = 0.5 * float(np.ptp(signal_y[last]))
+        i0 = int(np.searchsorted(signal_t, signal_t[-1] - period))
+        end = signal_t.size
+        amp = 0.5 * (_extreme(signal_t, signal_y, i0, end, 1, 0.0) - _extreme(signal_t, signal_y, i0, end, -1, 0.0))
         t_start = float(times[k0])
         repeats = int(np.floor((times[-1] - t_start) / period + 1e-9))
         msg = f"period-{n} cycle, period {period:.9g} s, repeating from t = {t_start:.6g} s"
@@ -209,22 +116,27 @@ def _cycle(n, period, k0, mismatch, times, signal_t, signal_y, count, descriptio
 
 
 def limit_cycle(t, y, *, level: float | None = None, rtol: float = 1e-4, max_multiplicity: int = 8,
-                min_repeats: int = 3) -> Cycle:
+                min_repeats: int = 3, hysteresis: float = 0.1) -> Cycle:
     """Limit cycle of a scalar series ``y(t)`` (SI).
 
     The section is the upward crossings of ``level`` (default: the mean of the
-    last half of the run); its points are (interval since the previous
-    crossing, max y, min y between them), so a period-2 orbit shows as
-    alternating peaks.
+    last half of the run), counted only after y dipped ``hysteresis`` times
+    its last-quarter peak-to-peak below the level (so noise on a measured or
+    pymunk signal does not add crossings); its points are (interval since
+    the previous crossing, max y, min y between them), so a period-2 orbit
+    shows as alternating peaks.
     """
     t, y = check_series(t, y)
     _check_detect(rtol, max_multiplicity, min_repeats)
+    if not np.isfinite(hysteresis) or not 0 <= hysteresis < 0.5:
+        raise SceneError(f"`hysteresis` must be in [0, 0.5), got {hysteresis!r}")
     if level is None:
         level = float(np.mean(y[t >= 0.5 * (t[0] + t[-1])]))
-    times = crossings(t, y - level, direction=1)
+    band = hysteresis * float(np.ptp(y[t >= t[0] + 0.75 * (t[-1] - t[0])]))
+    times = crossings(t, y - level, direction=1, hysteresis=band)
     idx = np.searchsorted(t, times)
-    feats = [(times[j + 1] - times[j], _extreme(y, idx[j], idx[j + 1], 1, level),
-              _extreme(y, idx[j], idx[j + 1], -1, level)) for j in range(times.size - 1)]
+    feats = [(times[j + 1] - times[j], _extreme(t, y, idx[j], idx[j + 1], 1, level),
+              _extreme(t, y, idx[j], idx[j + 1], -1, level)) for j in range(times.size - 1)]
     points = np.array(feats).reshape(-1, 3)
     swing = float(np.ptp(y[t >= t[0] + 0.75 * (t[-1] - t[0])]))
     if swing <= 1e-12 * max(float(np.max(np.abs(y))), 1e-300):
@@ -237,23 +149,30 @@ def limit_cycle(t, y, *, level: float | None = None, rtol: float = 1e-4, max_mul
                   max_multiplicity)
 
 
-def _extreme(y, lo, hi, sign, default) -> float:
-    """Largest (sign 1) or smallest (-1) of y[lo:hi], refined by a parabola through its neighbours.
+def _extreme(t, y, lo, hi, sign, default) -> float:
+    """Largest (sign 1) or smallest (-1) of y[lo:hi], refined by the parabola through its neighbours.
 
-    The refinement assumes locally uniform sampling; it cuts the sampling error
-    of a smooth peak from O(dt²) to O(dt³), so the peaks of a periodic signal
-    repeat to well within ``rtol`` even when the period is not a multiple of dt.
+    The refinement cuts the sampling error of a smooth peak from O(dt²) to
+    O(dt³), so the peaks of a periodic signal repeat to well within ``rtol``
+    even when the period is not a multiple of dt. A sample whose neighbours do
+    not both lie strictly below it (a plateau, e.g. a stick at the belt speed)
+    is kept as it is.
     """
     if hi <= lo:
         return float(default)
     k = lo + int(np.argmax(sign * y[lo:hi]))
     if k == 0 or k + 1 >= y.size:
         return float(y[k])
-    a, b, c = y[k - 1], y[k], y[k + 1]
-    curv = a - 2 * b + c
-    if sign * curv >= 0:  # not a smooth extremum (a kink or a plateau): keep the sample
+    (t0, t1, t2), (a, b, c) = t[k - 1:k + 2], y[k - 1:k + 2]
+    if not (sign * (b - a) > 0 and sign * (b - c) > 0 and t0 < t1 < t2):
         return float(b)
-    return float(b - (a - c) ** 2 / (8 * curv))
+    # vertex of the Lagrange parabola through the three samples
+    d1, d2 = (b - a) / (t1 - t0), (c - b) / (t2 - t1)
+    curv = (d2 - d1) / (t2 - t0)  # half the second derivative
+    t_star = 0.5 * (t0 + t1) - d1 / (2 * curv)
+    if not t0 <= t_star <= t2:
+        return float(b)
+    return float(b + d1 * (t_star - t1) + curv * (t_star - t0) * (t_star - t1))
 
 
 def chain_cycle(result, *, mass: int | None = None, rtol: float = 1e-6, max_multiplicity: int = 8,

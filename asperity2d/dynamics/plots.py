@@ -11,6 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..errors import SceneError
 from ..render.plots import _figure, _save
 from .basins import LABELS
 
@@ -38,8 +39,14 @@ def plot_spectra(spectra, path: str | os.PathLike, *, unit: str = "", title: str
     return _save(fig, path, dpi)
 
 
-def plot_basins(basins, path: str | os.PathLike, *, title: str = "", dpi: int = 120) -> Path:
-    """Basin map: the class of every grid point, and the time of its last stick onset."""
+DETAILS = {"last_stick": "time of the last stick onset (s)", "period": "period of the limit cycle (s)",
+           "amplitude": "amplitude over the last quarter", "pitches_per_cycle": "drive advance per cycle (pitches)"}
+
+
+def plot_basins(basins, path: str | os.PathLike, *, detail: str = "last_stick", title: str = "",
+                dpi: int = 120) -> Path:
+    """Basin map: the class of every grid point (left), and the quantity ``detail`` (right, a key of
+    ``basins.values``: by default the time of the last stick onset, i.e. how long the transient lasts)."""
     from matplotlib.colors import ListedColormap
 
     lab, mult = basins.values["label"], basins.values["multiplicity"]
@@ -62,10 +69,13 @@ def plot_basins(basins, path: str | os.PathLike, *, title: str = "", dpi: int = 
         handles.append(_patch("#bbbbbb", f"failed ({basins.failed})"))
     ax1.legend(handles=handles, fontsize=7, loc="upper right", framealpha=0.85)
     ax1.set_title(f"long-run motion after {basins.t_end:g} s", fontsize=9)
-    last = np.where(lab >= 0, basins.values["last_stick"], np.nan)
-    im = ax2.imshow(last.T, origin="lower", aspect="auto", extent=extent, cmap="viridis", interpolation="nearest")
-    fig.colorbar(im, ax=ax2, label="time of the last stick onset (s)")
-    ax2.set_title("transient: last stick onset (0: never sticks)", fontsize=9)
+    if detail not in basins.values:
+        raise SceneError(f"`detail` must be one of {', '.join(sorted(basins.values))}, got {detail!r}")
+    shown = np.where(lab >= 0, basins.values[detail], np.nan)
+    im = ax2.imshow(shown.T, origin="lower", aspect="auto", extent=extent, cmap="viridis", interpolation="nearest")
+    fig.colorbar(im, ax=ax2, label=DETAILS.get(detail, detail))
+    ax2.set_title("transient: last stick onset (0: never sticks)" if detail == "last_stick" else
+                  DETAILS.get(detail, detail), fontsize=9)
     for ax in (ax1, ax2):
         ax.set_xlabel(_axis_label(basins.x_name))
         ax.set_ylabel(_axis_label(basins.y_name))
@@ -98,7 +108,7 @@ def _axis_label(name: str) -> str:
         return f"initial x{name[1:]} (m)"
     if name[:1] == "v" and name[1:].isdigit():
         return f"initial v{name[1:]} (m/s)"
-    return name
+    return {"drive_preload": "drive preload (N)", "seed": "spacing seed"}.get(name, name)
 
 
 def _patch(color, label):

@@ -81,7 +81,8 @@ def write_wav(source, path: str | os.PathLike, *, signal: str = "acceleration", 
 
         t, y = pick(source, signal, mass=mass)
         name = signal
-    if isinstance(sample_rate, bool) or not isinstance(sample_rate, (int, np.integer)) or not 8000 <= sample_rate <= 192_000:
+    rate_ok = isinstance(sample_rate, (int, np.integer)) and not isinstance(sample_rate, bool)
+    if not rate_ok or not 8000 <= sample_rate <= 192_000:
         raise SceneError(f"`sample_rate` must be an integer from 8000 to 192000 Hz, got {sample_rate!r}")
     if normalize not in ("peak", "rms"):
         raise SceneError(f"`normalize` must be 'peak' or 'rms', got {normalize!r}")
@@ -111,7 +112,7 @@ def write_wav(source, path: str | os.PathLike, *, signal: str = "acceleration", 
     if src_rate > 2 * cutoff and yu.size > 60:
         sos = sps.butter(8, cutoff, fs=src_rate, output="sos")
         yu = sps.sosfiltfilt(sos, yu)
-    audio = np.interp(tu[0] + np.arange(count) / (sample_rate * time_scale), tu, yu)
+    audio = np.interp(tu[0] + np.arange(count) * (time_scale / sample_rate), tu, yu)  # playback -> simulated t
     audio -= audio.mean()
     fade = min(int(FADE_S * sample_rate), count // 4)
     if fade > 0:
