@@ -13,8 +13,9 @@ resolution, no averaging). The PSD is in (unit of y)²/Hz.
 * **band power** of a peak sums the PSD over ±2 bins around it (the Hann
   main lobe is 4 bins wide) times the bin width: the mean square of that
   spectral line, (unit)²;
-* **harmonics** are the band powers of the largest bins within ±max(2 bins,
-  1 % of k·f0) of k·f0, k = 1..n; ``thd`` = sqrt(Σ_{k≥2} P_k / P_1) is the
+* **harmonics** are the band powers of the largest bins within ±max(1 bin,
+  0.5 % of k·f0) of k·f0, k = 1..n (narrow, so a nearby incommensurate line
+  is not taken for a harmonic); ``thd`` = sqrt(Σ_{k≥2} P_k / P_1) is the
   total harmonic distortion (0 for a sine; about 0.8 for an ideal sawtooth,
   whose P_k fall as 1/k²).
 """
@@ -133,7 +134,7 @@ def _band(f, p, k, df) -> float:
 def _harmonic(f, p, target, df) -> Peak:
     if target > f[-1]:
         return Peak(float(target), float("nan"))
-    half = max(2 * df, 0.01 * target)
+    half = max(df, 0.005 * target)  # the refined f0 puts k·f0 within a bin; wider windows catch other lines
     window = np.flatnonzero((f >= target - half) & (f <= target + half) & (f > 0))
     if window.size == 0:
         return Peak(float(target), 0.0)
