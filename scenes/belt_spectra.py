@@ -71,7 +71,7 @@ def main(argv=None) -> int:
         for k, window in ((0, "first 10 s"), (1, "steady state")):
             curves = [(f"{v:g} m/s", spectra[(chain, v)][k]) for v in picks]
             plots.append(str(plot_spectra(curves, out / f"spectra_{chain}_{'first10s' if k == 0 else 'steady'}.png",
-                                          unit="m", title=f"{chain}: x1 spectra, {window} (modes "
+                                          unit="m", f_max=3.0, title=f"{chain}: x1 spectra, {window} (modes "
                                           + ", ".join(f"{f:.3f}" for f in MODES_HZ) + " Hz)")))
     plots.append(str(plot_trends(summary, out / "thd_vs_speed.png")))
     summary["plots"] = plots
@@ -86,8 +86,8 @@ def main(argv=None) -> int:
         lines.append(f"{chain}:")
         for row in rows:
             f10, st = row["first_10s"], row["steady"]
-            lines.append(f"  {row['v_belt']:4.2f} m/s: {row['class']:10s} | first 10 s: stick {f10['stick_fraction']:.2f}, "
-                         f"THD {f10['thd']:.2f}, f {f10['dominant_hz']:.3f} Hz | steady: stick "
+            lines.append(f"  {row['v_belt']:4.2f} m/s: {row['class']:10s} | first 10 s: stick "
+                         f"{f10['stick_fraction']:.2f}, THD {f10['thd']:.2f}, f {f10['dominant_hz']:.3f} Hz | steady: stick "
                          f"{st['stick_fraction']:.3f}, THD {st['thd']:.3f}, f {st['dominant_hz']:.4f} Hz")
     return scripting.finish(args, summary, out, lines)
 

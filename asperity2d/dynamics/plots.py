@@ -19,18 +19,20 @@ from .basins import LABELS
 _CLASS_COLORS = ("#4c72b0", "#8fbc8f", "#dd8452", "#c44e52", "#8172b3", "#222222")
 
 
-def plot_spectra(spectra, path: str | os.PathLike, *, unit: str = "", title: str = "", dpi: int = 120) -> Path:
-    """PSD (log scale) against frequency for ``spectra``: a list of (label, Spectrum).
+def plot_spectra(spectra, path: str | os.PathLike, *, unit: str = "", title: str = "", f_max: float | None = None,
+                 dpi: int = 120) -> Path:
+    """PSD (log scale) against frequency for ``spectra``: a list of (label, Spectrum), up to ``f_max`` (Hz).
 
     The dominant frequency and its harmonics are marked on each curve.
     """
     fig, axes = _figure(1, width=7.5, height=3.6)
     ax = axes[0]
     for label, sp in spectra:
-        keep = sp.frequency > 0
+        keep = (sp.frequency > 0) & (sp.frequency <= (f_max if f_max else np.inf))
         line, = ax.semilogy(sp.frequency[keep], sp.power[keep], lw=0.9,
                             label=f"{label}: {sp.dominant:.4g} Hz, THD {sp.thd:.2f}")
-        marks = [h.frequency for h in sp.harmonics if np.isfinite(h.power) and h.power > 0]
+        marks = [h.frequency for h in sp.harmonics if np.isfinite(h.power) and h.power > 0
+                 and h.frequency <= (f_max if f_max else np.inf)]
         ax.plot(marks, np.interp(marks, sp.frequency, sp.power), "o", ms=3, color=line.get_color())
     ax.set_xlabel("frequency (Hz)")
     ax.set_ylabel(f"PSD ({unit}²/Hz)" if unit else "PSD")
