@@ -101,3 +101,40 @@ def test_cli_bad_input_is_one_line(tmp_path, capsys):
     code = main(["belt", "basins", "--preset", "table2-3dof", "--x-range", "1,0", "-o", str(tmp_path / "m.png")])
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 2 and len(err) == 1 and "`x-range`" in err[0]
+
+
+def sawtooth_run(stick_samples):
+    """A synthetic spring-driven run (asperity2d.analysis.synthetic_stick_slip) whose drive force is an exact
+    sawtooth: it rises through each stick and drops in each slip, cycle after cycle."""
+    from asperity2d.analysis import synthetic_stick_slip
+
+    result, truth = synthetic_stick_slip(n_events=24, samples_per_stick=stick_samples, samples_per_slip=20)
+    force = np.empty_like(result.t)
+    starts = np.concatenate([[0], truth["end_index"]])
+    for a, s, b in zip(starts[:-1], truth["slip_index"], truth["end_index"]):
+        force[a:s + 1] = np.linspace(1.0, 2.0, s + 1 - a)  # N: stick ramp
+        force[s + 1:b] = np.linspace(2.0, 1.0, b - s + 1)[1:-1]  # slip drop
+    force[starts[-1]:] = 1.0
+    result.drive_force = result.friction_force = force
+    return result, truth
+
+
+def test_asperity_classifier_finds_the_period_of_a_regular_sawtooth():
+    from asperity2d.dynamics.asperity_basins import classify_asperity
+
+    result, truth = sawtooth_run((120, 120))
+    out = classify_asperity(result)
+    dt = result.t[1] - result.t[0]
+    assert LABELS[int(out["label"])] == "stick-slip" and out["multiplicity"] == 1
+    assert out["period"] == pytest.approx(140 * dt, rel=1e-9)  # 120 stick + 20 slip samples
+    irregular, _ = sawtooth_run((60, 200))  # random stick lengths: no repeat
+    assert LABELS[int(classify_asperity(irregular)["label"])] == "irregular"
+
+
+def test_asperity_scan_refuses_its_own_axes():
+    from asperity2d.dynamics.asperity_basins import asperity_basins
+
+    with pytest.raises(SceneError, match="`drive_preload`"):
+        asperity_basins({"drive_preload": 0.1}, [0.0], progress=False)
+    with pytest.raises(SceneError, match="`drive`"):
+        asperity_basins({"drive": "force"}, [0.0], progress=False)
