@@ -14,6 +14,11 @@ chain with static friction 0.4 above the kinetic 0.2, which keeps a
 stick-slip cycle. The undamped chain's normal modes, f = sqrt(k (2 - 2 cos(jπ/4)) / m) / 2π,
 are printed beside them. Writes spectra plots, THD / stick fraction against
 speed, two WAVs (base case and contrast at 0.1 m/s) and ``summary.json``.
+
+Resolution caveat: a 10 s window has 0.1 Hz bins, too coarse to tell the
+second mode (0.712 Hz) from the second harmonic of the first (0.770 Hz), so
+in that window a pure-slip motion still shows a THD of about 0.3; the
+steady window (0.005 Hz bins at 400 s) separates them.
 """
 
 import numpy as np

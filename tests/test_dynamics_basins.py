@@ -138,3 +138,18 @@ def test_asperity_scan_refuses_its_own_axes():
         asperity_basins({"drive_preload": 0.1}, [0.0], progress=False)
     with pytest.raises(SceneError, match="`drive`"):
         asperity_basins({"drive": "force"}, [0.0], progress=False)
+
+
+def test_shifting_the_lower_surface_changes_nothing():
+    # why the asperity scan varies the drive preload: the builder places the slider relative to the first
+    # lower asperity, so the spacing offset translates the whole run (x by the offset, forces unchanged)
+    import dataclasses
+
+    import asperity2d as a
+
+    scene = a.make_scene(track="fixed", lower_count=5, upper_count=2)
+    spacing = dataclasses.replace(scene.lower.spacing, offset=0.37e-6)
+    shifted = dataclasses.replace(scene, lower=dataclasses.replace(scene.lower, spacing=spacing))
+    r1, r2 = a.simulate(scene, 3e-7), a.simulate(shifted, 3e-7)
+    assert np.allclose(r2.x - r1.x, 0.37e-6, rtol=0, atol=1e-15)  # 1e-9 of the base: round-off of the shift
+    assert np.allclose(r2.drive_force, r1.drive_force, rtol=0, atol=1e-12 * np.abs(r1.drive_force).max())

@@ -6,8 +6,8 @@ orbit, n crossings per period) if ``|P_{k+n} - P_k| <= rtol`` times a scale
 for the last ``min_repeats·n`` k, with n the smallest such number up to
 ``max_multiplicity``. The scale of each coordinate is the size of the motion
 over the last quarter of the run (its peak-to-peak; for a bare sequence,
-its largest magnitude), so a decay towards rest never counts as periodic. The period is the mean of
-``T_{k+n} - T_k`` over those k. Otherwise the answer is *not periodic within
+its largest magnitude), so a decay towards rest never counts as periodic.
+The period is the mean of ``T_{k+n} - T_k`` over those k. Otherwise the answer is *not periodic within
 the run*, which covers chaos, quasi-periodic motion and transients longer
 than the run alike; the message says which test failed.
 """
@@ -132,13 +132,12 @@ def limit_cycle(t, y, *, level: float | None = None, rtol: float = 1e-4, max_mul
         raise SceneError(f"`hysteresis` must be in [0, 0.5), got {hysteresis!r}")
     if level is None:
         level = float(np.mean(y[t >= 0.5 * (t[0] + t[-1])]))
-    band = hysteresis * float(np.ptp(y[t >= t[0] + 0.75 * (t[-1] - t[0])]))
-    times = crossings(t, y - level, direction=1, hysteresis=band)
+    swing = float(np.ptp(y[t >= t[0] + 0.75 * (t[-1] - t[0])]))  # size of the motion at the end
+    times = crossings(t, y - level, direction=1, hysteresis=hysteresis * swing)
     idx = np.searchsorted(t, times)
     feats = [(times[j + 1] - times[j], _extreme(t, y, idx[j], idx[j + 1], 1, level),
               _extreme(t, y, idx[j], idx[j + 1], -1, level)) for j in range(times.size - 1)]
     points = np.array(feats).reshape(-1, 3)
-    swing = float(np.ptp(y[t >= t[0] + 0.75 * (t[-1] - t[0])]))
     if swing <= 1e-12 * max(float(np.max(np.abs(y))), 1e-300):
         return _cycle(0, np.nan, -1, np.nan, times, t, y, 0, "none", rtol, max_multiplicity,
                       why="the signal is constant over its last quarter (at rest)")
@@ -240,9 +239,9 @@ def steady_state(t, y, *, windows: int | None = None, rtol: float = 0.05) -> Ste
     rest) of the reference ones. ``t_start`` is the start of the first window
     after which all agree. Each window must span a few periods of the slowest
     oscillation for the envelope test to ignore phase: ``windows=None`` makes
-    them 3 periods of the dominant frequency of the last half (at least 1/40
-    of the run, at most 4 windows per run). A heuristic: a quasi-periodic or
-    chaotic signal counts as settled once its envelope is.
+    them 3 periods of the dominant frequency of the last half long, and at
+    least 1/40 of the run (between 4 and 40 windows). A heuristic: a
+    quasi-periodic or chaotic signal counts as settled once its envelope is.
     """
     t, y = check_series(t, y)
     if windows is None:
