@@ -19,6 +19,12 @@ classified by :func:`classify_chain` on the last half of the run:
 The thresholds are those of :func:`asperity2d.belt.regime.classify` (1e-3).
 The grid runs through the sweep machinery (:mod:`asperity2d.sweep`): one
 run per grid point in a resumable store, in local processes or on Dask.
+Every run is bounded: a grid point gets at most :data:`RUN_CPU_LIMIT`
+seconds of CPU (a median one takes ~0.1 s) and is recorded as failed
+beyond that -- a guard against solver stalls that never count as events.
+The limit is a process timer, so it applies where the run executes in a
+process's main thread (local processes, in-process); Dask runs tasks in
+threads, where it is not set.
 
 Asperity runs have their own scan over the drive preload in
 :mod:`.asperity_basins` (the same classes, the same store and executors).
@@ -26,16 +32,20 @@ Asperity runs have their own scan over the drive preload in
 
 from __future__ import annotations
 
+import contextlib
 import json
+import signal
 import tempfile
+import threading
 from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import SceneError
+from ..errors import SceneError, SimulationError
 from .cycles import chain_cycle, limit_cycle
 
 LABELS = ("rest", "pure slip", "stick-slip", "irregular")
+RUN_CPU_LIMIT = 60.0  # s of CPU per grid point
 RUN = "asperity2d.dynamics.basins:chain_basin_run"
 
 
@@ -101,7 +111,30 @@ def chain_basin_run(*, chain: str, x_name: str, x_value: float, y_name: str, y_v
 
     kwargs = _decode_chain(chain)
     kwargs = with_initial(with_initial(kwargs, x_name, x_value), y_name, y_value)
-    return classify_chain(simulate_chain(**kwargs), rtol=rtol)
+    with cpu_limit(RUN_CPU_LIMIT):
+        result = simulate_chain(**kwargs)
+    return classify_chain(result, rtol=rtol)
+
+
+@contextlib.contextmanager
+def cpu_limit(seconds: float):
+    """Raise SimulationError if the block uses more than ``seconds`` of CPU (main thread, POSIX only)."""
+    usable = hasattr(signal, "setitimer") and threading.current_thread() is threading.main_thread()
+    if not usable:
+        yield
+        return
+
+    def expire(signum, frame):
+        raise SimulationError(f"the run used more than {seconds:g} s of CPU (RUN_CPU_LIMIT); "
+                              "hint: the solver may be stalled at a switching instant")
+
+    previous = signal.signal(signal.SIGPROF, expire)
+    signal.setitimer(signal.ITIMER_PROF, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_PROF, 0)
+        signal.signal(signal.SIGPROF, previous)
 
 
 def _encode_chain(chain: dict) -> str:
