@@ -153,3 +153,16 @@ def test_shifting_the_lower_surface_changes_nothing():
     r1, r2 = a.simulate(scene, 3e-7), a.simulate(shifted, 3e-7)
     assert np.allclose(r2.x - r1.x, 0.37e-6, rtol=0, atol=1e-15)  # 1e-9 of the base: round-off of the shift
     assert np.allclose(r2.drive_force, r1.drive_force, rtol=0, atol=1e-12 * np.abs(r1.drive_force).max())
+
+
+def test_cpu_limit_bounds_a_run():
+    from asperity2d import SimulationError
+    from asperity2d.dynamics.basins import cpu_limit
+
+    with pytest.raises(SimulationError, match="CPU"):
+        with cpu_limit(0.2):
+            while True:  # a stalled solver: never returns on its own
+                sum(range(1000))
+    with cpu_limit(5.0):  # a run within its budget is untouched, and the timer is cleared afterwards
+        total = sum(range(1000))
+    assert total == 499500
