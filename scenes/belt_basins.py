@@ -7,6 +7,8 @@ Run: ``python scenes/belt_basins.py [--quick] [--grid N] [--workers N] [-o DIR] 
   other coordinates at eq 3.12, each run 100 s with the exact solver and
   classified rest / pure slip / stick-slip period-n / irregular
   (:mod:`asperity2d.dynamics.basins`), kept in a resumable sweep store;
+* a sample of the points classed irregular run again four times longer
+  (does the class hold, or was it a long transient?);
 * the same map for a contrast chain with static friction 0.4 above the
   kinetic 0.2 (the thesis uses one coefficient, so the base case has no
   static excess);
@@ -20,15 +22,36 @@ import os
 
 import numpy as np
 
-from asperity2d import scripting
+from asperity2d import SimulationError, scripting
 from asperity2d.belt import presets, simulate_chain
 from asperity2d.dynamics import chain_lyapunov, floquet
-from asperity2d.dynamics.basins import chain_basins
+from asperity2d.dynamics.basins import (LABELS, RUN_CPU_LIMIT, chain_basins, classify_chain, cpu_limit,
+                                        with_initial)
 from asperity2d.dynamics.plots import plot_basins
 from asperity2d.render.sound import write_wav
 
 X_RANGE = (-0.3, 0.9)  # m: around mass 1's equilibrium under kinetic friction, 0.294 m
 V_RANGE = (-0.6, 0.6)  # m/s
+
+
+def recheck_irregular(bm, chain, factor, count, seed=0):
+    """Run up to ``count`` grid points classed irregular again, ``factor`` times longer: a long transient
+    (sparse sticks on the way to pure slip) changes class, a sustained irregular motion does not."""
+    i, j = np.nonzero(bm.values["label"] == 3)
+    if i.size == 0:
+        return {"checked": 0}
+    pick = np.random.default_rng(seed).choice(i.size, min(count, i.size), replace=False)
+    classes = []
+    for k in pick:
+        kw = with_initial(with_initial(chain, bm.x_name, bm.x_values[i[k]]), bm.y_name, bm.y_values[j[k]])
+        kw.update(t_end=factor * chain["t_end"], n_samples=factor * (chain["n_samples"] - 1) + 1)
+        try:
+            with cpu_limit(RUN_CPU_LIMIT):
+                classes.append(LABELS[int(classify_chain(simulate_chain(**kw))["label"])])
+        except SimulationError:
+            classes.append("failed")
+    return {"checked": len(classes), "t_end_s": factor * chain["t_end"],
+            "classes": {name: classes.count(name) for name in sorted(set(classes))}}
 
 
 def basin_summary(bm) -> dict:
@@ -60,7 +83,8 @@ def main(argv=None) -> int:
                           store=out / f"{name}.runs", workers=args.workers, progress=not args.json)
         title = ("Table 2 base case (mu = 0.2, c = 0)" if name == "base" else
                  "contrast: mu_s = 0.4 > mu_k = 0.2") + f", {size} x {size} runs of {t_end:g} s"
-        summary[name] = {**basin_summary(bm), "plot": str(plot_basins(bm, out / f"basins_{name}.png", title=title))}
+        summary[name] = {**basin_summary(bm), "plot": str(plot_basins(bm, out / f"basins_{name}.png", title=title)),
+                         "irregular_rechecked": recheck_irregular(bm, chain, 2 if quick else 4, 2 if quick else 20)}
     # stability of the contrast's cycle reached from eq 3.12 (the base case has none to analyse)
     long = 120.0 if quick else 300.0
     try:
@@ -80,7 +104,9 @@ def main(argv=None) -> int:
     b, c = summary["base"], summary["contrast_mu_s_0.4"]
     lines = [f"base case, {grid} x {grid} ICs over {t_end:g} s: {b['counts']}",
              f"  last stick onset: median {b['last_stick_s']['median']:.3g} s, max {b['last_stick_s']['max']:.3g} s",
-             f"contrast mu_s = 0.4: {c['counts']}, periods {c['periods_s'][:6]}"]
+             f"  irregular points run again longer: {b['irregular_rechecked']}",
+             f"contrast mu_s = 0.4: {c['counts']}, periods {c['periods_s'][:6]}",
+             f"  irregular points run again longer: {c['irregular_rechecked']}"]
     fl = summary["floquet_contrast_eq312"]
     if "moduli" in fl:
         lines.append(f"contrast cycle from eq 3.12: period {fl['period_s']:.6g} s (period-{fl['multiplicity']}), "
