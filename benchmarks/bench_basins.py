@@ -100,6 +100,19 @@ def run(quick: bool = False, full: bool = False) -> dict:
     return out
 
 
+def headline(res) -> list:
+    """Rows for ``benchmarks/run_all.py --only basins``: (figure, value, target)."""
+    rows = []
+    for name, r in res["per_run"].items():
+        rows.append((f"basin grid point, {name}: ms CPU per 100 s run", r["ms_per_run_median"], "a few ms"))
+        rows.append((f"basin map 100x100, {name}: min on 2 idle cores (from the CPU per run)",
+                     r["map_100x100_minutes_on_2_idle_cores"], "a few minutes"))
+    rows.append(("basin sweep: time in runs / wall, 2 workers", res["sweep"]["parallel_speedup"], "close to 2"))
+    if "full_map" in res:
+        rows.append(("basin map 100x100 measured (min)", res["full_map"]["wall_minutes"], "a few minutes"))
+    return rows
+
+
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--quick", action="store_true")
