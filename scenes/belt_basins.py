@@ -8,7 +8,8 @@ Run: ``python scenes/belt_basins.py [--quick] [--grid N] [--workers N] [-o DIR] 
   classified rest / pure slip / stick-slip period-n / irregular
   (:mod:`asperity2d.dynamics.basins`), kept in a resumable sweep store;
 * a sample of the points classed irregular run again four times longer
-  (does the class hold, or was it a long transient?);
+  (does the class hold, or was it a long transient?), and the largest
+  Lyapunov exponent of a few that stay irregular (chaos or not?);
 * the same map for a contrast chain with static friction 0.4 above the
   kinetic 0.2 (the thesis uses one coefficient, so the base case has no
   static excess);
@@ -24,7 +25,7 @@ import numpy as np
 
 from asperity2d import SimulationError, scripting
 from asperity2d.belt import presets, simulate_chain
-from asperity2d.dynamics import chain_lyapunov, floquet
+from asperity2d.dynamics import chain_lyapunov, floquet, flow_map
 from asperity2d.dynamics.basins import (LABELS, RUN_CPU_LIMIT, chain_basins, classify_chain, cpu_limit,
                                         with_initial)
 from asperity2d.dynamics.plots import plot_basins
@@ -34,24 +35,32 @@ X_RANGE = (-0.3, 0.9)  # m: around mass 1's equilibrium under kinetic friction, 
 V_RANGE = (-0.6, 0.6)  # m/s
 
 
-def recheck_irregular(bm, chain, factor, count, seed=0):
+def recheck_irregular(bm, chain, factor, count, chaos, steps, seed=0):
     """Run up to ``count`` grid points classed irregular again, ``factor`` times longer: a long transient
-    (sparse sticks on the way to pure slip) changes class, a sustained irregular motion does not."""
+    (sparse sticks on the way to pure slip) changes class, a sustained irregular motion does not. For the
+    first ``chaos`` of those still irregular, the largest Lyapunov exponent (Benettin, ``steps`` x 2 s after
+    a transient of t_end): positive for chaos, ~0 (to ~1e-3 1/s over 300 s) for a cycle or a torus."""
     i, j = np.nonzero(bm.values["label"] == 3)
     if i.size == 0:
         return {"checked": 0}
     pick = np.random.default_rng(seed).choice(i.size, min(count, i.size), replace=False)
-    classes = []
+    classes, exponents = [], []
     for k in pick:
         kw = with_initial(with_initial(chain, bm.x_name, bm.x_values[i[k]]), bm.y_name, bm.y_values[j[k]])
-        kw.update(t_end=factor * chain["t_end"], n_samples=factor * (chain["n_samples"] - 1) + 1)
+        longer = dict(kw, t_end=factor * chain["t_end"], n_samples=factor * (chain["n_samples"] - 1) + 1)
         try:
             with cpu_limit(RUN_CPU_LIMIT):
-                classes.append(LABELS[int(classify_chain(simulate_chain(**kw))["label"])])
+                classes.append(LABELS[int(classify_chain(simulate_chain(**longer))["label"])])
         except SimulationError:
             classes.append("failed")
+        if classes[-1] == "irregular" and len(exponents) < chaos:
+            s = flow_map(kw, np.concatenate([kw["x0"], kw["v0"]]), chain["t_end"])
+            settled = dict(kw, x0=s[:len(s) // 2].tolist(), v0=s[len(s) // 2:].tolist())
+            exponents.append({"x1": float(bm.x_values[i[k]]), "v1": float(bm.y_values[j[k]]),
+                              "lyapunov_per_s": chain_lyapunov(settled, steps=steps, interval=2.0).value})
     return {"checked": len(classes), "t_end_s": factor * chain["t_end"],
-            "classes": {name: classes.count(name) for name in sorted(set(classes))}}
+            "classes": {name: classes.count(name) for name in sorted(set(classes))},
+            "lyapunov_of_still_irregular": exponents}
 
 
 def basin_summary(bm) -> dict:
@@ -83,8 +92,11 @@ def main(argv=None) -> int:
                           store=out / f"{name}.runs", workers=args.workers, progress=not args.json)
         title = ("Table 2 base case (mu = 0.2, c = 0)" if name == "base" else
                  "contrast: mu_s = 0.4 > mu_k = 0.2") + f", {size} x {size} runs of {t_end:g} s"
-        summary[name] = {**basin_summary(bm), "plot": str(plot_basins(bm, out / f"basins_{name}.png", title=title)),
-                         "irregular_rechecked": recheck_irregular(bm, chain, 2 if quick else 4, 2 if quick else 20)}
+        detail = "last_stick" if name == "base" else "stick_fraction"
+        summary[name] = {**basin_summary(bm),
+                         "plot": str(plot_basins(bm, out / f"basins_{name}.png", detail=detail, title=title)),
+                         "irregular_rechecked": recheck_irregular(bm, chain, 2 if quick else 4, 2 if quick else 20,
+                                                                  1 if quick else 3, 10 if quick else 150)}
     # stability of the contrast's cycle reached from eq 3.12 (the base case has none to analyse)
     long = 120.0 if quick else 300.0
     try:

@@ -42,6 +42,7 @@ def plot_spectra(spectra, path: str | os.PathLike, *, unit: str = "", title: str
 
 
 DETAILS = {"last_stick": "time of the last stick onset (s)", "period": "period of the limit cycle (s)",
+           "stick_fraction": "largest stuck fraction of a mass, last half",
            "amplitude": "amplitude over the last quarter", "pitches_per_cycle": "drive advance per cycle (pitches)"}
 
 
