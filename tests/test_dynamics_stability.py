@@ -113,3 +113,14 @@ def test_bad_input_names_the_parameter():
         chain_lyapunov(LINEAR, steps=1)
     with pytest.raises(SceneError, match="`method`"):
         lyapunov_series(np.arange(100.0), np.sin(np.arange(100.0)), method="wolf")
+
+
+def test_auto_falls_back_to_the_own_estimator_without_nolds(monkeypatch):
+    import asperity2d.dynamics.lyapunov as lyap
+
+    monkeypatch.setattr(lyap, "have_nolds", lambda: False)
+    y = logistic(1000)
+    est = lyap.lyapunov_series(np.arange(y.size, dtype=float), y, emb_dim=2, lag=1, min_tsep=10, trajectory_len=5)
+    assert est.method == "rosenstein" and est.value == pytest.approx(np.log(2), rel=0.03)
+    with pytest.raises(SceneError, match="nolds"):
+        lyap.lyapunov_series(np.arange(y.size, dtype=float), y, method="nolds")
