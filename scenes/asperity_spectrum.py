@@ -28,14 +28,13 @@ import os
 
 import numpy as np
 
-from asperity2d import scripting
-from asperity2d.builders import make_scene
+from asperity2d import make_scene, simulate
 from asperity2d.dynamics import signal, spectrum
 from asperity2d.dynamics.asperity_basins import WINDOW, asperity_basins, classify_asperity
 from asperity2d.dynamics.basins import LABELS
 from asperity2d.dynamics.plots import plot_spectra
 from asperity2d.render.sound import write_wav
-from asperity2d.simulate import simulate
+from asperity2d.studies import scripting
 
 DRIVES = {"default": (3_720.0, 120), "stiff": (37_200.0, 40)}  # N/m, lower asperities
 
