@@ -1,0 +1,69 @@
+"""The mode of each mass at a switching instant: stuck (0) or slipping (±1), and grazes.
+
+A frictional mass within ``SWITCH_TOL``·v_scale of belt speed sticks if the
+static force it needs, F_req = m·dV/dt - F_springs+dampers, is below the limit
+mu_s·N; otherwise it slips in the direction of the net force (which covers a
+reversal through belt speed). At the limit itself (within SWITCH_TOL of it)
+the trend of F_req decides: moving outwards, the mass slips.
+
+**Grazes.** :func:`.finder.find_event` ends a phase where a slipping mass
+*touches* belt speed (its relative velocity has a minimum within the tolerance
+of zero, located to machine precision). There the relative acceleration is
+zero, so F_req equals the kinetic force -s·mu_k·N:
+
+* mu_k·N below mu_s·N (beyond the tolerance): the mass sticks;
+* mu_k·N = mu_s·N (Coulomb, mu_s = mu_k): F_req sits on the limit and moves
+  outwards (the dip is a strict minimum), so the stick condition holds only at
+  that instant: the mass keeps slipping and the instant is reported as a
+  ``graze`` event, not as a stick interval. Its velocity is left as computed.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .finder import SWITCH_TOL
+from .spec import link_force
+
+
+def resolve_modes(spec, x, v, V, a_belt, previous, v_scale):
+    """New modes at a switching instant: returns (modes, v, grazing masses).
+
+    ``x``, ``v`` (m, m/s) the state, ``V``, ``a_belt`` the belt speed and
+    acceleration, ``previous`` the modes before the instant. Masses that end
+    stuck, or cross belt speed, get v = V exactly.
+    """
+    v = np.array(v, dtype=float)
+    previous = np.asarray(previous, dtype=int)
+    modes = previous.copy()
+    limit = spec.static_limit
+    rel = v - V
+    at_belt = spec.frictional & (np.abs(rel) <= SWITCH_TOL * v_scale)
+    off = ~at_belt
+    modes[off] = np.where(rel[off] >= 0, 1, -1)  # frictionless masses never stick
+    v_at = np.where(at_belt, V, v)  # the forces as if the masses at belt speed were stuck
+    f_sd = link_force(spec.k, x) + link_force(spec.c, v_at)
+    f_req = spec.m * a_belt - f_sd
+    tol = SWITCH_TOL * np.maximum(limit, 1e-300)
+    border = []
+    for i in np.flatnonzero(at_belt):
+        if abs(f_req[i]) < limit[i] - tol[i]:
+            modes[i] = 0
+        elif abs(f_req[i]) > limit[i] + tol[i]:
+            modes[i] = -int(np.sign(f_req[i]))
+        else:
+            modes[i] = 0
+            border.append(i)
+    if border:
+        # at the static limit: compare the trend of the required force with the tentative modes
+        a = (f_sd - modes * spec.kinetic_force) / spec.m
+        a[modes == 0] = a_belt
+        df_req = -(link_force(spec.k, v_at) + link_force(spec.c, a))
+        for i in border:
+            if np.sign(f_req[i]) * df_req[i] > 0 or (f_req[i] == 0 and df_req[i] != 0):
+                modes[i] = -int(np.sign(f_req[i] if f_req[i] != 0 else df_req[i]))
+    grazing = np.flatnonzero(at_belt & (previous != 0) & (modes == previous))
+    snap = at_belt & (modes != previous)
+    snap[modes == 0] = at_belt[modes == 0]
+    v[snap] = V
+    return modes, v, grazing
