@@ -19,8 +19,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .modal import linear_map
-from .spec import link_force
+from .modal import ModalForm, linear_map, scale_columns
+from .spec import force_row, link_force
 
 
 def event_rows(spec, modes):
@@ -39,64 +39,63 @@ def event_rows(spec, modes):
     return np.array(kind, dtype=int), np.array(mass, dtype=int)
 
 
-class _Rows:
-    def __init__(self, phase, v_scale):
-        self.phase, self.spec = phase, phase.spec
-        self.kind, self.mass = event_rows(phase.spec, phase.modes)
-        self.v_scale = v_scale
-        limit = self.spec.static_limit
-        self.f_scale = np.where(limit > 0, limit, 1.0)
+def event_map(spec, modes, V):
+    """(kind, mass, map, offset): g = map @ [x; v; a] + offset for a constant belt speed ``V`` (m/s)."""
+    kind, mass = event_rows(spec, modes)
+    n, v_scale = spec.n, spec.velocity_scale
+    f_scale = _force_scale(spec)
+    rows, cols, vals = [], [], []
+    offset = np.empty(kind.size)
+    for r, (k, i) in enumerate(zip(kind, mass)):
+        if k == 0:  # s·(v_i - V)/v_scale
+            s = modes[i] / v_scale
+            rows.append(r), cols.append(n + i), vals.append(s)
+            offset[r] = -s * V
+            continue
+        cols_i, coefs_i = force_row(spec, i)  # (limit + kappa·F_sd,i)/f_scale
+        rows += [r] * len(cols_i)
+        cols += cols_i
+        vals += [k / f_scale[i] * coef for coef in coefs_i]
+        offset[r] = spec.static_limit[i] / f_scale[i]
+    return kind, mass, linear_map((kind.size, 3 * n), (rows, cols, vals)), offset
+
+
+def _force_scale(spec):
+    return np.where(spec.static_limit > 0, spec.static_limit, 1.0)
+
+
+class ModalEvents:
+    """Event functions of a closed-form phase as modal forms (maps cached in the phase's template)."""
+
+    def __init__(self, phase):
+        t = phase.template
+        self.kind, self.mass = t.kind, t.mass
+        self.g = phase.form(t.event_shapes, t.event_map, t.event_offset)
+        lam = self.g.lam
+        dB = scale_columns(self.g.B, lam)
+        B = np.vstack([self.g.B, dB]) if isinstance(dB, np.ndarray) else _vstack(self.g.B, dB)
+        self._both = ModalForm(lam, B, np.concatenate([self.g.c0, self.g.c1]),
+                               np.concatenate([self.g.c1, np.zeros_like(self.g.c1)]))
+        #: rigorous bound on |d⁴g/dtau⁴| per row: sum of |b|·|lam|⁴
+        self.bound4 = t.event_shapes_abs @ (np.abs(phase.coef) * np.abs(lam) ** 4)
 
     def __len__(self):
         return self.kind.size
 
-
-class ModalEvents(_Rows):
-    """Event functions of a closed-form phase as modal forms (see :mod:`.modal`)."""
-
-    def __init__(self, phase, v_scale):
-        super().__init__(phase, v_scale)
-        spec, n, R = self.spec, self.spec.n, len(self.kind)
-        rows, cols, vals = [], [], []
-        offset = np.empty(R)
-        for r, (kind, i) in enumerate(zip(self.kind, self.mass)):
-            if kind == 0:  # s·(v_i - V)/v_scale
-                s = phase.modes[i] / v_scale
-                rows.append(r), cols.append(n + i), vals.append(s)
-                offset[r] = -s * phase.V
-                continue
-            # (limit + kappa·F_sd,i)/f_scale, F_sd,i = k_i x_i-1 - (k_i + k_i+1) x_i + k_i+1 x_i+1 (+ c, v)
-            w = kind / self.f_scale[i]
-            for base, links in ((0, spec.k), (n, spec.c)):
-                for j, coef in ((i - 1, links[i]), (i, -(links[i] + links[i + 1])), (i + 1, links[i + 1])):
-                    if 0 <= j < n and coef != 0:
-                        rows.append(r), cols.append(base + j), vals.append(w * coef)
-            offset[r] = spec.static_limit[i] / self.f_scale[i]
-        motion = phase.motion
-        sparse = not isinstance(motion.B, np.ndarray)
-        self.g = motion.compose(linear_map((R, 3 * n), sparse, (rows, cols, vals)), offset)
-        self.dg = self.g.derivative()
-        B = np.vstack([self.g.B, self.dg.B]) if not sparse else _vstack(self.g.B, self.dg.B)
-        self._both = type(motion)(motion.lam, B, np.concatenate([self.g.c0, self.dg.c0]),
-                                  np.concatenate([self.g.c1, self.dg.c1]))
-        lam4 = np.abs(motion.lam) ** 4
-        #: rigorous bound on |d⁴g/dtau⁴| per row
-        self.bound4 = np.abs(self.g.B) @ lam4 if not sparse else abs(self.g.B) @ lam4
-
     def values(self, tau):
         """(g, dg), each (rows, T), at times ``tau`` (s)."""
         both = self._both.at(tau)
-        R = len(self.kind)
+        R = self.kind.size
         return both[:R], both[R:]
 
     def point(self, r):
         """``f(t) -> (g, dg, d2g)`` of row ``r`` at one time, in closed form."""
         lam, b, c0, c1 = self.g.scalar(r)
-        b1, b2 = b * lam, b * lam * lam
+        M = np.vstack([b, b * lam, b * lam * lam])
 
         def f(t):
-            e = np.exp(lam * t)
-            return float((b @ e).real) + c0 + c1 * t, float((b1 @ e).real) + c1, float((b2 @ e).real)
+            d0, d1, d2 = (M @ np.exp(lam * t)).real
+            return float(d0) + c0 + c1 * t, float(d1) + c1, float(d2)
 
         return f
 
@@ -107,10 +106,19 @@ def _vstack(a, b):
     return scipy.sparse.vstack([a, b], format="csr")
 
 
-class SampledEvents(_Rows):
+class SampledEvents:
     """Event functions evaluated from ``phase.evaluate`` (integrated or expm-propagated phases)."""
 
     bound4 = None
+
+    def __init__(self, phase):
+        self.phase, self.spec = phase, phase.spec
+        self.kind, self.mass = event_rows(phase.spec, phase.modes)
+        self.v_scale = phase.spec.velocity_scale
+        self.f_scale = _force_scale(phase.spec)
+
+    def __len__(self):
+        return self.kind.size
 
     def values(self, tau):
         ph, spec = self.phase, self.spec

@@ -43,7 +43,7 @@ def find_event(events, horizon: float, step: float, chunk: int = 16):
     """First tau in (0, horizon] (s) where a switch or a velocity touch happens, or None.
 
     Rows that start within SWITCH_TOL of zero (the switch that opened this phase)
-    count as positive; in the first interval only a deep crossing of theirs counts.
+    count as positive; in the first interval only a crossing of theirs counts.
     """
     if len(events) == 0 or horizon <= 0:
         return None
@@ -59,31 +59,60 @@ def find_event(events, horizon: float, step: float, chunk: int = 16):
         g, d = events.values(taus)
         tg = np.concatenate([[t_prev], taus])
         G, D = np.column_stack([g_prev, g]), np.column_stack([d_prev, d])
-        h = np.diff(tg)
-        pos = G[:, :-1] > 0
+        flagged = _flags(G[:, :-1], G[:, 1:], D[:, :-1], D[:, 1:], np.diff(tg)[None, :], events.bound4)
         if first:
-            pos[opening, 0] = True
-        cross = pos & (G[:, 1:] <= 0)
-        low = _lower(G[:, :-1], G[:, 1:], D[:, :-1], D[:, 1:], h[None, :], events.bound4)
-        flagged = cross | (pos & (low <= SWITCH_TOL))
+            flagged[:, 0] = _flags(G[:, 0], G[:, 1], D[:, 0], D[:, 1], tg[1], events.bound4, opening)
         for k in np.flatnonzero(flagged.any(axis=0)):
-            times = [t for r in np.flatnonzero(flagged[:, k])
-                     if (t := _row_event(events, r, tg[k], tg[k + 1], G[r, k], G[r, k + 1], D[r, k], D[r, k + 1],
-                                         first and k == 0 and opening[r], horizon)) is not None]
-            if times:
-                return min(times)
+            t = _earliest(events, np.flatnonzero(flagged[:, k]), tg[k], tg[k + 1], G[:, k], G[:, k + 1], D[:, k],
+                          D[:, k + 1], opening if first and k == 0 else None, horizon)
+            if t is not None:
+                return t
         t_prev, g_prev, d_prev, first = tg[-1], G[:, -1], D[:, -1], False
         chunk = min(2 * chunk, 4096)
     return None
 
 
-def _lower(ga, gb, da, db, h, bound4, row=None):
+def _flags(ga, gb, da, db, h, bound4, opening=None):
+    """Rows (or rows x intervals) where g may come within SWITCH_TOL of zero on [a, b].
+
+    ``opening`` rows started at zero: they count as positive at ``a`` and only a crossing counts.
+    """
+    pos = ga > 0 if opening is None else (ga > 0) | opening
+    risky = pos & (_lower(ga, gb, da, db, h, bound4) <= SWITCH_TOL)
+    if opening is not None:
+        risky &= ~opening
+    return (pos & (gb <= 0)) | risky
+
+
+def _earliest(events, rows, a, b, ga, gb, da, db, opening, horizon, depth=0):
+    """Earliest switch among ``rows`` on [a, b]; ``ga`` ... ``db`` hold every row's end values.
+
+    Many flagged rows (long chains) are narrowed down by bisecting the interval with one
+    vectorised evaluation per halving, so that few rows need a root search.
+    """
+    if rows.size <= 2 or depth >= 20:
+        times = [t for r in rows
+                 if (t := _row_event(events, r, a, b, ga[r], gb[r], da[r], db[r],
+                                     opening is not None and opening[r], horizon)) is not None]
+        return min(times) if times else None
+    mid = 0.5 * (a + b)
+    g, d = events.values(np.array([mid]))
+    gm, dm = g[:, 0], d[:, 0]
+    b4 = None if events.bound4 is None else events.bound4[rows]
+    for lo, hi, g0, g1, d0, d1 in ((a, mid, ga, gm, da, dm), (mid, b, gm, gb, dm, db)):
+        op = None if opening is None else opening[rows]
+        sub = rows[_flags(g0[rows], g1[rows], d0[rows], d1[rows], hi - lo, b4, op)]
+        if sub.size and (t := _earliest(events, sub, lo, hi, g0, g1, d0, d1, opening, horizon, depth + 1)) is not None:
+            return t
+    return None
+
+
+def _lower(ga, gb, da, db, h, bound4):
     """Lower bound of g on intervals of width h from the end values and slopes (see module doc)."""
     if bound4 is None:
         error = 1e-3 * (np.abs(ga) + np.abs(gb) + h * (np.abs(da) + np.abs(db)))
     else:
-        b4 = bound4 if row is None else bound4[row]
-        error = h**4 / 384 * (b4[:, None] if np.ndim(b4) else b4)
+        error = h**4 / 384 * (bound4[:, None] if np.ndim(ga) == 2 else bound4)
     return np.minimum(ga, gb) - 4 / 27 * h * (np.abs(da) + np.abs(db)) - error
 
 
@@ -109,7 +138,7 @@ def _first_contact(f, a, b, ga, gb, da, db, bound4, r, depth):
         t_zero = _zero(lambda t: f(t)[:2], a, b, ga, gb)
         t_min, g_min = _dip_after(f, t_zero, b, b - a)
         return ("cross", t_zero) if g_min < -SWITCH_TOL else ("touch", t_min)
-    if _lower(ga, gb, da, db, b - a, bound4, r) > SWITCH_TOL:
+    if _lower(ga, gb, da, db, b - a, None if bound4 is None else bound4[r]) > SWITCH_TOL:
         return None
     if da < 0 < db:  # one interior minimum
         t_min = _zero(lambda t: f(t)[1:], a, b, da, db)

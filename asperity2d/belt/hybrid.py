@@ -24,6 +24,7 @@ import numpy as np
 
 from ..errors import SimulationError
 from .backend import RawRun, StepBudget, intervals_from_state
+from .energy import quadrature_work
 from .loop import event_loop
 from .spec import link_force
 
@@ -121,6 +122,11 @@ class OdePhase:
         a = (link_force(spec.k, x) + link_force(spec.c, v) + self._slip_force(v - V[None, :])) / spec.m[:, None]
         a[self.stuck] = self.belt_acceleration(tau)[None, :]
         return x, v, a
+
+    def sample(self, tau):
+        """Positions, velocities, friction forces (n, T) and work integrals (3, T, J) at ``tau`` (s)."""
+        x, v, a = self.evaluate(tau)
+        return x, v, self.friction_force(x, v, a, tau), quadrature_work(self, np.asarray(tau, dtype=float))
 
     def friction_force(self, x, v, a, tau):
         spec = self.spec

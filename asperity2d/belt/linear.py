@@ -19,83 +19,124 @@ import math
 import numpy as np
 
 from .backend import RawRun
+from .energy import modal_work, power_maps, quadrature_work
+from .events import event_map
 from .loop import event_loop
-from .modal import ModalForm, Segment, SegmentModes, block_matrix
+from .modal import ModalForm, block_matrix, scale_columns
+from .segment import Segment, SegmentModes
 from .spec import link_force
 
-#: bounded memory on long chains: at most this many cached segment eigendecompositions
+#: bounded memory on long chains: at most this many cached segments and mode patterns
 CACHE_SIZE = 512
 
 
 def run_closed_form(spec, options) -> RawRun:
     """Event-driven run with closed-form phases (constant belt speed, piecewise-constant friction)."""
-    cache: dict = {}
+    segments: dict = {}
+    templates: dict = {}
 
     def make_phase(modes, x, v, t):
-        return LinearPhase(spec, modes, x, v, spec.v_belt, cache)
+        key = np.asarray(modes, dtype=np.int8).tobytes()
+        template = templates.get(key)
+        if template is None:
+            template = templates[key] = Template(spec, modes, segments)
+            _bound(templates)
+        return LinearPhase(template, x, v)
 
     return event_loop(spec, options, make_phase)
+
+
+def _bound(cache):
+    if len(cache) > CACHE_SIZE:
+        cache.pop(next(iter(cache)))
+
+
+class Template:
+    """What a phase needs that depends only on the chain and its mode pattern (cached per run).
+
+    The segments and their modes; ``lam`` (S,) and ``shapes`` (3n, S): the
+    rows x, v, a of every segment's modes, so that a phase's motion is
+    ``Re((shapes·coef)·exp(lam·tau)) + c0 + c1·tau``; the event-function and
+    power maps (linear in the state) and their products with ``shapes``.
+    """
+
+    def __init__(self, spec, modes, segments):
+        n, V = spec.n, spec.v_belt
+        self.spec, self.V = spec, float(V)
+        self.modes = np.asarray(modes)
+        self.stuck = self.modes == 0
+        #: kinetic force on each slipping mass (N): opposes the relative velocity
+        self.fric_slip = -self.modes * spec.kinetic_force
+        self.runs = []
+        for lo, hi in _runs(self.stuck, spec):
+            if (lo, hi) not in segments:
+                segments[lo, hi] = SegmentModes(spec, lo, hi)
+                _bound(segments)
+            self.runs.append((lo, hi, segments[lo, hi]))
+        rate = max((m.rate for _, _, m in self.runs), default=0.0)
+        #: scan step (s): 1/16 of the fastest period, or no limit for an all-stuck chain
+        self.step = 2 * math.pi / (16 * rate) if rate > 0 else math.inf
+        self.exact = all(m.exact for _, _, m in self.runs)
+        if not self.exact:
+            return
+        blocks, col = [], 0
+        for lo, hi, m in self.runs:
+            L, S = hi - lo + 1, m.lam.size
+            idx, cols = lo + np.arange(L), col + np.arange(S)
+            blocks += [(idx, cols, m.shapes[:L]), (n + idx, cols, m.shapes[L:]), (2 * n + idx, cols, m.shapes[L:] * m.lam)]
+            col += S
+        self.lam = np.concatenate([m.lam for _, _, m in self.runs]) if self.runs else np.zeros(0, complex)
+        self.shapes = block_matrix(blocks, (3 * n, col))
+        self.kind, self.mass, self.event_map, self.event_offset = event_map(spec, self.modes, self.V)
+        self.event_shapes = self.event_map @ self.shapes
+        self.event_shapes_abs = abs(self.event_shapes)
+        self.power_map, self.power_offset, self.rate_map = power_maps(spec, self.stuck, self.fric_slip, self.V)
+        self.power_shapes, self.rate_shapes = self.power_map @ self.shapes, self.rate_map @ self.shapes
 
 
 class LinearPhase:
     """The chain from one switch to the next: stuck masses ride the belt, segments move exactly.
 
-    ``modes`` (n,) 0 stuck or ±1 slipping direction; ``x0``, ``v0`` (m, m/s) the
-    state at the phase start; ``V`` (m/s) the belt speed; ``cache`` maps
-    (lo, hi) to :class:`~.modal.SegmentModes`.
+    ``template`` the mode pattern's :class:`Template`; ``x0``, ``v0`` (m, m/s) the state
+    at the phase start. ``motion`` (rows x, v, a) and ``coef`` exist when every segment
+    has a modal form.
     """
 
-    def __init__(self, spec, modes, x0, v0, V, cache):
-        self.spec, self.V = spec, float(V)
-        self.modes = np.asarray(modes)
-        self.stuck = self.modes == 0
+    def __init__(self, template, x0, v0):
+        spec, V = template.spec, template.V
+        self.template, self.spec, self.V = template, spec, V
+        self.modes, self.stuck, self.fric_slip, self.step = template.modes, template.stuck, template.fric_slip, template.step
         self.x0, self.v0 = np.asarray(x0, dtype=float), np.asarray(v0, dtype=float)
-        #: kinetic force on each slipping mass (N): opposes the relative velocity
-        self.fric_slip = -self.modes * spec.kinetic_force
-        self.segments = [self._segment(lo, hi, cache) for lo, hi in _runs(self.stuck, spec)]
-        rate = max((s.modes.rate for s in self.segments), default=0.0)
-        #: scan step (s): 1/16 of the fastest period, or no limit for an all-stuck chain
-        self.step = 2 * math.pi / (16 * rate) if rate > 0 else math.inf
-        self.motion = self._motion() if all(s.modes.exact for s in self.segments) else None
+        k, c, n = spec.k, spec.c, spec.n
+        self.segments = []
+        for lo, hi, modes in template.runs:
+            p = self.fric_slip[lo : hi + 1].copy()
+            q = np.zeros(hi - lo + 1)
+            # a neighbour outside the segment is stuck (it moves as x_s0 + V·tau) or unlinked
+            # (zero coefficients: its value does not matter); walls never move
+            if lo > 0:
+                p[0] += k[lo] * self.x0[lo - 1] + c[lo] * V
+                q[0] += k[lo] * V
+            if hi < n - 1:
+                p[-1] += k[hi + 1] * self.x0[hi + 1] + c[hi + 1] * V
+                q[-1] += k[hi + 1] * V
+            y0 = np.concatenate([self.x0[lo : hi + 1], self.v0[lo : hi + 1]])
+            self.segments.append(Segment(modes, lo, y0, p, q))
+        self.motion = None
+        if template.exact:
+            # stuck rows: x = x0 + V·tau, v = V, a = 0; segment rows: particular solution + modes
+            c0 = np.concatenate([self.x0, np.full(n, V), np.zeros(n)])
+            c1 = np.concatenate([np.full(n, V), np.zeros(2 * n)])
+            for seg in self.segments:
+                rows = np.concatenate([seg.lo + np.arange(seg.L), n + seg.lo + np.arange(seg.L)])
+                c0[rows], c1[rows] = seg.c0, seg.c1
+            self.coef = np.concatenate([s.coef for s in self.segments]) if self.segments else np.zeros(0, complex)
+            self.motion = ModalForm(template.lam, scale_columns(template.shapes, self.coef), c0, c1)
 
-    def _segment(self, lo, hi, cache):
-        spec, k, c, V = self.spec, self.spec.k, self.spec.c, self.V
-        modes = cache.get((lo, hi))
-        if modes is None:
-            modes = cache[(lo, hi)] = SegmentModes(spec, lo, hi)
-            if len(cache) > CACHE_SIZE:
-                cache.pop(next(iter(cache)))
-        p = self.fric_slip[lo : hi + 1].copy()
-        q = np.zeros(hi - lo + 1)
-        # a neighbour outside the segment is stuck (it moves as x_s0 + V·tau) or unlinked
-        # (zero coefficients: its value does not matter); walls never move
-        if lo > 0:
-            p[0] += k[lo] * self.x0[lo - 1] + c[lo] * V
-            q[0] += k[lo] * V
-        if hi < spec.n - 1:
-            p[-1] += k[hi + 1] * self.x0[hi + 1] + c[hi + 1] * V
-            q[-1] += k[hi + 1] * V
-        sl = slice(lo, hi + 1)
-        return Segment(modes, lo, np.concatenate([self.x0[sl], self.v0[sl]]), p, q)
-
-    def _motion(self) -> ModalForm:
-        """Rows x, v, a (3n) of the whole chain as one modal form.
-
-        Stuck rows: x = x0 + V·tau, v = V, a = 0. Segment rows: its modal form,
-        and for a the v rows differentiated (d/dtau exp(lam·tau) = lam·exp(lam·tau);
-        the particular solution's velocity is constant).
-        """
-        n = self.spec.n
-        c0 = np.concatenate([self.x0, np.full(n, self.V), np.zeros(n)])
-        c1 = np.concatenate([np.full(n, self.V), np.zeros(2 * n)])
-        blocks, col = [], 0
-        for seg in self.segments:
-            rows, cols, values = seg.block(n, col)
-            blocks += [(rows, cols, values), (n + rows[seg.L :], cols, values[seg.L :] * seg.modes.lam)]
-            c0[rows], c1[rows] = seg.c0, seg.c1
-            col += 2 * seg.L
-        lam = np.concatenate([s.modes.lam for s in self.segments]) if self.segments else np.zeros(0, complex)
-        return ModalForm(lam, block_matrix(blocks, (3 * n, col)), c0, c1)
+    def form(self, shapes, rows_map, offset) -> ModalForm:
+        """The modal form of ``rows_map @ [x; v; a] + offset`` given ``shapes = rows_map @ template.shapes``."""
+        m = self.motion
+        return ModalForm(m.lam, scale_columns(shapes, self.coef), rows_map @ m.c0 + offset, rows_map @ m.c1)
 
     def evaluate(self, tau):
         """Positions, velocities, accelerations (each (n, T)) at ``tau`` (s) after the phase start."""
@@ -113,6 +154,18 @@ class LinearPhase:
         a = (self.spring_damper_force(x, v) + self.fric_slip[:, None]) / self.spec.m[:, None]
         a[self.stuck] = 0.0
         return x, v, a
+
+    def sample(self, tau):
+        """Positions, velocities, friction forces (n, T) and work integrals (3, T, J) at ``tau`` (s)."""
+        tau = np.asarray(tau, dtype=float)
+        if self.motion is None:
+            x, v, a = self.evaluate(tau)
+            return x, v, self.friction_force(x, v, a, tau), quadrature_work(self, tau)
+        growth = self.motion.growth(tau)
+        y = self.motion.at(tau, growth)
+        n = self.spec.n
+        x, v = y[:n], y[n : 2 * n]
+        return x, v, self.friction_force(x, v, None, tau), modal_work(self, tau, growth)
 
     def belt_velocity(self, tau):
         return np.full(np.size(tau), self.V)

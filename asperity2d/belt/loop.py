@@ -10,10 +10,7 @@ integrals are taken from each phase before it is discarded:
 * damper loss    D_c = ∫ Σ c_j·(Δv_j)² dt   (J)
 * stored energy  E = Σ ½ m v² + Σ ½ k Δx²  so that E - E(0) = W_b - D_f - D_c.
 
-The integrals use 10-point Gauss-Legendre quadrature on pieces no longer than
-1/4 of the fastest period: for the sums of exponentials of a closed-form phase
-the quadrature error is below 1e-19 of the integrand's scale, so the books
-close to rounding and are an independent check of the solution.
+(see :mod:`.energy` for how each phase integrates them).
 """
 
 from __future__ import annotations
@@ -25,11 +22,6 @@ from .backend import Event, RawRun
 from .events import ModalEvents, SampledEvents
 from .finder import find_event
 from .modes import resolve_modes
-
-_GL_X, _GL_W = np.polynomial.legendre.leggauss(10)
-#: quadrature pieces span at most this many scan steps (1/16 period each)
-_PIECE_STEPS = 4
-
 
 def event_loop(spec, options, make_phase) -> RawRun:
     """Run phases and switches from t = 0 to ``spec.t_end``.
@@ -50,7 +42,7 @@ def event_loop(spec, options, make_phase) -> RawRun:
     intervals: list[list] = [[] for _ in range(spec.n)]
     while True:
         phase = make_phase(modes, x, v, t)
-        rows = (ModalEvents if getattr(phase, "motion", None) is not None else SampledEvents)(phase, v_scale)
+        rows = ModalEvents(phase) if phase.motion is not None else SampledEvents(phase)
         horizon = spec.t_end - t
         tau_e = find_event(rows, horizon, phase.step)
         t1 = spec.t_end if tau_e is None else t + tau_e
@@ -100,35 +92,15 @@ def event_loop(spec, options, make_phase) -> RawRun:
 
 
 def _record(phase, taus, t0, length, work, rec):
-    """Append samples at ``taus`` (s from the phase start) and integrate the energy flows over [0, length].
-
-    Returns the cumulative (belt work, friction loss, damper loss) at the phase end (J).
-    """
-    spec = phase.spec
-    marks = np.concatenate([[0.0], taus, [length]])
-    gaps = np.diff(marks)
-    piece = _PIECE_STEPS * phase.step
-    pieces = np.maximum(1, np.ceil(gaps / piece)).astype(int) if np.isfinite(piece) else np.ones(gaps.size, int)
-    pieces[gaps <= 0] = 0
-    widths = np.repeat(np.where(pieces > 0, gaps / np.maximum(pieces, 1), 0.0), pieces)
-    within = np.arange(widths.size) - np.repeat(np.cumsum(pieces) - pieces, pieces)  # piece index inside its gap
-    starts = np.repeat(marks[:-1], pieces) + within * widths
-    nodes = (starts[:, None] + 0.5 * widths[:, None] * (_GL_X[None, :] + 1)).ravel()
-    eval_t = np.concatenate([taus, nodes])
-    x, v, a = phase.evaluate(eval_t)
-    V = phase.belt_velocity(eval_t)
-    fric = phase.friction_force(x, v, a, eval_t)
-    dv = np.diff(v, axis=0, prepend=0.0, append=0.0)
-    power = np.vstack([fric.T @ np.ones(spec.n) * V, ((V[None, :] - v) * fric).sum(axis=0), spec.c @ dv**2])
+    """Append samples at ``taus`` (s from the phase start); return the cumulative work (3,) at ``length``."""
+    x, v, fric, w = phase.sample(np.append(taus, length))
+    w = work[:, None] + w
     m = taus.size
-    piece_int = (power[:, m:].reshape(3, -1, _GL_X.size) @ _GL_W) * 0.5 * widths
-    cum = np.column_stack([np.zeros(3), np.cumsum(piece_int, axis=1)])
-    work_marks = work[:, None] + np.column_stack([np.zeros(3), cum[:, np.cumsum(pieces)]])
     if m:
         rec["t"].append(t0 + taus)
         rec["x"].append(x[:, :m])
         rec["v"].append(v[:, :m])
         rec["state"].append(np.repeat(phase.modes[:, None], m, axis=1))
         rec["friction"].append(fric[:, :m])
-        rec["work"].append(work_marks[:, 1 : m + 1])
-    return work_marks[:, -1]
+        rec["work"].append(w[:, :m])
+    return w[:, -1]

@@ -1,23 +1,17 @@
-"""Sums of exponentials: the closed form of a linear chain segment between two switches.
+"""Sums of exponentials: the closed form of everything a phase of the exact solver follows.
 
-A segment of L slipping masses with constant kinetic forces obeys
+Between two switches every quantity of a chain at constant belt speed --
+positions, velocities, accelerations, event functions, powers -- is a
+:class:`ModalForm`
 
-    y' = A·y + p/m + q/m·tau,   y = [x; v],   A = [[0, I], [-M⁻¹K, -M⁻¹C]]
+    r(tau) = Re(B · exp(lam·tau)) + c0 + c1·tau
 
-(p, q the constant and ramp forces from the kinetic friction and from stuck
-neighbours that ride the belt). With A = W·diag(lam)·W⁻¹ and the particular
-solution x_p = alpha + beta·tau (K·beta = q, K·alpha = p - C·beta),
-
-    y(tau) = Re(W · (coef · exp(lam·tau))) + [alpha; beta] + [beta; 0]·tau.
-
-Every quantity the exact solver follows through a phase -- positions,
-velocities, accelerations, event functions -- is therefore a
-:class:`ModalForm`, ``Re(B·exp(lam·tau)) + c0 + c1·tau``, and linear maps and
-time derivatives of a ModalForm are ModalForms: event functions and their
-derivatives come in closed form, evaluated on many times with one ``exp`` and
-one matrix product. Segments whose K is singular (no spring anchors them) or
-whose A is defective have no such form; :class:`Segment` then propagates the
-augmented system [y, tau, 1] with ``scipy.linalg.expm``.
+with ``lam`` the modes of the slipping segments (:mod:`.segment`). Linear maps
+and time derivatives of a ModalForm are ModalForms, integrals and integrals of
+squares are closed form: event functions and their derivatives come exactly,
+and many times are evaluated with one ``exp``/``cos``/``sin`` and two real
+matrix products. Long chains store ``B`` as a sparse matrix (block structure:
+each row touches one or two segments).
 """
 
 from __future__ import annotations
@@ -26,32 +20,55 @@ import numpy as np
 
 #: above this many exponentials, forms are stored as sparse matrices (cost ~ non-zeros, not R·S)
 SPARSE_ABOVE = 64
+#: linear maps wider than this many state rows are stored as sparse matrices
+DENSE_MAP_WIDTH = 48
 
 
 class ModalForm:
-    """Rows ``r(tau) = Re(B @ exp(lam * tau)) + c0 + c1 * tau``; ``B`` dense or scipy CSR."""
+    """Rows ``r(tau) = Re(B @ exp(lam * tau)) + c0 + c1 * tau`` (``B`` complex, dense or scipy CSR).
 
-    __slots__ = ("lam", "B", "c0", "c1")
+    ``lam`` holds one eigenvalue of each complex-conjugate pair (Im >= 0) with the
+    pair's weight 2 folded into ``B``: real outputs need only half the exponentials,
+    evaluated in real arithmetic (``exp``, ``cos``, ``sin`` and two real matrix products,
+    which NumPy does far faster than one complex product).
+    """
+
+    __slots__ = ("lam", "B", "Br", "Bi", "c0", "c1")
 
     def __init__(self, lam, B, c0, c1):
         self.lam, self.B, self.c0, self.c1 = lam, B, c0, c1
+        self.Br, self.Bi = B.real, B.imag
 
-    def at(self, tau) -> np.ndarray:
-        """Values (R, T) at times ``tau`` (s, (T,))."""
-        growth = np.exp(np.multiply.outer(self.lam, tau))
-        return (self.B @ growth).real + self.c0[:, None] + np.multiply.outer(self.c1, tau)
+    def growth(self, tau):
+        """(Re, Im) of exp(lam·tau), each (S, T)."""
+        phase = np.multiply.outer(self.lam.imag, tau)
+        cos, sin = np.cos(phase), np.sin(phase)
+        if np.any(self.lam.real):
+            amp = np.exp(np.multiply.outer(self.lam.real, tau))
+            cos *= amp
+            sin *= amp
+        return cos, sin
+
+    def at(self, tau, growth=None) -> np.ndarray:
+        """Values (R, T) at times ``tau`` (s, (T,)); ``growth`` reuses :meth:`growth` of the same times."""
+        cos, sin = self.growth(tau) if growth is None else growth
+        return self.Br @ cos - self.Bi @ sin + self.c0[:, None] + np.multiply.outer(self.c1, tau)
+
+    def integral(self, tau, growth=None) -> np.ndarray:
+        """Integrals from 0 to ``tau`` (R, T) in closed form (every lam non-zero)."""
+        cos, sin = self.growth(tau) if growth is None else growth
+        Bl = scale_columns(self.B, 1.0 / self.lam)
+        return (Bl.real @ (cos - 1.0) - Bl.imag @ sin + np.multiply.outer(self.c0, tau)
+                + np.multiply.outer(0.5 * self.c1, np.square(tau)))
 
     def derivative(self) -> "ModalForm":
         """d/dtau of every row."""
-        if isinstance(self.B, np.ndarray):
-            B = self.B * self.lam
-        else:
-            B = self.B @ _sparse().diags_array(self.lam)
-        return ModalForm(self.lam, B, self.c1, np.zeros_like(self.c1))
+        return ModalForm(self.lam, scale_columns(self.B, self.lam), self.c1, np.zeros_like(self.c1))
 
     def compose(self, L, offset) -> "ModalForm":
-        """The rows ``L @ r(tau) + offset`` (L dense or sparse, matching ``B``)."""
-        return ModalForm(self.lam, L @ self.B, L @ self.c0 + offset, L @ self.c1)
+        """The rows ``L @ r(tau) + offset`` (L real, dense or sparse like ``B``)."""
+        B = L @ self.Br + 1j * (L @ self.Bi) if isinstance(self.B, np.ndarray) else L @ self.B
+        return ModalForm(self.lam, B, L @ self.c0 + offset, L @ self.c1)
 
     def scalar(self, r: int) -> tuple:
         """(lam, b, c0, c1) of row ``r`` with only its non-zero exponentials, for root finding."""
@@ -59,8 +76,61 @@ class ModalForm:
             b = self.B[r]
             keep = b != 0
             return self.lam[keep], b[keep], float(self.c0[r]), float(self.c1[r])
-        row = self.B[[r]].tocoo()
-        return self.lam[row.col], row.data, float(self.c0[r]), float(self.c1[r])
+        lo, hi = self.B.indptr[r], self.B.indptr[r + 1]  # CSR row r, without fancy indexing
+        return self.lam[self.B.indices[lo:hi]], self.B.data[lo:hi], float(self.c0[r]), float(self.c1[r])
+
+
+def scale_columns(B, w):
+    """B·diag(w) for dense or sparse B."""
+    return B * w if isinstance(B, np.ndarray) else B @ _sparse().diags_array(w)
+
+
+def square_integral(form: ModalForm, weights, tau) -> np.ndarray:
+    """∫_0^tau Σ_j w_j·r_j(s)² ds (T,) in closed form, for rows without a ramp (c1 = 0).
+
+    With r_j = Re(z_j) + e_j, z_j = d_j·exp(lam·s): Re(z)² = ½Re(z²) + ½|z|², so the
+    integral is a sum over pairs of exponentials exp((lam_a + lam_b)s) and
+    exp((lam_a + conj lam_b)s), each integrated by :func:`phi`.
+    """
+    tau = np.asarray(tau, dtype=float)
+    w = np.asarray(weights, dtype=float)
+    d, e = form.B, form.c0
+    dw = _scale_rows(d, w)
+    out = float(w @ e**2) * tau
+    lin = (e * w) @ d if isinstance(d, np.ndarray) else np.asarray(d.T @ (e * w)).ravel()
+    out += 2 * (phi(np.multiply.outer(form.lam, tau)) * np.multiply.outer(lin, tau)).real.sum(axis=0)
+    for other, conj in ((d, False), (d.conj(), True)):
+        Q = cmatmul(dw.T, other) if isinstance(d, np.ndarray) else (dw.T @ other).tocoo()
+        a, b, q = (np.nonzero(Q) + (Q[np.nonzero(Q)],)) if isinstance(Q, np.ndarray) else (Q.row, Q.col, Q.data)
+        lam_b = form.lam[b].conj() if conj else form.lam[b]
+        mu = form.lam[a] + lam_b
+        out += 0.5 * (q[:, None] * phi(np.multiply.outer(mu, tau)) * tau[None, :]).real.sum(axis=0)
+    return out
+
+
+def cmatmul(a, b):
+    """Dense complex matrix product through real products (NumPy's complex matmul is far slower)."""
+    return a.real @ b.real - a.imag @ b.imag + 1j * (a.real @ b.imag + a.imag @ b.real)
+
+
+def _scale_rows(B, w):
+    return B * w[:, None] if isinstance(B, np.ndarray) else _sparse().diags_array(w) @ B
+
+
+def phi(z):
+    """(exp(z) - 1)/z elementwise, accurate near z = 0 (series for |z| < 0.5, 1 at 0)."""
+    z = np.asarray(z, dtype=complex)
+    small = np.abs(z) < 0.5
+    out = np.empty_like(z)
+    zs = z[small]
+    term, acc = np.ones_like(zs), np.ones_like(zs)
+    for k in range(2, 20):  # |z|^17/18! < 1e-20 for |z| < 0.5
+        term = term * zs / k
+        acc = acc + term
+    out[small] = acc
+    big = z[~small]
+    out[~small] = (np.exp(big) - 1.0) / big
+    return out
 
 
 def block_matrix(blocks, shape):
@@ -79,10 +149,14 @@ def block_matrix(blocks, shape):
     return sp.csr_array((v, (r, c)), shape=shape)
 
 
-def linear_map(shape, sparse, entries):
-    """A real (R, C) matrix, dense or CSR, from (row, col, value) triples (duplicates add up)."""
+def linear_map(shape, entries):
+    """A real (R, C) matrix from (row, col, value) triples (duplicates add up).
+
+    CSR beyond ``DENSE_MAP_WIDTH`` columns: the maps of a phase (event functions,
+    powers) have a handful of non-zeros per row, so a dense product would cost R·C·S.
+    """
     r, c, v = (np.asarray(a) for a in entries)
-    if not sparse:
+    if shape[1] <= DENSE_MAP_WIDTH:
         out = np.zeros(shape)
         np.add.at(out, (r.astype(int), c.astype(int)), v)
         return out
@@ -93,89 +167,3 @@ def _sparse():
     import scipy.sparse  # lazily: only long chains need it, and start-up stays light
 
     return scipy.sparse
-
-
-class SegmentModes:
-    """What a segment of masses lo..hi needs that does not depend on the state (cached per run).
-
-    ``K``, ``C`` (N/m, N·s/m) restricted to the segment; ``lam``, ``W``, ``W_inv``
-    the eigendecomposition of A; ``K_inv``; ``rate`` = max |lam| (1/s);
-    ``exact`` is False when K is singular or A defective (then only ``A`` is used).
-    """
-
-    def __init__(self, spec, lo: int, hi: int):
-        L = hi - lo + 1
-        m = spec.m[lo : hi + 1]
-        k, c = spec.k, spec.c
-        off = np.arange(L - 1)
-        K = np.diag(k[lo : hi + 1] + k[lo + 1 : hi + 2])
-        C = np.diag(c[lo : hi + 1] + c[lo + 1 : hi + 2])
-        K[off, off + 1] = K[off + 1, off] = -k[lo + 1 : hi + 1]
-        C[off, off + 1] = C[off + 1, off] = -c[lo + 1 : hi + 1]
-        A = np.zeros((2 * L, 2 * L))
-        A[:L, L:] = np.eye(L)
-        A[L:, :L] = -K / m[:, None]
-        A[L:, L:] = -C / m[:, None]
-        self.L, self.m, self.K, self.C, self.A = L, m, K, C, A
-        lam, W = np.linalg.eig(A)
-        self.rate = float(np.max(np.abs(lam)))
-        self.exact = _well_posed(K, lam, W)
-        if self.exact:
-            self.lam, self.W = lam.astype(complex), W.astype(complex)
-            self.W_inv = np.linalg.inv(self.W)
-            self.K_inv = np.linalg.inv(K)
-
-
-class Segment:
-    """Motion of the slipping masses lo..hi from the phase start (tau = 0).
-
-    ``p``, ``q`` (N, N/s): constant and ramp forces on each mass (kinetic
-    friction plus stuck neighbours moving as x_s0 + V·tau); ``y0`` = [x0; v0].
-    """
-
-    def __init__(self, modes: SegmentModes, lo: int, y0, p, q):
-        self.modes, self.lo, self.L = modes, lo, modes.L
-        if modes.exact:
-            beta = modes.K_inv @ q
-            alpha = modes.K_inv @ (p - modes.C @ beta)
-            self.c0 = np.concatenate([alpha, beta])
-            self.c1 = np.concatenate([beta, np.zeros(self.L)])
-            self.coef = modes.W_inv @ (y0 - self.c0)
-            return
-        L = self.L  # singular K or defective A: the augmented system [y, tau, 1]
-        aug = np.zeros((2 * L + 2, 2 * L + 2))
-        aug[: 2 * L, : 2 * L] = modes.A
-        aug[L : 2 * L, 2 * L] = q / modes.m
-        aug[L : 2 * L, 2 * L + 1] = p / modes.m
-        aug[2 * L, 2 * L + 1] = 1.0
-        self.aug, self.z0 = aug, np.concatenate([y0, [0.0, 1.0]])
-
-    def block(self, n: int, col: int):
-        """(rows, cols, values) of this segment in a phase's state form of 2n rows."""
-        idx = self.lo + np.arange(self.L)
-        rows = np.concatenate([idx, n + idx])
-        return rows, col + np.arange(2 * self.L), self.modes.W * self.coef
-
-    def evaluate(self, tau) -> np.ndarray:
-        """State [x; v] (2L, T) at times ``tau`` (s)."""
-        if self.modes.exact:
-            growth = np.exp(np.multiply.outer(self.modes.lam, tau)) * self.coef[:, None]
-            return (self.modes.W @ growth).real + self.c0[:, None] + np.multiply.outer(self.c1, tau)
-        from scipy.linalg import expm  # lazily: rare (unanchored or critically damped segments)
-
-        props = expm(self.aug[None] * np.asarray(tau, dtype=float)[:, None, None])
-        return (props @ self.z0)[:, : 2 * self.L].T
-
-
-def _well_posed(K, lam, W) -> bool:
-    """True when K is invertible and A safely diagonalisable (cheap checks first).
-
-    K (symmetric, positive semi-definite) is singular when no spring anchors the
-    segment; A is defective only where eigenvalues coincide, so well-separated
-    eigenvalues skip the condition number of W.
-    """
-    if np.linalg.eigvalsh(K)[0] <= 1e-10 * np.max(np.abs(K)):
-        return False
-    scale = np.max(np.abs(lam))
-    gaps = np.abs(lam[:, None] - lam[None, :]) + np.eye(lam.size) * scale
-    return bool(gaps.min() > 1e-6 * scale or np.linalg.cond(W) < 1e8)

@@ -45,23 +45,18 @@ def resolve_modes(spec, x, v, V, a_belt, previous, v_scale):
     f_sd = link_force(spec.k, x) + link_force(spec.c, v_at)
     f_req = spec.m * a_belt - f_sd
     tol = SWITCH_TOL * np.maximum(limit, 1e-300)
-    border = []
-    for i in np.flatnonzero(at_belt):
-        if abs(f_req[i]) < limit[i] - tol[i]:
-            modes[i] = 0
-        elif abs(f_req[i]) > limit[i] + tol[i]:
-            modes[i] = -int(np.sign(f_req[i]))
-        else:
-            modes[i] = 0
-            border.append(i)
-    if border:
+    size = np.abs(f_req)
+    outside = at_belt & (size > limit + tol)
+    border = at_belt & (size >= limit - tol) & ~outside
+    modes[at_belt] = 0
+    modes[outside] = -np.sign(f_req[outside]).astype(int)
+    if border.any():
         # at the static limit: compare the trend of the required force with the tentative modes
         a = (f_sd - modes * spec.kinetic_force) / spec.m
         a[modes == 0] = a_belt
         df_req = -(link_force(spec.k, v_at) + link_force(spec.c, a))
-        for i in border:
-            if np.sign(f_req[i]) * df_req[i] > 0 or (f_req[i] == 0 and df_req[i] != 0):
-                modes[i] = -int(np.sign(f_req[i] if f_req[i] != 0 else df_req[i]))
+        leaving = border & ((np.sign(f_req) * df_req > 0) | ((f_req == 0) & (df_req != 0)))
+        modes[leaving] = -np.sign(np.where(f_req != 0, f_req, df_req)[leaving]).astype(int)
     grazing = np.flatnonzero(at_belt & (previous != 0) & (modes == previous))
     snap = at_belt & (modes != previous)
     snap[modes == 0] = at_belt[modes == 0]

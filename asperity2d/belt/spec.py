@@ -244,6 +244,21 @@ def tridiagonal(links: np.ndarray) -> np.ndarray:
     return out
 
 
+def force_row(spec, i: int):
+    """(columns, coefficients) of the spring + damper force on mass ``i`` (N) over the state [x; v].
+
+    F_i = k_i·x_i-1 - (k_i + k_i+1)·x_i + k_i+1·x_i+1 + (the same with c and v); column j is
+    x_j, column n + j is v_j; zero coefficients are left out.
+    """
+    n, cols, coefs = spec.n, [], []
+    for base, links in ((0, spec.k), (n, spec.c)):
+        for j, coef in ((i - 1, links[i]), (i, -(links[i] + links[i + 1])), (i + 1, links[i + 1])):
+            if 0 <= j < n and coef != 0:
+                cols.append(base + j)
+                coefs.append(float(coef))
+    return cols, coefs
+
+
 def link_force(links: np.ndarray, x: np.ndarray) -> np.ndarray:
     """Force on each mass (N) from links of coefficient ``links`` (n+1,) acting on ``x`` (n, ...).
 

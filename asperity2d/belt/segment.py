@@ -1,0 +1,152 @@
+"""Closed-form motion of one segment of slipping masses between two switches.
+
+A segment of L slipping masses (joined by springs or dampers, with stuck
+neighbours or walls at its ends) obeys, with constant kinetic forces,
+
+    M·x'' + C·x' + K·x = p + q·tau
+
+(p, q in N and N/s: the kinetic friction plus stuck neighbours that move as
+x_s0 + V·tau). The particular solution is x_p = alpha + beta·tau with
+K·beta = q, K·alpha = p - C·beta; the rest is a sum of modes:
+
+* undamped segments (C = 0): the symmetric tridiagonal problem
+  M^-1/2·K·M^-1/2 = Q·diag(omega²)·Qᵀ gives mass-normalised shapes
+  Phi = M^-1/2·Q and x = x_p + Phi·(a·cos(omega·tau) + b·sin(omega·tau)) with
+  a = Phiᵀ·M·(x0 - alpha), b = Phiᵀ·M·(v0 - beta)/omega: O(L²) per switch, no
+  inverse, no defective cases;
+* damped segments: the eigendecomposition A = W·diag(lam)·W⁻¹ of
+  A = [[0, I], [-M⁻¹K, -M⁻¹C]] and y = Re(W·(coef·exp(lam·tau))) + y_p.
+
+Both are stored over the half spectrum (one eigenvalue of each conjugate
+pair, weight 2) as the (2L, S) block of a :class:`~.modal.ModalForm`. A
+segment no spring anchors (singular K) or with a defective A has no such
+form: the augmented system [y, tau, 1] is propagated with ``scipy.linalg.expm``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .modal import cmatmul
+
+
+class SegmentModes:
+    """What a segment of masses lo..hi needs that does not depend on the state (cached per run).
+
+    ``rate`` = max |lam| (1/s); ``lam`` the half spectrum; ``exact`` is False when K
+    is singular or A defective (then only ``A`` is used).
+    """
+
+    def __init__(self, spec, lo: int, hi: int):
+        L = self.L = hi - lo + 1
+        m = self.m = spec.m[lo : hi + 1]
+        k, c = spec.k[lo : hi + 2], spec.c[lo : hi + 2]
+        off = np.arange(L - 1)
+        K = np.diag(k[:-1] + k[1:])
+        C = np.diag(c[:-1] + c[1:])
+        K[off, off + 1] = K[off + 1, off] = -k[1:-1]
+        C[off, off + 1] = C[off + 1, off] = -c[1:-1]
+        self.K, self.C = K, C
+        self.A = np.block([[np.zeros((L, L)), np.eye(L)], [-K / m[:, None], -C / m[:, None]]])
+        self.undamped = not c.any()
+        if self.undamped:
+            root = np.sqrt(m)
+            w2, Q = _symmetric_tridiagonal_eig(np.diag(K) / m, np.diag(K, 1) / (root[:-1] * root[1:]))
+            self.rate = float(np.sqrt(max(w2[-1], 0.0)))
+            self.exact = bool(w2[-1] > 0 and w2[0] > 1e-10 * w2[-1])
+            if self.exact:
+                self.omega = np.sqrt(w2)
+                self.Phi = Q / root[:, None]  # mass-normalised: Phiᵀ M Phi = I
+                self.lam = 1j * self.omega
+                self.shapes = np.vstack([self.Phi, self.Phi * self.lam]).astype(complex)
+            return
+        lam, W = np.linalg.eig(self.A)
+        self.rate = float(np.max(np.abs(lam)))
+        self.exact = _well_posed(K, lam, W)
+        if self.exact:
+            self.W_inv = np.linalg.inv(W.astype(complex))
+            self.K_inv = np.linalg.inv(K)
+            # A is real: conjugate pairs have conjugate eigenvectors, so the real motion needs
+            # one of each pair (weight 2) plus the real eigenvalues (weight 1)
+            self.half = np.flatnonzero(lam.imag >= 0)
+            self.half_weight = np.where(lam.imag[self.half] > 0, 2.0, 1.0)
+            self.lam = lam[self.half].astype(complex)
+            self.shapes = W[:, self.half].astype(complex)
+
+    def solve(self, y0, p, q):
+        """(c0, c1, coef) of the motion from ``y0`` = [x0; v0] under forces p + q·tau (N, N/s).
+
+        [x; v](tau) = Re(shapes·(coef·exp(lam·tau))) + c0 + c1·tau with c0 = [alpha; beta],
+        c1 = [beta; 0] the particular solution and ``coef`` (S,) the modal amplitudes
+        (complex; for the undamped case a - i·b).
+        """
+        L = self.L
+        if self.undamped:
+            Phi, omega = self.Phi, self.omega
+            beta = Phi @ ((Phi.T @ q) / omega**2)  # K⁻¹ = Phi·diag(1/omega²)·Phiᵀ
+            alpha = Phi @ ((Phi.T @ p) / omega**2)
+            a = Phi.T @ (self.m * (y0[:L] - alpha))
+            b = Phi.T @ (self.m * (y0[L:] - beta)) / omega
+            coef = a - 1j * b
+        else:
+            beta = self.K_inv @ q
+            alpha = self.K_inv @ (p - self.C @ beta)
+            coef = (self.W_inv @ (y0 - np.concatenate([alpha, beta])))[self.half] * self.half_weight
+        return np.concatenate([alpha, beta]), np.concatenate([beta, np.zeros(L)]), coef
+
+
+class Segment:
+    """Motion of the slipping masses lo..hi from the phase start (tau = 0).
+
+    ``p``, ``q`` (N, N/s): constant and ramp forces on each mass; ``y0`` = [x0; v0].
+    """
+
+    def __init__(self, modes: SegmentModes, lo: int, y0, p, q):
+        self.modes, self.lo, self.L = modes, lo, modes.L
+        if modes.exact:
+            self.c0, self.c1, self.coef = modes.solve(y0, p, q)
+            return
+        L = self.L  # singular K or defective A: the augmented system [y, tau, 1]
+        aug = np.zeros((2 * L + 2, 2 * L + 2))
+        aug[: 2 * L, : 2 * L] = modes.A
+        aug[L : 2 * L, 2 * L] = q / modes.m
+        aug[L : 2 * L, 2 * L + 1] = p / modes.m
+        aug[2 * L, 2 * L + 1] = 1.0
+        self.aug, self.z0 = aug, np.concatenate([y0, [0.0, 1.0]])
+
+    def evaluate(self, tau) -> np.ndarray:
+        """State [x; v] (2L, T) at times ``tau`` (s)."""
+        tau = np.asarray(tau, dtype=float)
+        if self.modes.exact:
+            growth = np.exp(np.multiply.outer(self.modes.lam, tau))
+            return cmatmul(self.modes.shapes * self.coef, growth).real + self.c0[:, None] + np.multiply.outer(self.c1, tau)
+        from scipy.linalg import expm  # lazily: rare (unanchored or critically damped segments)
+
+        props = expm(self.aug[None] * tau[:, None, None])
+        return (props @ self.z0)[:, : 2 * self.L].T
+
+
+def _symmetric_tridiagonal_eig(d, e):
+    """Eigenvalues (ascending) and orthonormal eigenvectors of the symmetric tridiagonal (d, e).
+
+    LAPACK's MRRR driver costs O(L²); below 64 masses the dense solver wins on call overhead.
+    """
+    if d.size <= 64:
+        return np.linalg.eigh(np.diag(d) + np.diag(e, 1) + np.diag(e, -1))
+    from scipy.linalg import eigh_tridiagonal  # lazily: keeps `import asperity2d.belt` free of SciPy
+
+    return eigh_tridiagonal(d, e, lapack_driver="stemr")
+
+
+def _well_posed(K, lam, W) -> bool:
+    """True when K is invertible and A safely diagonalisable (cheap checks first).
+
+    K (symmetric, positive semi-definite) is singular when no spring anchors the
+    segment; A is defective only where eigenvalues coincide, so well-separated
+    eigenvalues skip the condition number of W.
+    """
+    if np.linalg.eigvalsh(K)[0] <= 1e-10 * np.max(np.abs(K)):
+        return False
+    scale = np.max(np.abs(lam))
+    gaps = np.abs(lam[:, None] - lam[None, :]) + np.eye(lam.size) * scale
+    return bool(gaps.min() > 1e-6 * scale or np.linalg.cond(W) < 1e8)
