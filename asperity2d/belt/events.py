@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .modal import ModalForm, linear_map, scale_columns
+from .modal import ModalForm, linear_map, scale_columns, stack_rows
 from .spec import force_row, link_force
 
 
@@ -73,7 +73,7 @@ class ModalEvents:
         self.g = phase.form(t.event_shapes, t.event_map, t.event_offset)
         lam = self.g.lam
         dB = scale_columns(self.g.B, lam)
-        B = np.vstack([self.g.B, dB]) if isinstance(dB, np.ndarray) else _vstack(self.g.B, dB)
+        B = stack_rows(self.g.B, dB)
         self._both = ModalForm(lam, B, np.concatenate([self.g.c0, self.g.c1]),
                                np.concatenate([self.g.c1, np.zeros_like(self.g.c1)]))
         #: rigorous bound on |d⁴g/dtau⁴| per row: sum of |b|·|lam|⁴
@@ -98,12 +98,6 @@ class ModalEvents:
             return float(d0) + c0 + c1 * t, float(d1) + c1, float(d2)
 
         return f
-
-
-def _vstack(a, b):
-    import scipy.sparse  # lazily: only long chains use sparse forms
-
-    return scipy.sparse.vstack([a, b], format="csr")
 
 
 class SampledEvents:

@@ -40,7 +40,7 @@ _EPS = np.finfo(float).eps
 
 
 def find_event(events, horizon: float, step: float, chunk: int = 16):
-    """First tau in (0, horizon] (s) where a switch or a velocity touch happens, or None.
+    """(tau, touching masses) of the first switch or velocity touch in (0, horizon] (s), or None.
 
     Rows that start within SWITCH_TOL of zero (the switch that opened this phase)
     count as positive; in the first interval only a crossing of theirs counts.
@@ -63,10 +63,10 @@ def find_event(events, horizon: float, step: float, chunk: int = 16):
         if first:
             flagged[:, 0] = _flags(G[:, 0], G[:, 1], D[:, 0], D[:, 1], tg[1], events.bound4, opening)
         for k in np.flatnonzero(flagged.any(axis=0)):
-            t = _earliest(events, np.flatnonzero(flagged[:, k]), tg[k], tg[k + 1], G[:, k], G[:, k + 1], D[:, k],
+            found = _earliest(events, np.flatnonzero(flagged[:, k]), tg[k], tg[k + 1], G[:, k], G[:, k + 1], D[:, k],
                           D[:, k + 1], opening if first and k == 0 else None, horizon)
-            if t is not None:
-                return t
+            if found is not None:
+                return found
         t_prev, g_prev, d_prev, first = tg[-1], G[:, -1], D[:, -1], False
         chunk = min(2 * chunk, 4096)
     return None
@@ -91,10 +91,13 @@ def _earliest(events, rows, a, b, ga, gb, da, db, opening, horizon, depth=0):
     vectorised evaluation per halving, so that few rows need a root search.
     """
     if rows.size <= 2 or depth >= 20:
-        times = [t for r in rows
-                 if (t := _row_event(events, r, a, b, ga[r], gb[r], da[r], db[r],
-                                     opening is not None and opening[r], horizon)) is not None]
-        return min(times) if times else None
+        found = [(out, events.mass[r]) for r in rows
+                 if (out := _row_event(events, r, a, b, ga[r], gb[r], da[r], db[r],
+                                       opening is not None and opening[r], horizon)) is not None]
+        if not found:
+            return None
+        t = min(out[0] for out, _ in found)
+        return t, tuple(int(m) for (t_r, touched), m in found if touched and t_r <= t + 4 * _EPS * abs(t))
     mid = 0.5 * (a + b)
     g, d = events.values(np.array([mid]))
     gm, dm = g[:, 0], d[:, 0]
@@ -102,8 +105,8 @@ def _earliest(events, rows, a, b, ga, gb, da, db, opening, horizon, depth=0):
     for lo, hi, g0, g1, d0, d1 in ((a, mid, ga, gm, da, dm), (mid, b, gm, gb, dm, db)):
         op = None if opening is None else opening[rows]
         sub = rows[_flags(g0[rows], g1[rows], d0[rows], d1[rows], hi - lo, b4, op)]
-        if sub.size and (t := _earliest(events, sub, lo, hi, g0, g1, d0, d1, opening, horizon, depth + 1)) is not None:
-            return t
+        if sub.size and (found := _earliest(events, sub, lo, hi, g0, g1, d0, d1, opening, horizon, depth + 1)):
+            return found
     return None
 
 
@@ -117,25 +120,34 @@ def _lower(ga, gb, da, db, h, bound4):
 
 
 def _row_event(events, r, a, b, ga, gb, da, db, opening, horizon):
-    """Switch time of row r in [a, b] under the touch rule, or None."""
+    """(switch time, touched) of row r in [a, b] under the touch rule, or None."""
     f = events.point(r)
-    if ga <= 0:  # an opening row that left zero the wrong way: switch again at once if it went deep
-        return a if gb < -SWITCH_TOL else None
+    if ga <= 0:  # an opening row, at zero: only a crossing deeper than the tolerance counts
+        if gb >= -SWITCH_TOL:
+            return None
+        if da > 0 > db:  # it left zero the right way, turned and crossed back within the interval
+            t_max = _zero(lambda t: f(t)[1:], a, b, da, db)
+            if (g_max := f(t_max)[0]) > 0:
+                return _zero(lambda t: f(t)[:2], t_max, b, g_max, gb), False
+        return a, False  # it left zero the wrong way: switch again at once
     found = _first_contact(f, a, b, ga, gb, da, db, events.bound4, r, 0)
-    if found is None:
+    if found is None or found[1] > horizon:
         return None
     what, t = found
-    if t > horizon:
-        return None
     if what == "touch" and (opening or events.kind[r] != 0):
         return None  # the opening zero itself, or a static force touching its limit: no switch
-    return t
+    return t, what == "touch"
 
 
 def _first_contact(f, a, b, ga, gb, da, db, bound4, r, depth):
     """First contact of g with zero on [a, b] (g(a) > 0): None, ("cross", t_zero) or ("touch", t_min)."""
     if gb <= 0:
-        t_zero = _zero(lambda t: f(t)[:2], a, b, ga, gb)
+        end, g_end = b, gb
+        if da < 0 < db:  # the dip bottoms out inside: its first zero lies before the bottom
+            t_min = _zero(lambda t: f(t)[1:], a, b, da, db)
+            if (g_min := f(t_min)[0]) <= 0:
+                end, g_end = t_min, g_min
+        t_zero = _zero(lambda t: f(t)[:2], a, end, ga, g_end)
         t_min, g_min = _dip_after(f, t_zero, b, b - a)
         return ("cross", t_zero) if g_min < -SWITCH_TOL else ("touch", t_min)
     if _lower(ga, gb, da, db, b - a, None if bound4 is None else bound4[r]) > SWITCH_TOL:
@@ -148,7 +160,11 @@ def _first_contact(f, a, b, ga, gb, da, db, bound4, r, depth):
         if g_min >= -SWITCH_TOL:
             return ("touch", t_min)
         return ("cross", _zero(lambda t: f(t)[:2], a, t_min, ga, g_min))
-    if depth >= 12:  # the bound is 4096x tighter than on the grid: nothing can hide here
+    low = _lower(ga, gb, da, db, b - a, None if bound4 is None else bound4[r])
+    if depth >= 12 or (ga <= SWITCH_TOL and gb <= SWITCH_TOL and low >= -SWITCH_TOL):
+        # 4096x finer than the grid nothing can hide; and a row hovering within the tolerance of
+        # zero at both ends (a mass at belt speed under negligible forces) can only switch by
+        # going deeper than the tolerance, which the bound excludes
         return None
     mid = 0.5 * (a + b)
     gm, dm, _ = f(mid)

@@ -161,11 +161,10 @@ class LinearPhase:
         if self.motion is None:
             x, v, a = self.evaluate(tau)
             return x, v, self.friction_force(x, v, a, tau), quadrature_work(self, tau)
-        growth = self.motion.growth(tau)
-        y = self.motion.at(tau, growth)
+        y = self.motion.at(tau)
         n = self.spec.n
         x, v = y[:n], y[n : 2 * n]
-        return x, v, self.friction_force(x, v, None, tau), modal_work(self, tau, growth)
+        return x, v, self.friction_force(x, v, None, tau), modal_work(self, tau)
 
     def belt_velocity(self, tau):
         return np.full(np.size(tau), self.V)

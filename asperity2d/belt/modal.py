@@ -54,11 +54,19 @@ class ModalForm:
         cos, sin = self.growth(tau) if growth is None else growth
         return self.Br @ cos - self.Bi @ sin + self.c0[:, None] + np.multiply.outer(self.c1, tau)
 
-    def integral(self, tau, growth=None) -> np.ndarray:
-        """Integrals from 0 to ``tau`` (R, T) in closed form (every lam non-zero)."""
-        cos, sin = self.growth(tau) if growth is None else growth
+    def integral(self, tau) -> np.ndarray:
+        """Integrals from 0 to ``tau`` (R, T) in closed form (every lam non-zero).
+
+        (exp(lam·tau) - 1)/lam is formed from expm1 and 2·sin²(omega·tau/2), never as a
+        difference of nearly equal numbers: short phases keep their relative accuracy.
+        """
+        tau = np.asarray(tau, dtype=float)
+        a, w = np.multiply.outer(self.lam.real, tau), np.multiply.outer(self.lam.imag, tau)
+        cos, sin = np.cos(w), np.sin(w)
+        re = np.expm1(a) * cos - 2.0 * np.sin(0.5 * w) ** 2  # Re(exp(lam tau) - 1)
+        im = np.exp(a) * sin
         Bl = scale_columns(self.B, 1.0 / self.lam)
-        return (Bl.real @ (cos - 1.0) - Bl.imag @ sin + np.multiply.outer(self.c0, tau)
+        return (Bl.real @ re - Bl.imag @ im + np.multiply.outer(self.c0, tau)
                 + np.multiply.outer(0.5 * self.c1, np.square(tau)))
 
     def derivative(self) -> "ModalForm":
@@ -161,6 +169,11 @@ def linear_map(shape, entries):
         np.add.at(out, (r.astype(int), c.astype(int)), v)
         return out
     return _sparse().csr_array((v.astype(float), (r.astype(int), c.astype(int))), shape=shape)
+
+
+def stack_rows(a, b):
+    """The rows of ``a`` then ``b`` (both dense or both sparse)."""
+    return np.vstack([a, b]) if isinstance(a, np.ndarray) else _sparse().vstack([a, b], format="csr")
 
 
 def _sparse():

@@ -26,12 +26,14 @@ from .finder import SWITCH_TOL
 from .spec import link_force
 
 
-def resolve_modes(spec, x, v, V, a_belt, previous, v_scale):
+def resolve_modes(spec, x, v, V, a_belt, previous, v_scale, touching=()):
     """New modes at a switching instant: returns (modes, v, grazing masses).
 
     ``x``, ``v`` (m, m/s) the state, ``V``, ``a_belt`` the belt speed and
-    acceleration, ``previous`` the modes before the instant. Masses that end
-    stuck, or cross belt speed, get v = V exactly.
+    acceleration, ``previous`` the modes before the instant, ``touching`` the
+    masses whose touch of belt speed ended the phase (a touch that keeps its
+    mode is a graze; a bystander within the tolerance that keeps its mode is
+    not an event). Masses that end stuck, or cross belt speed, get v = V exactly.
     """
     v = np.array(v, dtype=float)
     previous = np.asarray(previous, dtype=int)
@@ -57,7 +59,9 @@ def resolve_modes(spec, x, v, V, a_belt, previous, v_scale):
         df_req = -(link_force(spec.k, v_at) + link_force(spec.c, a))
         leaving = border & ((np.sign(f_req) * df_req > 0) | ((f_req == 0) & (df_req != 0)))
         modes[leaving] = -np.sign(np.where(f_req != 0, f_req, df_req)[leaving]).astype(int)
-    grazing = np.flatnonzero(at_belt & (previous != 0) & (modes == previous))
+    touched = np.zeros(spec.n, dtype=bool)
+    touched[list(touching)] = True
+    grazing = np.flatnonzero(touched & at_belt & (previous != 0) & (modes == previous))
     snap = at_belt & (modes != previous)
     snap[modes == 0] = at_belt[modes == 0]
     v[snap] = V

@@ -6,9 +6,10 @@ The rules, in the order they are applied:
   ``bool``, ``str`` or ``complex``; a sequence is a list, tuple or 1-D array of such numbers;
 * it is finite after conversion to ``float`` (``10**400`` and ``1e400`` are refused, not
   overflowed);
-* every quantity, dimensional (kg, N/m, N·s/m, m, m/s, s, N, m/s²) or not, is 0 or of
-  magnitude within [1e-100, 1e100]: a product of three such numbers cannot overflow or
-  underflow a double, which is what the solver forms (k·x·x, m·v·v, mu·m·g);
+* every quantity, dimensional (kg, N/m, N·s/m, m, m/s, s, N, m/s²) or not, is of magnitude
+  at most 1e100, and one that must be positive (masses, ``t_end``, tolerances) at least
+  1e-100: a product of three such numbers, or a quotient by a positive one, cannot overflow
+  a double, which is what the solver forms (k·x·x, m·v·v, mu·m·g, k/m);
 * ranges: masses > 0; springs, dampers, coefficients, loads >= 0; ``mu_k <= mu_s``;
 * the chain's derived scales (``ChainSpec.rate_bound``, ``velocity_scale``,
   ``length_scale``, force and energy scales) are finite and below 1e150 -- the jointly
@@ -24,6 +25,7 @@ Formatting a value for a message never raises (:func:`show`).
 from __future__ import annotations
 
 import math
+from decimal import Decimal
 from numbers import Integral, Real
 
 import numpy as np
@@ -52,7 +54,7 @@ def show(value, limit: int = 60) -> str:
 
 
 def _as_float(name: str, value, where: str = "") -> float:
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, Real):
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (Real, Decimal)):
         raise SceneError(f"`{name}` must be a real number{where}, got {show(value)}")
     try:
         out = float(value)
@@ -68,8 +70,10 @@ def _range(name: str, out: float, raw, where: str, positive: bool, nonneg: bool)
         raise SceneError(f"`{name}` must be > 0{where}, got {show(raw)}")
     if nonneg and out < 0:
         raise SceneError(f"`{name}` must be >= 0{where}, got {show(raw)}")
-    if out != 0 and not TINY <= abs(out) <= HUGE:
-        raise SceneError(f"`{name}` must be 0 or of magnitude within [{TINY:g}, {HUGE:g}]{where}, got {show(raw)}")
+    if abs(out) > HUGE:
+        raise SceneError(f"`{name}` must be of magnitude at most {HUGE:g}{where}, got {show(raw)}")
+    if positive and out < TINY:
+        raise SceneError(f"`{name}` must be at least {TINY:g}{where}, got {show(raw)}")
     return out
 
 
@@ -129,7 +133,7 @@ def scales(spec) -> None:
         ("length scale (m)", spec.length_scale, "`x0` and the velocity scale over the fastest rate"),
         ("distance travelled (m)", reach, "`v_belt` times `t_end`"),
         ("force scale (N)", force, "`mu_s` times the normal load, or `springs` times the length scale"),
-        ("energy scale (J)", force * spec.length_scale + float(np.max(spec.m)) * spec.velocity_scale**2,
+        ("energy scale (J)", force * spec.length_scale + float(np.max(spec.m)) * spec.velocity_scale * spec.velocity_scale,
          "the force scale times the length scale, or `masses` times the velocity scale squared"),
     )
     for what, value, source in derived:
