@@ -12,9 +12,11 @@ masses have v = V and need F = -F_springs+dampers), so they are modal forms
 whose integrals are closed form; the damper power is a sum of squares of modal
 forms (:func:`~.modal.square_integral`). The books then close to rounding while
 the stored energy is computed separately from the sampled x and v -- an
-independent check of the solution. Other phases use 10-point Gauss-Legendre
+independent check of the solution. Closed-form phases without a modal form
+(unanchored or critically damped segments) use 10-point Gauss-Legendre
 quadrature on pieces no longer than 1/4 of the fastest period (error below
-1e-19 of the integrand's scale for the frequencies present).
+1e-19 of the integrand's scale for the exponentials and low-degree polynomials
+present); integrated phases carry the integrals as ODE states (:mod:`.hybrid`).
 """
 
 from __future__ import annotations

@@ -13,7 +13,10 @@ Absolute tolerances come from the chain's scales: ``rtol``·1e-2 of
 ``spec.length_scale`` for positions and of ``spec.velocity_scale`` for
 velocities. Separate scales matter at the micro scale, where positions are
 1e-6 m and speeds 10 m/s: one shared absolute tolerance is then coarser than
-the motion. Every right-hand-side evaluation counts against ``max_steps``.
+the motion. The belt work and the friction and damper losses are integrated
+with the motion as three extra states (the energy books then close to the
+integrator's tolerance whatever the sampling). Every right-hand-side
+evaluation counts against ``max_steps``.
 """
 
 from __future__ import annotations
@@ -24,24 +27,28 @@ import numpy as np
 
 from ..errors import SimulationError
 from .backend import RawRun, StepBudget, intervals_from_state
-from .energy import quadrature_work
 from .loop import event_loop
 from .spec import link_force
 
 
 def _atol(spec, rtol, atol):
-    """Absolute tolerance for the state ``[x, v]``: given, or 1e-2 rtol of each part's scale."""
+    """Absolute tolerance for ``[x, v]``: given, or 1e-2 rtol of each part's scale."""
     if atol is not None:
-        return atol
+        return np.full(2 * spec.n, atol)
     n = spec.n
     return rtol * 1e-2 * np.concatenate([np.full(n, spec.length_scale), np.full(n, spec.velocity_scale)])
+
+
+def _work_atol(spec, rtol):
+    """Absolute tolerance (J) of the three work integrals: 1e-2 rtol of the force x length scale."""
+    return np.full(3, rtol * 1e-2 * float(np.max(spec.static_limit)) * spec.length_scale)
 
 
 def run_ode_phases(spec, options) -> RawRun:
     """Event-driven run whose phases are integrated (ramped belt, smooth slip laws)."""
     rate = spec.fastest_rate
     step = 2 * math.pi / (16 * rate) if rate > 0 else spec.t_end
-    atol = _atol(spec, options.rtol, options.atol)
+    atol = np.concatenate([_atol(spec, options.rtol, options.atol), _work_atol(spec, options.rtol)])
     budget = StepBudget(options.max_steps)
 
     def make_phase(modes, x, v, t):
@@ -61,7 +68,7 @@ class OdePhase:
         self.stuck = self.modes == 0
         self.options, self.atol, self.budget = options, atol, budget
         self.chunks = []  # (t_start, t_stop, dense solution)
-        self.y_end = np.concatenate([x, v])
+        self.y_end = np.concatenate([x, v, np.zeros(3)])  # state and the work integrals since t0
         self.t_reached = t0
 
     def _slip_force(self, v_rel):
@@ -72,14 +79,19 @@ class OdePhase:
         return self.spec.law.force(vr, normal)
 
     def _rhs(self, t, y):
+        """d/dt of [x, v, belt work, friction loss, damper loss] (the powers integrated alongside)."""
         self.budget.spend(t)
         spec, n = self.spec, self.spec.n
-        x, v = y[:n], y[n:].copy()
-        V = spec.belt_velocity(t)
+        x, v = y[:n], y[n : 2 * n].copy()
+        V, a_belt = spec.belt_velocity(t), spec.belt_acceleration(t)
         v[self.stuck] = V
-        a = (link_force(spec.k, x) + link_force(spec.c, v) + self._slip_force(v - V)) / spec.m
-        a[self.stuck] = spec.belt_acceleration(t)
-        return np.concatenate([v, a])
+        f_sd = link_force(spec.k, x) + link_force(spec.c, v)
+        fric = self._slip_force(v - V)
+        fric[self.stuck] = spec.m[self.stuck] * a_belt - f_sd[self.stuck]  # the static force that holds them
+        a = (f_sd + fric) / spec.m
+        dv = np.diff(v, prepend=0.0, append=0.0)
+        power = [V * fric.sum(), fric @ (V - v), spec.c @ (dv * dv)]
+        return np.concatenate([v, a, power])
 
     def _extend(self, t_target):
         from scipy.integrate import solve_ivp  # lazily: keeps `import asperity2d.belt` free of SciPy
@@ -108,14 +120,9 @@ class OdePhase:
         t = self.t0 + tau
         if t.size:
             self._extend(t.max())
+        y = self._dense(t)
         n = self.spec.n
-        y = np.empty((2 * n, t.size))
-        starts = np.array([c[0] for c in self.chunks])
-        which = np.clip(np.searchsorted(starts, t, side="right") - 1, 0, max(len(starts) - 1, 0))
-        for j in np.unique(which):
-            sel = which == j
-            y[:, sel] = self.chunks[j][2](t[sel]) if self.chunks else self.y_end[:, None]
-        x, v = y[:n], y[n:]
+        x, v = y[:n], y[n : 2 * n]
         V = self.belt_velocity(tau)
         v[self.stuck] = V[None, :]
         spec = self.spec
@@ -123,10 +130,24 @@ class OdePhase:
         a[self.stuck] = self.belt_acceleration(tau)[None, :]
         return x, v, a
 
+    def _dense(self, t):
+        """Integrated state (2n + 3, T) at absolute times ``t`` (s)."""
+        y = np.empty((self.y_end.size, t.size))
+        starts = np.array([c[0] for c in self.chunks])
+        which = np.clip(np.searchsorted(starts, t, side="right") - 1, 0, max(len(starts) - 1, 0))
+        for j in np.unique(which):
+            sel = which == j
+            y[:, sel] = self.chunks[j][2](t[sel]) if self.chunks else self.y_end[:, None]
+        return y
+
     def sample(self, tau):
-        """Positions, velocities, friction forces (n, T) and work integrals (3, T, J) at ``tau`` (s)."""
+        """Positions, velocities, friction forces (n, T) and work integrals (3, T, J) at ``tau`` (s).
+
+        The work integrals are integrated with the motion (to the integrator's tolerance).
+        """
+        tau = np.asarray(tau, dtype=float)
         x, v, a = self.evaluate(tau)
-        return x, v, self.friction_force(x, v, a, tau), quadrature_work(self, np.asarray(tau, dtype=float))
+        return x, v, self.friction_force(x, v, a, tau), self._dense(self.t0 + tau)[2 * self.spec.n :]
 
     def friction_force(self, x, v, a, tau):
         spec = self.spec
