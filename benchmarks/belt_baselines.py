@@ -53,11 +53,12 @@ class Chain:
         return self.K @ x + self.C @ v
 
     def initial_modes(self):
+        """Slip direction off belt speed; at belt speed stick if the static force suffices, else slip with it."""
         rel = self.v0 - self.V
         modes = np.where(rel >= 0, 1, -1)
         at = np.abs(rel) <= 1e-9 * self.vscale
         f = self.f_req(self.x0, np.where(at, self.V, self.v0))
-        modes[at & (np.abs(f) < self.fs)] = 0
+        modes[at] = np.where(np.abs(f[at]) < self.fs[at], 0, -np.sign(f[at])).astype(int)
         return modes
 
     def after(self, modes, i, x, v):

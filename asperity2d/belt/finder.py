@@ -150,7 +150,8 @@ def _first_contact(f, a, b, ga, gb, da, db, bound4, r, depth):
         t_zero = _zero(lambda t: f(t)[:2], a, end, ga, g_end)
         t_min, g_min = _dip_after(f, t_zero, b, b - a)
         return ("cross", t_zero) if g_min < -SWITCH_TOL else ("touch", t_min)
-    if _lower(ga, gb, da, db, b - a, None if bound4 is None else bound4[r]) > SWITCH_TOL:
+    low = _lower(ga, gb, da, db, b - a, None if bound4 is None else bound4[r])
+    if low > SWITCH_TOL:
         return None
     if da < 0 < db:  # one interior minimum
         t_min = _zero(lambda t: f(t)[1:], a, b, da, db)
@@ -160,7 +161,6 @@ def _first_contact(f, a, b, ga, gb, da, db, bound4, r, depth):
         if g_min >= -SWITCH_TOL:
             return ("touch", t_min)
         return ("cross", _zero(lambda t: f(t)[:2], a, t_min, ga, g_min))
-    low = _lower(ga, gb, da, db, b - a, None if bound4 is None else bound4[r])
     if depth >= 12 or (ga <= SWITCH_TOL and gb <= SWITCH_TOL and low >= -SWITCH_TOL):
         # 4096x finer than the grid nothing can hide; and a row hovering within the tolerance of
         # zero at both ends (a mass at belt speed under negligible forces) can only switch by

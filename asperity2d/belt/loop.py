@@ -52,7 +52,7 @@ def event_loop(spec, options, make_phase) -> RawRun:
         next_sample = stop
         if opened and options.include_events and (not taus.size or taus[0] > 0):
             taus = np.concatenate([[0.0], taus])
-        work = _record(phase, taus, t, horizon if tau_e is None else tau_e, work, rec)
+        work, x, v = _record(phase, taus, t, horizon if tau_e is None else tau_e, work, rec)
         if tau_e is None:
             break
         switches += 1
@@ -63,8 +63,7 @@ def event_loop(spec, options, make_phase) -> RawRun:
         if switches > options.max_events:
             raise SimulationError(f"more than `max_events` = {options.max_events:,} switches before t = {t1:.6g} s; "
                                   "raise `max_events` or shorten `t_end`", time=t1)
-        x, v, _ = phase.evaluate(np.array([tau_e]))
-        x, v, t = x[:, 0], v[:, 0], float(t1)
+        t = float(t1)
         new, v, grazing = resolve_modes(spec, x, v, spec.belt_velocity(t), spec.belt_acceleration(t), modes, v_scale,
                                         touching)
         for i in np.flatnonzero(new != modes):
@@ -94,7 +93,7 @@ def event_loop(spec, options, make_phase) -> RawRun:
 
 
 def _record(phase, taus, t0, length, work, rec):
-    """Append samples at ``taus`` (s from the phase start); return the cumulative work (3,) at ``length``."""
+    """Append samples at ``taus`` (s from the phase start); return the cumulative work (3,) and x, v at ``length``."""
     x, v, fric, w = phase.sample(np.append(taus, length))
     w = work[:, None] + w
     m = taus.size
@@ -105,4 +104,4 @@ def _record(phase, taus, t0, length, work, rec):
         rec["state"].append(np.repeat(phase.modes[:, None], m, axis=1))
         rec["friction"].append(fric[:, :m])
         rec["work"].append(w[:, :m])
-    return w[:, -1]
+    return w[:, -1], x[:, -1], v[:, -1]

@@ -37,32 +37,30 @@ def resolve_modes(spec, x, v, V, a_belt, previous, v_scale, touching=()):
     """
     v = np.array(v, dtype=float)
     previous = np.asarray(previous, dtype=int)
-    modes = previous.copy()
     limit = spec.static_limit
     rel = v - V
     at_belt = spec.frictional & (np.abs(rel) <= SWITCH_TOL * v_scale)
-    off = ~at_belt
-    modes[off] = np.where(rel[off] >= 0, 1, -1)  # frictionless masses never stick
+    modes = np.where(rel >= 0, 1, -1)  # off belt speed (frictionless masses never stick)
     v_at = np.where(at_belt, V, v)  # the forces as if the masses at belt speed were stuck
     f_sd = link_force(spec.k, x) + link_force(spec.c, v_at)
     f_req = spec.m * a_belt - f_sd
-    tol = SWITCH_TOL * np.maximum(limit, 1e-300)
-    size = np.abs(f_req)
-    outside = at_belt & (size > limit + tol)
-    border = at_belt & (size >= limit - tol) & ~outside
-    modes[at_belt] = 0
-    modes[outside] = -np.sign(f_req[outside]).astype(int)
-    if border.any():
-        # at the static limit: compare the trend of the required force with the tentative modes
-        a = (f_sd - modes * spec.kinetic_force) / spec.m
-        a[modes == 0] = a_belt
-        df_req = -(link_force(spec.k, v_at) + link_force(spec.c, a))
-        leaving = border & ((np.sign(f_req) * df_req > 0) | ((f_req == 0) & (df_req != 0)))
-        modes[leaving] = -np.sign(np.where(f_req != 0, f_req, df_req)[leaving]).astype(int)
+    if at_belt.any():
+        tol = SWITCH_TOL * np.maximum(limit, 1e-300)
+        size = np.abs(f_req)
+        outside = at_belt & (size > limit + tol)
+        modes[at_belt] = 0
+        modes[outside] = -np.sign(f_req[outside]).astype(int)
+        border = at_belt & ~outside & (size >= limit - tol)
+        if border.any():
+            # at the static limit: compare the trend of the required force with the tentative modes
+            a = (f_sd - modes * spec.kinetic_force) / spec.m
+            a[modes == 0] = a_belt
+            df_req = -(link_force(spec.k, v_at) + link_force(spec.c, a))
+            leaving = border & ((np.sign(f_req) * df_req > 0) | ((f_req == 0) & (df_req != 0)))
+            modes[leaving] = -np.sign(np.where(f_req != 0, f_req, df_req)[leaving]).astype(int)
     touched = np.zeros(spec.n, dtype=bool)
     touched[list(touching)] = True
     grazing = np.flatnonzero(touched & at_belt & (previous != 0) & (modes == previous))
-    snap = at_belt & (modes != previous)
-    snap[modes == 0] = at_belt[modes == 0]
+    snap = at_belt & ((modes != previous) | (modes == 0))
     v[snap] = V
     return modes, v, grazing

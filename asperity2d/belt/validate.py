@@ -97,8 +97,22 @@ def vector(name: str, value, length: int | None = None, *, positive=False, nonne
         raise SceneError(f"`{name}` must not be empty")
     if length is not None and len(items) != length:
         raise SceneError(f"`{name}` must have {length} entries, got {len(items)}")
+    if set(map(type, items)) <= {float, int}:  # fast path for long plain lists (sample times)
+        arr = np.array(items, dtype=float) if all(abs(v) <= HUGE for v in items) else None
+        if arr is not None and _plain_ok(arr, positive, nonneg):
+            return tuple(arr.tolist())
     return tuple(_range(name, _as_float(name, v, f" at index {i}"), v, f" at index {i}", positive, nonneg)
                  for i, v in enumerate(items))
+
+
+def _plain_ok(arr, positive, nonneg) -> bool:
+    """True when every entry passes the checks of :func:`_range` (else the slow path names the culprit)."""
+    ok = np.isfinite(arr).all() and (np.abs(arr) <= HUGE).all()
+    if positive:
+        ok = ok and (arr >= TINY).all()
+    if nonneg:
+        ok = ok and (arr >= 0).all()
+    return bool(ok)
 
 
 def integer(name: str, value, *, minimum: int, maximum: int | None = None) -> int:
