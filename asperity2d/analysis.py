@@ -201,23 +201,54 @@ def event_statistics(events: list[Event]) -> dict:
 
 def breakaway_force(result, *, stick_speed: float | None = None, slip_speed: float | None = None,
                     min_stick: float | None = None, min_slip: float | None = None) -> float:
-    """Drive force (N) at the first stick-to-slip transition of a spring-driven run.
+    """The first breakaway: drive force (N) at the first stick-to-slip transition of a
+    spring-driven run.
 
-    The keyword arguments are those of :func:`stick_slip_events`. For 45° flanks and regular
-    spacing the quasi-static value is L tan(45° + atan mu_s) (L: normal load).
+    The keyword arguments are those of :func:`stick_slip_events`. A free
+    slider under load L on 45° flanks and regular spacing breaks away at the
+    quasi-static L tan(45° + atan mu_s). On seed 000's fixed track the first
+    breakaway is the front tip entering the surface alone, the same for every
+    spacing: see :func:`peak_stick_force` and :func:`mean_stick_force` for the
+    engaged slider.
 
     Raises
     ------
     SceneError
         The run is not spring-driven, or never breaks away (named `result`).
     """
+    return _spring_events(result, stick_speed, slip_speed, min_stick, min_slip)[0].force_peak
+
+
+def _spring_events(result, stick_speed, slip_speed, min_stick, min_slip) -> list[Event]:
     if not isinstance(getattr(getattr(result, "scene", None), "drive", None), SpringDrive):
         raise SceneError("`result` must come from a spring-driven run (drive=\"spring\")")
     events = stick_slip_events(result, stick_speed=stick_speed, slip_speed=slip_speed,
                                min_stick=min_stick, min_slip=min_slip)
     if not events:
         raise SceneError("`result` has no stick-to-slip transition (the slider never broke away)")
-    return events[0].force_peak
+    return events
+
+
+def peak_stick_force(result, *, stick_speed: float | None = None, slip_speed: float | None = None,
+                     min_stick: float | None = None, min_slip: float | None = None) -> float:
+    """Largest drive force (N) at a stick-to-slip transition over the run: the force that
+    breaks the slider loose at its worst position on the surface.
+
+    On seed 000's fixed track the first breakaway (:func:`breakaway_force`)
+    happens while only the front tip has entered the surface; this is the
+    measure of the engaged slider. On a regular surface all n tips meet their
+    lower asperities at once and it is the quasi-static flank law for all of
+    them, n k delta tan(theta + atan mu_s). Keywords as :func:`stick_slip_events`.
+    """
+    return max(e.force_peak for e in _spring_events(result, stick_speed, slip_speed, min_stick, min_slip))
+
+
+def mean_stick_force(result, *, stick_speed: float | None = None, slip_speed: float | None = None,
+                     min_stick: float | None = None, min_slip: float | None = None) -> float:
+    """Mean drive force (N) at the stick-to-slip transitions of the run: the typical force
+    at which the slider breaks loose over a pass. Keywords as :func:`stick_slip_events`."""
+    events = _spring_events(result, stick_speed, slip_speed, min_stick, min_slip)
+    return float(np.mean([e.force_peak for e in events]))
 
 
 def friction_traces(result, *, bins: int = 40, dynamic_range: float = 1e4) -> dict[str, np.ndarray]:

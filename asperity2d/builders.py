@@ -3,57 +3,44 @@
 :func:`make_scene` is a pure function of its arguments: random spacings are
 reproducible from ``seed`` (the two surfaces get independent streams derived
 from it with ``numpy.random.SeedSequence``). :data:`DEFAULTS` lists every
-parameter it accepts; an unknown one raises :class:`SceneError` with the
-closest known name.
+parameter it accepts; its values come from :data:`asperity2d.scene.SEED_000`,
+the same table the dataclasses use, so ``make_scene()`` builds ``Scene()``.
+Every argument is checked (type, finiteness, range) before any arithmetic,
+whether or not the chosen drive or spacing uses it; an unknown one raises
+:class:`SceneError` with the closest known name, and two that contradict each
+other (``mu`` with ``mu_static``) are refused.
 """
 
 from __future__ import annotations
 
 import difflib
-import math
 
 import numpy as np
 
-from ._validate import check_choice, check_int, check_nonnegative, check_positive, per_item
+from ._validate import (check_choice, check_finite, check_int, check_nonnegative, check_positive,
+                        check_text, is_real, per_item, show)
 from .errors import SceneError
-from .geometry import KINDS, Profile, RandomSpacing, RegularSpacing
-from .scene import ConstantForce, Contact, LowerSurface, Scene, Slider, SpringDrive
+from .geometry import KINDS, Profile, RandomSpacing, RegularSpacing, half_of
+from .scene import (SEED_000, ConstantForce, Contact, LowerSurface, Scene, Slider, SpringDrive,
+                    kinetic_default)
 
-#: Every override make_scene accepts, with its default (None: derived).
+#: Every override make_scene accepts, with its default (None: derived, see make_scene).
 DEFAULTS = {
-    "base": 1e-6,  # m, seed 000 Table 1
-    "flank_angle": 45.0,  # degrees
-    "height": None,  # m; overrides flank_angle when given
-    "lower_count": 16,
-    "upper_count": 4,
-    "pitch": 1.25e-6,  # m, mean pitch of both surfaces
-    "lower_pitch": None,
-    "upper_pitch": None,
+    **SEED_000,
+    "height": None,  # m; instead of flank_angle
+    "half_shape": "apex-cut",  # half triangles: "apex-cut" (seed 000 fig. 9) or "full-base"
+    "lower_pitch": None, "upper_pitch": None,  # m, default `pitch`
     "min_gap": 0.0,  # m, random spacing
-    "lower_spacing": None,  # "regular" | "random"; default from `spacing`
-    "upper_spacing": None,
-    "lower_profile": None,  # "full" | "half" | "flat"; default from `profile`
-    "upper_profile": None,
-    "mass": 2.88e-16,  # kg per lower asperity, seed 000 Table 1
-    "stiffness": 37_200.0,  # N/m, seed 000 Table 1
-    "damping": None,  # N s/m; default from damping_ratio
-    "damping_ratio": 0.1,  # c / (2 sqrt(k m))
-    "travel_down": None,
-    "travel_up": None,
+    "lower_spacing": None, "upper_spacing": None,  # "regular" | "random"; default from `spacing`
+    "lower_profile": None, "upper_profile": None,  # "full" | "half" | "flat"; default from `profile`
+    "damping": None,  # N s/m; instead of damping_ratio
+    "travel_down": None, "travel_up": None,  # m, default the asperity height
     "lateral_stiffness": None,  # N/m: seed 000's MATLAB lattice (peaks move in x too)
     "lateral_damping": 0.0,
-    "slider_mass": 2.88e-15,  # kg
-    "track": "free",
-    "normal_load": 0.01,  # N
-    "interference": None,  # m, fixed track only
+    "interference": None,  # m, fixed track; default a quarter of the asperity height
     "mu": None,  # sets both coefficients
-    "mu_static": 0.3,
     "mu_kinetic": None,  # default: two thirds of mu_static
-    "slip_distance": None,
-    "stick_speed": None,
-    "drive_force": 0.02,  # N, drive="force"
-    "drive_stiffness": 3_720.0,  # N/m, drive="spring"
-    "drive_velocity": 20.0,  # m/s = 1.8e-3 * omega * base: quasi-static regime
+    "slip_distance": None, "stick_speed": None,
     "drive_damping": 0.0,
     "drive_preload": 0.0,  # N, initial spring force
     "gravity": 0.0,  # m/s^2; negligible at the micrometre scale
@@ -61,11 +48,58 @@ DEFAULTS = {
 }
 
 SPACINGS = ("regular", "random", "random-upper", "random-lower")
+HALF_SHAPES = ("apex-cut", "full-base")
+#: Pairs that say the same thing two ways: give one or the other.
+_EXCLUSIVE = (("mu", "mu_static"), ("mu", "mu_kinetic"), ("damping", "damping_ratio"),
+              ("height", "flank_angle"))
+_POSITIVE = ("base", "pitch", "mass", "stiffness", "slider_mass", "drive_stiffness", "drive_velocity")
+_NONNEGATIVE = ("damping_ratio", "normal_load", "mu_static", "min_gap", "drive_damping", "gravity")
+_OPTIONAL_POSITIVE = ("height", "lower_pitch", "upper_pitch", "travel_down", "travel_up",
+                      "interference", "stick_speed")
+_OPTIONAL_NONNEGATIVE = ("mu", "mu_kinetic", "slip_distance")
+_PER_ITEM = {"mass": False, "stiffness": False, "damping": True}  # name -> zero allowed
+
+
+def _check_arguments(p: dict, given: set) -> None:
+    """Type- and range-check every parameter, used by the chosen set-up or not."""
+    for a, b in _EXCLUSIVE:
+        if a in given and b in given:
+            raise SceneError(f"`{a}` and `{b}` both given: they set the same thing, give one")
+    for name in ("lower_count", "upper_count"):
+        check_int(name, p[name], minimum=1)
+    for name in _POSITIVE + _NONNEGATIVE + _OPTIONAL_POSITIVE + _OPTIONAL_NONNEGATIVE:
+        value = p[name]
+        if value is None and name in _OPTIONAL_POSITIVE + _OPTIONAL_NONNEGATIVE:
+            continue
+        if name in _PER_ITEM and not is_real(value):
+            continue  # a sequence, checked per item below
+        (check_positive if name in _POSITIVE + _OPTIONAL_POSITIVE else check_nonnegative)(name, value)
+    for name, zero in _PER_ITEM.items():
+        if p[name] is not None:
+            per_item(name, p[name], p["lower_count"], allow_zero=zero)
+    if not 0.0 < check_finite("flank_angle", p["flank_angle"]) < 90.0:
+        raise SceneError(f"`flank_angle` must be in (0, 90) degrees, got {show(p['flank_angle'])}")
+    check_finite("drive_force", p["drive_force"])
+    check_finite("drive_preload", p["drive_preload"])
+    check_choice("track", p["track"], ("free", "fixed"))
+    check_choice("half_shape", p["half_shape"], HALF_SHAPES)
+    check_text("name", p["name"])
+    for name in ("lower_profile", "upper_profile"):
+        if p[name] is not None:
+            check_choice(name, p[name], KINDS)
+    for name in ("lower_spacing", "upper_spacing"):
+        if p[name] is not None:
+            check_choice(name, p[name], ("regular", "random"))
 
 
 def make_scene(*, spacing: str = "regular", seed: int = 0, profile: str = "full",
                drive: str = "spring", **overrides) -> Scene:
     """Build a scene from named physical parameters (SI units).
+
+    The defaults are seed 000's Working Model set-up (:data:`SEED_000`): 16
+    lower and 4 upper 45° full triangles, Table 1 steel, the slider on a
+    fixed-height horizontal track; ``track="free"`` puts it on the surface
+    under ``normal_load`` instead.
 
     Parameters
     ----------
@@ -77,85 +111,74 @@ def make_scene(*, spacing: str = "regular", seed: int = 0, profile: str = "full"
         Seed of the random spacings (the two surfaces get independent
         streams derived from it).
     profile : {"full", "half", "flat"}
-        Asperity shape of both surfaces.
+        Asperity shape of both surfaces (``lower_profile`` / ``upper_profile``
+        override each). ``"half"`` is seed 000 figure 9's half triangle: the
+        full triangle of ``base`` and ``flank_angle`` cut through its apex
+        (same height and flank, half the base); ``half_shape="full-base"``
+        keeps the whole base instead (twice the height at the same angle).
     drive : {"spring", "force"}
         Spring whose far end moves at ``drive_velocity`` (stick-slip), or a
         constant ``drive_force``.
     **overrides
         Any key of :data:`DEFAULTS`; an unknown key raises :class:`SceneError`.
     """
-    unknown = sorted(set(overrides) - set(DEFAULTS))
+    unknown = sorted(set(overrides) - set(DEFAULTS), key=str)
     if unknown:
-        hints = {u: difflib.get_close_matches(u, DEFAULTS, n=1) for u in unknown}
+        hints = {u: difflib.get_close_matches(str(u), DEFAULTS, n=1) for u in unknown}
         msg = "; ".join(f"`{u}`" + (f" (did you mean `{h[0]}`?)" if h else "") for u, h in hints.items())
         raise SceneError(f"unknown scene parameter {msg}")
-    p = {**DEFAULTS, **overrides}
     check_choice("spacing", spacing, SPACINGS)
     check_choice("drive", drive, ("spring", "force"))
     check_choice("profile", profile, KINDS)
-    for name in ("lower_count", "upper_count"):
-        check_int(name, p[name], minimum=1)
-    for name in ("lower_profile", "upper_profile"):
-        if p[name] is not None:
-            check_choice(name, p[name], KINDS)
-    for name in ("pitch", "lower_pitch", "upper_pitch"):
-        if p[name] is not None:
-            check_positive(name, p[name])
-    if not isinstance(seed, int) or isinstance(seed, bool) or seed < 0:
-        raise SceneError(f"`seed` must be a non-negative integer, got {seed!r}")
+    seed = check_int("seed", seed, minimum=0, maximum=2**63 - 1)
+    p = {**DEFAULTS, **overrides}
+    _check_arguments(p, set(overrides))
 
-    def make_profile(kind):
+    def make_profile(kind: str) -> Profile:
+        if kind == "half" and p["half_shape"] == "apex-cut":
+            return half_of(make_profile("full"))
         if p["height"] is not None:
             return Profile(kind=kind, base=p["base"], height=p["height"])
         return Profile.from_angle(kind, base=p["base"], flank_angle=p["flank_angle"])
 
-    lower_kind = p["lower_profile"] or profile
-    upper_kind = p["upper_profile"] or profile
-    lower_rand = p["lower_spacing"] or ("random" if spacing in ("random", "random-lower") else "regular")
-    upper_rand = p["upper_spacing"] or ("random" if spacing in ("random", "random-upper") else "regular")
-    check_choice("lower_spacing", lower_rand, ("regular", "random"))
-    check_choice("upper_spacing", upper_rand, ("regular", "random"))
+    lower_profile = make_profile(p["lower_profile"] or profile)
+    upper_profile = make_profile(p["upper_profile"] or profile)
+    lower_kind = p["lower_spacing"] or ("random" if spacing in ("random", "random-lower") else "regular")
+    upper_kind = p["upper_spacing"] or ("random" if spacing in ("random", "random-upper") else "regular")
     lower_seed, upper_seed = (int(s) for s in np.random.SeedSequence(seed).generate_state(2))
 
-    def make_spacing(kind, count, pitch, sub_seed):
-        pitch = p["pitch"] if pitch is None else pitch
+    def make_spacing(kind, count, surface, shape, sub_seed):
+        name = f"{surface}_pitch" if p[f"{surface}_pitch"] is not None else "pitch"
+        pitch = p[name]
         if kind == "regular":
-            return RegularSpacing(count=count, pitch=pitch)
-        return RandomSpacing(count=count, mean_pitch=pitch, min_gap=p["min_gap"], seed=sub_seed)
+            spec = RegularSpacing(count=count, pitch=pitch)
+        else:
+            spec = RandomSpacing(count=count, mean_pitch=pitch, min_gap=p["min_gap"], seed=sub_seed)
+        spec.tips(*shape.runs(upper=surface == "upper"), name=name)  # overlap, named as the user wrote it
+        return spec
 
-    mass, stiffness = p["mass"], p["stiffness"]
-    damping = p["damping"]
-    if damping is None:
-        check_nonnegative("damping_ratio", p["damping_ratio"])
-        damping = tuple(
-            2.0 * p["damping_ratio"] * math.sqrt(k * m)
-            for k, m in zip(per_item("stiffness", stiffness, p["lower_count"], allow_zero=False),
-                            per_item("mass", mass, p["lower_count"], allow_zero=False))
-        )
     lower = LowerSurface(
-        profile=make_profile(lower_kind),
-        spacing=make_spacing(lower_rand, p["lower_count"], p["lower_pitch"], lower_seed),
-        mass=mass, stiffness=stiffness, damping=damping,
-        travel_down=p["travel_down"], travel_up=p["travel_up"],
-        lateral_stiffness=p["lateral_stiffness"], lateral_damping=p["lateral_damping"],
-    )
+        profile=lower_profile,
+        spacing=make_spacing(lower_kind, p["lower_count"], "lower", lower_profile, lower_seed),
+        mass=p["mass"], stiffness=p["stiffness"], damping=p["damping"],
+        damping_ratio=p["damping_ratio"], travel_down=p["travel_down"], travel_up=p["travel_up"],
+        lateral_stiffness=p["lateral_stiffness"], lateral_damping=p["lateral_damping"])
     slider = Slider(
-        profile=make_profile(upper_kind),
-        spacing=make_spacing(upper_rand, p["upper_count"], p["upper_pitch"], upper_seed),
+        profile=upper_profile,
+        spacing=make_spacing(upper_kind, p["upper_count"], "upper", upper_profile, upper_seed),
         mass=p["slider_mass"], track=p["track"], normal_load=p["normal_load"],
-        interference=p["interference"],
-    )
+        interference=p["interference"])
     if drive == "spring":
         drv = SpringDrive(stiffness=p["drive_stiffness"], velocity=p["drive_velocity"],
                           damping=p["drive_damping"], preload=p["drive_preload"])
     else:
         drv = ConstantForce(force=p["drive_force"])
-    mu_s, mu_k = p["mu_static"], p["mu_kinetic"]
-    if mu_k is None:
-        mu_k = check_nonnegative("mu_static", mu_s) * 2.0 / 3.0
     if p["mu"] is not None:
-        mu_s = mu_k = p["mu"]
+        mu_s = mu_k = check_nonnegative("mu", p["mu"])
+    else:
+        mu_s = p["mu_static"]
+        mu_k = kinetic_default(mu_s) if p["mu_kinetic"] is None else p["mu_kinetic"]
     contact = Contact(mu_static=mu_s, mu_kinetic=mu_k, slip_distance=p["slip_distance"],
                       stick_speed=p["stick_speed"])
-    name = p["name"] or f"{spacing}-{profile}-{drive}-seed{seed}"
+    name = p["name"] or f"{spacing}-{profile}-{drive}-{p['track']}-seed{seed}"
     return Scene(lower=lower, slider=slider, drive=drv, contact=contact, gravity=p["gravity"], name=name)

@@ -137,16 +137,15 @@ def real_time_rate(scene: Scene, *, steps: int = 20_000, velocity: float = SEED_
     """
     import time
 
-    from .engine import Engine
-    from .simulate import DT_FRACTION
+    from .simulate import Run
 
     scene = accelerated(scene, factor=1.0, reference_velocity=velocity)
-    dt = DT_FRACTION * scene.shortest_period()
-    engine = Engine(scene, dt)
+    run = Run(scene)
+    dt = run.dt
     if scene.slider.track == "free":
-        engine.settle(10.0 * scene.slowest_period() / engine.units.time)
+        run.settle()
     clock = time.perf_counter()
-    engine.step(steps)
+    run.advance(steps * dt, record_every=steps)
     wall = time.perf_counter() - clock
     rate = steps / wall
     per_um = 1e-6 / (velocity * dt)

@@ -1,8 +1,10 @@
 """Scene specification: frozen, validated dataclasses in SI units.
 
 A :class:`Scene` is pure data; it round-trips through plain dicts (JSON,
-TOML). The builder scripts and studies use, :func:`asperity2d.make_scene`,
-lives in :mod:`asperity2d.builders`. Nothing here touches pymunk.
+TOML). :data:`SEED_000` holds seed 000's Working Model set-up, the defaults of
+both these dataclasses and :func:`asperity2d.make_scene` (in
+:mod:`asperity2d.builders`), so ``Scene()`` and ``make_scene()`` build the
+same scene. Nothing here touches pymunk.
 """
 
 from __future__ import annotations
@@ -13,11 +15,43 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._validate import check_choice, check_finite, check_nonnegative, check_positive, per_item
+from ._validate import (check_choice, check_finite, check_nonnegative, check_positive, check_text,
+                        per_item, show)
 from .errors import SceneError
 from .geometry import Profile, RandomSpacing, RegularSpacing, Spacing
 
 TRACKS = ("free", "fixed")
+
+#: Seed 000's Working Model set-up (its figures 5-8 and Table 1): 45° full
+#: triangles on a 1 µm base, steel asperity mass and stiffness, lightly damped
+#: tracks (figure 8), the slider on a fixed-height horizontal track ("the top
+#: surface was constrained to move on a horizontal track") with its tips a
+#: quarter of the asperity height into the lower surface, pulled through a
+#: spring. The drive speed is the quasi-static limit at this scale (see
+#: :mod:`asperity2d.quasistatic`).
+SEED_000 = {
+    "base": 1e-6,  # m, Table 1
+    "flank_angle": 45.0,  # degrees
+    "lower_count": 16,
+    "upper_count": 4,
+    "pitch": 1.25e-6,  # m, both surfaces
+    "mass": 2.88e-16,  # kg per lower asperity, Table 1
+    "stiffness": 37_200.0,  # N/m, Table 1
+    "damping_ratio": 0.1,  # c / (2 sqrt(k m)), figure 8's dampers
+    "slider_mass": 2.88e-15,  # kg
+    "track": "fixed",
+    "normal_load": 0.01,  # N, the free slider's load (track="free")
+    "mu_static": 0.3,
+    "drive_stiffness": 3_720.0,  # N/m
+    "drive_velocity": 20.0,  # m/s = 1.8e-3 x omega x base: quasi-static
+    "drive_force": 0.02,  # N, a constant-force drive
+}
+_FULL = Profile.from_angle("full", base=SEED_000["base"], flank_angle=SEED_000["flank_angle"])
+
+
+def kinetic_default(mu_static: float) -> float:
+    """The default kinetic coefficient: two thirds of the static one (0.2 for 0.3)."""
+    return float(f"{2.0 * mu_static / 3.0:.12g}")
 
 
 @dataclass(frozen=True)
@@ -25,9 +59,10 @@ class LowerSurface:
     """Asperities on vertical spring-damper tracks (seed 000 figures 5, 7, 8).
 
     ``mass`` (kg), ``stiffness`` (N/m) and ``damping`` (N s/m) are scalars or
-    one value per asperity; they are stored as tuples. ``travel_down`` and
-    ``travel_up`` (m) limit each track below / above the rest position
-    (default: the asperity height).
+    one value per asperity; they are stored as tuples. ``damping=None`` gives
+    each track ``damping_ratio`` of its critical damping 2 sqrt(k m).
+    ``travel_down`` and ``travel_up`` (m) limit each track below / above the
+    rest position (default: the asperity height).
 
     ``lateral_stiffness`` (N/m) turns the tracks into seed 000's MATLAB
     lattice (its figure 14, equations 9-18): the peaks then move in x and y,
@@ -38,11 +73,13 @@ class LowerSurface:
     do not apply to the lattice.
     """
 
-    profile: Profile = field(default_factory=Profile)
-    spacing: Spacing = field(default_factory=RegularSpacing)
-    mass: float | tuple[float, ...] = 2.88e-16
-    stiffness: float | tuple[float, ...] = 37_200.0
-    damping: float | tuple[float, ...] = 0.0
+    profile: Profile = field(default_factory=lambda: _FULL)
+    spacing: Spacing = field(default_factory=lambda: RegularSpacing(
+        count=SEED_000["lower_count"], pitch=SEED_000["pitch"]))
+    mass: float | tuple[float, ...] = SEED_000["mass"]
+    stiffness: float | tuple[float, ...] = SEED_000["stiffness"]
+    damping: float | tuple[float, ...] | None = None
+    damping_ratio: float = SEED_000["damping_ratio"]
     travel_down: float | None = None
     travel_up: float | None = None
     lateral_stiffness: float | tuple[float, ...] | None = None
@@ -50,21 +87,24 @@ class LowerSurface:
 
     def __post_init__(self):
         n = self.spacing.count
-        object.__setattr__(self, "mass", per_item("mass", self.mass, n, allow_zero=False))
-        object.__setattr__(self, "stiffness", per_item("stiffness", self.stiffness, n, allow_zero=False))
-        object.__setattr__(self, "damping", per_item("damping", self.damping, n, allow_zero=True))
+        s = object.__setattr__
+        s(self, "mass", per_item("mass", self.mass, n, allow_zero=False))
+        s(self, "stiffness", per_item("stiffness", self.stiffness, n, allow_zero=False))
+        s(self, "damping_ratio", check_nonnegative("damping_ratio", self.damping_ratio))
+        if self.damping is None:
+            s(self, "damping", tuple(2.0 * self.damping_ratio * math.sqrt(k * m)
+                                     for k, m in zip(self.stiffness, self.mass)))
+        else:
+            s(self, "damping", per_item("damping", self.damping, n, allow_zero=True))
         if self.lateral_stiffness is not None:
-            object.__setattr__(self, "lateral_stiffness", per_item(
-                "lateral_stiffness", self.lateral_stiffness, n + 1, allow_zero=True))
-        object.__setattr__(self, "lateral_damping", per_item(
-            "lateral_damping", self.lateral_damping, n + 1, allow_zero=True))
+            s(self, "lateral_stiffness", per_item("lateral_stiffness", self.lateral_stiffness, n + 1,
+                                                  allow_zero=True))
+        s(self, "lateral_damping", per_item("lateral_damping", self.lateral_damping, n + 1,
+                                            allow_zero=True))
         for name in ("travel_down", "travel_up"):
             value = getattr(self, name)
-            if value is None:
-                object.__setattr__(self, name, self.profile.height)
-            else:
-                check_positive(name, value)
-        self.centers()  # validates that asperities do not overlap
+            s(self, name, self.profile.height if value is None else check_positive(name, value))
+        self.tips()  # validates that asperities do not overlap
 
     @property
     def count(self) -> int:
@@ -75,9 +115,9 @@ class LowerSurface:
         """True when the peaks move in x too (seed 000's MATLAB model)."""
         return self.lateral_stiffness is not None
 
-    def centers(self) -> np.ndarray:
-        """Base-centre x positions (m)."""
-        return self.spacing.centers(self.profile.base)
+    def tips(self) -> np.ndarray:
+        """Tip x positions (m)."""
+        return self.spacing.tips(*self.profile.runs(upper=False))
 
     def lateral_stiffness_matrix(self) -> np.ndarray:
         """The n x n horizontal stiffness matrix K (N/m) of the lattice's springs."""
@@ -92,46 +132,48 @@ class LowerSurface:
 class Slider:
     """The upper body carrying its own asperities, on a horizontal track.
 
-    ``track="free"``: free to move vertically, pressed down by
-    ``normal_load`` (N). ``track="fixed"``: held at a fixed height such that
-    its tips reach ``interference`` (m) below the lower tips' rest height.
+    ``track="fixed"`` (seed 000's Working Model set-up): held at a fixed height
+    such that its tips reach ``interference`` (m, default a quarter of the
+    asperity height) below the lower tips' rest height. ``track="free"``: free
+    to move vertically, pressed down by ``normal_load`` (N).
     """
 
-    profile: Profile = field(default_factory=Profile)
-    spacing: Spacing = field(default_factory=lambda: RegularSpacing(count=4))
-    mass: float = 2.88e-15
-    track: str = "free"
-    normal_load: float = 0.01
+    profile: Profile = field(default_factory=lambda: _FULL)
+    spacing: Spacing = field(default_factory=lambda: RegularSpacing(
+        count=SEED_000["upper_count"], pitch=SEED_000["pitch"]))
+    mass: float = SEED_000["slider_mass"]
+    track: str = SEED_000["track"]
+    normal_load: float = SEED_000["normal_load"]
     interference: float | None = None
 
     def __post_init__(self):
-        check_positive("slider_mass", self.mass)
+        object.__setattr__(self, "mass", check_positive("slider_mass", self.mass))
         check_choice("track", self.track, TRACKS)
-        check_nonnegative("normal_load", self.normal_load)
+        object.__setattr__(self, "normal_load", check_nonnegative("normal_load", self.normal_load))
         if self.interference is None:
             object.__setattr__(self, "interference", self.profile.height / 4.0)
         else:
-            check_positive("interference", self.interference)
-        self.centers()
+            object.__setattr__(self, "interference", check_positive("interference", self.interference))
+        self.tips()
 
     @property
     def count(self) -> int:
         return self.spacing.count
 
-    def centers(self) -> np.ndarray:
-        """Base-centre x positions relative to the slider's reference point (m)."""
-        c = self.spacing.centers(self.profile.base)
-        return c - c[0]
+    def tips(self) -> np.ndarray:
+        """Tip x positions relative to the rearmost tip (m)."""
+        t = self.spacing.tips(*self.profile.runs(upper=True))
+        return t - t[0]
 
 
 @dataclass(frozen=True)
 class ConstantForce:
     """A constant horizontal force on the slider (N), as in Working Model."""
 
-    force: float = 0.02
+    force: float = SEED_000["drive_force"]
 
     def __post_init__(self):
-        check_finite("drive_force", self.force)
+        object.__setattr__(self, "force", check_finite("drive_force", self.force))
 
 
 @dataclass(frozen=True)
@@ -142,16 +184,17 @@ class SpringDrive:
     (N, default 0: unstretched).
     """
 
-    stiffness: float = 3_720.0
-    velocity: float = 20.0
+    stiffness: float = SEED_000["drive_stiffness"]
+    velocity: float = SEED_000["drive_velocity"]
     damping: float = 0.0
     preload: float = 0.0
 
     def __post_init__(self):
-        check_positive("drive_stiffness", self.stiffness)
-        check_positive("drive_velocity", self.velocity)
-        check_nonnegative("drive_damping", self.damping)
-        check_finite("drive_preload", self.preload)
+        s = object.__setattr__
+        s(self, "stiffness", check_positive("drive_stiffness", self.stiffness))
+        s(self, "velocity", check_positive("drive_velocity", self.velocity))
+        s(self, "damping", check_nonnegative("drive_damping", self.damping))
+        s(self, "preload", check_finite("drive_preload", self.preload))
 
 
 Drive = ConstantForce | SpringDrive
@@ -161,34 +204,34 @@ Drive = ConstantForce | SpringDrive
 class Contact:
     """Friction at the asperity contacts (both surfaces).
 
-    ``mu_static`` >= ``mu_kinetic`` (default: equal). A stuck contact keeps
-    ``mu_static`` until it has slid ``slip_distance`` (m, default 0.1 % of the
-    asperity base) without pause, so a micro-slip of a step or two under a
-    suddenly applied load (measured: ~2e-5 base) does not drop it to
-    ``mu_kinetic``; ``slip_distance=0`` switches on the instantaneous slip
-    speed alone. A sliding
-    contact sticks again when its slip speed falls below ``stick_speed``
-    (m/s, default 1e-4 of base x natural frequency).
+    ``mu_static`` >= ``mu_kinetic`` (default: :func:`kinetic_default`, two
+    thirds of ``mu_static``). A stuck contact keeps ``mu_static`` until it has
+    slid ``slip_distance`` (m, default 0.1 % of the asperity base) without
+    pause, so a micro-slip of a step or two under a suddenly applied load
+    (measured: ~2e-5 base) does not drop it to ``mu_kinetic``;
+    ``slip_distance=0`` switches on the instantaneous slip speed alone. A
+    sliding contact sticks again when its slip speed falls below
+    ``stick_speed`` (m/s, default 1e-4 of base x natural frequency).
     """
 
-    mu_static: float = 0.3
+    mu_static: float = SEED_000["mu_static"]
     mu_kinetic: float | None = None
     slip_distance: float | None = None
     stick_speed: float | None = None
 
     def __post_init__(self):
-        check_nonnegative("mu_static", self.mu_static)
+        s = object.__setattr__
+        s(self, "mu_static", check_nonnegative("mu_static", self.mu_static))
         if self.mu_kinetic is None:
-            object.__setattr__(self, "mu_kinetic", self.mu_static)
-        check_nonnegative("mu_kinetic", self.mu_kinetic)
+            s(self, "mu_kinetic", kinetic_default(self.mu_static))
+        s(self, "mu_kinetic", check_nonnegative("mu_kinetic", self.mu_kinetic))
         if self.mu_kinetic > self.mu_static:
-            raise SceneError(
-                f"`mu_static` ({self.mu_static!r}) must be >= `mu_kinetic` ({self.mu_kinetic!r})"
-            )
+            raise SceneError(f"`mu_static` ({show(self.mu_static)}) must be >= `mu_kinetic` "
+                             f"({show(self.mu_kinetic)})")
         if self.slip_distance is not None:
-            check_nonnegative("slip_distance", self.slip_distance)
+            s(self, "slip_distance", check_nonnegative("slip_distance", self.slip_distance))
         if self.stick_speed is not None:
-            check_positive("stick_speed", self.stick_speed)
+            s(self, "stick_speed", check_positive("stick_speed", self.stick_speed))
 
 
 @dataclass(frozen=True)
@@ -203,9 +246,19 @@ class Scene:
     name: str = ""
 
     def __post_init__(self):
-        check_nonnegative("gravity", self.gravity)
+        object.__setattr__(self, "gravity", check_nonnegative("gravity", self.gravity))
+        check_text("name", self.name)
+        for attr, kind in (("lower", LowerSurface), ("slider", Slider), ("contact", Contact)):
+            if not isinstance(getattr(self, attr), kind):
+                raise SceneError(f"`{attr}` must be a {kind.__name__}, got {show(getattr(self, attr))}")
+        if not isinstance(self.drive, (ConstantForce, SpringDrive)):
+            raise SceneError(f"`drive` must be a SpringDrive or ConstantForce, got {show(self.drive)}")
         if self.slider.track == "free" and self.slider.normal_load == 0 and self.gravity == 0:
             raise SceneError("`normal_load` must be > 0 for a free slider when `gravity` is 0")
+        if self.slider.track == "fixed" and self.slider.interference >= self.lower.profile.height:
+            raise SceneError(
+                f"`interference` ({self.slider.interference:g} m) must be smaller than the lower "
+                f"asperity height ({self.lower.profile.height:g} m): the tips would reach the base")
 
     # -- derived quantities --------------------------------------------------
     @property

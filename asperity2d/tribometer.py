@@ -37,7 +37,7 @@ from .scene import Scene
 
 #: Scene parameters of the tribometer (make_scene overrides): Table 1 steel,
 #: two upper tips at 1 mN each, a stiff drive.
-TRIBOMETER_SCENE = dict(base=1e-6, mass=2.88e-16, stiffness=37_200.0, flank_angle=45.0,
+TRIBOMETER_SCENE = dict(base=1e-6, mass=2.88e-16, stiffness=37_200.0, flank_angle=45.0, track="free",
                         lower_count=10, upper_count=2, normal_load=2e-3,
                         drive_stiffness=372_000.0)
 
@@ -85,35 +85,27 @@ def make_tribometer_scene(**overrides) -> Scene:
                       drive="spring", **{**TRIBOMETER_SCENE, **overrides})
 
 
-def _engine(scene: Scene, velocity: float):
-    from .engine import Engine
-    from .simulate import DT_FRACTION
+def _run(scene: Scene, velocity: float):
+    """A settled run of ``scene`` with its drive at ``velocity`` (m/s)."""
+    from .simulate import Run
 
-    scene = scene.replace(drive=dataclasses.replace(scene.drive, velocity=velocity))
-    engine = Engine(scene, DT_FRACTION * scene.shortest_period())
-    engine.settle(10.0 * scene.slowest_period() / engine.units.time)
-    return engine
+    run = Run(scene.replace(drive=dataclasses.replace(scene.drive, velocity=velocity)))
+    run.settle()
+    return run
 
 
-def _stroke(engine, velocity: float, distance: float, every: int) -> np.ndarray:
+def _stroke(run, velocity: float, distance: float, every: int) -> np.ndarray:
     """Drive at ``velocity`` (m/s, signed) for ``distance`` (m) of drive travel.
 
     Returns rows ``(drive_x, slider_x, friction_force, normal_force)`` (m, m,
     N, N) sampled every ``every`` steps; friction resists +x motion (> 0).
     """
-    u = engine.units
-    engine.set_drive_velocity(velocity)
-    steps = max(1, int(round(distance / (abs(velocity) * engine.dt * u.time))))
-    rows = []
-    done = 0
-    while done < steps:
-        n = min(every, steps - done)
-        engine.step(n)
-        done += n
-        fx, fy, _, _, _, _ = engine.contacts()
-        rows.append((engine.drive_position() * u.length, engine.slider.position.x * u.length,
-                     -fx * u.force, fy * u.force))
-    return np.array(rows)
+    run.set_drive_velocity(velocity)
+    steps = max(1, int(round(distance / (abs(velocity) * run.dt))))
+    start = run.samples
+    run.advance(steps * run.dt, record_every=every)
+    r = run.result(start=start)
+    return np.column_stack([r.drive_x, r.x, r.friction_force, r.normal_force])
 
 
 def _window_stats(rows: np.ndarray, pitch: float, pitches: int, sign: float) -> tuple[float, float, float]:
@@ -158,11 +150,11 @@ def steady_curve(scene: Scene, protocol: Protocol = Protocol()) -> SteadyCurve:
     pitch = scene.lower.spacing.mean_pitch
     v_out, f_out, s_out, c_out = [], [], [], []
     for v in protocol.velocities:
-        engine = _engine(scene, v)
-        every = max(1, int(pitch / protocol.samples_per_pitch / (v * engine.dt * engine.units.time)))
+        run = _run(scene, v)
+        every = max(1, int(pitch / protocol.samples_per_pitch / (v * run.dt)))
         for sign in (1.0, -1.0):
-            _stroke(engine, sign * v, protocol.transient_pitches * pitch, every)
-            rows = _stroke(engine, sign * v, protocol.pitches * pitch, every)
+            _stroke(run, sign * v, protocol.transient_pitches * pitch, every)
+            rows = _stroke(run, sign * v, protocol.pitches * pitch, every)
             mean, spread, contact = _window_stats(rows, pitch, protocol.pitches, sign)
             v_out.append(sign * v)
             f_out.append(sign * mean)
@@ -196,21 +188,20 @@ class ReversalLoops:
 def reversal_loops(scene: Scene, protocol: Protocol = Protocol(), *, samples_per_stroke: int = 200) -> ReversalLoops:
     """From rest, strokes 0 -> +a -> -a -> +a for each amplitude a (drive travel, m)."""
     v = protocol.reversal_velocity
-    engine = _engine(scene, v)
-    u = engine.units
-    x0 = engine.slider.position.x * u.length
-    d0 = engine.drive_position() * u.length
+    run = _run(scene, v)
+    x0 = run.engine.slider_state()[0]
+    d0 = run.engine.drive_position()
     parts = []
     position = 0.0
     for amp in protocol.amplitudes:
-        every = max(1, int(amp / samples_per_stroke / (v * engine.dt * u.time)))
+        every = max(1, int(amp / samples_per_stroke / (v * run.dt)))
         for target in (amp, -amp, amp):
             move = target - position
             if move != 0:
-                parts.append(_stroke(engine, math.copysign(v, move), abs(move), every))
+                parts.append(_stroke(run, math.copysign(v, move), abs(move), every))
             position = target
         # back to zero for the next amplitude
-        parts.append(_stroke(engine, -v, amp, every))
+        parts.append(_stroke(run, -v, amp, every))
         position = 0.0
     rows = np.concatenate(parts)
     return ReversalLoops(displacement=rows[:, 1] - x0, force=rows[:, 2], drive=rows[:, 0] - d0,
@@ -230,15 +221,15 @@ def energy_window(scene: Scene, *, velocity: float, pitches: int = 2, transient_
     from .engine.energy import EnergyMeter
 
     pitch = scene.lower.spacing.mean_pitch
-    engine = _engine(scene, velocity)
+    run = _run(scene, velocity)
     every = 1000
-    _stroke(engine, velocity, transient_pitches * pitch, every)
-    meter = EnergyMeter(engine)
-    x0 = engine.slider.position.x
-    _stroke(engine, velocity, pitches * pitch, every)
+    _stroke(run, velocity, transient_pitches * pitch, every)
+    meter = EnergyMeter(run.engine)
+    x0 = run.engine.slider_state()[0]
+    _stroke(run, velocity, pitches * pitch, every)
     report = meter.report()
     meter.detach()
-    distance = (engine.slider.position.x - x0) * engine.units.length
+    distance = run.engine.slider_state()[0] - x0
     fd = report["mean_friction_force_N"] * distance
     rhs = report["dissipated_J"] + report["stored_energy_change_J"]
     report.update(distance_m=distance, friction_times_distance_J=fd,

@@ -6,6 +6,10 @@ micrometre scale silently disables its overlap correction, so the adapter
 works in scaled units: length = asperity base, mass = lower asperity mass,
 time = 1 / omega with omega the stiffest spring-mass pair. A micrometre scene
 and the same scene scaled up then produce the same internal numbers.
+
+:func:`check_scales` refuses, before pymunk sees it, any scene whose
+parameters differ from these scales by more than the engine can resolve
+(an overflowing mass once aborted the whole process inside Chipmunk).
 """
 
 from __future__ import annotations
@@ -14,6 +18,15 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+
+from ._validate import show
+from .errors import SceneError
+
+#: Ratios of a parameter to its internal scale the engine resolves.
+RATIO_RANGE = (1e-9, 1e9)
+#: Smallest interference and asperity height, in asperity bases: below the
+#: collision slop (1e-3 base) a contact is never pushed apart.
+MIN_LENGTH_RATIO = 2e-3
 
 
 @dataclass(frozen=True)
@@ -26,8 +39,18 @@ class Units:
 
     @classmethod
     def for_scene(cls, scene) -> "Units":
-        omega = max(scene.natural_frequencies().values())
-        return cls(length=scene.base, mass=float(np.mean(scene.lower.mass)), time=1.0 / omega)
+        """The scales of ``scene`` (:class:`SceneError` if they are not finite and positive)."""
+        with np.errstate(all="ignore"):
+            freqs = scene.natural_frequencies()
+            omega = max(freqs.values())
+            mass = float(np.mean(scene.lower.mass))
+        if not (math.isfinite(omega) and omega > 0 and math.isfinite(mass) and mass > 0
+                and math.isfinite(1.0 / omega) and 1.0 / omega > 0):
+            culprit = {"lower": "`stiffness` / `mass`", "lattice": "`lateral_stiffness` / `mass`",
+                       "drive": "`drive_stiffness` / `slider_mass`"}[max(freqs, key=freqs.get)]
+            raise SceneError(f"{culprit} give a natural frequency the engine cannot represent "
+                             f"(omega = {omega!r} rad/s)")
+        return cls(length=scene.base, mass=mass, time=1.0 / omega)
 
     @property
     def velocity(self) -> float:
@@ -58,6 +81,61 @@ class Units:
                 "force_N": self.force, "velocity_m_per_s": self.velocity}
 
 
-def per_step_bias(fraction: float, dt: float) -> float:
-    """pymunk bias (error left after one time unit) that removes ``fraction`` per step of ``dt``."""
-    return math.pow(1.0 - fraction, 1.0 / dt)
+def check_scales(scene, units: Units) -> None:
+    """Refuse parameters the engine cannot represent next to the scene's scales.
+
+    Every mass, stiffness, damping, force, speed and length is compared with
+    its internal unit (:class:`Units`); a ratio outside :data:`RATIO_RANGE`
+    (or a length under :data:`MIN_LENGTH_RATIO` bases) raises
+    :class:`SceneError` naming the parameter as ``make_scene`` spells it and
+    the parameter that set the scale.
+    """
+    from .scene import SpringDrive
+
+    freqs = scene.natural_frequencies()
+    setter = {"lower": "`stiffness` and `mass`", "lattice": "`lateral_stiffness` and `mass`",
+              "drive": "`drive_stiffness` and `slider_mass`"}[max(freqs, key=freqs.get)]
+    scales = {"mass": (units.mass, "kg", "the mean lower asperity `mass`"),
+              "stiffness": (units.stiffness, "N/m", f"the stiffest spring-mass pair ({setter})"),
+              "damping": (units.damping, "N s/m", f"the stiffest spring-mass pair ({setter})"),
+              "force": (units.force, "N", f"the stiffness scale ({setter}) times the asperity `base`"),
+              "velocity": (units.velocity, "m/s", f"`base` times the highest natural frequency ({setter})"),
+              "length": (units.length, "m", "the asperity `base`"),
+              "acceleration": (units.acceleration, "m/s^2", f"`base` times the frequency scale squared")}
+    lower, slider, drive = scene.lower, scene.slider, scene.drive
+    checks = [("mass", "mass", v) for v in lower.mass] + [("slider_mass", "mass", slider.mass)]
+    checks += [("stiffness", "stiffness", v) for v in lower.stiffness]
+    checks += [("damping", "damping", v) for v in lower.damping if v > 0]
+    if lower.is_lattice:
+        checks += [("lateral_stiffness", "stiffness", v) for v in lower.lateral_stiffness if v > 0]
+    checks += [("lateral_damping", "damping", v) for v in lower.lateral_damping if v > 0]
+    checks += [("pitch", "length", lower.spacing.mean_pitch), ("pitch", "length", slider.spacing.mean_pitch),
+               ("travel_down", "length", lower.travel_down), ("travel_up", "length", lower.travel_up),
+               ("height", "length", lower.profile.height), ("height", "length", slider.profile.height),
+               ("base", "length", slider.profile.base),
+               ("surface length", "length", float(lower.tips()[-1] - lower.tips()[0]) or lower.profile.base)]
+    if slider.track == "free":
+        checks.append(("normal_load", "force", slider.normal_load))
+    else:
+        checks.append(("interference", "length", slider.interference))
+    if isinstance(drive, SpringDrive):
+        checks += [("drive_stiffness", "stiffness", drive.stiffness), ("drive_velocity", "velocity", drive.velocity)]
+        if drive.damping > 0:
+            checks.append(("drive_damping", "damping", drive.damping))
+        if drive.preload != 0:
+            checks.append(("drive_preload", "force", abs(drive.preload)))
+    elif drive.force != 0:
+        checks.append(("drive_force", "force", abs(drive.force)))
+    if scene.gravity > 0:
+        checks.append(("gravity", "acceleration", scene.gravity))
+    low, high = RATIO_RANGE
+    for name, kind, value in checks:
+        scale, unit, what = scales[kind]
+        with np.errstate(all="ignore"):
+            ratio = float(value) / scale
+        floor = MIN_LENGTH_RATIO if name in ("height", "interference") else low
+        if not (math.isfinite(ratio) and floor <= ratio <= high):
+            raise SceneError(
+                f"`{name}` = {show(value)} {unit} is {ratio:.3g} times its scale in this scene "
+                f"({scale:.3g} {unit}, set by {what}); the engine resolves {floor:g} to {high:g} times: "
+                f"bring `{name}` closer to the scene's other parameters")

@@ -26,15 +26,6 @@ sys.path.insert(0, str(HERE.parent))
 from asperity2d._io import atomic_write_text  # noqa: E402
 
 
-def _core(res):
-    rows = [(f"recording: simulate / engine step, N={r['N']}", r["recording_ratio"], ">= 0.9")
-            for r in res["rows"]]
-    rows += [(f"us per asperity-step, N={r['N']}", r["us_per_asperity_step"], "flat or falling")
-             for r in res["rows"]]
-    rows.append(("cost growth / N growth (10 -> largest N)", 1 / res["linear_scaling_margin"], "<= 1"))
-    return rows
-
-
 def _gif(res):
     return [("GIF frames: Pillow speed-up over matplotlib", res["speedup"], ">= 20"),
             ("GIF frames per second (Pillow)", res["pillow_fps"], "")]
@@ -62,7 +53,7 @@ def _generic(res, prefix=""):
     return rows
 
 
-HEADLINES = {"core": _core, "gif": _gif, "sweep": _sweep}
+HEADLINES = {"gif": _gif, "sweep": _sweep}
 ORDER = ("core", "gif", "belt", "sweep", "studies", "steel")
 
 

@@ -24,14 +24,14 @@ from __future__ import annotations
 
 import asperity2d as a
 from asperity2d import quasistatic as qs
-from asperity2d import scripting
+from asperity2d.studies import scripting
 
 TABLE1 = dict(base=1e-6, mass=2.88e-16, stiffness=37_200.0, flank_angle=45.0)
 FACTOR = 2000.0
 
 
 def build_scene(quick: bool = False, **overrides):
-    params = dict(TABLE1, lower_count=6 if quick else 8, upper_count=4, normal_load=4e-3,
+    params = dict(TABLE1, lower_count=6 if quick else 8, upper_count=4, normal_load=4e-3, track="free",
                   drive_velocity=qs.SEED_DRIVE_VELOCITY * FACTOR, name="steel-table1")
     params.update(overrides)
     return a.make_scene(spacing="regular", drive="spring", **params)

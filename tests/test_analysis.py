@@ -133,7 +133,7 @@ def test_breakaway_on_synthetic_and_never_breaking_away():
 
 @pytest.fixture(scope="module")
 def real_run():
-    return a.simulate(a.make_scene(lower_count=6, upper_count=2))
+    return a.simulate(a.make_scene(lower_count=6, upper_count=2, track="free"))
 
 
 def test_real_run_events_and_breakaway_match_the_flank_law(real_run):

@@ -30,7 +30,7 @@ def single_asperity(theta, mu, **kw):
     # Quasi-static: the overshoot at breakaway grows linearly with the drive
     # speed (measured 3.6 % at 5 m/s, 20 deg); 1 m/s = 9e-5 base x omega.
     kw.setdefault("drive_velocity", 1.0)
-    return a.make_scene(lower_count=1, upper_count=1, flank_angle=theta, mu=mu,
+    return a.make_scene(lower_count=1, upper_count=1, flank_angle=theta, mu=mu, track="free",
                         normal_load=load, slider_mass=2.88e-16, **kw), load
 
 
@@ -55,7 +55,7 @@ def test_wedge_jams_when_flank_plus_friction_angle_reaches_90_degrees():
 
 def test_contact_force_balances_drive_and_load_while_stuck():
     load = 0.01
-    scene = a.make_scene(lower_count=6, upper_count=2, normal_load=load)
+    scene = a.make_scene(lower_count=6, upper_count=2, normal_load=load, track="free")
     result = a.simulate(scene, duration=4e-8)
     stuck = np.abs(result.v) < 0.05 * scene.drive.velocity
     assert stuck.sum() > 100  # a real stick phase, not a few samples
@@ -67,7 +67,7 @@ def test_contact_force_balances_drive_and_load_while_stuck():
 
 def flat_block(**kw):
     load = 0.002
-    return a.make_scene(profile="flat", height=0.25e-6, lower_count=1, upper_count=1,
+    return a.make_scene(profile="flat", height=0.25e-6, lower_count=1, upper_count=1, track="free",
                         mu_static=0.4, mu_kinetic=0.3, normal_load=load, **kw), load
 
 
@@ -95,7 +95,7 @@ def test_flat_block_breaks_away_at_mu_static_and_slides_at_mu_kinetic():
 ])
 def test_static_friction_survives_a_suddenly_applied_load(force_ratio, slip_distance, moves):
     load = 0.002  # one tip on the middle of a 45 deg front flank, held there while settling
-    scene = a.make_scene(lower_count=1, upper_count=1, mu_static=0.4, mu_kinetic=0.3,
+    scene = a.make_scene(lower_count=1, upper_count=1, mu_static=0.4, mu_kinetic=0.3, track="free",
                          normal_load=load, drive="force", drive_force=force_ratio * load,
                          slip_distance=slip_distance)
     result = a.simulate(scene, duration=2e-8)
@@ -109,7 +109,7 @@ def test_static_friction_survives_a_suddenly_applied_load(force_ratio, slip_dist
 def steel(length_scale=1.0, mass_scale=1.0):
     """Seed 000 Table 1 steel scene, optionally scaled (time unchanged)."""
     ls, ms = length_scale, mass_scale
-    return a.make_scene(lower_count=4, upper_count=2, base=1e-6 * ls, pitch=1.25e-6 * ls,
+    return a.make_scene(lower_count=4, upper_count=2, base=1e-6 * ls, pitch=1.25e-6 * ls, track="free",
                         mass=2.88e-16 * ms, stiffness=K * ms, slider_mass=2.88e-15 * ms,
                         normal_load=0.01 * ms * ls, drive_stiffness=3720 * ms,
                         drive_velocity=20 * ls)

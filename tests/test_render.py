@@ -1,16 +1,18 @@
-"""GIF and plot renderers: frame counts, sizes, dispatch by extension, atomic files."""
+"""Animation and plot renderers: frame counts, sizes, dispatch by extension, atomic files."""
 
 import dataclasses
+import sys
 
 import numpy as np
 import pytest
-from PIL import Image
+from PIL import Image, ImageFont, ImageSequence
 
 import asperity2d as a
 from asperity2d.analysis import synthetic_stick_slip
 from asperity2d.compare import Comparison
 from asperity2d.render import render
-from asperity2d.render.gif import Layout, frame_shapes, render_gif
+from asperity2d.render.animate import (Layout, draw_frame, frame_indices, frame_shapes,
+                                       render_animation)
 from asperity2d.render.plots import plot_comparison, plot_force_displacement, plot_run
 
 MAGIC = {".gif": b"GIF89a", ".png": b"\x89PNG", ".pdf": b"%PDF"}
@@ -27,7 +29,7 @@ def leftovers(directory):
 
 @pytest.mark.parametrize("frames", [1, 7, 33])
 def test_gif_has_exactly_the_frames_asked(run, tmp_path, frames):
-    path = render_gif(run, tmp_path / "run.gif", frames=frames, width=200, height=100)
+    path = render_animation(run, tmp_path / "run.gif", frames=frames, width=200, height=100)
     with Image.open(path) as im:
         assert im.n_frames == frames
         assert im.size == (200, 100)
@@ -49,7 +51,7 @@ def test_gif_frames_exact_even_with_fewer_samples_than_frames(tmp_path):
         "t", "x", "v", "y", "drive_x", "drive_force")},
         lower_dx=result.lower_dx[:, :5], lower_dy=result.lower_dy[:, :5],
         lower_contact=result.lower_contact[:, :5])
-    path = render_gif(few, tmp_path / "few.gif", frames=12, width=160, height=80)
+    path = render_animation(few, tmp_path / "few.gif", frames=12, width=160, height=80)
     with Image.open(path) as im:
         assert im.n_frames == 12  # identical pictures would be merged by the GIF writer
 
@@ -83,7 +85,40 @@ def test_render_a_saved_result_without_resimulating(run, tmp_path):
         assert im.n_frames == 4
 
 
-@pytest.mark.parametrize("name", ["out.mp4", "out", "out.GIFX"])
+def test_gif_frames_are_the_pillow_drawings_unchanged(run, tmp_path):
+    """imageio encodes the palette frames exactly as Pillow drew them (no re-quantisation)."""
+    path = render_animation(run, tmp_path / "run.gif", frames=5, width=160, height=80)
+    layout, font = Layout(run, width=160, height=80), ImageFont.load_default()
+    drawn = [draw_frame(frame_shapes(layout, int(k), frame=i, frames=5), width=160, height=80,
+                        font=font) for i, k in enumerate(frame_indices(run, 5))]
+    with Image.open(path) as im:
+        decoded = [np.asarray(f.convert("RGB")) for f in ImageSequence.Iterator(im)]
+    assert len(decoded) == 5
+    for picture, frame in zip(drawn, decoded):
+        np.testing.assert_array_equal(np.asarray(picture.convert("RGB")), frame)
+
+
+def test_mp4_has_the_frames_and_size_asked(run, tmp_path):
+    """The optional video extra: H.264 through imageio's ffmpeg plugin, written atomically."""
+    pytest.importorskip("imageio_ffmpeg")
+    import imageio.v3 as iio
+
+    path = render(run, tmp_path / "run.mp4", frames=9, width=160, height=80, fps=10)
+    frames = list(iio.imiter(path, plugin="FFMPEG"))
+    assert len(frames) == 9 and frames[0].shape == (80, 160, 3)
+    assert leftovers(tmp_path) == [] and sorted(p.name for p in tmp_path.iterdir()) == ["run.mp4"]
+    with pytest.raises(a.SceneError, match="`width` must be even"):
+        render(run, tmp_path / "odd.mp4", frames=2, width=161, height=80)
+
+
+def test_mp4_without_the_video_extra_is_a_scene_error(run, tmp_path, monkeypatch):
+    monkeypatch.setitem(sys.modules, "imageio_ffmpeg", None)  # import now raises ImportError
+    with pytest.raises(a.SceneError, match=r"asperity2d\[video\]"):
+        render(run, tmp_path / "run.mp4", frames=2, width=160, height=80)
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("name", ["out.avi", "out", "out.GIFX"])
 def test_bad_extension_is_a_scene_error(run, tmp_path, name):
     with pytest.raises(a.SceneError, match="`path`"):
         render(run, tmp_path / name)
@@ -92,11 +127,11 @@ def test_bad_extension_is_a_scene_error(run, tmp_path, name):
 
 def test_bad_gif_options(run, tmp_path):
     with pytest.raises(a.SceneError, match="`frames`"):
-        render_gif(run, tmp_path / "x.gif", frames=0)
+        render_animation(run, tmp_path / "x.gif", frames=0)
     with pytest.raises(a.SceneError, match="`fps`"):
-        render_gif(run, tmp_path / "x.gif", fps=0)
+        render_animation(run, tmp_path / "x.gif", fps=0)
     with pytest.raises(a.SceneError, match="`view_width`"):
-        render_gif(run, tmp_path / "x.gif", view_width=-1.0)
+        render_animation(run, tmp_path / "x.gif", view_width=-1.0)
 
 
 def test_plots_write_files(run, tmp_path):

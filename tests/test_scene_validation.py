@@ -18,14 +18,14 @@ BAD = [
     (dict(stiffness=math.inf), "`stiffness`"),
     (dict(mass=[1e-16, 1e-16]), "`mass`"),  # wrong length
     (dict(mu_static=0.1, mu_kinetic=0.2), "`mu_static`"),
-    (dict(mu=-0.1), "`mu_static`"),
+    (dict(mu=-0.1), "`mu`"),
     (dict(pitch=0.0), "`pitch`"),
     (dict(pitch=0.5e-6), "`pitch`"),  # asperities on the lower track would overlap
     (dict(lower_count=0), "`lower_count`"),
     (dict(upper_count=1.5), "`upper_count`"),
     (dict(slider_mass=0.0), "`slider_mass`"),
     (dict(normal_load=-0.01), "`normal_load`"),
-    (dict(normal_load=0.0), "`normal_load`"),
+    (dict(normal_load=0.0, track="free"), "`normal_load`"),
     (dict(flank_angle=95.0), "`flank_angle`"),
     (dict(base=0.0), "`base`"),
     (dict(height=-1e-6), "`height`"),
@@ -35,7 +35,7 @@ BAD = [
     (dict(interference=0.0, track="fixed"), "`interference`"),
     (dict(lower_profile="trapezoid"), "`lower_profile`"),
     (dict(min_gap=-1e-7, spacing="random"), "`min_gap`"),
-    (dict(pitch=1.1e-6, min_gap=0.5e-6, spacing="random"), "`mean_pitch`"),
+    (dict(pitch=1.1e-6, min_gap=0.5e-6, spacing="random"), "`pitch`"),
     (dict(stifness=1.0), "`stifness` (did you mean `stiffness`?)"),
     (dict(profile="triangle"), "`profile`"),
     (dict(spacing="chaotic"), "`spacing`"),
@@ -63,9 +63,9 @@ def test_invalid_run_argument_raises_scene_error(kwargs, name):
 
 
 def test_random_spacing_is_seeded_and_never_overlaps():
-    one = a.make_scene(spacing="random", seed=7).lower.centers()
-    two = a.make_scene(spacing="random", seed=7).lower.centers()
-    other = a.make_scene(spacing="random", seed=8).lower.centers()
+    one = a.make_scene(spacing="random", seed=7).lower.tips()
+    two = a.make_scene(spacing="random", seed=7).lower.tips()
+    other = a.make_scene(spacing="random", seed=8).lower.tips()
     assert (one == two).all() and not (one == other).all()
     assert (one[1:] - one[:-1]).min() >= 1e-6  # base + min_gap
     scene = a.make_scene(spacing="random-upper", seed=7)

@@ -27,12 +27,16 @@ def test_script_writes_gif_with_requested_frames_and_summary(name, extra, tmp_pa
         assert im.n_frames == 7
 
 
-def test_stick_slip_script_reports_the_flank_law_breakaway(tmp_path, capsys):
+def test_stick_slip_script_reports_the_flank_law_peak_stick_force(tmp_path, capsys):
+    """Fixed track, regular spacing: every tip pushes its asperity down by the interference at
+    once, so the largest stick force is n k delta tan(45 deg + atan mu_s) (measured within 0.1 %;
+    2 % allows for the drive's dynamic overshoot)."""
     assert main(["run", str(SCENES / "stick_slip.py"), "--quick", "--no-gif", "-o", str(tmp_path),
                  "--json"]) == 0
     summary = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
     assert summary["events"]["count"] >= 2
-    assert summary["breakaway_force_N"] == pytest.approx(summary["flank_law_static_N"], rel=0.02)
+    assert summary["peak_stick_force_N"] == pytest.approx(summary["flank_law_all_tips_N"], rel=0.02)
+    assert summary["first_breakaway_force_N"] < 0.5 * summary["peak_stick_force_N"]
 
 
 def test_toml_scene_runs_saves_and_reanalyses(tmp_path, capsys):

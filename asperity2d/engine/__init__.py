@@ -1,12 +1,14 @@
 """The pymunk adapter: the only place that imports pymunk.
 
-* :mod:`.asperity` — asperity scenes (:class:`Engine`: stepping, drive, settling),
-  with its mixins :mod:`.build` (the space) and :mod:`.contacts` (stick/slip
-  switching, read-outs);
+* :mod:`.core` — :class:`Engine`: an asperity scene stepped with a fixed dt
+  (drive, load, track projection, settling), composed of
+* :mod:`.space` — building the space (:func:`~.space.build` -> :class:`~.space.Layout`), and
+* :mod:`.contacts` — one batch read of the contacts per step, the stick/slip
+  switch and the contact forces;
 * :mod:`.energy` — per-step energy accounting (:class:`~.energy.EnergyMeter`);
 * :mod:`.belt` — masses on a moving belt, for cross-checks of the exact solver.
 """
 
-from .asperity import PYMUNK_VERSION, Engine
+from .core import PYMUNK_VERSION, Engine
 
 __all__ = ["Engine", "PYMUNK_VERSION"]

@@ -1,14 +1,19 @@
-"""Contact-level parts of the asperity engine: stick/slip switching and read-out.
+"""Contacts of an asperity scene: one batch read per step, the stick/slip switch, contact forces.
 
-Mixed into :class:`asperity2d.engine.asperity.Engine` (same adapter; split
-out to keep each module to one role). Static > kinetic friction: pymunk has
-one coefficient per contact (the product of the two shapes' coefficients).
-After every step the contacts are read in one batch call and each lower
-asperity's coefficient is set from the stick/slip state of its contact with
-the slider. A stuck contact keeps ``mu_static`` until it has slid
-``slip_distance`` without pause (speed above ``stick_speed`` every step), so a
-micro-slip of a step or two under a sudden load does not make it kinetic; a
-sliding contact sticks again when its slip speed drops below ``stick_speed``.
+Part of the adapter (:mod:`asperity2d.engine`). :class:`Arbiters` holds one
+``pymunk.batch`` read of every contact after a step; the stick/slip switch and
+the force read-out both use it, so the space is read once.
+
+Static > kinetic friction: pymunk has one coefficient per contact (the
+product of the two shapes' coefficients; the slider's shapes have 1). After
+every step each lower asperity's coefficient is set from the stick/slip state
+of its contact with the slider, kept in NumPy arrays. A stuck contact keeps
+``mu_static`` until it has slid ``slip_distance`` without pause (speed above
+``stick_speed`` every step), so a micro-slip of a step or two under a sudden
+load does not make it kinetic; a sliding contact sticks again when its slip
+speed drops below ``stick_speed``. The new coefficient acts from the next
+step, as a ``pre_solve`` callback would; pymunk is touched only for the
+shapes whose coefficient changes.
 """
 
 from __future__ import annotations
@@ -20,139 +25,178 @@ from pymunk import batch
 
 from ..scene import SpringDrive
 
-_LOWER, _SLIDER, _FLOOR = 1, 2, 4  # shape categories (bit masks) and collision types
-_BODY_FIELDS = batch.BodyFields.POSITION | batch.BodyFields.VELOCITY
-_FRICTION_FIELDS = (batch.ArbiterFields.BODY_A_ID | batch.ArbiterFields.BODY_B_ID
-                    | batch.ArbiterFields.CONTACT_COUNT | batch.ArbiterFields.NORMAL)
-_ARB_FIELDS = (batch.ArbiterFields.BODY_A_ID | batch.ArbiterFields.BODY_B_ID
-               | batch.ArbiterFields.CONTACT_COUNT | batch.ArbiterFields.TOTAL_IMPULSE
-               | batch.ArbiterFields.NORMAL | batch.ArbiterFields.DISTANCE_1
-               | batch.ArbiterFields.DISTANCE_2)
+ARBITER_FIELDS = (batch.ArbiterFields.BODY_A_ID | batch.ArbiterFields.BODY_B_ID
+                  | batch.ArbiterFields.CONTACT_COUNT | batch.ArbiterFields.TOTAL_IMPULSE
+                  | batch.ArbiterFields.NORMAL | batch.ArbiterFields.DISTANCE_1
+                  | batch.ArbiterFields.DISTANCE_2)
 
 
-class StickSlipSwitch:
-    """Per-contact static / kinetic friction (needs the engine's bodies and units)."""
+class Arbiters:
+    """The slider's contacts after one step (internal units), from one batch read.
 
-    def _install_friction(self):
-        contact, u = self.scene.contact, self.units
-        self.mu_static, self.mu_kinetic = mu_s, mu_k = contact.mu_static, contact.mu_kinetic
-        for shape in self.space.shapes:
-            # Contact friction is the product of the two shapes' coefficients.
-            shape.friction = 1.0 if shape.collision_type == _SLIDER else mu_k
-        self.two_coefficients = mu_s != mu_k
-        n = len(self.lower_bodies)
-        self.lower_shapes = [next(iter(b.shapes)) for b in self.lower_bodies]
-        #: lower asperity index -> [stuck, distance slid since stuck] of its contact
-        self.contact_states: dict[int, list] = {}
-        self._mu_now = [mu_k] * n
-        self.slip_distance = (1e-3 * u.length if contact.slip_distance is None
-                              else contact.slip_distance) / u.length
-        if contact.stick_speed is not None:
-            self.stick_speed = contact.stick_speed / u.velocity
-        else:
-            self.stick_speed = 1e-4
-            if isinstance(self.scene.drive, SpringDrive):
-                self.stick_speed = min(self.stick_speed, 0.1 * self.scene.drive.velocity / u.velocity)
+    Held as two flat Python lists (a slider makes a handful of contacts: plain
+    Python beats NumPy's per-call overhead for them, measured in
+    ``benchmarks/bench_core.py``). :meth:`pairs` serves the stick/slip switch
+    every step; :meth:`forces` and :meth:`touched` serve the recorder.
+    """
 
-    def _update_friction(self) -> None:
-        """Set each lower asperity's coefficient from its contact's stick/slip state.
+    __slots__ = ("_ints", "_floats", "_slider_id", "_index")
 
-        Reads the contacts with one ``pymunk.batch`` call after a step and
-        loops over the few touching pairs in plain Python (cheaper than NumPy
-        for a handful of items, and than a per-contact ``pre_solve``
-        callback); a shape is touched only when its state changes. The new
-        coefficient acts from the next step, as a ``pre_solve`` would.
+    def __init__(self, buf: batch.Buffer, layout):
+        # memoryview: cheaper than NumPy for a few dozen numbers
+        self._ints = memoryview(buf.int_buf()).cast("N").tolist()  # a, b, count per contact
+        self._floats = memoryview(buf.float_buf()).cast("d").tolist()  # jx jy nx ny d1 d2
+        self._slider_id, self._index = layout.slider_id, layout.lower_index
+
+    def __len__(self) -> int:
+        return len(self._ints) // 3
+
+    def pairs(self) -> list[tuple[int, float, float]]:
+        """``(lower index, nx, ny)`` of every touching contact (index -1: the floor)."""
+        # Every arbiter is the slider against a lower asperity or the floor (shape
+        # filters), so a + b - slider is the other body's id.
+        ints, floats, sid, index = self._ints, self._floats, self._slider_id, self._index
+        return [(index.get(ints[k] + ints[k + 1] - sid, -1), floats[2 * k + 2], floats[2 * k + 3])
+                for k in range(0, len(ints), 3) if ints[k + 2]]
+
+    def forces(self, dt: float) -> tuple[float, float, float, int, float]:
+        """``(fx, fy, f_tangential, count, max_overlap)`` on the slider (internal units).
+
+        ``fx``, ``fy``: the summed contact force (impulse / dt); ``f_tangential``:
+        the summed tangential (Coulomb) parts projected on each contact's +x
+        tangent with the sign flipped (resisting +x motion is positive);
+        ``count``: touching contacts; ``max_overlap``: the deepest overlap (0 if none).
         """
-        buf = self._fric_buf
-        buf.clear()
-        batch.get_space_arbiters(self.space, _FRICTION_FIELDS, buf)
-        ints = np.frombuffer(buf.int_buf(), dtype=np.uintp).tolist()
-        normals = np.frombuffer(buf.float_buf(), dtype=np.float64).tolist()
-        sid, index, bodies = self._slider_id, self._lower_index, self.lower_bodies
-        svx, svy = self.slider.velocity
-        slips: dict[int, float] = {}
-        for k in range(len(ints) // 3):
-            a, b, count = ints[3 * k: 3 * k + 3]
-            i = index.get(b if a == sid else a)
-            if i is None or count == 0:
-                continue
-            lvx, lvy = bodies[i].velocity
-            nx, ny = normals[2 * k], normals[2 * k + 1]
-            slip = abs((svx - lvx) * ny - (svy - lvy) * nx)
-            if slip > slips.get(i, -1.0):
-                slips[i] = slip
-        states, v_stick = self.contact_states, self.stick_speed
-        for i in [i for i in states if i not in slips]:
-            del states[i]
-            self._set_mu(i, self.mu_kinetic)
-        for i, slip in slips.items():
-            st = states.get(i)
-            if st is None:
-                st = states[i] = [slip < v_stick, 0.0]
-            elif st[0]:
-                if slip > v_stick:
-                    st[1] += slip * self.dt
-                    if st[1] > self.slip_distance:
-                        st[0] = False
-                else:
-                    st[1] = 0.0
-            elif slip < v_stick:
-                st[0], st[1] = True, 0.0
-            self._set_mu(i, self.mu_static if st[0] else self.mu_kinetic)
-
-    def _set_mu(self, i: int, mu: float) -> None:
-        if self._mu_now[i] != mu:
-            self.lower_shapes[i].friction = mu
-            self._mu_now[i] = mu
-
-
-class Readout:
-    """Batch reads of the bodies and of the slider's contacts (internal units)."""
-
-    def bodies(self) -> np.ndarray:
-        """All dynamic bodies' ``[x, y, vx, vy]`` rows (internal units)."""
-        buf = self._body_buf
-        buf.clear()
-        batch.get_space_bodies(self.space, _BODY_FIELDS, buf)
-        return np.frombuffer(buf.float_buf(), dtype=np.float64).reshape(-1, 4)
-
-    def contacts(self) -> tuple[float, float, float, int, float, list[int]]:
-        """Contact forces on the slider from the last step's impulses (internal units).
-
-        Returns ``(fx, fy, f_tangential, count, max_overlap, touched)``: the
-        summed contact force, the summed tangential (Coulomb) parts projected
-        on each contact's +x tangent with the sign flipped (resisting +x
-        motion is positive), the number of touching contacts, the deepest
-        overlap (length units) and the indices of the lower asperities
-        touching the slider.
-        """
-        buf = self._arb_buf
-        buf.clear()
-        batch.get_space_arbiters(self.space, _ARB_FIELDS, buf)
-        # A handful of arbiters: plain Python beats NumPy's per-call overhead.
-        ints = np.frombuffer(buf.int_buf(), dtype=np.uintp).tolist()
-        floats = np.frombuffer(buf.float_buf(), dtype=np.float64).tolist()
-        fx, fy, ft, touched = [], [], [], []
-        touching, overlap, sid, index = 0, 0.0, self._slider_id, self._lower_index
+        ints, floats, sid = self._ints, self._floats, self._slider_id
+        fx, fy, ft = [], [], []
+        overlap = 0.0
         for k in range(len(ints) // 3):
             count = ints[3 * k + 2]
             if count == 0:
                 continue
             jx, jy, nx, ny, d1, d2 = floats[6 * k: 6 * k + 6]
-            other = ints[3 * k + 1]
-            if ints[3 * k] != sid:
-                jx, jy, other = -jx, -jy, ints[3 * k]
-            if other in index:
-                touched.append(index[other])
+            if ints[3 * k] != sid:  # impulses are on body A
+                jx, jy = -jx, -jy
             jn = jx * nx + jy * ny
-            tx, ty = (abs(ny), -nx) if ny >= 0 else (abs(ny), nx)  # tangent with tx >= 0
+            ty = -nx if ny >= 0 else nx  # the tangent (|ny|, ty) points to +x
             fx.append(jx)
             fy.append(jy)
-            ft.append((jx - jn * nx) * tx + (jy - jn * ny) * ty)
-            touching += 1
+            ft.append((jx - jn * nx) * abs(ny) + (jy - jn * ny) * ty)
+            # distances are negative when overlapping; one-point contacts have no second
             overlap = max(overlap, -d1, -d2 if count > 1 else 0.0)
-        inv_dt = 1.0 / self.dt
+        inv_dt = 1.0 / dt
         # fsum: the arbiters come in hash-set order, which varies between
         # processes; an exactly rounded sum keeps the result bit-identical.
-        return (math.fsum(fx) * inv_dt, math.fsum(fy) * inv_dt, -math.fsum(ft) * inv_dt,
-                touching, overlap, touched)
+        return (math.fsum(fx) * inv_dt, math.fsum(fy) * inv_dt, -math.fsum(ft) * inv_dt, len(fx), overlap)
+
+    def touched(self, n: int) -> np.ndarray:
+        """Boolean mask of the ``n`` lower asperities touching the slider."""
+        mask = np.zeros(n, dtype=bool)
+        mask[[i for i, _, _ in self.pairs() if i >= 0]] = True
+        return mask
+
+
+def read_arbiters(space, buf: batch.Buffer, layout) -> Arbiters:
+    """One batch read of the space's contacts into :class:`Arbiters`."""
+    buf.clear()
+    batch.get_space_arbiters(space, ARBITER_FIELDS, buf)
+    return Arbiters(buf, layout)
+
+
+class StickSlip:
+    """Per-contact static / kinetic friction (internal units).
+
+    The state of each lower asperity's contact with the slider (stuck or
+    sliding, distance slid since it stuck, current coefficient) is kept per
+    lower asperity; :attr:`stuck`, :attr:`slid` and :attr:`mu` give it as
+    NumPy arrays. Each step updates only the asperities in contact, in plain
+    Python on the shared batch reads: for the handful of contacts a slider
+    makes that is cheaper than whole-array NumPy operations (measured:
+    ``benchmarks/bench_core.py``), and pymunk is touched only for the shapes
+    whose coefficient changes.
+    """
+
+    def __init__(self, scene, units, layout, dt: float):
+        contact = scene.contact
+        self.mu_static, self.mu_kinetic = contact.mu_static, contact.mu_kinetic
+        self.active = self.mu_static != self.mu_kinetic
+        self.dt = dt
+        n = len(layout.lower_bodies)
+        self.shapes = layout.lower_shapes
+        self._stuck, self._slid, self._mu = [False] * n, [0.0] * n, [self.mu_kinetic] * n
+        self._present = {}.keys()  # lower asperities in contact after the last update
+        self.slip_distance = (1e-3 * units.length if contact.slip_distance is None
+                              else contact.slip_distance) / units.length
+        if contact.stick_speed is not None:
+            self.stick_speed = contact.stick_speed / units.velocity
+        else:
+            self.stick_speed = 1e-4
+            if isinstance(scene.drive, SpringDrive):
+                self.stick_speed = min(self.stick_speed, 0.1 * scene.drive.velocity / units.velocity)
+
+    @property
+    def stuck(self) -> np.ndarray:
+        """Whether each lower asperity's contact is stuck (False when not in contact)."""
+        return np.array(self._stuck)
+
+    @property
+    def slid(self) -> np.ndarray:
+        """Distance each contact has slid since it last stuck (internal length units)."""
+        return np.array(self._slid)
+
+    @property
+    def mu(self) -> np.ndarray:
+        """Each lower asperity's current friction coefficient."""
+        return np.array(self._mu)
+
+    def copy_to(self, layout) -> "StickSlip":
+        """This switch's state, re-pointed at the shapes of ``layout`` (a copied space)."""
+        out = object.__new__(StickSlip)
+        out.__dict__.update(self.__dict__)
+        out.shapes = layout.lower_shapes
+        out._stuck, out._slid, out._mu = list(self._stuck), list(self._slid), list(self._mu)
+        out._present = dict.fromkeys(self._present).keys()
+        return out
+
+    def update(self, arbiters: Arbiters, rows: np.ndarray, layout) -> None:
+        """Set each lower asperity's coefficient from its contact's stick/slip state.
+
+        ``rows`` are the bodies' ``[x, y, vx, vy]`` after the step (internal units).
+        """
+        pairs = arbiters.pairs()
+        present = self._present
+        if not pairs and not present:
+            return
+        r = layout.slider_row
+        svx, svy = rows.item(r, 2), rows.item(r, 3)
+        row_of = layout.lower_row_of
+        slips: dict[int, float] = {}
+        for i, nx, ny in pairs:
+            if i >= 0:
+                r = row_of[i]
+                slip = abs((svx - rows.item(r, 2)) * ny - (svy - rows.item(r, 3)) * nx)
+                if slip > slips.get(i, -1.0):  # a lower asperity may touch two tips
+                    slips[i] = slip
+        stuck, slid, mu_now = self._stuck, self._slid, self._mu
+        v_stick, mu_s, mu_k = self.stick_speed, self.mu_static, self.mu_kinetic
+        for i in present:
+            if i not in slips:  # contact lost
+                stuck[i], slid[i] = False, 0.0
+                if mu_now[i] != mu_k:
+                    self.shapes[i].friction = mu_now[i] = mu_k
+        for i, slip in slips.items():
+            if i not in present:  # a new contact
+                stuck[i], slid[i] = slip < v_stick, 0.0
+            elif stuck[i]:
+                if slip > v_stick:
+                    slid[i] += slip * self.dt
+                    if slid[i] > self.slip_distance:
+                        stuck[i] = False
+                else:
+                    slid[i] = 0.0
+            elif slip < v_stick:
+                stuck[i], slid[i] = True, 0.0
+            mu = mu_s if stuck[i] else mu_k
+            if mu_now[i] != mu:
+                self.shapes[i].friction = mu_now[i] = mu
+        self._present = slips.keys()

@@ -59,7 +59,7 @@ class EnergyMeter:
         self.engine = e = engine
         u = e.units
         self._energy, self._force = u.energy, u.force
-        space = e.space
+        space = e.layout.space
         buf = batch.Buffer()
         batch.get_space_bodies(space, batch.BodyFields.BODY_ID, buf)
         ids = np.frombuffer(buf.int_buf(), dtype=np.uintp).copy()
@@ -78,7 +78,7 @@ class EnergyMeter:
         self._anchor_b = np.array([tuple(c.anchor_b) for c in springs]).reshape(-1, 2)
         self._rest = np.array([c.rest_length for c in springs])
         self._k = np.array([c.stiffness for c in springs])
-        self._slider = self._row[e.slider.id]
+        self._slider = self._row[e.layout.slider.id]
         self._spring_drive = isinstance(e.scene.drive, SpringDrive)
         self._g = -space.gravity.y
         self._buf, self._arb = batch.Buffer(), batch.Buffer()
@@ -98,7 +98,7 @@ class EnergyMeter:
     def _read(self):
         buf = self._buf
         buf.clear()
-        batch.get_space_bodies(self.engine.space, _BODY_FIELDS, buf)
+        batch.get_space_bodies(self.engine.layout.space, _BODY_FIELDS, buf)
         rows = np.frombuffer(buf.float_buf(), dtype=np.float64).reshape(-1, 4)
         # one extra zero row: the static body
         pos = np.zeros((len(rows) + 1, 2))
@@ -116,12 +116,16 @@ class EnergyMeter:
         _, length = self._spring_geometry(pos)
         springs = 0.5 * float(np.dot(self._k, (length - self._rest) ** 2))
         e = self.engine
-        load = e._load * (pos[self._slider, 1] - self._y_ref)
+        load = e.load_internal * (pos[self._slider, 1] - self._y_ref)
         grav = self._g * float(np.dot(self._mass, pos[:-1, 1])) if self._g else 0.0
         drive = 0.0
         if self._spring_drive:
-            drive = 0.5 * e._k * (e.drive_position() - pos[self._slider, 0]) ** 2
+            drive = 0.5 * e.drive.k * (self._drive_x() - pos[self._slider, 0]) ** 2
         return kinetic + springs + load + grav + drive
+
+    def _drive_x(self) -> float:
+        e = self.engine
+        return e.drive.position(e.step_count, e.dt_internal)
 
     def stored_energy(self) -> float:
         """Kinetic + spring + load/gravity potential energy now (J)."""
@@ -131,24 +135,25 @@ class EnergyMeter:
     # -- the hook --------------------------------------------------------------
     def __call__(self) -> None:
         e, tot = self.engine, self.totals
-        dt = e.dt
+        dt = e.dt_internal
+        d = e.drive
         pos, vel = self._read()
         vmean = 0.5 * (vel + self._vel0)
         s = self._slider
         # drive: the force applied during this step was set from the previous state
         if self._spring_drive:
-            rel_v = e._vd - self._vel0[s, 0]
+            rel_v = d.v - self._vel0[s, 0]
             # the spring is evaluated at the step's end position (Engine.step)
-            f_d = e._k * (e.drive_position() - pos[s, 0]) + e._c * rel_v
-            tot["drive_work"] += f_d * e._vd * dt
-            if e._c:
-                tot["damper_work"] += e._c * rel_v * (e._vd - vmean[s, 0]) * dt
+            f_d = d.k * (self._drive_x() - pos[s, 0]) + d.c * rel_v
+            tot["drive_work"] += f_d * d.v * dt
+            if d.c:
+                tot["damper_work"] += d.c * rel_v * (d.v - vmean[s, 0]) * dt
         else:
-            tot["drive_work"] += e._force * vmean[s, 0] * dt
+            tot["drive_work"] += d.force * vmean[s, 0] * dt
         # contacts
         buf = self._arb
         buf.clear()
-        batch.get_space_arbiters(e.space, _ARB_FIELDS, buf)
+        batch.get_space_arbiters(e.layout.space, _ARB_FIELDS, buf)
         ints = np.frombuffer(buf.int_buf(), dtype=np.uintp).reshape(-1, 3)
         if len(ints):
             floats = np.frombuffer(buf.float_buf(), dtype=np.float64).reshape(-1, 4)

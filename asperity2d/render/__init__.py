@@ -1,7 +1,8 @@
 """Renderers chosen by the output file's extension (like pyinstrument's renderers).
 
-``render(result, "run.gif")`` writes an animated GIF (:mod:`.gif`, Pillow
-frames); ``.png`` / ``.svg`` / ``.pdf`` write the time-series plot
+``render(result, "run.gif")`` writes an animated GIF, ``"run.mp4"`` a video
+(:mod:`.animate`: Pillow frames, imageio encoding; MP4 needs the ``video``
+extra); ``.png`` / ``.svg`` / ``.pdf`` write the time-series plot
 (:mod:`.plots`, matplotlib, imported only when used). ``result`` may be a
 :class:`~asperity2d.result.Result` or the path of one saved with
 ``Result.save``, so a run is rendered again without re-simulating.
@@ -15,13 +16,14 @@ from pathlib import Path
 from ..errors import SceneError
 
 #: Output extensions and the renderer each selects.
-RENDERERS = {".gif": "gif", ".png": "plot", ".svg": "plot", ".pdf": "plot"}
+RENDERERS = {".gif": "animation", ".mp4": "animation", ".png": "plot", ".svg": "plot",
+             ".pdf": "plot"}
 
 
 def render(result, path: str | os.PathLike, **options) -> Path:
     """Render ``result`` to ``path``, choosing the renderer by extension.
 
-    ``options`` go to :func:`~asperity2d.render.gif.render_gif` (``.gif``)
+    ``options`` go to :func:`~asperity2d.render.animate.render_animation` (``.gif``, ``.mp4``)
     or :func:`~asperity2d.render.plots.plot_run` (``.png``, ``.svg``, ``.pdf``).
 
     Raises
@@ -37,10 +39,10 @@ def render(result, path: str | os.PathLike, **options) -> Path:
         from ..result import load
 
         result = load(result)
-    if kind == "gif":
-        from .gif import render_gif
+    if kind == "animation":
+        from .animate import render_animation
 
-        return render_gif(result, path, **options)
+        return render_animation(result, path, **options)
     from .plots import plot_run
 
     return plot_run(result, path, **options)

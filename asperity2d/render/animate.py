@@ -1,16 +1,20 @@
-"""Animated GIF of a run, drawn frame by frame with Pillow (no matplotlib per frame).
+"""Animations of a run: frames drawn with Pillow, encoded by imageio (GIF; MP4 optional).
 
-Drawing is split in two so other back ends (and the benchmark) can draw the
-very same frames: :func:`frame_shapes` turns one sample of a
+Drawing is split in two so the benchmark can draw the very same frames with
+matplotlib: :func:`frame_shapes` turns one sample of a
 :class:`~asperity2d.result.Result` into pixel-space shapes, and
 :func:`draw_frame` paints them on a palette image with ``PIL.ImageDraw``.
+:func:`encode` hands the frames to imageio: ``.gif`` through its Pillow
+plugin (the palette images as they are, no re-quantisation), ``.mp4`` (H.264)
+through its ffmpeg plugin, which needs the optional extra
+``pip install "asperity2d[video]"`` (imageio-ffmpeg, with its own ffmpeg).
 
 What is drawn (seed 000, figures 5–8): the lower asperities on their vertical
 spring tracks, standing on a ground band whose top is the engine's guard floor
 (the bottom of the tracks, ``-travel_down``), the slider's bar and its downward
 asperities, the drive spring as a zig-zag from the slider's front to the
 moving drive block, and an overlay with the time, the drive force and the
-frame number. The view keeps one scale for the whole GIF and follows the
+frame number. The view keeps one scale for the whole animation and follows the
 slider. The drive spring's rest length is zero in the model; it is drawn from
 the slider's front with one pitch added, so its stretch (drive_x - x) shows.
 """
@@ -18,6 +22,7 @@ the slider's front with one pitch added, so its stretch (drive_x - x) shows.
 from __future__ import annotations
 
 import os
+import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -29,6 +34,7 @@ from ..errors import SceneError
 BACKGROUND, OUTLINE, LOWER, UPPER, BAR, GROUND, SPRING, TEXT = range(8)
 PALETTE = [(255, 255, 255), (40, 40, 40), (90, 130, 190), (230, 140, 50),
            (70, 70, 80), (200, 200, 200), (170, 30, 30), (0, 0, 0)]
+PALETTE_BYTES = bytes(c for rgb in PALETTE for c in rgb)
 TEXT_HEIGHT = 18  # px reserved at the top for the overlay
 
 
@@ -60,8 +66,8 @@ class Layout:
         self.result, self.width, self.height = result, width, height
         self.lower_poly = np.asarray(scene.lower.profile.vertices(upper=False))
         self.upper_poly = np.asarray(scene.slider.profile.vertices(upper=True))
-        self.lower_centers = scene.lower.centers()
-        self.upper_centers = scene.slider.centers()
+        self.lower_centers = scene.lower.tips()
+        self.upper_centers = scene.slider.tips()
         self.base, h = scene.base, scene.lower.profile.height
         self.pitch = scene.lower.spacing.mean_pitch
         span = self.upper_centers[-1] + scene.slider.profile.base
@@ -167,42 +173,99 @@ def _ordered(box):
     return (min(x0, x1), min(y0, y1), max(x0, x1), max(y0, y1))
 
 
-def render_gif(result, path: str | os.PathLike, *, frames: int = 120, width: int = 640,
-               height: int = 320, fps: float = 20.0, view_width: float | None = None) -> Path:
-    """Write an animated GIF of ``result`` to ``path`` (atomically) and return the path.
+#: Animation formats by extension, and the imageio plugin that encodes each.
+FORMATS = {".gif": "pillow", ".mp4": "FFMPEG"}
+
+
+def render_animation(result, path: str | os.PathLike, *, frames: int = 120, width: int = 640,
+                     height: int = 320, fps: float = 20.0,
+                     view_width: float | None = None) -> Path:
+    """Write an animation of ``result`` to ``path`` (atomically) and return the path.
+
+    The extension picks the format: ``.gif``, or ``.mp4`` (H.264; needs
+    ``pip install "asperity2d[video]"``).
 
     Parameters
     ----------
     frames : int
         Number of frames, evenly spaced in simulated time; the file holds
-        exactly this many (each frame carries its number, so none is merged).
+        exactly this many (each frame carries its number, so a GIF writer
+        merges none).
     width, height : int
-        Frame size (px).
+        Frame size (px); even for ``.mp4`` (H.264's 4:2:0 chroma).
     fps : float
         Playback rate (frames per second; GIF delays are whole centiseconds).
     view_width : float, optional
         Width of the window (m); default: slider span plus four pitches.
     """
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix not in FORMATS:
+        raise SceneError(f"`path` must end in one of {', '.join(FORMATS)}, got {str(path)!r}")
     frames = _check_int("frames", frames, 1)
     width, height = _check_int("width", width, 64), _check_int("height", height, 48)
-    if not (isinstance(fps, (int, float)) and 0 < fps <= 100):
+    if not (isinstance(fps, (int, float)) and not isinstance(fps, bool) and 0 < fps <= 100):
         raise SceneError(f"`fps` must be in (0, 100], got {fps!r}")
+    if suffix == ".mp4":
+        _check_video(width, height)
     if len(result.t) == 0:
         raise SceneError("`result` has no samples to draw")
     from PIL import ImageFont
 
     layout = Layout(result, width=width, height=height, view_width=view_width)
     font = ImageFont.load_default()
-    images = [draw_frame(frame_shapes(layout, int(k), frame=i, frames=frames),
-                         width=width, height=height, font=font)
-              for i, k in enumerate(frame_indices(result, frames))]
-    delay = max(10, int(round(1000.0 / fps / 10.0)) * 10)  # ms, whole centiseconds
+    pictures = (draw_frame(frame_shapes(layout, int(k), frame=i, frames=frames),
+                           width=width, height=height, font=font)
+                for i, k in enumerate(frame_indices(result, frames)))
+    data = encode(pictures, suffix=suffix, fps=float(fps))
+    return atomic_write(path, lambda fh: fh.write(data))
 
-    def write(fh):
-        images[0].save(fh, format="GIF", save_all=True, append_images=images[1:],
-                       duration=delay, loop=0)
 
-    return atomic_write(Path(path), write)
+def encode(pictures, *, suffix: str, fps: float) -> bytes:
+    """Encode palette images (from :func:`draw_frame`) as a ``.gif`` or ``.mp4`` file's bytes.
+
+    GIF: imageio's Pillow plugin writes the palette frames with
+    :data:`PALETTE`, looping, each frame shown 1/fps s rounded to whole
+    centiseconds (at least 10 ms). MP4: the frames are mapped to RGB and
+    streamed to ffmpeg (libx264, yuv420p) at ``fps``; ffmpeg needs a real
+    file, so it writes into a temporary directory whose file is then read
+    back (the caller writes the bytes atomically).
+    """
+    import imageio.v3 as iio
+
+    if suffix == ".gif":
+        delay = max(10, int(round(1000.0 / fps / 10.0)) * 10)  # ms, whole centiseconds
+        indices = [np.asarray(picture) for picture in pictures]
+        # `optimize` must be given with an explicit palette: Pillow then keeps
+        # coding unchanged pixels of a frame as transparent (31 % smaller files).
+        return iio.imwrite("<bytes>", indices, extension=".gif", plugin="pillow", mode="P",
+                           palette=PALETTE_BYTES, optimize=True, duration=delay, loop=0)
+    if suffix not in FORMATS:
+        raise SceneError(f"`suffix` must be one of {', '.join(FORMATS)}, got {suffix!r}")
+    _require_ffmpeg()
+    rgb = np.asarray(PALETTE, dtype=np.uint8)
+    with tempfile.TemporaryDirectory(prefix="asperity2d-video-") as tmp:
+        scratch = Path(tmp) / f"animation{suffix}"
+        # A generator: frames stream to ffmpeg one at a time, never all in memory.
+        iio.imwrite(scratch, (rgb[np.asarray(picture)] for picture in pictures),
+                    plugin=FORMATS[suffix], is_batch=True, fps=fps, codec="libx264",
+                    pixelformat="yuv420p", macro_block_size=2, ffmpeg_log_level="error")
+        return scratch.read_bytes()
+
+
+def _check_video(width: int, height: int) -> None:
+    for name, value in (("width", width), ("height", height)):
+        if value % 2:
+            raise SceneError(f"`{name}` must be even for .mp4 (H.264 4:2:0 chroma), got {value}")
+    _require_ffmpeg()
+
+
+def _require_ffmpeg() -> None:
+    try:
+        import imageio_ffmpeg  # noqa: F401  (the ffmpeg binary imageio's FFMPEG plugin runs)
+    except ImportError:
+        raise SceneError("`path`: writing .mp4 needs the optional video extra: "
+                         "pip install \"asperity2d[video]\" (imageio-ffmpeg)") from None
 
 
 def _check_int(name: str, value, minimum: int) -> int:

@@ -1,0 +1,333 @@
+"""The asperity engine: a scene built in pymunk, stepped with a fixed dt (part of :mod:`asperity2d.engine`).
+
+:class:`Engine` composes the built space (:class:`~.space.Layout`), the drive,
+the stick/slip switch (:class:`~.contacts.StickSlip`) and the track
+projection. It applies the drive and the normal load before every step
+(pymunk resets body forces after each step) and after every step reads all
+bodies once with ``pymunk.batch`` (a Python loop over bodies would cost
+milliseconds at N = 1000); that one read serves the projection, the switch,
+the next step's drive force and the recorder.
+
+Its public surface is SI (``time``, ``slider_state``, ``drive_position``,
+``drive_force``, ``set_drive_velocity``, ``set_drive_force``); the few
+internal-unit read-outs used by the run loop and the energy meter say so in
+their names (``*_internal``).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pymunk
+from pymunk import batch
+
+from ..scene import Scene, SpringDrive
+from ..units import Units, check_scales
+from .contacts import StickSlip, read_arbiters
+from .space import build
+
+PYMUNK_VERSION = pymunk.version
+BODY_FIELDS = batch.BodyFields.POSITION | batch.BodyFields.VELOCITY
+TRACK_TOLERANCE = 1e-9  # track drift (base lengths) left to the groove joint alone
+
+
+class Drive:
+    """The drive in internal units: a spring (``k``, ``c``) whose far end moves at ``v`` from
+    ``origin``, or a constant force ``force`` (``k`` = 0)."""
+
+    def __init__(self, scene: Scene, units: Units):
+        drive = scene.drive
+        self.spring = isinstance(drive, SpringDrive)
+        if self.spring:
+            self.k, self.c, self.v = (drive.stiffness / units.stiffness, drive.damping / units.damping,
+                                      drive.velocity / units.velocity)
+            self.preload, self.force = drive.preload / units.force, 0.0
+        else:
+            self.k = self.c = self.v = self.preload = 0.0
+            self.force = drive.force / units.force
+        self.origin = 0.0
+
+    def position(self, step: int, dt: float) -> float:
+        """Far end of the spring after ``step`` steps (internal units)."""
+        return self.origin + self.v * step * dt
+
+    def start(self, slider_x: float) -> None:
+        """Put the far end where the spring holds its preload with the slider at ``slider_x``."""
+        self.origin = slider_x + (self.preload / self.k if self.spring else 0.0)
+
+
+class Engine:
+    """A :class:`~asperity2d.scene.Scene` built in pymunk, stepped with a fixed ``dt`` (s).
+
+    ``iterations`` is pymunk's solver iteration count. ``step_hooks`` are
+    callables run after every step (after projection and the friction
+    switch), e.g. :class:`asperity2d.engine.energy.EnergyMeter`. ``engaged``
+    starts a fixed-track slider over the surface, its track raised, for
+    :meth:`settle` to lower it into contact.
+    """
+
+    def __init__(self, scene: Scene, dt: float, *, iterations: int = 20, engaged: bool = False):
+        self.scene = scene
+        self.units = u = Units.for_scene(scene)
+        check_scales(scene, u)  # before pymunk sees a value it cannot represent
+        self.dt = dt  # s
+        self.dt_internal = dt / u.time
+        self.layout = build(scene, u, self.dt_internal, iterations=iterations,
+                            friction=scene.contact.mu_kinetic, engaged=engaged)
+        self.switch = StickSlip(scene, u, self.layout, self.dt_internal)
+        self.drive = Drive(scene, u)
+        self.load_internal = scene.slider.normal_load / u.force if scene.slider.track == "free" else 0.0
+        self.step_count = 0
+        self.max_solver_drift = 0.0  # largest drift off a track before projection (base units)
+        self.step_hooks: list = []
+        self._body_buf, self._arb_buf = None, batch.Buffer()
+        self._arbiters = None  # the last step's contacts, when read
+        self._read_bodies()
+        self.drive.start(self._slider[0])
+
+    # -- state --------------------------------------------------------------
+    @property
+    def time(self) -> float:
+        """Simulated time since the start of the run (s); settling is before t = 0."""
+        return self.step_count * self.dt
+
+    def slider_state(self) -> tuple[float, float, float, float]:
+        """Slider ``(x, y, vx, vy)`` (m, m, m/s, m/s)."""
+        u = self.units
+        x, y, vx, vy = self._slider
+        return x * u.length, y * u.length, vx * u.velocity, vy * u.velocity
+
+    def drive_position(self) -> float:
+        """Far end of the drive spring (m); NaN for a constant force."""
+        if not self.drive.spring:
+            return math.nan
+        return self.drive.position(self.step_count, self.dt_internal) * self.units.length
+
+    def drive_force(self) -> float:
+        """Horizontal drive force on the slider in its current state (N)."""
+        return self.drive_force_internal(self._slider[0], self._slider[2]) * self.units.force
+
+    def drive_force_internal(self, x: float, vx: float) -> float:
+        """Drive force (internal units) with the slider at ``x`` moving at ``vx`` (internal units)."""
+        d = self.drive
+        if not d.spring:
+            return d.force
+        return d.k * (d.position(self.step_count, self.dt_internal) - x) + d.c * (d.v - vx)
+
+    def set_drive_velocity(self, velocity: float) -> None:
+        """Change the spring drive's far-end velocity to ``velocity`` (m/s, any sign).
+
+        The far end stays where it is (its path is continuous; only its speed
+        changes), so a drive can reverse (the virtual tribometer's strokes).
+        """
+        d = self.drive
+        if not d.spring:
+            raise TypeError("set_drive_velocity needs a spring drive")
+        x_now = d.position(self.step_count, self.dt_internal)
+        d.v = velocity / self.units.velocity
+        d.origin = x_now - d.v * self.step_count * self.dt_internal
+
+    def set_drive_force(self, force: float) -> None:
+        """Change a constant drive force to ``force`` (N) from the next step on."""
+        if self.drive.spring:
+            raise TypeError("set_drive_force needs a constant-force drive")
+        self.drive.force = force / self.units.force
+
+    def bodies_internal(self) -> np.ndarray:
+        """All dynamic bodies' ``[x, y, vx, vy]`` rows after the last step (internal units, a view)."""
+        return self._rows
+
+    def arbiters_internal(self):
+        """The slider's contacts after the last step (:class:`~.contacts.Arbiters`, internal units)."""
+        if self._arbiters is None:
+            self._arbiters = read_arbiters(self.layout.space, self._arb_buf, self.layout)
+        return self._arbiters
+
+    # -- stepping -----------------------------------------------------------
+    def step(self, n: int = 1) -> None:
+        """Advance ``n`` steps, applying the drive and the load before each."""
+        layout, d, dt, load = self.layout, self.drive, self.dt_internal, self.load_internal
+        space, body, switch = layout.space, layout.slider, self.switch
+        hooks = self.step_hooks
+        for _ in range(n):
+            x, _, vx, _ = self._slider
+            if d.spring:
+                # Symplectic Euler: pymunk moves bodies with the old velocity
+                # before it applies forces, so take the spring at the position
+                # the step will end at. (From the start position it would be
+                # forward Euler, which feeds energy into the slider's
+                # oscillation on the drive spring.)
+                x_d = d.origin + d.v * (self.step_count + 1) * dt
+                body.force = (d.k * (x_d - (x + vx * dt)) + d.c * (d.v - vx), -load)
+            else:
+                body.force = (d.force, -load)
+            space.step(dt)
+            self.step_count += 1
+            rows = self._read_bodies()
+            self._project(rows)
+            if switch.active:
+                self._arbiters = read_arbiters(space, self._arb_buf, layout)
+                switch.update(self._arbiters, rows, layout)
+            else:
+                self._arbiters = None
+            for hook in hooks:
+                hook()
+
+    def _read_bodies(self) -> np.ndarray:
+        """Read every body into ``self._rows`` (a preallocated array pymunk writes into)."""
+        buf = self._body_buf
+        if buf is None:
+            # Sized with room to spare: pymunk grows (reallocates) its array when a
+            # write comes within two entries of the end, which must never happen to ours.
+            n = 4 * self.layout.n_rows
+            self._row_store = np.zeros(n + 8)
+            self._rows = self._row_store[:n].reshape(-1, 4)
+            self._body_buf = buf = batch.Buffer()
+            buf.set_float_buf(self._row_store)
+            rows = self.layout.lower_rows
+            if not isinstance(rows, slice):  # pymunk keeps bodies in insertion order
+                raise RuntimeError("the lower asperities are not contiguous in the batch rows")
+            self._lower_x = self._rows[rows, 0]  # a view: it follows every read
+            self._lower_off = np.empty(len(self.layout.lower_bodies))
+        buf.clear()
+        batch.get_space_bodies(self.layout.space, BODY_FIELDS, buf)
+        self._slider = self._rows[self.layout.slider_row].tolist()
+        return self._rows
+
+    def _project(self, rows: np.ndarray) -> None:
+        """Put bodies back on their tracks: lower asperities at x = x0 (vx = 0), a
+        fixed-track slider at y = y0 (vy = 0).
+
+        pymunk's iterative solver lets a groove joint drift off its line under
+        hard impacts (measured: up to 0.6 % of a base, insensitive to
+        iterations and bias). Projecting positions and velocities onto the
+        constraint after each step (post-stabilisation) keeps the tracks within
+        ``TRACK_TOLERANCE`` of a base; the groove still carries the reaction
+        force during the step. The largest drift removed is ``max_solver_drift``.
+        """
+        layout = self.layout
+        drift = 0.0
+        if layout.tracked and len(layout.lower_bodies):
+            off = self._lower_off
+            np.subtract(self._lower_x, layout.lower_x0, out=off)
+            np.abs(off, out=off)
+            drift = float(np.maximum.reduce(off))
+        if layout.fixed_slider:
+            drift = max(drift, abs(self._slider[1] - layout.slider_y_track))
+        if drift > self.max_solver_drift:
+            self.max_solver_drift = drift
+        if drift > TRACK_TOLERANCE:
+            # Written back only when a body has drifted. All tracked bodies are
+            # then put back (snapping only the drifted ones was measured no faster
+            # and changes results in the last digits).
+            if layout.tracked:
+                rows[layout.lower_rows, 0] = layout.lower_x0
+                rows[layout.lower_rows, 2] = 0.0
+            if layout.fixed_slider:
+                rows[layout.slider_row, 1] = layout.slider_y_track
+                rows[layout.slider_row, 3] = 0.0
+            batch.set_space_bodies(layout.space, BODY_FIELDS, self._body_buf)
+            self._slider = rows[layout.slider_row].tolist()
+
+    def settle(self, max_time: float, *, push: float = 0.0, damping_per_period: float = 0.5,
+               rest_speed: float = 1e-7, on_steps=None) -> float:
+        """Bring the scene to rest before t = 0, in phases; return the time spent (s).
+
+        * a free slider comes down onto the surface under its load, its x held;
+          a fixed-track slider started over the surface (``engaged``) has its
+          track lowered into place over one slowest period, its x held;
+        * with a spring drive, x is then released so the slider finds its
+          equilibrium against the spring's preload;
+        * with ``push`` (N), x is released and the slider pushed along +x with
+          that force until it rests against the lower flanks (the "from rest in
+          contact" start of :func:`asperity2d.critical_force`).
+
+        Global velocity damping removes the ringing (settling undamped leaves
+        the asperities ringing and lowers a measured critical force by ~20 %):
+        half the velocity per fastest period, but never more than critical
+        damping of the slowest mode (a heavier damping overdamps a heavy
+        slider so much that it creeps for thousands of periods).
+        A phase ends when every body has stayed slower than ``rest_speed``
+        (internal units, base x omega) for one slowest period, or when it has
+        used its share of ``max_time`` (s). ``on_steps(n)`` reports progress.
+        """
+        layout, d, dt = self.layout, self.drive, self.dt_internal
+        space, body = layout.space, layout.slider
+        free = self.scene.slider.track == "free"
+        lowering = layout.fixed_slider and layout.slider_y_track != layout.slider_y0
+        phases = (["drop"] if free or lowering else []) + (["spring"] if d.spring else []) + \
+            (["push"] if push else [])
+        if not phases:
+            return 0.0
+        period = max(1, int(self.scene.slowest_period() / self.dt))
+        window = max(1, period // 4)  # checks per slowest period: 4
+        share = max(2, int(max_time / self.dt) // len(phases))
+        load, push_i = self.load_internal, push / self.units.force
+        rate = -math.log(damping_per_period) / (2.0 * math.pi)  # per internal time unit
+        slowest = 2.0 * math.pi * self.units.time / self.scene.slowest_period()
+        space.damping = math.exp(-min(rate, 2.0 * slowest))
+        d.start(self._slider[0])
+        x_hold = self._slider[0]
+        hold = pymunk.GrooveJoint(space.static_body, body, (x_hold, -1e6), (x_hold, 1e6), (0.0, 0.0))
+        held = False
+        spent = 0
+        for phase in phases:
+            if phase == "drop" and not held:
+                space.add(hold)
+                held = True
+            elif phase != "drop" and held:
+                space.remove(hold)
+                held = False
+            calm, done = 0, 0
+            while done < share and calm < 4:
+                n = min(window, share - done)
+                if phase == "drop" and lowering:
+                    self._lower_track(min(1.0, (done + n) / period))
+                for _ in range(n):
+                    fx = d.k * (d.origin - self._slider[0]) if d.spring else 0.0
+                    body.force = (fx + (push_i if phase == "push" else 0.0), -load)
+                    space.step(dt)
+                    self._project(self._read_bodies())
+                done += n
+                calm = calm + 1 if float(np.abs(self._rows[:, 2:]).max()) < rest_speed else 0
+                if on_steps is not None:
+                    on_steps(n)
+            spent += done
+        if held:
+            space.remove(hold)
+        space.damping = 1.0
+        for b in layout.lower_bodies:
+            b.velocity = (0.0, 0.0)
+        body.velocity = (0.0, 0.0)
+        rows = self._read_bodies()
+        if self.switch.active:  # contacts at rest start stuck, with mu_static
+            self._arbiters = read_arbiters(space, self._arb_buf, layout)
+            self.switch.update(self._arbiters, rows, layout)
+        return spent * self.dt
+
+    def _lower_track(self, fraction: float) -> None:
+        """Move the fixed track ``fraction`` of the way from its start to its working height."""
+        layout = self.layout
+        y = layout.slider_y_start + fraction * (layout.slider_y0 - layout.slider_y_start)
+        layout.slider_groove.groove_a = (-1e6, y)
+        layout.slider_groove.groove_b = (1e6, y)
+        layout.slider_y_track = y
+
+    def copy(self) -> "Engine":
+        """An independent engine continuing from this one's state (hooks are not copied).
+
+        Copies of one engine step bit-identically to each other (they differ
+        from the original in the last bits: pymunk rebuilds the contact cache).
+        """
+        out = object.__new__(Engine)
+        out.__dict__.update(self.__dict__)
+        out.layout = self.layout.copy()
+        out.switch = self.switch.copy_to(out.layout)
+        out.drive = object.__new__(Drive)
+        out.drive.__dict__.update(self.drive.__dict__)
+        out.step_hooks = []
+        out._body_buf, out._arb_buf = None, batch.Buffer()
+        out._arbiters = None
+        out._read_bodies()
+        return out

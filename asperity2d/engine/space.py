@@ -1,0 +1,260 @@
+"""Building an asperity scene's pymunk space (part of the adapter, :mod:`asperity2d.engine`).
+
+:func:`build` turns a :class:`~asperity2d.scene.Scene` into a :class:`Layout`: the
+``pymunk.Space`` in internal units (:mod:`asperity2d.units`) and where everything
+is in it. Bodies (seed 000 figures 5-8, DESIGN.md section 5):
+
+* each lower asperity is ``Body(m, inf)`` (it cannot rotate) on a vertical
+  ``GrooveJoint`` (its track, limited to the travel) with a vertical
+  ``DampedSpring`` to ground; in the MATLAB lattice the groove is left out
+  and horizontal ``DampedSpring`` links join the peaks;
+* the slider is one ``Body(M, inf)`` carrying every upper triangle, on a
+  horizontal groove (fixed track) or free vertically;
+* a static floor at the bottom of the tracks stops upper tips from falling
+  through wide gaps; it touches only the slider;
+* shape filters keep lower asperities from touching each other.
+
+pymunk's ``DampedSpring`` applies its damping as an exact exponential decay
+of the relative velocity, so the track and lattice dampers are stable at any
+step; only the drive damper (applied as a force, :mod:`.core`) limits dt.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pymunk
+from pymunk import batch
+
+from ..units import Units
+
+#: Shape categories (bit masks), also used as collision types.
+LOWER, SLIDER, FLOOR = 1, 2, 4
+#: Solver settings in internal units (DESIGN.md section 5).
+COLLISION_SLOP = 1e-3  # base lengths of overlap left uncorrected
+CORRECTION_PER_STEP = 0.1  # fraction of overlap / joint error removed per step
+_SPRING_REST = 100.0  # rest length of the vertical track springs (internal units)
+
+
+def per_step_bias(fraction: float, dt: float) -> float:
+    """pymunk bias (error left after one time unit) that removes ``fraction`` per step of ``dt``."""
+    return math.pow(1.0 - fraction, 1.0 / dt)
+
+
+@dataclass
+class Layout:
+    """A built space and where everything is in it (internal units).
+
+    ``rows`` index the ``n_rows`` rows of ``pymunk.batch.get_space_bodies``
+    (the static body has one):
+    ``slider_row`` and ``lower_rows`` (a slice when contiguous);
+    ``lower_index`` maps a body id (a pointer value) to its lower asperity index.
+    ``lower_x0`` / ``lower_apex_x``
+    are the rest x of each lower base centre / apex, ``upper_apex`` the
+    apexes' x relative to the slider, ``slider_y0`` its starting height.
+    """
+
+    space: pymunk.Space
+    slider: pymunk.Body
+    lower_bodies: list
+    lower_shapes: list
+    lower_x0: np.ndarray
+    lower_apex_x: np.ndarray
+    lower_height: float
+    upper_apex: np.ndarray
+    slider_y0: float
+    tracked: bool  # lower asperities on vertical grooves (False: MATLAB lattice)
+    fixed_slider: bool
+    slider_groove: pymunk.GrooveJoint | None = None  # the fixed track
+    slider_y_start: float = 0.0  # where the slider starts (above slider_y0 when lowered onto the surface)
+    slider_y_track: float = 0.0  # the fixed track's height now (projection target)
+    slider_row: int = 0
+    lower_rows: slice | np.ndarray | None = None
+    lower_index: dict | None = None
+    lower_row_of: list | None = None
+    slider_id: int = 0
+    masses: np.ndarray | None = None  # per batch row (internal units; 0 for the static body)
+    n_rows: int = 0
+
+    def index(self) -> None:
+        """Find the batch rows and ids of the bodies (after building or copying)."""
+        buf = batch.Buffer()
+        batch.get_space_bodies(self.space, batch.BodyFields.BODY_ID, buf)
+        ids = np.frombuffer(buf.int_buf(), dtype=np.uintp).copy()
+        self.n_rows = len(ids)  # the static body has a row too
+        where = {int(i): k for k, i in enumerate(ids)}
+        self.slider_row = where[self.slider.id]
+        self.slider_id = self.slider.id
+        rows = np.array([where[b.id] for b in self.lower_bodies], dtype=np.intp)
+        if len(rows) and np.array_equal(rows, np.arange(rows[0], rows[0] + len(rows))):
+            self.lower_rows = slice(int(rows[0]), int(rows[0]) + len(rows))  # a view, not a copy
+        else:
+            self.lower_rows = rows
+        self.lower_index = {b.id: i for i, b in enumerate(self.lower_bodies)}
+        self.lower_row_of = rows.tolist()  # batch row of each lower asperity
+        by_id = {b.id: b for b in self.space.bodies}
+        self.masses = np.array([by_id[int(i)].mass if int(i) in by_id else 0.0 for i in ids])
+
+    def copy(self) -> "Layout":
+        """An independent copy of the space (``pymunk.Space.copy``: bodies, joints and
+        the contact cache), with every reference re-pointed. Copies of one layout
+        step bit-identically to each other."""
+        space = self.space.copy()
+        # pymunk copies bodies and shapes in order (new ids): match them by position
+        body_at = {id(b): k for k, b in enumerate(self.space.bodies)}
+        shape_at = {id(s): k for k, s in enumerate(self.space.shapes)}
+        bodies, shapes = list(space.bodies), list(space.shapes)
+        groove = None
+        if self.slider_groove is not None:
+            at = [id(c) for c in self.space.constraints].index(id(self.slider_groove))
+            groove = list(space.constraints)[at]
+        out = Layout(space=space, slider=bodies[body_at[id(self.slider)]], slider_groove=groove,
+                     slider_y_start=self.slider_y_start, slider_y_track=self.slider_y_track,
+                     lower_bodies=[bodies[body_at[id(b)]] for b in self.lower_bodies],
+                     lower_shapes=[shapes[shape_at[id(s)]] for s in self.lower_shapes],
+                     lower_x0=self.lower_x0, lower_apex_x=self.lower_apex_x,
+                     lower_height=self.lower_height, upper_apex=self.upper_apex,
+                     slider_y0=self.slider_y0, tracked=self.tracked, fixed_slider=self.fixed_slider)
+        out.index()
+        return out
+
+
+def build(scene, units: Units, dt: float, *, iterations: int, friction: float,
+          engaged: bool = False) -> Layout:
+    """Build ``scene`` in a new space stepped with ``dt`` (internal units).
+
+    ``friction`` is the lower shapes' initial coefficient (the slider's shapes
+    have 1.0, so a contact's coefficient is the lower shape's). A fixed-track
+    slider starts before the surface, or with ``engaged`` over it (its rear tip
+    above the first lower valley, like a free slider) with its track raised
+    clear of the tips, to be lowered onto the surface by ``Engine.settle``.
+    """
+    space = pymunk.Space(threaded=False)  # threaded stepping is not reproducible
+    space.iterations = iterations
+    space.gravity = (0.0, -scene.gravity / units.acceleration)
+    space.collision_slop = COLLISION_SLOP
+    space.collision_bias = per_step_bias(CORRECTION_PER_STEP, dt)
+    bias = per_step_bias(CORRECTION_PER_STEP, dt)
+    lower = _build_lower(space, scene, units, bias, friction)
+    slider = _build_slider(space, scene, units, bias, lower, engaged)
+    _build_floor(space, scene, units, lower["x0"], friction)
+    layout = Layout(space=space, slider=slider["body"], lower_bodies=lower["bodies"],
+                    lower_shapes=lower["shapes"], lower_x0=lower["x0"], lower_apex_x=lower["apex"],
+                    lower_height=lower["height"], upper_apex=slider["apex"], slider_y0=slider["y0"],
+                    tracked=not scene.lower.is_lattice, fixed_slider=scene.slider.track == "fixed",
+                    slider_groove=slider["groove"], slider_y_start=slider["y_start"],
+                    slider_y_track=slider["y_start"])
+    layout.index()
+    return layout
+
+
+def _build_lower(space, scene, u: Units, bias: float, friction: float) -> dict:
+    lower = scene.lower
+    verts = [(x / u.length, y / u.length) for x, y in lower.profile.vertices(upper=False)]
+    x0 = lower.tips() / u.length
+    down, up = lower.travel_down / u.length, lower.travel_up / u.length
+    flt = pymunk.ShapeFilter(categories=LOWER, mask=SLIDER)
+    bodies, shapes = [], []
+    for x, m, k, c in zip(x0, lower.mass, lower.stiffness, lower.damping):
+        body = pymunk.Body(m / u.mass, math.inf)
+        body.position = (x, 0.0)
+        shape = pymunk.Poly(body, verts)
+        shape.filter, shape.collision_type, shape.friction = flt, LOWER, friction
+        # The vertical spring hangs from far below, so it stays vertical
+        # (to 1e-2 rad per base of sideways motion in the lattice).
+        joints = [pymunk.DampedSpring(space.static_body, body, (x, -_SPRING_REST), (0.0, 0.0),
+                                      _SPRING_REST, k / u.stiffness, c / u.damping)]
+        if not lower.is_lattice:
+            joints.append(pymunk.GrooveJoint(space.static_body, body, (x, -down), (x, up), (0.0, 0.0)))
+        for joint in joints:
+            joint.error_bias = bias
+        space.add(body, shape, *joints)
+        bodies.append(body)
+        shapes.append(shape)
+    if lower.is_lattice:
+        _build_lattice(space, lower, u, x0, bodies)
+    return {"bodies": bodies, "shapes": shapes, "x0": x0, "height": lower.profile.height / u.length,
+            "apex": x0, "left": lower.profile.runs(upper=False)[0] / u.length}
+
+
+def _build_lattice(space, lower, u: Units, x, bodies) -> None:
+    """Horizontal springs between neighbouring peaks and to the two walls.
+
+    Each is a ``DampedSpring`` between body centres (rest length: their
+    spacing); a wall link anchors to the static body one mean pitch outside
+    the end peak. For small displacements they act along x with the stiffness
+    matrix :meth:`LowerSurface.lateral_stiffness_matrix`; a height difference
+    dy between linked peaks tilts a link by dy/pitch.
+    """
+    pitch = lower.spacing.mean_pitch / u.length
+    for j, (k, c) in enumerate(zip(lower.lateral_stiffness, lower.lateral_damping)):
+        if k == 0 and c == 0:
+            continue
+        k, c = k / u.stiffness, c / u.damping
+        if j == 0:
+            link = pymunk.DampedSpring(space.static_body, bodies[0], (x[0] - pitch, 0.0), (0.0, 0.0),
+                                       pitch, k, c)
+        elif j == len(bodies):
+            link = pymunk.DampedSpring(bodies[-1], space.static_body, (0.0, 0.0), (x[-1] + pitch, 0.0),
+                                       pitch, k, c)
+        else:
+            link = pymunk.DampedSpring(bodies[j - 1], bodies[j], (0.0, 0.0), (0.0, 0.0),
+                                       x[j] - x[j - 1], k, c)
+        space.add(link)
+
+
+def _build_slider(space, scene, u: Units, bias: float, lower: dict, engaged: bool) -> dict:
+    s = scene.slider
+    h_up = s.profile.height / u.length
+    apex = s.tips() / u.length  # relative to the slider's reference point, the rear tip
+    body = pymunk.Body(s.mass / u.mass, math.inf)
+    x_lower, apex_lower = lower["x0"], lower["apex"]
+    clear = lower["height"] + h_up + 1e-3  # the tips just clear of the lower tips
+    if s.track == "fixed" and not engaged:
+        # Start left of the surface: the front asperity's base ends a tenth
+        # of a base before the first lower asperity's base begins.
+        right = s.profile.runs(upper=True)[1] / u.length
+        x0 = x_lower[0] - lower["left"] - right - apex[-1] - 0.1
+        y0 = y_start = lower["height"] - s.interference / u.length + h_up
+    else:
+        # Start at the beginning of the surface, just clear of the tips: the
+        # first upper tip over the first valley (or, with a single lower
+        # asperity, over the middle of its front flank); settling lowers it.
+        if len(apex_lower) > 1:
+            x_tip = 0.5 * (apex_lower[0] + apex_lower[1])
+        else:
+            flat = scene.lower.profile.kind == "flat"
+            x_tip = apex_lower[0] - (0.0 if flat else 0.5 * lower["left"])
+        x0 = x_tip - apex[0]
+        y0 = y_start = clear
+        if s.track == "fixed":  # the track's height; the slider starts above it
+            y0 = lower["height"] - s.interference / u.length + h_up
+    body.position = (x0, y_start)
+    flt = pymunk.ShapeFilter(categories=SLIDER, mask=LOWER | FLOOR)
+    verts = s.profile.vertices(upper=True)
+    shapes = []
+    for c in apex:
+        shape = pymunk.Poly(body, [(c + x / u.length, y / u.length) for x, y in verts])
+        shape.filter, shape.collision_type, shape.friction = flt, SLIDER, 1.0
+        shapes.append(shape)
+    space.add(body, *shapes)
+    groove = None
+    if s.track == "fixed":
+        groove = pymunk.GrooveJoint(space.static_body, body, (-1e6, y_start), (1e6, y_start), (0.0, 0.0))
+        groove.error_bias = bias
+        space.add(groove)
+    return {"body": body, "apex": apex, "y0": y0, "y_start": y_start, "groove": groove}
+
+
+def _build_floor(space, scene, u: Units, x_lower, friction: float) -> None:
+    # A guard at the bottom of the lower tracks: upper tips that sink into
+    # wide gaps (or half triangles that would fall through) land on it. It
+    # is deep enough never to carry load in ordinary contact.
+    y = -scene.lower.travel_down / u.length
+    x_lo = x_lower[0] - 1e6
+    floor = pymunk.Segment(space.static_body, (x_lo, y), (-x_lo, y), 0.0)
+    floor.filter = pymunk.ShapeFilter(categories=FLOOR, mask=SLIDER)
+    floor.collision_type, floor.friction = FLOOR, friction
+    space.add(floor)

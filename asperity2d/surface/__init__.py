@@ -1,0 +1,31 @@
+"""Rough surfaces in 1-D: profiles, their statistics, and the asperities they hold.
+
+Data flow (all SI)::
+
+    self_affine_profile / gaussian_profile / read_profile  ->  SurfaceProfile (x, z)
+        rms_height, rms_slope, power_spectrum -> PowerSpectrum, fit_hurst -> HurstFit
+        find_asperities -> Asperities (one frozen record per surface: centres, heights,
+                                       flank runs, base levels, stiffness, mass)
+        plot_asperities, plot_spectrum
+    random_heights, fraction_above          (random summit heights for a scene)
+
+Modules: :mod:`.profile` (record and generators), :mod:`.read` (text traces;
+instrument files through the optional SurfaceTopography), :mod:`.stats`,
+:mod:`.asperities` (the summit-to-triangle rule), :mod:`.heights`,
+:mod:`.plot` (matplotlib, imported inside the plotting functions).
+"""
+
+from .asperities import Asperities, find_asperities, pyramid_mass, table1_stiffness
+from .heights import fraction_above, random_heights
+from .plot import plot_asperities, plot_spectrum
+from .profile import SurfaceProfile, gaussian_profile, self_affine_profile
+from .read import read_profile
+from .stats import HurstFit, PowerSpectrum, fit_hurst, power_spectrum, rms_height, rms_slope
+
+
+__all__ = [
+    "SurfaceProfile", "self_affine_profile", "gaussian_profile", "read_profile", "rms_height",
+    "rms_slope", "PowerSpectrum", "power_spectrum", "HurstFit", "fit_hurst", "Asperities",
+    "find_asperities", "table1_stiffness", "pyramid_mass", "random_heights", "fraction_above",
+    "plot_asperities", "plot_spectrum",
+]

@@ -1,0 +1,96 @@
+"""Plots of a profile with its asperities, and of its power spectrum (matplotlib, lazily).
+
+Each function writes one file (``.png``, ``.svg`` or ``.pdf``, from the
+extension) atomically and returns its path. Lengths are drawn in micrometres.
+"""
+
+from __future__ import annotations
+
+import io
+import os
+from pathlib import Path
+
+import numpy as np
+
+from .._io import atomic_write
+from ..errors import SceneError
+from .asperities import Asperities
+from .profile import SurfaceProfile
+from .stats import HurstFit, PowerSpectrum
+
+FORMATS = (".png", ".svg", ".pdf")
+UM = 1e6  # metres -> micrometres
+
+
+def _figure(rows: int, *, width: float = 8.0, height: float = 2.6):
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(width, height * rows), layout="constrained")
+    FigureCanvasAgg(fig)
+    return fig, fig.subplots(rows, 1, squeeze=False)[:, 0]
+
+
+def _save(fig, path, dpi: int) -> Path:
+    path = Path(path)
+    if path.suffix.lower() not in FORMATS:
+        raise SceneError(f"`path` must end in one of {', '.join(FORMATS)}, got {str(path)!r}")
+
+    def write(fh):
+        buf = io.BytesIO()
+        fig.savefig(buf, format=path.suffix.lower()[1:], dpi=dpi)
+        fh.write(buf.getvalue())
+
+    return atomic_write(path, write)
+
+
+def plot_asperities(profile: SurfaceProfile, asperities: Asperities, path: str | os.PathLike, *,
+                    x_range: tuple[float, float] | None = None, dpi: int = 120) -> Path:
+    """The profile (line) with its triangular asperities laid over it (shaded, apexes marked).
+
+    ``x_range`` (m) zooms in on a stretch; the default shows the whole trace.
+    """
+    from matplotlib.collections import PolyCollection
+
+    fig, (ax,) = _figure(1)
+    x, z = profile.x, profile.z
+    a = asperities
+    if x_range is not None:
+        lo, hi = x_range
+        if not lo < hi:
+            raise SceneError(f"`x_range` must be (low, high) with low < high, got {x_range!r}")
+        shown = (x >= lo) & (x <= hi)
+        x, z = x[shown], z[shown]
+        a_shown = (a.right_feet >= lo) & (a.left_feet <= hi)
+    else:
+        a_shown = np.ones(a.count, dtype=bool)
+    feet_l, feet_r, apex = a.left_feet[a_shown], a.right_feet[a_shown], a.apex_x[a_shown]
+    level, top = a.base_levels[a_shown], a.summits[a_shown]
+    triangles = np.stack([np.column_stack([feet_l, level]), np.column_stack([apex, top]),
+                          np.column_stack([feet_r, level])], axis=1) * UM
+    ax.add_collection(PolyCollection(triangles, facecolors="tab:orange", edgecolors="tab:red",
+                                     alpha=0.35, linewidths=0.8, label="asperities"))
+    ax.plot(x * UM, z * UM, color="0.2", lw=0.6, label="profile")
+    ax.plot(apex * UM, top * UM, "v", color="tab:red", ms=3, label="summits")
+    ax.set_xlabel("x (µm)")
+    ax.set_ylabel("z (µm)")
+    ax.set_title(f"{profile.name or 'profile'}: {int(a_shown.sum())} of {a.count} asperities shown "
+                 f"({a.absorbed} summits absorbed, {a.trimmed} triangles trimmed)", fontsize=9)
+    ax.legend(loc="upper right", fontsize=7)
+    ax.autoscale_view()
+    return _save(fig, path, dpi)
+
+
+def plot_spectrum(spectrum: PowerSpectrum, path: str | os.PathLike, *, fit: HurstFit | None = None,
+                  dpi: int = 120) -> Path:
+    """Power spectral density C(q) on log-log axes, with the Hurst fit's line over its band."""
+    fig, (ax,) = _figure(1, width=6.0, height=3.6)
+    ax.loglog(spectrum.q, spectrum.psd, color="0.3", lw=0.7, label=f"C(q), {spectrum.method}")
+    if fit is not None:
+        q = np.geomspace(fit.q_min, fit.q_max, 50)
+        ax.loglog(q, fit.prefactor * q ** fit.slope, color="tab:red", lw=2,
+                  label=f"fit: H = {fit.hurst:.3f} ± {fit.hurst_stderr:.3f}")
+    ax.set_xlabel("wavenumber q (rad/m)")
+    ax.set_ylabel("C(q) (m³)")
+    ax.legend(fontsize=8)
+    return _save(fig, path, dpi)

@@ -1,0 +1,194 @@
+"""1-D surface profiles: the :class:`SurfaceProfile` record and seeded generators.
+
+A profile is a height trace z(x) along one line of a surface, in metres. Two
+kinds of random rough surface are generated, both reproducible from ``seed``
+through ``numpy.random.default_rng``:
+
+* **self-affine** (:func:`self_affine_profile`): the one-sided power spectral
+  density is C(q) proportional to q^-(1+2H) between a long- and a
+  short-wavelength cut-off, with H the Hurst exponent (0 < H <= 1); the
+  height difference over a distance d then grows as d^H. Made by Fourier
+  filtering of white noise (as SurfaceTopography's ``fourier_synthesis``).
+* **Gaussian-correlated** (:func:`gaussian_profile`): autocorrelation
+  R(d) = h_rms^2 exp(-d^2 / l^2) with correlation length l, made by
+  convolving white noise with a Gaussian kernel (``scipy.ndimage``).
+
+Both are periodic over their length (the generated trace can be tiled) and are
+scaled so that their rms height equals ``rms_height`` exactly: the sample rms
+of one realisation would otherwise scatter around the request.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+
+import numpy as np
+
+from .._validate import check_finite, check_int, check_positive
+from ..errors import SceneError
+
+#: Relative tolerance on the sample spacing for a profile to count as uniformly sampled.
+UNIFORM_TOLERANCE = 1e-3
+
+
+@dataclass(frozen=True, eq=False)
+class SurfaceProfile:
+    """A height trace: ``z`` (m) at positions ``x`` (m), x strictly increasing.
+
+    ``x`` and ``z`` are stored as read-only float64 arrays; ``metadata`` (a
+    read-only mapping) records where the profile came from (generator and its
+    parameters, or the file, its unit and header comments). Not to be confused
+    with :class:`asperity2d.geometry.Profile`, the shape of one asperity.
+    """
+
+    x: np.ndarray
+    z: np.ndarray
+    name: str = ""
+    metadata: Mapping = field(default_factory=dict)
+
+    def __post_init__(self):
+        x, z = _vector("x", self.x), _vector("z", self.z)
+        if len(x) != len(z):
+            raise SceneError(f"`x` and `z` must have the same length, got {len(x)} and {len(z)}")
+        if len(x) < 3:
+            raise SceneError(f"a profile needs at least 3 points, got {len(x)}")
+        steps = np.diff(x)
+        if not np.all(steps > 0):
+            i = int(np.argmax(steps <= 0))
+            raise SceneError(f"`x` must be strictly increasing: x[{i + 1}] = {x[i + 1]!r} "
+                             f"follows x[{i}] = {x[i]!r}")
+        object.__setattr__(self, "x", x)
+        object.__setattr__(self, "z", z)
+        object.__setattr__(self, "metadata", MappingProxyType(dict(self.metadata)))
+
+    @property
+    def count(self) -> int:
+        """Number of points."""
+        return len(self.x)
+
+    @property
+    def spacing(self) -> float:
+        """Median sample spacing (m)."""
+        return float(np.median(np.diff(self.x)))
+
+    @property
+    def length(self) -> float:
+        """Sampled length, ``count`` x ``spacing`` (m): the period of a generated profile."""
+        return self.count * self.spacing
+
+    @property
+    def is_uniform(self) -> bool:
+        """True when every sample spacing is within 0.1 % of the median."""
+        steps = np.diff(self.x)
+        return bool(np.all(np.abs(steps - self.spacing) <= UNIFORM_TOLERANCE * self.spacing))
+
+    def detrended(self) -> "SurfaceProfile":
+        """The profile minus its least-squares straight line (form / tilt removal)."""
+        slope, intercept = np.polyfit(self.x, self.z, 1)
+        return SurfaceProfile(self.x, self.z - (slope * self.x + intercept),
+                              name=self.name, metadata={**self.metadata, "detrended": True})
+
+
+def _vector(name: str, values) -> np.ndarray:
+    try:
+        arr = np.array(values, dtype=float)
+    except (TypeError, ValueError):
+        raise SceneError(f"`{name}` must be a sequence of numbers") from None
+    if arr.ndim != 1:
+        raise SceneError(f"`{name}` must be one-dimensional, got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        i = int(np.argmax(~np.isfinite(arr)))
+        raise SceneError(f"`{name}` must be finite, got {arr[i]!r} at index {i}")
+    arr.setflags(write=False)
+    return arr
+
+
+def _grid(n, length) -> tuple[int, float, np.ndarray]:
+    n = check_int("n", n, minimum=8)
+    length = check_positive("length", length)
+    return n, length, np.arange(n) * (length / n)
+
+
+def _scaled(z: np.ndarray, rms_height: float) -> np.ndarray:
+    z = z - z.mean()
+    return z * (rms_height / math.sqrt(float(np.mean(z * z))))
+
+
+def self_affine_profile(*, n: int, length: float, rms_height: float, hurst: float,
+                        q_min: float | None = None, q_max: float | None = None,
+                        rolloff: bool = False, seed: int = 0, name: str = "") -> SurfaceProfile:
+    """A periodic self-affine profile of ``n`` points over ``length`` (m).
+
+    Parameters
+    ----------
+    rms_height : float
+        Root-mean-square height (m); the result has exactly this rms.
+    hurst : float
+        Hurst exponent H in (0, 1]: C(q) ~ q^-(1+2H) in the self-affine band.
+    q_min, q_max : float, optional
+        Band of wavenumbers q = 2 pi / wavelength (rad/m) with power. Defaults:
+        the longest wavelength that fits, 2 pi / length, and the Nyquist
+        wavenumber pi / spacing. Outside the band C = 0, except that
+        ``rolloff=True`` keeps C = C(q_min) below q_min (a roll-off plateau,
+        as measured on many real surfaces).
+    seed : int
+        Seed of ``numpy.random.default_rng``.
+    """
+    n, length, x = _grid(n, length)
+    rms_height = check_positive("rms_height", rms_height)
+    hurst = check_finite("hurst", hurst)
+    if not 0.0 < hurst <= 1.0:
+        raise SceneError(f"`hurst` must be in (0, 1], got {hurst!r}")
+    q_lo, q_hi = 2.0 * math.pi / length, math.pi * n / length
+    q_min = q_lo if q_min is None else check_positive("q_min", q_min)
+    q_max = q_hi if q_max is None else check_positive("q_max", q_max)
+    if q_max > q_hi * (1 + 1e-12):
+        raise SceneError(f"`q_max` must be <= the Nyquist wavenumber pi n / length = {q_hi:.6g} "
+                         f"rad/m, got {q_max!r}")
+    q = 2.0 * math.pi * np.arange(n // 2 + 1) / length
+    band = (q >= q_min * (1 - 1e-12)) & (q <= q_max * (1 + 1e-12))
+    if np.count_nonzero(band) < 2:
+        raise SceneError(f"`q_min` .. `q_max` ({q_min:.6g} .. {q_max:.6g} rad/m) must hold at least two "
+                         f"wavenumbers 2 pi k / length (spacing {q_lo:.6g} rad/m)")
+    psd = np.zeros_like(q)
+    psd[band] = q[band] ** -(1.0 + 2.0 * hurst)
+    if rolloff:
+        psd[(q > 0) & (q < q_min)] = q_min ** -(1.0 + 2.0 * hurst)
+    rng = np.random.default_rng(check_int("seed", seed, minimum=0))
+    # Complex Gaussian coefficients with variance proportional to C(q): random
+    # phases and Rayleigh amplitudes, i.e. a Gaussian random field.
+    coeffs = (rng.standard_normal(len(q)) + 1j * rng.standard_normal(len(q))) * np.sqrt(psd)
+    z = _scaled(np.fft.irfft(coeffs, n), rms_height)
+    meta = {"kind": "self-affine", "hurst": hurst, "rms_height": rms_height, "q_min": q_min,
+            "q_max": q_max, "rolloff": bool(rolloff), "seed": seed, "periodic": True}
+    return SurfaceProfile(x, z, name=name or f"self-affine H={hurst:g}", metadata=meta)
+
+
+def gaussian_profile(*, n: int, length: float, rms_height: float, correlation_length: float,
+                     seed: int = 0, name: str = "") -> SurfaceProfile:
+    """A periodic profile with Gaussian autocorrelation R(d) = h_rms^2 exp(-d^2 / l^2).
+
+    ``correlation_length`` l (m) is the lag at which the autocorrelation has
+    fallen to 1/e; it must span at least two samples and at most a quarter of
+    ``length`` (the kernel must not wrap onto itself). White noise convolved
+    with a Gaussian kernel of standard deviation l / 2 has exactly this
+    autocorrelation; the result is scaled to ``rms_height`` (m).
+    """
+    from scipy.ndimage import gaussian_filter1d
+
+    n, length, x = _grid(n, length)
+    rms_height = check_positive("rms_height", rms_height)
+    ell = check_positive("correlation_length", correlation_length)
+    dx = length / n
+    if not 2.0 * dx <= ell <= length / 4.0:
+        raise SceneError(f"`correlation_length` must be between 2 samples ({2 * dx:.6g} m) and "
+                         f"length / 4 ({length / 4:.6g} m), got {ell!r}")
+    rng = np.random.default_rng(check_int("seed", seed, minimum=0))
+    z = gaussian_filter1d(rng.standard_normal(n), sigma=0.5 * ell / dx, mode="wrap", truncate=4.0)
+    meta = {"kind": "gaussian", "rms_height": rms_height, "correlation_length": ell,
+            "seed": seed, "periodic": True}
+    return SurfaceProfile(x, _scaled(z, rms_height), name=name or f"gaussian l={ell:g} m",
+                          metadata=meta)
