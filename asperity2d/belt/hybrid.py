@@ -40,8 +40,8 @@ def _atol(spec, rtol, atol):
 
 
 def _work_atol(spec, rtol):
-    """Absolute tolerance (J) of the three work integrals: 1e-2 rtol of the force x length scale."""
-    return np.full(3, rtol * 1e-2 * float(np.max(spec.static_limit)) * spec.length_scale)
+    """Absolute tolerance (J) of the three work integrals: 1e-2 rtol of the chain's energy scale (> 0)."""
+    return np.full(3, rtol * 1e-2 * spec.energy_scale)
 
 
 def run_ode_phases(spec, options) -> RawRun:
@@ -99,6 +99,11 @@ class OdePhase:
         opt = self.options
         while self.t_reached < t_target:
             t_stop = min(self.spec.t_end, max(t_target, self.t_reached + 64 * self.step))
+            if t_stop - self.t_reached <= 64 * np.finfo(float).eps * abs(t_stop):
+                # a few ulps short of the end: no step fits (solve_ivp needs increasing times);
+                # the last dense output covers it
+                self.t_reached = t_stop
+                break
             sol = solve_ivp(self._rhs, (self.t_reached, t_stop), self.y_end, method=opt.integrator,
                             rtol=opt.rtol, atol=self.atol, dense_output=True)
             if not sol.success:

@@ -183,6 +183,14 @@ class ChainSpec:
         """A length (m): the initial offsets, or the velocity scale over omega."""
         return max(float(np.max(np.abs(self.x0))), self.velocity_scale / self.omega)
 
+    @cached_property
+    def energy_scale(self) -> float:
+        """An energy (J) > 0: the static force or the spring force at the length scale, times that length,
+        or the kinetic energy at the velocity scale."""
+        force = max(float(np.max(self.static_limit)), float(np.max(self.k)) * self.length_scale)
+        return max(force * self.length_scale, float(np.max(self.m)) * self.velocity_scale * self.velocity_scale,
+                   1e-300)
+
     # -- belt -------------------------------------------------------------
     def belt_velocity(self, t):
         """Belt speed (m/s) at time(s) ``t`` (s)."""

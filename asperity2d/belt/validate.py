@@ -140,14 +140,14 @@ def flag(name: str, value) -> bool:
 def scales(spec) -> None:
     """Refuse chains whose derived scales overflow (each parameter alone being acceptable)."""
     reach = spec.length_scale + abs(spec.belt_velocity(0.0)) * spec.t_end
-    force = max(float(np.max(spec.law.static_coefficient * spec.normal)), float(np.max(spec.k)) * spec.length_scale)
+    force = max(float(np.max(spec.static_limit)), float(np.max(spec.k)) * spec.length_scale)
     derived = (
         ("fastest rate (1/s)", spec.rate_bound, "`masses`, `springs` and `dampers`"),
         ("velocity scale (m/s)", spec.velocity_scale, "`v_belt`, `v0`, `mu_s`, `g` or `normal_load`, `masses`"),
         ("length scale (m)", spec.length_scale, "`x0` and the velocity scale over the fastest rate"),
         ("distance travelled (m)", reach, "`v_belt` times `t_end`"),
         ("force scale (N)", force, "`mu_s` times the normal load, or `springs` times the length scale"),
-        ("energy scale (J)", force * spec.length_scale + float(np.max(spec.m)) * spec.velocity_scale * spec.velocity_scale,
+        ("energy scale (J)", spec.energy_scale,
          "the force scale times the length scale, or `masses` times the velocity scale squared"),
     )
     for what, value, source in derived:
