@@ -130,3 +130,18 @@ def test_sparse_forms_of_long_chains_agree_with_dense_ones(monkeypatch):
     np.testing.assert_allclose([e.t for e in sparse.events], [e.t for e in dense.events], rtol=1e-12)
     np.testing.assert_allclose(sparse.x, dense.x, rtol=0, atol=1e-12)
     assert sparse.energy_balance_error() < 1e-12
+
+
+def test_nearly_defective_damped_segment_matches_the_matrix_exponential():
+    # found by fuzzing: this segment's eigenvalues cluster within 1e-4 around -1 (cond(W) = 8e11,
+    # though no two are "close"); modal coefficients would be garbage, the Taylor grid is exact
+    springs, dampers = np.array([0.0, 1.0, 1.0, 1.0]), np.array([1.0, 1.0, 1.0, 0.0])
+    y0 = np.array([1e-9, 0.083, 0.0, 1e-9, 0.083, 0.0])
+    r = simulate_chain([1.0] * 3, springs, dampers, mu_s=0.0, v_belt=0.0, x0=y0[:3], v0=y0[3:], t_end=2.0,
+                       n_samples=9)
+    K = np.diag(springs[:-1] + springs[1:]) - np.diag(springs[1:-1], 1) - np.diag(springs[1:-1], -1)
+    C = np.diag(dampers[:-1] + dampers[1:]) - np.diag(dampers[1:-1], 1) - np.diag(dampers[1:-1], -1)
+    A = np.block([[np.zeros((3, 3)), np.eye(3)], [-K, -C]])
+    want = np.stack([(expm(A * t) @ y0)[:3] for t in r.t], axis=1)
+    np.testing.assert_allclose(r.x, want, rtol=0, atol=1e-15)
+    assert r.energy_balance_error() < 1e-12
