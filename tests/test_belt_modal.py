@@ -145,3 +145,17 @@ def test_nearly_defective_damped_segment_matches_the_matrix_exponential():
     want = np.stack([(expm(A * t) @ y0)[:3] for t in r.t], axis=1)
     np.testing.assert_allclose(r.x, want, rtol=0, atol=1e-15)
     assert r.energy_balance_error() < 1e-12
+
+
+@pytest.mark.filterwarnings("error::RuntimeWarning")
+def test_vanishing_static_limit_neither_overflows_nor_holds_the_mass():
+    # found by fuzzing: mu_s N = 1e-310 N (subnormal) normalised the stick event functions of a stuck
+    # mass to 1e311 (inf, then NaN: the mass could never break away); the limits are now floored at
+    # 1e-12 of the chain's force scale. Mass 1 starts stuck (no force, no force rate) and must break
+    # away as soon as mass 3's spring reaches it: then everything moves as if frictionless.
+    kw = dict(masses=[1.0] * 3, springs=[10.0] * 4, dampers=[0.0] * 4, v_belt=0.0, x0=[0.0, 0.0, 0.05],
+              v0=[0.0, 0.0, 0.0], t_end=5.0, n_samples=51, include_events=False)
+    tiny = simulate_chain(**kw, mu_s=1e-200, normal_load=[1e-110, 0.0, 0.0])
+    free = simulate_chain(**kw, mu_s=0.0)
+    assert tiny.stick_intervals[0][0][1] < 1e-3  # breaks away at once (f_req ~ t^4 reaches 1e-310 N)
+    np.testing.assert_allclose(tiny.x, free.x, rtol=0, atol=1e-15)

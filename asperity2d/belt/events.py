@@ -43,7 +43,7 @@ def event_map(spec, modes, V):
     """(kind, mass, map, offset): g = map @ [x; v; a] + offset for a constant belt speed ``V`` (m/s)."""
     kind, mass = event_rows(spec, modes)
     n, v_scale = spec.n, spec.velocity_scale
-    f_scale = _force_scale(spec)
+    f_scale = spec.limit_scale
     rows, cols, vals = [], [], []
     offset = np.empty(kind.size)
     for r, (k, i) in enumerate(zip(kind, mass)):
@@ -58,10 +58,6 @@ def event_map(spec, modes, V):
         vals += [k / f_scale[i] * coef for coef in coefs_i]
         offset[r] = spec.static_limit[i] / f_scale[i]
     return kind, mass, linear_map((kind.size, 3 * n), (rows, cols, vals)), offset
-
-
-def _force_scale(spec):
-    return np.where(spec.static_limit > 0, spec.static_limit, 1.0)
 
 
 class ModalEvents:
@@ -109,7 +105,7 @@ class SampledEvents:
         self.phase, self.spec = phase, phase.spec
         self.kind, self.mass = event_rows(phase.spec, phase.modes)
         self.v_scale = phase.spec.velocity_scale
-        self.f_scale = _force_scale(phase.spec)
+        self.f_scale = phase.spec.limit_scale
 
     def __len__(self):
         return self.kind.size

@@ -45,7 +45,7 @@ def resolve_modes(spec, x, v, V, a_belt, previous, v_scale, touching=()):
     f_sd = link_force(spec.k, x) + link_force(spec.c, v_at)
     f_req = spec.m * a_belt - f_sd
     if at_belt.any():
-        tol = SWITCH_TOL * np.maximum(limit, 1e-300)
+        tol = SWITCH_TOL * spec.limit_scale
         size = np.abs(f_req)
         outside = at_belt & (size > limit + tol)
         modes[at_belt] = 0

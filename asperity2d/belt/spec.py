@@ -184,12 +184,23 @@ class ChainSpec:
         return max(float(np.max(np.abs(self.x0))), self.velocity_scale / self.omega)
 
     @cached_property
+    def force_scale(self) -> float:
+        """A force (N) > 0: the largest static limit, spring force at the length scale, or inertial force
+        m·v_scale·omega."""
+        return max(float(np.max(self.static_limit)), float(np.max(self.k)) * self.length_scale,
+                   float(np.max(self.m)) * self.velocity_scale * self.omega, 1e-300)
+
+    @cached_property
+    def limit_scale(self) -> np.ndarray:
+        """Per mass, the force (N) that normalises its static-limit event functions and tolerances:
+        mu_s·N_i, but at least 1e-12 of the force scale (a vanishing limit must not overflow them)."""
+        return np.maximum(self.static_limit, 1e-12 * self.force_scale)
+
+    @cached_property
     def energy_scale(self) -> float:
-        """An energy (J) > 0: the static force or the spring force at the length scale, times that length,
-        or the kinetic energy at the velocity scale."""
-        force = max(float(np.max(self.static_limit)), float(np.max(self.k)) * self.length_scale)
-        return max(force * self.length_scale, float(np.max(self.m)) * self.velocity_scale * self.velocity_scale,
-                   1e-300)
+        """An energy (J) > 0: the force scale times the length scale, or the kinetic energy at the velocity scale."""
+        return max(self.force_scale * self.length_scale,
+                   float(np.max(self.m)) * self.velocity_scale * self.velocity_scale, 1e-300)
 
     # -- belt -------------------------------------------------------------
     def belt_velocity(self, t):

@@ -140,7 +140,7 @@ def flag(name: str, value) -> bool:
 def scales(spec) -> None:
     """Refuse chains whose derived scales overflow (each parameter alone being acceptable)."""
     reach = spec.length_scale + abs(spec.belt_velocity(0.0)) * spec.t_end
-    force = max(float(np.max(spec.static_limit)), float(np.max(spec.k)) * spec.length_scale)
+    force = spec.force_scale
     derived = (
         ("fastest rate (1/s)", spec.rate_bound, "`masses`, `springs` and `dampers`"),
         ("velocity scale (m/s)", spec.velocity_scale, "`v_belt`, `v0`, `mu_s`, `g` or `normal_load`, `masses`"),
