@@ -113,3 +113,31 @@ def test_simulate_chain_returns_finite_results_or_raises_cleanly(kw):
 @given(chains())
 def test_simulate_chain_fuzz_thousands(kw):
     _check(kw)
+
+
+# Chains the fuzzer found, each a bug fixed since; kept so they stay fixed (~1 s together).
+FOUND = [
+    # a mass breaking away at its limit (mu_s = mu_k: it leaves belt speed to second order) and
+    # crossing back within the first scan interval: was a zero-length phase, 9 times over
+    dict(masses=[1.0, 1.0, 1.0, 0.13453686039201704, 0.9999997255105045],
+         springs=[0.0, 0.0, 46.52712498006882, 0.2572529166000263, 0.0, 0.0],
+         dampers=[0.0, 0.0, 0.29861118366126205, 0.0, 0.5945443930040558, 0.0],
+         x0=[0.03183606637772465, 0.015192331070837214, -0.1, -1e-05, -0.016199770423690807],
+         v0=[-8.584788474402364e-60, -0.16696118524542358, 1e-08, 0.06, -1.3691527384144215e-27],
+         t_end=13.512173513065445, v_belt=-0.15712435078611323, mu_s=0.04359999872171239, g=1.5, atol=1e-09),
+    # masses hovering at belt speed under a subnormal friction force: the interval bisection
+    # explored both halves at every level (2^20 evaluations)
+    dict(masses=[3.8991248484498873, 1.9213787413218357], springs=[0.0, 0.0, 0.0], dampers=[0.0, 1.0, 0.00176],
+         x0=[0.06363516085696125, -0.015891376029281395], v0=[1.15e-98, 1.15e-98], t_end=13.5, v_belt=0.0,
+         friction=CoulombViscous(mu=2.225073858507e-311, sigma2=9.962212952258926e-138), g=2.64, max_steps=2000),
+    # a damped segment with a 1e-4-wide eigenvalue cluster (cond(W) = 8e11): books off by 2e-3
+    dict(masses=[1.0, 1.0, 1.0], springs=[0.0, 1.0, 1.0, 1.0], dampers=[1.0, 1.0, 1.0, 0.0],
+         x0=[1e-09, 0.08285340498806049, 0.0], v0=[1e-09, 0.08285340498806049, 0.0], t_end=1.68,
+         v_belt=-0.18268297858719457, mu_s=0.14488378901900886, mu_k=0.0035393927288984214, g=3.2558960933308927,
+         normal_load=[19.368575106186317, 2.9e-109, 5.169045809449826e-11]),
+]
+
+
+@pytest.mark.parametrize("kw", FOUND, ids=["opening-row-turns-back", "hovering-rows", "near-defective"])
+def test_chains_the_fuzzer_found(kw):
+    _check(kw)

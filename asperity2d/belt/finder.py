@@ -31,12 +31,15 @@ the tolerance does, and the same way every time.
 from __future__ import annotations
 
 import math
+from functools import partial
 
 import numpy as np
 
 #: relative tolerance that declares an event function zero (and two numbers equal at a switch)
 SWITCH_TOL = 1e-9
 _EPS = np.finfo(float).eps
+#: subdivisions of one interval for one row before it is declared free of contact
+_SUBDIVISIONS = 64
 
 
 def find_event(events, horizon: float, step: float, chunk: int = 16):
@@ -88,16 +91,12 @@ def _earliest(events, rows, a, b, ga, gb, da, db, opening, horizon, depth=0):
     """Earliest switch among ``rows`` on [a, b]; ``ga`` ... ``db`` hold every row's end values.
 
     Many flagged rows (long chains) are narrowed down by bisecting the interval with one
-    vectorised evaluation per halving, so that few rows need a root search.
+    vectorised evaluation per halving, so that few rows need a root search. A half that
+    separates no row from the others is searched row by row at once: the bisection only
+    descends while it sorts rows, so its cost stays bounded when rows hover near zero.
     """
     if rows.size <= 2 or depth >= 20:
-        found = [(out, events.mass[r]) for r in rows
-                 if (out := _row_event(events, r, a, b, ga[r], gb[r], da[r], db[r],
-                                       opening is not None and opening[r], horizon)) is not None]
-        if not found:
-            return None
-        t = min(out[0] for out, _ in found)
-        return t, tuple(int(m) for (t_r, touched), m in found if touched and t_r <= t + 4 * _EPS * abs(t))
+        return _rows_event(events, rows, a, b, ga, gb, da, db, opening, horizon)
     mid = 0.5 * (a + b)
     g, d = events.values(np.array([mid]))
     gm, dm = g[:, 0], d[:, 0]
@@ -105,9 +104,23 @@ def _earliest(events, rows, a, b, ga, gb, da, db, opening, horizon, depth=0):
     for lo, hi, g0, g1, d0, d1 in ((a, mid, ga, gm, da, dm), (mid, b, gm, gb, dm, db)):
         op = None if opening is None else opening[rows]
         sub = rows[_flags(g0[rows], g1[rows], d0[rows], d1[rows], hi - lo, b4, op)]
-        if sub.size and (found := _earliest(events, sub, lo, hi, g0, g1, d0, d1, opening, horizon, depth + 1)):
+        if not sub.size:
+            continue
+        search = _rows_event if sub.size == rows.size else partial(_earliest, depth=depth + 1)
+        if found := search(events, sub, lo, hi, g0, g1, d0, d1, opening, horizon):
             return found
     return None
+
+
+def _rows_event(events, rows, a, b, ga, gb, da, db, opening, horizon):
+    """(time, touching masses) of the earliest of ``rows``' own events on [a, b], or None."""
+    found = [(out, events.mass[r]) for r in rows
+             if (out := _row_event(events, r, a, b, ga[r], gb[r], da[r], db[r],
+                                   opening is not None and opening[r], horizon)) is not None]
+    if not found:
+        return None
+    t = min(out[0] for out, _ in found)
+    return t, tuple(int(m) for (t_r, touched), m in found if touched and t_r <= t + 4 * _EPS * abs(t))
 
 
 def _lower(ga, gb, da, db, h, bound4):
@@ -125,12 +138,18 @@ def _row_event(events, r, a, b, ga, gb, da, db, opening, horizon):
     if ga <= 0:  # an opening row, at zero: only a crossing deeper than the tolerance counts
         if gb >= -SWITCH_TOL:
             return None
-        if da > 0 > db:  # it left zero the right way, turned and crossed back within the interval
-            t_max = _zero(lambda t: f(t)[1:], a, b, da, db)
-            if (g_max := f(t_max)[0]) > 0:
-                return _zero(lambda t: f(t)[:2], t_max, b, g_max, gb), False
-        return a, False  # it left zero the wrong way: switch again at once
-    found = _first_contact(f, a, b, ga, gb, da, db, events.bound4, r, 0)
+        # did it leave zero the right way (even to second order, g' = 0 at a border) and
+        # cross back within this interval? then the crossing is the switch; else switch at once
+        ts = np.linspace(a, b, 33)[1:-1]
+        gs = np.array([f(t)[0] for t in ts])
+        up = np.flatnonzero(gs > 0)
+        if up.size:
+            down = np.flatnonzero(gs[up[0]:] <= 0)  # the first return to zero after leaving it
+            i = up[0] + (down[0] if down.size else ts.size - up[0]) - 1
+            t_hi, g_hi = (ts[i + 1], gs[i + 1]) if i + 1 < ts.size else (b, gb)
+            return _zero(lambda t: f(t)[:2], ts[i], t_hi, gs[i], g_hi), False
+        return a, False
+    found = _first_contact(f, a, b, ga, gb, da, db, events.bound4, r, [_SUBDIVISIONS])
     if found is None or found[1] > horizon:
         return None
     what, t = found
@@ -139,8 +158,11 @@ def _row_event(events, r, a, b, ga, gb, da, db, opening, horizon):
     return t, what == "touch"
 
 
-def _first_contact(f, a, b, ga, gb, da, db, bound4, r, depth):
-    """First contact of g with zero on [a, b] (g(a) > 0): None, ("cross", t_zero) or ("touch", t_min)."""
+def _first_contact(f, a, b, ga, gb, da, db, bound4, r, budget):
+    """First contact of g with zero on [a, b] (g(a) > 0): None, ("cross", t_zero) or ("touch", t_min).
+
+    ``budget`` is a one-element list: subdivisions left for this row and interval.
+    """
     if gb <= 0:
         end, g_end = b, gb
         if da < 0 < db:  # the dip bottoms out inside: its first zero lies before the bottom
@@ -161,15 +183,16 @@ def _first_contact(f, a, b, ga, gb, da, db, bound4, r, depth):
         if g_min >= -SWITCH_TOL:
             return ("touch", t_min)
         return ("cross", _zero(lambda t: f(t)[:2], a, t_min, ga, g_min))
-    if depth >= 12 or (ga <= SWITCH_TOL and gb <= SWITCH_TOL and low >= -SWITCH_TOL):
-        # 4096x finer than the grid nothing can hide; and a row hovering within the tolerance of
-        # zero at both ends (a mass at belt speed under negligible forces) can only switch by
-        # going deeper than the tolerance, which the bound excludes
+    budget[0] -= 1
+    if budget[0] < 0 or (ga <= SWITCH_TOL and gb <= SWITCH_TOL and low >= -SWITCH_TOL):
+        # subdivided enough (the bound shrinks 16x per halving: nothing can hide after a few);
+        # and a row hovering within the tolerance of zero at both ends (a mass at belt speed
+        # under negligible forces) can only switch by going deeper, which the bound excludes
         return None
     mid = 0.5 * (a + b)
     gm, dm, _ = f(mid)
-    return _first_contact(f, a, mid, ga, gm, da, dm, bound4, r, depth + 1) or (
-        _first_contact(f, mid, b, gm, gb, dm, db, bound4, r, depth + 1) if gm > 0 else None)
+    return _first_contact(f, a, mid, ga, gm, da, dm, bound4, r, budget) or (
+        _first_contact(f, mid, b, gm, gb, dm, db, bound4, r, budget) if gm > 0 else None)
 
 
 def _dip_after(f, t_zero, b, width):
