@@ -141,3 +141,19 @@ FOUND = [
 @pytest.mark.parametrize("kw", FOUND, ids=["opening-row-turns-back", "hovering-rows", "near-defective"])
 def test_chains_the_fuzzer_found(kw):
     _check(kw)
+
+
+def test_a_mode_contradicted_below_resolution_is_turned_round():
+    # found by fuzzing: mass 3 sits at belt speed with a 2e-14 N friction limit and 1.3e-13 N of
+    # spring force, so it must slip backwards -- but its neighbours reverse that force within
+    # microseconds, before its relative velocity (~1e-19 m/s) is resolvable: the event function
+    # left zero the wrong way at once and every new phase chose the same mode again (9 zero-length
+    # phases, SimulationError). Now the contradicted mode is turned round, once.
+    kw = dict(masses=[1.378408914667416, 3.494545100489773, 2.282075012055027, 0.5444118010488567,
+                      0.7273411329678071], springs=[1.0, 1.0, 0.0, 1.2589254117941673, 1.0, 0.2672098611547347],
+              dampers=[0.0, 0.0, 0.0, 0.0, 0.0, 1.0], x0=[0.063865479470391, -0.07158783249407401, 1e-13, 0.0, 0.04],
+              v0=[0.010786245454485005, 0.0, 0.0, 1e-10, -0.1985826609629526], t_end=0.3333333333333333, v_belt=0.0,
+              mu_s=0.2, normal_load=[0.063865479470391, 0.0, 1e-13, 0.0, 0.04], n_samples=36)
+    r = simulate_chain(**kw)
+    assert [(e.t, e.mass, e.kind) for e in r.events][0] == (0.0, 2, "reverse")
+    assert r.energy_balance_error() < 1e-12

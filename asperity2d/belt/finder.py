@@ -43,7 +43,10 @@ _SUBDIVISIONS = 64
 
 
 def find_event(events, horizon: float, step: float, chunk: int = 16):
-    """(tau, touching masses) of the first switch or velocity touch in (0, horizon] (s), or None.
+    """(tau, touching masses, contradicted masses) of the first switch or velocity touch in (0, horizon] (s).
+
+    None when nothing happens before ``horizon``. Contradicted masses left the zero of
+    their event function the wrong way at once (:func:`.modes.resolve_modes` reverses them).
 
     Rows that start within SWITCH_TOL of zero (the switch that opened this phase)
     count as positive; in the first interval only a crossing of theirs counts.
@@ -113,14 +116,15 @@ def _earliest(events, rows, a, b, ga, gb, da, db, opening, horizon, depth=0):
 
 
 def _rows_event(events, rows, a, b, ga, gb, da, db, opening, horizon):
-    """(time, touching masses) of the earliest of ``rows``' own events on [a, b], or None."""
+    """(time, touching masses, contradicted masses) of the earliest of ``rows``' events on [a, b], or None."""
     found = [(out, events.mass[r]) for r in rows
              if (out := _row_event(events, r, a, b, ga[r], gb[r], da[r], db[r],
                                    opening is not None and opening[r], horizon)) is not None]
     if not found:
         return None
     t = min(out[0] for out, _ in found)
-    return t, tuple(int(m) for (t_r, touched), m in found if touched and t_r <= t + 4 * _EPS * abs(t))
+    at_t = [(kind, int(m)) for (t_r, kind), m in found if t_r <= t + 4 * _EPS * abs(t)]
+    return t, tuple(m for kind, m in at_t if kind == "touch"), tuple(m for kind, m in at_t if kind == "now")
 
 
 def _lower(ga, gb, da, db, h, bound4):
@@ -133,7 +137,7 @@ def _lower(ga, gb, da, db, h, bound4):
 
 
 def _row_event(events, r, a, b, ga, gb, da, db, opening, horizon):
-    """(switch time, touched) of row r in [a, b] under the touch rule, or None."""
+    """(switch time, "cross" | "touch" | "now") of row r in [a, b] under the touch rule, or None."""
     f = events.point(r)
     if ga <= 0:  # an opening row, at zero: only a crossing deeper than the tolerance counts
         if gb >= -SWITCH_TOL:
@@ -147,15 +151,15 @@ def _row_event(events, r, a, b, ga, gb, da, db, opening, horizon):
             down = np.flatnonzero(gs[up[0]:] <= 0)  # the first return to zero after leaving it
             i = up[0] + (down[0] if down.size else ts.size - up[0]) - 1
             t_hi, g_hi = (ts[i + 1], gs[i + 1]) if i + 1 < ts.size else (b, gb)
-            return _zero(lambda t: f(t)[:2], ts[i], t_hi, gs[i], g_hi), False
-        return a, False
+            return _zero(lambda t: f(t)[:2], ts[i], t_hi, gs[i], g_hi), "cross"
+        return a, "now"  # the motion contradicts the mode at once (below the resolution of g)
     found = _first_contact(f, a, b, ga, gb, da, db, events.bound4, r, [_SUBDIVISIONS])
     if found is None or found[1] > horizon:
         return None
     what, t = found
     if what == "touch" and (opening or events.kind[r] != 0):
         return None  # the opening zero itself, or a static force touching its limit: no switch
-    return t, what == "touch"
+    return t, what
 
 
 def _first_contact(f, a, b, ga, gb, da, db, bound4, r, budget):

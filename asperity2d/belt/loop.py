@@ -45,7 +45,7 @@ def event_loop(spec, options, make_phase) -> RawRun:
         rows = ModalEvents(phase) if phase.motion is not None else SampledEvents(phase)
         horizon = spec.t_end - t
         found = find_event(rows, horizon, phase.step)
-        tau_e, touching = (None, ()) if found is None else found
+        tau_e, touching, contradicted = (None, (), ()) if found is None else found
         t1 = spec.t_end if tau_e is None else t + tau_e
         stop = np.searchsorted(samples, t1, side="right" if tau_e is None else "left")
         taus = samples[next_sample:stop] - t
@@ -65,8 +65,8 @@ def event_loop(spec, options, make_phase) -> RawRun:
                                   "raise `max_events` or shorten `t_end`", time=t1)
         t = float(t1)
         new, v, grazing = resolve_modes(spec, x, v, spec.belt_velocity(t), spec.belt_acceleration(t), modes, v_scale,
-                                        touching)
-        for i in np.flatnonzero(new != modes):
+                                        touching, contradicted)
+        for i in np.flatnonzero((new != modes) & spec.frictional):  # a frictionless mass's mode is moot
             kind = "stick" if new[i] == 0 else ("slip" if modes[i] == 0 else "reverse")
             events.append(Event(t=t, mass=int(i), kind=kind, x=float(x[i])))
             if new[i] == 0:

@@ -26,14 +26,17 @@ from .finder import SWITCH_TOL
 from .spec import link_force
 
 
-def resolve_modes(spec, x, v, V, a_belt, previous, v_scale, touching=()):
+def resolve_modes(spec, x, v, V, a_belt, previous, v_scale, touching=(), contradicted=()):
     """New modes at a switching instant: returns (modes, v, grazing masses).
 
     ``x``, ``v`` (m, m/s) the state, ``V``, ``a_belt`` the belt speed and
     acceleration, ``previous`` the modes before the instant, ``touching`` the
     masses whose touch of belt speed ended the phase (a touch that keeps its
     mode is a graze; a bystander within the tolerance that keeps its mode is
-    not an event). Masses that end stuck, or cross belt speed, get v = V exactly.
+    not an event), ``contradicted`` the masses whose event function left zero the wrong
+    way at once in the phase just tried (their motion, below the event functions'
+    resolution, contradicts the mode the forces gave: the mode is turned round instead
+    of being chosen again). Masses that end stuck, or cross belt speed, get v = V exactly.
     """
     v = np.array(v, dtype=float)
     previous = np.asarray(previous, dtype=int)
@@ -58,6 +61,9 @@ def resolve_modes(spec, x, v, V, a_belt, previous, v_scale, touching=()):
             df_req = -(link_force(spec.k, v_at) + link_force(spec.c, a))
             leaving = border & ((np.sign(f_req) * df_req > 0) | ((f_req == 0) & (df_req != 0)))
             modes[leaving] = -np.sign(np.where(f_req != 0, f_req, df_req)[leaving]).astype(int)
+    for i in contradicted:
+        if modes[i] == previous[i]:
+            modes[i] = -previous[i] if previous[i] != 0 else (-int(np.sign(f_req[i])) or 1)
     touched = np.zeros(spec.n, dtype=bool)
     touched[list(touching)] = True
     grazing = np.flatnonzero(touched & at_belt & (previous != 0) & (modes == previous))
