@@ -35,7 +35,9 @@ def scene_from_toml(path: Path):
         raise SceneError(f"`scene` file {str(path)!r} could not be read: {exc}") from None
     params = data.get("scene", data)
     run = data.get("run", {})
-    return make_scene(**params), run
+    from .surface.source import resolve_paths  # profile files named relative to the TOML file
+
+    return make_scene(**resolve_paths(params, path.parent)), run
 
 
 def _emit(args, summary: dict, lines: list[str]) -> None:
