@@ -229,10 +229,11 @@ def make_scene(*, spacing: str = "regular", seed: int = 0, profile: str = "full"
     records = {s: None if p[f"{s}_surface"] is None else surface_asperities(
         p[f"{s}_surface"], name=f"{s}_surface", unit=p["surface_unit"], min_prominence=p["min_prominence"],
         min_width=p["min_width"], detrend=p["surface_detrend"]) for s in ("lower", "upper")}
-    parts = {}
+    parts, substrate = {}, {"lower": None, "upper": None}  # the slider's valleys are not modelled
     for surface, kind, sub_seed in (("lower", lower_kind, lower_seed), ("upper", upper_kind, upper_seed)):
         if records[surface] is not None:
-            parts[surface] = surface_spec(records[surface])
+            shape, spec, shapes, substrate[surface] = surface_spec(*records[surface])
+            parts[surface] = (shape, spec, shapes)
         else:
             shape = make_profile(p[f"{surface}_profile"] or profile)
             parts[surface] = (shape, make_spacing(kind, p[f"{surface}_count"], surface, shape, sub_seed), None)
@@ -251,7 +252,7 @@ def make_scene(*, spacing: str = "regular", seed: int = 0, profile: str = "full"
         mass, stiffness = p["mass"], p["stiffness"]
     else:
         mass, stiffness = lower_material(
-            records["lower"], own=isinstance(p["lower_surface"], Asperities),
+            records["lower"][0], own=isinstance(p["lower_surface"], Asperities),
             stiffness=p["stiffness"] if "stiffness" in given else None, modulus=p["modulus"],
             mass=p["mass"] if "mass" in given else None, density=p["density"],
             default_stiffness=p["stiffness"], default_mass=p["mass"])
@@ -261,7 +262,7 @@ def make_scene(*, spacing: str = "regular", seed: int = 0, profile: str = "full"
     lower_shape, lower_spacing, lower_shapes = parts["lower"]
     upper_shape, upper_spacing, upper_shapes = parts["upper"]
     lower = LowerSurface(
-        profile=lower_shape, spacing=lower_spacing, shapes=lower_shapes,
+        profile=lower_shape, spacing=lower_spacing, shapes=lower_shapes, substrate=substrate["lower"],
         mass=mass, stiffness=stiffness, damping=p["damping"],
         damping_ratio=p["damping_ratio"], travel_down=p["travel_down"], travel_up=p["travel_up"],
         lateral_stiffness=p["lateral_stiffness"], lateral_damping=p["lateral_damping"])

@@ -118,6 +118,16 @@ def rough_run(*, seed: int = 0, critical: bool = True, **params) -> dict:
     return measure(make_scene(seed=seed, **params), critical=critical)
 
 
+def fixed_track_interference(lower, separation: float, margin: float) -> tuple[float, bool]:
+    """Interference (m) that runs a fixed track's deepest tip ``separation`` above the lower
+    profile's mean line, or ``margin`` above its rigid valley floor where that is higher (a
+    rigid slider cannot pass below the valleys between summits: it would jam); and whether
+    the valley floor set it."""
+    floor = max((z for line in lower.substrate or () for _, z in line), default=-math.inf)
+    level = max(separation, floor + margin)
+    return lower.top - level, level > separation
+
+
 def self_affine_run(*, seed: int = 0, hurst: float, rms_height: float, length: float, points: int,
                     shortest: float, longest: float, separation: float | None = None,
                     critical: bool = True, **params) -> dict:
@@ -126,32 +136,29 @@ def self_affine_run(*, seed: int = 0, hurst: float, rms_height: float, length: f
     The profile (seeded with ``seed``): ``points`` samples over ``length`` (m),
     rms height ``rms_height`` (m), Hurst exponent ``hurst``, power between the
     wavelengths ``longest`` (with a roll-off plateau below that wavenumber) and
-    ``shortest`` (m). On a fixed track the deepest upper tip runs at
-    ``separation`` (m) above the profile's mean line (the interference is
-    measured from the tallest summit); returns NaN measures (``valid`` = 0)
-    when that level lies above every summit or below the highest asperity's
-    base. ``params`` go to ``make_scene``.
+    ``shortest`` (m). On a fixed track the deepest upper tip runs ``separation``
+    (m) above the profile's mean line, or 5 % of the rms height above its rigid
+    valley floor where that is higher (:func:`fixed_track_interference`;
+    ``level_raised`` = 1); returns ``valid`` = 0 and no measures when that
+    level is above every summit. ``params`` go to ``make_scene``.
     """
-    from .surface import self_affine_profile
+    from .surface import rms_slope, self_affine_profile
 
     profile = self_affine_profile(n=points, length=length, rms_height=rms_height, hurst=hurst,
                                   q_min=2 * math.pi / longest, q_max=2 * math.pi / shortest,
                                   rolloff=True, seed=seed)
+    extra = {}
     if params.get("track", "fixed") == "fixed":
         if separation is None:
             raise SceneError("`separation` is required on the fixed track")
-        probe = make_scene(lower_surface=profile, track="free", seed=seed)
-        params = {**params, "interference": probe.lower.top - separation}
-    try:
-        scene = make_scene(lower_surface=profile, seed=seed, **params)
-    except SceneError:
-        if "interference" not in params:
-            raise
-        return {"valid": 0.0}
-    from .surface import rms_slope
-
-    out = measure(scene, critical=critical)
-    out.update({"valid": 1.0, "rms_slope": rms_slope(profile)})
+        probe = make_scene(lower_surface=profile, track="free", seed=seed).lower
+        interference, raised = fixed_track_interference(probe, separation, 0.05 * rms_height)
+        if interference <= 0:
+            return {"valid": 0.0, "level_raised": float(raised)}
+        params = {**params, "interference": interference}
+        extra["level_raised"] = float(raised)
+    out = measure(make_scene(lower_surface=profile, seed=seed, **params), critical=critical)
+    out.update({"valid": 1.0, "rms_slope": rms_slope(profile), **extra})
     return out
 
 

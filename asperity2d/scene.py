@@ -19,7 +19,7 @@ from ._validate import (check_choice, check_finite, check_nonnegative, check_pos
                         per_item, show)
 from .errors import SceneError
 from .geometry import ExplicitSpacing, Profile, RandomSpacing, RegularSpacing, Spacing
-from .shapes import Shapes, SurfaceGeometry
+from .shapes import Shapes, SurfaceGeometry, check_substrate
 
 TRACKS = ("free", "fixed")
 
@@ -62,7 +62,11 @@ class LowerSurface(SurfaceGeometry):
     Every asperity has ``profile``'s shape unless ``shapes`` (a
     :class:`~asperity2d.shapes.Shapes` record) gives each its own height,
     flank runs and base level; ``profile`` then still sets the kind and the
-    scene's length scale (its base).
+    scene's length scale (its base). ``substrate`` (polylines of (x, z)
+    points, m, x in the tips' frame, z in the datum) is rigid valley floor
+    between asperities, touched only by the slider: a measured profile's
+    valleys, so the slider's tips cannot sink below them (see
+    :mod:`asperity2d.surface.source`).
 
     ``mass`` (kg), ``stiffness`` (N/m) and ``damping`` (N s/m) are scalars or
     one value per asperity; they are stored as tuples. ``damping=None`` gives
@@ -91,11 +95,14 @@ class LowerSurface(SurfaceGeometry):
     lateral_stiffness: float | tuple[float, ...] | None = None
     lateral_damping: float | tuple[float, ...] = 0.0
     shapes: Shapes | None = None
+    substrate: tuple | None = None
 
     def __post_init__(self):
         n = self.spacing.count
         s = object.__setattr__
         self._check_shapes()
+        if self.substrate is not None:
+            s(self, "substrate", check_substrate(self.substrate))
         s(self, "mass", per_item("mass", self.mass, n, allow_zero=False))
         s(self, "stiffness", per_item("stiffness", self.stiffness, n, allow_zero=False))
         s(self, "damping_ratio", check_nonnegative("damping_ratio", self.damping_ratio))
@@ -122,8 +129,14 @@ class LowerSurface(SurfaceGeometry):
 
     @property
     def floor(self) -> float:
-        """Bottom of the tracks (m): the lowest base level minus ``travel_down``."""
-        return 0.0 - self.travel_down if self.shapes is None else min(self.shapes.levels) - self.travel_down
+        """Height of the engine's guard floor (m): ``travel_down`` below the lowest base level
+        (or substrate point), the bottom of the tracks."""
+        if self.shapes is None and self.substrate is None:
+            return 0.0 - self.travel_down
+        lowest = min(self.shape_set().levels)
+        if self.substrate:
+            lowest = min(lowest, min(z for line in self.substrate for _, z in line))
+        return lowest - self.travel_down
 
     @property
     def is_lattice(self) -> bool:
@@ -289,6 +302,14 @@ class Scene:
                 raise SceneError(
                     f"`interference` ({self.slider.interference:g} m) must be smaller than {what} "
                     f"({height:g} m): the tips would reach the base")
+            if self.lower.substrate:
+                level = self.lower.top - self.slider.interference
+                highest = max(z for line in self.lower.substrate for _, z in line)
+                if highest >= level:
+                    raise SceneError(
+                        f"`interference` ({self.slider.interference:g} m) puts the fixed track's tips at "
+                        f"{level:g} m, at or below the profile's rigid valley floor ({highest:g} m): the "
+                        "slider would jam; use a smaller `interference`")
 
     # -- derived quantities --------------------------------------------------
     @property

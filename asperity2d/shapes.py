@@ -90,6 +90,25 @@ class Shapes:
                 for a, b, h, z in zip(self.left_runs, self.right_runs, self.heights, self.levels)]
 
 
+def check_substrate(value) -> tuple:
+    """Rigid valley floor between asperities: polylines of (x, z) points (m), each with at
+    least two points and x strictly increasing, as a tuple of tuples of (x, z) tuples."""
+    if isinstance(value, (str, bytes, dict)) or not hasattr(value, "__len__"):
+        raise SceneError(f"`substrate` must be a sequence of polylines, got {show(value)}")
+    out = []
+    for i, line in enumerate(value):
+        try:
+            pts = np.array(line, dtype=float)
+        except (TypeError, ValueError):
+            raise SceneError(f"`substrate[{i}]` must be a sequence of (x, z) points") from None
+        if pts.ndim != 2 or pts.shape[1] != 2 or len(pts) < 2:
+            raise SceneError(f"`substrate[{i}]` must hold at least two (x, z) points, got shape {pts.shape}")
+        if not np.all(np.isfinite(pts)) or not np.all(np.diff(pts[:, 0]) > 0):
+            raise SceneError(f"`substrate[{i}]` must be finite with x strictly increasing")
+        out.append(tuple(map(tuple, pts.tolist())))
+    return tuple(out)
+
+
 class SurfaceGeometry:
     """Per-asperity geometry of a surface spec (mixed into
     :class:`~asperity2d.scene.LowerSurface` and :class:`~asperity2d.scene.Slider`, which

@@ -10,8 +10,10 @@ height, flanks and base level (Table 1 stiffness and mass for all). The
 slider carries seed 000's four 45° triangles (1 µm base, 1.25 µm pitch).
 
 * fixed track: the deepest upper tip runs one rms height above the profile's
-  mean line; claim: the asperities touched over a spring-driven pass are
-  exactly those whose summit rises above that height;
+  mean line, or 5 % of the rms height above the profile's rigid valley floor
+  between asperities where that is higher (a rigid slider cannot pass below
+  it); claim: the asperities touched over a spring-driven pass are exactly
+  those whose summit rises above that height;
 * free slider under 0.3 mN: the critical force and the mean stick force,
   against a regular surface of the profile's median asperity (same count,
   base and height, bases touching); the contact angle the breakaway forces
@@ -33,7 +35,7 @@ import numpy as np
 
 import asperity2d as a
 from asperity2d import scripting, surface
-from asperity2d.rough import measure, pass_measures, stats_of
+from asperity2d.rough import fixed_track_interference, measure, pass_measures, stats_of
 from asperity2d.surface.source import surface_asperities
 
 DATA = Path(__file__).resolve().parent / "data" / "measured_style_profile.csv"
@@ -58,10 +60,11 @@ def main(argv=None) -> int:
     out = scripting.out_dir(args, __file__)
     profile = load(args.quick)
     slider = dict(SLIDER, **({"drive_velocity": 100.0} if args.quick else {}))
-    record = surface_asperities(profile, name="lower_surface")  # what make_scene extracts
+    record, levelled = surface_asperities(profile, name="lower_surface")  # what make_scene extracts
     rms = surface.rms_height(profile.detrended())
     probe = a.make_scene(lower_surface=profile, track="free", **slider)
-    fixed = a.make_scene(lower_surface=profile, track="fixed", interference=probe.lower.top - rms, **slider)
+    interference, raised = fixed_track_interference(probe.lower, rms, 0.05 * rms)
+    fixed = a.make_scene(lower_surface=profile, track="fixed", interference=interference, **slider)
     free = a.make_scene(lower_surface=profile, track="free", normal_load=LOAD, **slider)
     lower = free.lower
     shapes = lower.shapes
@@ -73,7 +76,7 @@ def main(argv=None) -> int:
     runs = {"fixed": {"critical_force_N": a.critical_force(fixed), **fixed_pass},
             "free": measure(free), "free_regular_median": measure(regular)}
     touched = pass_result.lower_contact.any(axis=1)
-    surface.plot_asperities(profile.detrended(), record, out / "profile_touched.png", highlight=touched,
+    surface.plot_asperities(levelled, record, out / "profile_touched.png", highlight=touched,
                             level=probe.lower.top - fixed.slider.interference)
     a.render(pass_result, out / "fixed_run.png")
     outputs = ["profile_touched.png", "fixed_run.png"]
@@ -99,7 +102,8 @@ def main(argv=None) -> int:
         "asperities": {"count": lower.count, "height_m": stats_of(shapes.heights),
                        "base_m": stats_of(shapes.bases), "summit_m": stats_of(shapes.summits),
                        "left_flank_deg": stats_of(angles), "mean_pitch_m": lower.spacing.mean_pitch},
-        "track_height_m": probe.lower.top - fixed.slider.interference, "runs": runs,
+        "track_height_m": probe.lower.top - fixed.slider.interference,
+        "track_set_by": "the rigid valley floor" if raised else "one rms above the mean line", "runs": runs,
         "claims": claims, "outputs": outputs}
     lines = [f"{profile.name}: {lower.count} asperities over {profile.length * 1e6:.1f} µm, heights "
              f"{np.mean(shapes.heights) * 1e9:.0f} ± {np.std(shapes.heights) * 1e9:.0f} nm, flanks "

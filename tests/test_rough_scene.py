@@ -270,3 +270,49 @@ def test_profile_pickles_for_process_pools():
     back = pickle.loads(pickle.dumps(profile))
     np.testing.assert_array_equal(back.z, profile.z)
     assert dict(back.metadata) == {"a": 1}
+
+
+# -- the rigid valley floor between a profile's asperities -----------------------------------
+
+def gap_profile():
+    """Two 45-degree triangles (0.4 um high) 3 um apart, with a flat valley 0.2 um below their
+    feet between them, and a 20 nm bump (below the prominence threshold) on the valley floor."""
+    x = np.arange(0.0, 6e-6, 5e-9)
+    z = np.zeros_like(x)
+    for apex in (1e-6, 5e-6):
+        z = np.maximum(z, 0.4e-6 - np.abs(x - apex))
+    valley = (x > 1.6e-6) & (x < 4.4e-6)
+    z[valley] = -0.2e-6 + 20e-9 * np.exp(-((x[valley] - 3e-6) / 0.1e-6) ** 2)
+    return x, z
+
+
+def test_a_profiles_valleys_are_rigid_floor_the_slider_rests_on():
+    """A free slider whose one tip starts over the valley settles onto the valley floor, at the
+    profile's depth (-0.2 um; the bump is 20 nm below the 40 nm threshold so it stays rigid),
+    not on the guard floor 0.6 um down; within 2e-3 base (the collision slop is 1e-3)."""
+    x, z = gap_profile()
+    scene = a.make_scene(lower_surface=(x, z), surface_detrend=False, min_prominence=40e-9,
+                         upper_count=1, track="free", normal_load=1e-3)
+    assert scene.lower.count == 2 and len(scene.lower.substrate) == 1
+    valley = np.array(scene.lower.substrate[0])
+    assert valley[:, 1].min() == pytest.approx(-0.2e-6, abs=1e-12) and valley[:, 1].max() <= 0.0
+    assert len(valley) <= 18  # thinned to 16 points plus the two feet
+    assert scene.lower.floor < -0.5e-6
+    result = a.simulate(scene, 2e-8)
+    tip = result.y[-1] - scene.slider.depth
+    assert abs(tip - (-0.2e-6 + 20e-9)) < 2e-3 * scene.base or abs(tip + 0.2e-6) < 2e-3 * scene.base
+    assert a.Scene.from_dict(scene.to_dict()) == scene
+
+
+def test_a_fixed_track_below_the_valley_floor_is_refused():
+    """A rigid spike 0.3 um high between two 0.5 um asperities: a fixed track with its tips at
+    0.375 um passes over it, one at 0.25 um would jam on it and is refused."""
+    scene = a.make_scene(lower_count=2, upper_count=1)
+    spike = (((0.5e-6, 0.0), (0.6e-6, 0.3e-6), (0.75e-6, 0.0)),)
+    lower = dataclasses.replace(scene.lower, substrate=spike)
+    assert scene.replace(lower=lower).lower.substrate == spike
+    slider = dataclasses.replace(scene.slider, interference=0.25e-6)
+    with pytest.raises(a.SceneError, match="`interference`.*rigid valley floor"):
+        scene.replace(lower=lower, slider=slider)
+    with pytest.raises(a.SceneError, match=r"`substrate\[0\]` must be finite with x strictly"):
+        dataclasses.replace(scene.lower, substrate=(((0.0, 0.0), (0.0, 1e-7)),))

@@ -14,7 +14,8 @@ is in it. Bodies (seed 000 figures 5-8, DESIGN.md section 5):
 * the slider is one ``Body(M, inf)`` carrying every upper triangle, on a
   horizontal groove (fixed track) or free vertically;
 * a static floor at the bottom of the tracks stops upper tips from falling
-  through wide gaps; it touches only the slider;
+  through wide gaps; it touches only the slider; so do the static segments
+  of a profile's valleys between its asperities (``LowerSurface.substrate``);
 * shape filters keep lower asperities from touching each other.
 
 pymunk's ``DampedSpring`` applies its damping as an exact exponential decay
@@ -243,6 +244,12 @@ def _build_floor(space, scene, u: Units, x_lower, friction: float) -> None:
     y = scene.lower.floor / u.length
     x_lo = x_lower[0] - 1e6
     floor = pymunk.Segment(space.static_body, (x_lo, y), (-x_lo, y), 0.0)
-    floor.filter = pymunk.ShapeFilter(categories=FLOOR, mask=SLIDER)
-    floor.collision_type, floor.friction = FLOOR, friction
-    space.add(floor)
+    segments = [floor]
+    # A profile's valleys between lower asperities (rigid substrate, touched by the slider only).
+    for line in scene.lower.substrate or ():
+        pts = [(vx / u.length, vz / u.length) for vx, vz in line]
+        segments += [pymunk.Segment(space.static_body, a, b, 0.0) for a, b in zip(pts[:-1], pts[1:])]
+    for segment in segments:
+        segment.filter = pymunk.ShapeFilter(categories=FLOOR, mask=SLIDER)
+        segment.collision_type, segment.friction = FLOOR, friction
+    space.add(*segments)

@@ -69,6 +69,7 @@ class Layout:
         self.lower_polys = [np.asarray(v) for v in scene.lower.outlines()]
         self.upper_polys = [np.asarray(v) for v in scene.slider.outlines()]
         self.lower_levels = np.array(scene.lower.shape_set().levels)
+        self.substrate = [np.asarray(line) for line in scene.lower.substrate or ()]
         self.lower_centers = scene.lower.tips()
         self.upper_centers = scene.slider.tips()
         self.base, h = scene.base, scene.lower.top
@@ -130,7 +131,11 @@ def frame_shapes(layout: Layout, k: int, *, frame: int = 0, frames: int = 1) -> 
     front = x + L.upper_front
     bx0, by0 = L.to_px(x - 0.5 * L.base, y + L.bar, left)
     bx1, by1 = L.to_px(front, y, left)
-    shapes = {"lower": lower, "tracks": tracks, "upper": upper,
+    substrate = []
+    for line in L.substrate:
+        X, Y = L.to_px(line[:, 0], line[:, 1], left)
+        substrate.append(list(zip(X.tolist(), Y.tolist())))
+    shapes = {"lower": lower, "tracks": tracks, "upper": upper, "substrate": substrate,
               "bar": (float(bx0), float(by0), float(bx1), float(by1)),
               "ground": (0.0, float(floor_py), float(L.width), float(L.height)),
               "spring": [], "drive": None}
@@ -158,6 +163,8 @@ def draw_frame(shapes: dict, *, width: int, height: int, font=None):
     d.rectangle(shapes["ground"], fill=GROUND)
     for pts in shapes["tracks"]:
         d.line(pts, fill=OUTLINE, width=1)
+    for pts in shapes.get("substrate", ()):
+        d.line(pts, fill=OUTLINE, width=2)
     for pts in shapes["lower"]:
         d.polygon(pts, fill=LOWER, outline=OUTLINE)
     for pts in shapes["upper"]:

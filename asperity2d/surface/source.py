@@ -23,6 +23,12 @@ height and flank runs, and its base level (the summit's elevation is
 The upper surface is the profile turned face down about the sliding
 direction: z -> -z, x kept; its summits become the slider's downward tips,
 the highest summit the deepest tip.
+
+Between lower asperities whose bases do not touch, the profile's valleys
+become rigid substrate (:func:`valleys`): without it a rigid tip sinks into a
+wide valley down to the engine's guard floor, far below the real valley.
+The slider's own valleys are not modelled (a lower tip can rise into a wide
+valley of an upper profile until other upper tips rest on the lower surface).
 """
 
 from __future__ import annotations
@@ -35,7 +41,7 @@ import numpy as np
 from ..errors import SceneError
 from ..geometry import ExplicitSpacing, Profile
 from ..shapes import Shapes
-from .asperities import Asperities, find_asperities
+from .asperities import FOOT_TOLERANCE, Asperities, find_asperities
 from .profile import SurfaceProfile
 from .read import read_profile
 from .stats import rms_height
@@ -79,14 +85,15 @@ def as_profile(source, *, name: str, unit: str | None = None) -> SurfaceProfile:
 
 def surface_asperities(source, *, name: str, unit: str | None = None,
                        min_prominence: float | None = None, min_width: float = 0.0,
-                       detrend: bool = True) -> Asperities:
-    """The asperities of ``source`` (see the module notes); an Asperities record is returned as is.
+                       detrend: bool = True) -> tuple[Asperities, SurfaceProfile | None]:
+    """The asperities of ``source`` (see the module notes) and the levelled profile they came
+    from (None for an Asperities record, returned as is).
 
     The record's stiffness and mass are placeholders (1 N/m, 1 kg) for a profile:
     :func:`asperity2d.make_scene` sets them by its own rule.
     """
     if isinstance(source, Asperities):
-        return source
+        return source, None
     profile = as_profile(source, name=name, unit=unit)
     if not isinstance(detrend, bool):
         raise SceneError(f"`surface_detrend` must be True or False, got {detrend!r}")
@@ -97,20 +104,23 @@ def surface_asperities(source, *, name: str, unit: str | None = None,
         if not min_prominence > 0:
             raise SceneError(f"`{name}` is flat (rms height 0): it has no summits")
     try:
-        return find_asperities(profile, min_prominence=min_prominence, min_width=min_width,
-                               stiffness=1.0, mass=1.0)
+        found = find_asperities(profile, min_prominence=min_prominence, min_width=min_width,
+                                stiffness=1.0, mass=1.0)
     except SceneError as exc:
         raise SceneError(f"`{name}`: {exc}") from None
+    return found, profile
 
 
-def surface_spec(asperities: Asperities) -> tuple[Profile, ExplicitSpacing, Shapes]:
-    """The surface spec parts of ``asperities``: a nominal profile, the tip positions, the shapes.
+def surface_spec(asperities: Asperities, profile: SurfaceProfile | None = None):
+    """The surface spec parts of ``asperities``: ``(nominal profile, tip positions, shapes, substrate)``.
 
     Tips are the apexes, shifted so the first is at x = 0. The nominal
     :class:`Profile` (a full triangle of the median base and median height)
     gives the scene its length scale; each asperity's own shape is in the
     :class:`Shapes` (heights, runs, and the base levels). The same record
-    serves either surface: the slider's shapes point down.
+    serves either surface: the slider's shapes point down. ``substrate``
+    (:func:`valleys` of ``profile``, in the tips' frame; None without a
+    profile) is the rigid valley floor between the lower asperities.
     """
     a = asperities
     apex = a.apex_x
@@ -119,7 +129,45 @@ def surface_spec(asperities: Asperities) -> tuple[Profile, ExplicitSpacing, Shap
     pitch = None if a.count > 1 else float(a.bases[0])
     shapes = Shapes(heights=a.heights, left_runs=a.left_runs, right_runs=a.right_runs,
                     levels=a.base_levels)
-    return nominal, ExplicitSpacing(positions=tips, mean_pitch=pitch), shapes
+    substrate = None if profile is None else valleys(a, profile, shift=float(apex[0]))
+    return nominal, ExplicitSpacing(positions=tips, mean_pitch=pitch), shapes, substrate
+
+
+#: Most points kept of one valley of the substrate (the highest of each bin).
+VALLEY_POINTS = 16
+
+
+def valleys(asperities: Asperities, profile: SurfaceProfile, *, shift: float = 0.0) -> tuple:
+    """The profile between the feet of neighbouring asperities that do not touch: the rigid
+    valley floor (substrate) a rigid tip meets when it sinks between two summits.
+
+    Each valley is a polyline from the right foot of one asperity (at its base level)
+    through the profile's points in between, thinned to at most :data:`VALLEY_POINTS` by
+    keeping the highest point of each bin (an upper envelope: a tip from above never
+    passes below the profile), to the left foot of the next; x minus ``shift`` (m). Its
+    points are lowered to the chord joining the two feet where the profile is above it,
+    so the rigid floor never stands above the compliant asperities' bases (a bump below
+    the prominence threshold next to a foot is flattened).
+    """
+    a = asperities
+    x, z = profile.x, profile.z
+    right, left = a.right_feet[:-1], a.left_feet[1:]
+    gaps = np.flatnonzero(left - right > FOOT_TOLERANCE * (a.bases[:-1] + a.bases[1:]))
+    out = []
+    for i in gaps.tolist():
+        j0, j1 = int(np.searchsorted(x, right[i], "right")), int(np.searchsorted(x, left[i], "left"))
+        xs, zs = x[j0:j1], z[j0:j1]
+        if len(xs) > VALLEY_POINTS:
+            bins = np.array_split(np.arange(len(xs)), VALLEY_POINTS)
+            keep = [b[np.argmax(zs[b])] for b in bins]
+            xs, zs = xs[keep], zs[keep]
+        # never above the chord joining the two feet: a sub-threshold bump next to a foot must
+        # not stand up as a rigid wall in front of (or above) the compliant asperities
+        z0, z1 = a.base_levels[i], a.base_levels[i + 1]
+        chord = z0 + (z1 - z0) * (xs - right[i]) / (left[i] - right[i])
+        line = [(right[i], z0)] + list(zip(xs.tolist(), np.minimum(zs, chord).tolist())) + [(left[i], z1)]
+        out.append(tuple((float(u) - shift, float(v)) for u, v in line))
+    return tuple(out)
 
 
 def label(source) -> str:
