@@ -169,6 +169,7 @@ def main(argv=None) -> int:
     for setup, rows in results.items():
         numbers, claims = analyse(setup, rows, spreads)
         summary["setups"][setup].update(numbers)
+        summary["setups"][setup]["runs"] = rows
         summary["claims"] += claims
     plot(results, out / "forces_vs_spread.png")
     summary["outputs"] = ["forces_vs_spread.png"]

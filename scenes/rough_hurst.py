@@ -134,7 +134,7 @@ def main(argv=None) -> int:
         rows = run_many(self_affine_run, jobs, workers=args.workers)
         results[setup] = [{**r, "hurst": j["hurst"], "seed": j["seed"]} for r, j in zip(rows, jobs)]
         numbers, claims = analyse(setup, results[setup], hursts, params.get("normal_load", 0.0))
-        summary["setups"][setup] = {"parameters": params, **numbers}
+        summary["setups"][setup] = {"parameters": params, **numbers, "runs": results[setup]}
         summary["claims"] += claims
     plot(results, out / "forces_vs_hurst.png")
     summary["outputs"] = ["forces_vs_hurst.png"]
