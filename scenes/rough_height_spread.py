@@ -133,7 +133,8 @@ def analyse(setup: str, rows: list[dict], spreads) -> tuple[dict, list[dict]]:
         _trend(claims, "fixed track, mechanism: with a spread, the mean stick force rises with the "
                        "steepest lower flank touched", [r["steepest_touched_flank_deg"] for r in rough],
                [r["mean_stick_force_N"] for r in rough], 1)
-    return {"per_spread": per_spread, "sanity": sanity}, claims
+    observed = {q: dict(zip(("spearman_rho", "p"), spearman(spread, col[q]))) for q in QUANTITIES}
+    return {"per_spread": per_spread, "sanity": sanity, "spearman_vs_spread": observed}, claims
 
 
 def plot(results: dict, path) -> None:

@@ -96,7 +96,8 @@ def analyse(setup: str, rows: list[dict], hursts, load: float) -> tuple[dict, li
         claims.append({"claim": "fixed: the asperities touched are exactly those above the track",
                        "holds": bool(all(v == 1.0 for v in col["touched_matches_above_level"])),
                        "runs": len(valid)})
-    return {"per_hurst": per_h, "sanity": sanity}, claims
+    observed = {q: dict(zip(("spearman_rho", "p"), spearman(hs, col[q]))) for q in QUANTITIES}
+    return {"per_hurst": per_h, "sanity": sanity, "spearman_vs_hurst": observed}, claims
 
 
 def plot(results: dict, path) -> None:
