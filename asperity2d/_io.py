@@ -1,12 +1,144 @@
-"""Atomic file writing: nothing a user saved is ever left half-written."""
+"""Files in and out: atomic writes, and reads that fail with one clear error.
+
+Nothing a user saved is ever left half-written (:func:`atomic_write`), and a
+file that cannot be used -- missing, a directory, unreadable, not UTF-8, not
+TOML, a damaged or foreign ``.npz`` -- raises :class:`FileError` (a
+``SceneError``) that names the argument, the problem and the file, never an
+exception from deep inside zipfile or NumPy. The command line renames the
+argument to what the user typed (:func:`argument`), e.g. ``--save``.
+"""
 
 from __future__ import annotations
 
 import contextlib
 import os
+import stat
 import tempfile
 from pathlib import Path
-from typing import Callable, IO
+from typing import IO, Callable, Iterator
+
+from .errors import SceneError
+
+
+class FileError(SceneError):
+    """A file argument that cannot be used.
+
+    ``arg`` names the argument (``path``, or on the command line ``--save``,
+    ``result``, ...), ``path`` the file, ``problem`` what is wrong with it and
+    ``detail`` the underlying reason, if any.
+    """
+
+    def __init__(self, arg: str, path, problem: str, detail: str | None = None):
+        self.arg, self.path, self.problem, self.detail = arg, str(path), problem, detail
+        super().__init__(f"`{arg}` {problem}: {self.path!r}" + (f" ({detail})" if detail else ""))
+
+    def renamed(self, arg: str) -> "FileError":
+        """The same error, naming the argument ``arg``."""
+        return FileError(arg, self.path, self.problem, self.detail)
+
+
+@contextlib.contextmanager
+def argument(arg: str) -> Iterator[None]:
+    """Re-raise a :class:`FileError` from the block as one about argument ``arg``."""
+    try:
+        yield
+    except FileError as exc:
+        raise exc.renamed(arg) from None
+
+
+@contextlib.contextmanager
+def writing(arg: str, path) -> Iterator[None]:
+    """Turn an ``OSError`` while writing ``path`` (disk full, permissions) into a FileError."""
+    try:
+        yield
+    except OSError as exc:
+        raise FileError(arg, path, "could not be written", exc.strerror or str(exc)) from None
+
+
+# -- reading -----------------------------------------------------------------
+def input_path(arg: str, path, *, directory: bool = False) -> Path:
+    """``path`` as a Path if it exists and is a readable file (or a directory, with ``directory``)."""
+    path = Path(path)
+    try:
+        mode = path.stat().st_mode
+    except (FileNotFoundError, NotADirectoryError):
+        raise FileError(arg, path, "does not exist") from None
+    except OSError as exc:
+        raise FileError(arg, path, "cannot be read", exc.strerror) from None
+    if directory and not stat.S_ISDIR(mode):
+        raise FileError(arg, path, "is not a directory")
+    if not directory and stat.S_ISDIR(mode):
+        raise FileError(arg, path, "is a directory")
+    if not os.access(path, os.R_OK | (os.X_OK if directory else 0)):
+        raise FileError(arg, path, "is not readable", "permission denied")
+    return path
+
+
+def read_bytes(arg: str, path) -> bytes:
+    """The contents of file ``path``."""
+    path = input_path(arg, path)
+    try:
+        return path.read_bytes()
+    except OSError as exc:
+        raise FileError(arg, path, "cannot be read", exc.strerror or str(exc)) from None
+
+
+def read_text(arg: str, path) -> str:
+    """The contents of file ``path``, which must be UTF-8 text."""
+    data = read_bytes(arg, path)
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise FileError(arg, path, "is not UTF-8 text",
+                        f"byte {data[exc.start]:#04x} at position {exc.start}") from None
+
+
+def read_toml(arg: str, path) -> dict:
+    """The TOML document in file ``path``, as a dict."""
+    import tomllib
+
+    text = read_text(arg, path)
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise FileError(arg, path, "is not valid TOML", str(exc)) from None
+
+
+# -- writing -----------------------------------------------------------------
+def output_path(arg: str, path, *, suffixes: tuple[str, ...] | None = None) -> Path:
+    """``path`` as a Path if a file can be written there; checked before any work is done.
+
+    Refuses a wrong extension (``suffixes``, lower case with the dot), an
+    existing directory, and a parent that is a file or not writable.
+    """
+    path = Path(path)
+    if suffixes is not None and path.suffix.lower() not in suffixes:
+        raise FileError(arg, path, f"must end in {', '.join(suffixes)}")
+    if path.is_dir():
+        raise FileError(arg, path, "is a directory")
+    parent = path.parent
+    while not parent.exists() and parent != parent.parent:
+        parent = parent.parent  # atomic_write creates the missing directories
+    if not parent.is_dir():
+        raise FileError(arg, path, "cannot be created", f"{str(parent)!r} is not a directory")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise FileError(arg, path, "cannot be created", f"{str(parent)!r} is not writable")
+    return path
+
+
+def output_dir(arg: str, path) -> Path:
+    """``path`` as a Path if it is, or can be created as, a directory we can write into."""
+    path = Path(path)
+    existing = path
+    while not existing.exists() and existing != existing.parent:
+        existing = existing.parent
+    if not existing.is_dir():
+        if existing == path:
+            raise FileError(arg, path, "is not a directory")
+        raise FileError(arg, path, "cannot be created", f"{str(existing)!r} is not a directory")
+    if not os.access(existing, os.W_OK | os.X_OK):
+        raise FileError(arg, path, "is not writable", f"permission denied in {str(existing)!r}")
+    return path
 
 
 def atomic_write(path: str | os.PathLike, write: Callable[[IO[bytes]], None]) -> Path:
@@ -14,8 +146,10 @@ def atomic_write(path: str | os.PathLike, write: Callable[[IO[bytes]], None]) ->
 
     The rename is atomic on POSIX and Windows, so readers see either the old
     file or the complete new one. The temporary file is removed on error.
+    A directory at ``path``, or a file where a parent directory should be,
+    raises :class:`FileError` before anything is written.
     """
-    path = Path(path)
+    path = output_path("path", path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     try:
@@ -43,6 +177,7 @@ def atomic_write_text(path: str | os.PathLike, text: str) -> Path:
     return atomic_write(path, lambda fh: fh.write(text.encode("utf-8")))
 
 
+# -- .npz: arrays plus JSON metadata -------------------------------------------
 def save_npz(path: str | os.PathLike, arrays: dict, meta: dict) -> Path:
     """Write ``arrays`` plus a JSON ``metadata`` entry as one compressed ``.npz``, atomically."""
     import io
@@ -50,11 +185,7 @@ def save_npz(path: str | os.PathLike, arrays: dict, meta: dict) -> Path:
 
     import numpy as np
 
-    from .errors import SceneError
-
-    path = Path(path)
-    if path.suffix != ".npz":
-        raise SceneError(f"`path` must end in .npz, got {str(path)!r}")
+    path = output_path("path", path, suffixes=(".npz",))
     payload = {name: np.asarray(value) for name, value in arrays.items()}
     payload["metadata"] = np.array(json.dumps(meta, sort_keys=True))
 
@@ -66,25 +197,44 @@ def save_npz(path: str | os.PathLike, arrays: dict, meta: dict) -> Path:
     return atomic_write(path, write)
 
 
-def load_npz(path: str | os.PathLike, names, *, kind: str) -> tuple[dict, dict]:
-    """Read the arrays ``names`` and the JSON metadata of a :func:`save_npz` file.
+#: A zip archive (what an .npz is) starts with a local file header, or is an empty archive.
+_ZIP_SIGNATURES = (b"PK\x03\x04", b"PK\x05\x06")
 
-    A missing, unreadable or foreign file raises ``SceneError`` naming ``path``
-    (``kind`` says what was expected, e.g. "an asperity2d result file").
+
+def load_npz(path: str | os.PathLike, names, *, kind: str,
+             meta_keys: tuple[str, ...] = ()) -> tuple[dict, dict]:
+    """Read the arrays ``names`` and the JSON metadata (with ``meta_keys``) of a :func:`save_npz` file.
+
+    A missing, empty, foreign, truncated or damaged file raises
+    :class:`FileError` naming ``path`` (``kind`` says what was expected, e.g.
+    "an asperity2d result file"). Damage is caught by the zip format's CRC-32
+    of every member, so arrays that load are the arrays that were saved.
     """
     import json
 
     import numpy as np
 
-    from .errors import SceneError
-
-    path = Path(path)
-    if not path.exists():
-        raise SceneError(f"`path` does not exist: {str(path)!r}")
+    with open(input_path("path", path), "rb") as fh:
+        head = fh.read(4)
+    if not head:
+        raise FileError("path", path, "is empty")
+    if head not in _ZIP_SIGNATURES:
+        raise FileError("path", path, "is not an .npz file", f"expected {kind}, a zip archive")
     try:
         with np.load(path, allow_pickle=False) as data:
+            missing = [name for name in (*names, "metadata") if name not in data.files]
+            if missing:
+                raise FileError("path", path, f"is not {kind}", f"it has no {missing[0]!r} array")
             arrays = {name: data[name] for name in names}
             meta = json.loads(str(data["metadata"]))
-    except (OSError, KeyError, ValueError) as exc:
-        raise SceneError(f"`path` is not {kind}: {str(path)!r} ({exc})") from None
+    except FileError:
+        raise
+    except Exception as exc:  # noqa: BLE001 - zipfile/zlib/NumPy raise a dozen types on a damaged file
+        raise FileError("path", path, f"is damaged or not {kind}",
+                        f"{type(exc).__name__}: {exc}") from None
+    if not isinstance(meta, dict):
+        raise FileError("path", path, f"is not {kind}", "its metadata is not a JSON object")
+    for key in meta_keys:
+        if key not in meta:
+            raise FileError("path", path, f"is not {kind}", f"its metadata has no {key!r}")
     return arrays, meta

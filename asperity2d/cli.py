@@ -2,235 +2,263 @@
 
 Thin by design: it parses, calls the library, prints. Every subcommand that
 computes something accepts ``--json`` and then prints exactly one JSON object.
-Bad input prints one line on stderr and exits with status 2.
+Bad input -- a bad value, or a file that is missing, a directory, unreadable,
+not UTF-8, not TOML or damaged -- prints one line on stderr
+(``asperity2d: error: ...``, naming the argument) and exits with status 2,
+before anything is computed where it can be checked up front. A user's own
+scene script that raises shows its own traceback: the bug is in that script.
+
+Start-up stays light: the parser of every subcommand is built here without
+importing any implementation; a subcommand's handler (and NumPy, pymunk,
+SciPy, matplotlib) is imported only when that subcommand runs.
 """
 
 from __future__ import annotations
 
 import argparse
-import importlib.util
-import json
+import importlib
+import math
 import sys
-import tomllib
-from pathlib import Path
+import warnings
 
 from .errors import SceneError, SimulationError
 
-
-def _load_script(path: Path):
-    spec = importlib.util.spec_from_file_location(f"_asperity2d_scene_{path.stem}", path)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module  # so worker processes can pickle its functions
-    spec.loader.exec_module(module)
-    return module
+PROG = "asperity2d"
+PLOT_SUFFIXES = (".png", ".svg", ".pdf")
 
 
-def scene_from_toml(path: Path):
-    """A scene from a TOML file: make_scene's arguments, optionally under ``[scene]``."""
-    from .builders import make_scene
+class Parser(argparse.ArgumentParser):
+    """The one argument parser of asperity2d's commands and scene scripts.
 
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except (OSError, tomllib.TOMLDecodeError) as exc:
-        raise SceneError(f"`scene` file {str(path)!r} could not be read: {exc}") from None
-    params = data.get("scene", data)
-    run = data.get("run", {})
-    from .surface.source import resolve_paths  # profile files named relative to the TOML file
-
-    return make_scene(**resolve_paths(params, path.parent)), run
-
-
-def _emit(args, summary: dict, lines: list[str]) -> None:
-    if args.json:
-        print(json.dumps(summary, default=float))
-    else:
-        print("\n".join(lines))
-
-
-def cmd_run(args) -> int:
-    path = Path(args.scene)
-    if not path.exists():
-        raise SceneError(f"`scene` file does not exist: {str(path)!r}")
-    if path.suffix == ".py":
-        module = _load_script(path)
-        if not hasattr(module, "main"):
-            raise SceneError(f"`scene` script {str(path)!r} has no main(argv) function")
-        argv = list(args.script_args)
-        if args.json:
-            argv.append("--json")
-        if args.output:
-            argv += ["-o", args.output]
-        return int(module.main(argv) or 0)
-    if path.suffix != ".toml":
-        raise SceneError(f"`scene` must be a .py script or a .toml scene file, got {str(path)!r}")
-    from .simulate import simulate
-
-    scene, run = scene_from_toml(path)
-    duration = args.duration if args.duration is not None else run.get("duration")
-    result = simulate(scene, duration)
-    if args.save:
-        result.save(args.save)
-    if args.output:
-        from .render import render
-
-        render(result, args.output)
-    summary = result.summary()
-    _emit(args, summary, [f"{k}: {v}" for k, v in summary.items()])
-    return 0
-
-
-def cmd_analyze(args) -> int:
-    from .analysis import breakaway_force, event_statistics, stick_slip_events
-    from .result import load
-
-    result = load(args.result)
-    summary = result.summary()
-    events = stick_slip_events(result)
-    summary["events"] = event_statistics(events)
-    try:
-        summary["breakaway_force_N"] = breakaway_force(result)
-    except SceneError:  # constant-force drive, or no stick-to-slip transition
-        summary["breakaway_force_N"] = None
-    _emit(args, summary, [f"{k}: {v}" for k, v in summary.items()])
-    return 0
-
-
-def cmd_render(args) -> int:
-    from .render import render
-    from .result import load
-
-    out = render(load(args.result), args.output)
-    _emit(args, {"output": str(out)}, [f"wrote {out}"])
-    return 0
-
-
-def cmd_critical(args) -> int:
-    from .critical import critical_force_bracket
-
-    scene, _ = scene_from_toml(Path(args.scene))
-    bracket = critical_force_bracket(scene, rel_tol=args.rel_tol)
-    summary = {"critical_force_N": bracket.value, "stops_N": bracket.stops,
-               "passes_N": bracket.passes, "runs": bracket.runs}
-    _emit(args, summary, [f"{k}: {v}" for k, v in summary.items()])
-    return 0
-
-
-MEASURES = {"critical": "critical_force_of", "breakaway": "breakaway_force_of"}
-
-
-def _parse_set(items: list[str]) -> dict:
-    """``key=value`` pairs (values parsed as TOML scalars) into make_scene arguments."""
-    out = {}
-    for item in items:
-        key, sep, text = item.partition("=")
-        if not sep:
-            raise SceneError(f"`--set` takes key=value, got {item!r}")
-        try:
-            out[key.strip()] = tomllib.loads(f"v = {text}")["v"]
-        except tomllib.TOMLDecodeError:
-            out[key.strip()] = text
-    return out
-
-
-def cmd_compare(args) -> int:
-    from . import studies
-    from .compare import Comparison, compare
-
-    if args.load:
-        comparison = Comparison.load(args.load)
-    else:
-        if args.seeds < 1:
-            raise SceneError(f"`seeds` must be >= 1, got {args.seeds}")
-        measure = getattr(studies, MEASURES[args.measure])
-        variants = {name: {"spacing": name} for name in args.variants.split(",")}
-        comparison = compare(measure, variants, range(args.seeds), base=_parse_set(args.set),
-                             progress=not args.json, workers=args.workers)
-    if args.save:
-        comparison.save(args.save)
-    if args.output:
-        from .render.plots import plot_comparison
-
-        plot_comparison(comparison, args.output)
-    summary = {"measure": comparison.measure, "seeds": len(comparison.seeds),
-               "variants": comparison.summary()}
-    names = list(comparison.values)
-    if len(names) >= 2:
-        summary["mann_whitney_p"] = {f"{names[0]} vs {other}": comparison.mann_whitney(names[0], other)
-                                     for other in names[1:]}
-    lines = [f"{name}: mean {stats['mean']:.5g}, 95 % CI [{stats['ci_low']:.5g}, {stats['ci_high']:.5g}] "
-             f"(n = {stats['n']})" for name, stats in comparison.summary().items()]
-    lines += [f"Mann-Whitney U {pair}: p = {p:.3g}" for pair, p in summary.get("mann_whitney_p", {}).items()]
-    _emit(args, summary, lines)
-    return 0
-
-
-class _Parser(argparse.ArgumentParser):
-    """Usage errors as one line on stderr and exit status 2 (subparsers inherit this)."""
+    A usage error is one line on stderr, ``asperity2d: error: ...``, and exit
+    status 2 (no usage dump); subparsers inherit this.
+    """
 
     def error(self, message):
-        self.exit(2, f"{self.prog}: error: {message}\n")
+        self.exit(2, f"{PROG}: error: {message}\n")
 
 
-def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog="asperity2d", description=__doc__.splitlines()[0])
-    sub = parser.add_subparsers(dest="command", required=True)
+def fail(message) -> int:
+    """Print the one error line; return exit status 2."""
+    print(f"{PROG}: error: {message}", file=sys.stderr)
+    return 2
 
-    p = sub.add_parser("run", help="run a scene script (.py) or a TOML scene file")
-    p.add_argument("scene", help="scene script (.py; other arguments go to its main()) or .toml")
+
+def positive_float(text: str) -> float:
+    """An argparse type: a finite number > 0 (the message is prefixed with the option's name)."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not (math.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"must be a finite number > 0, got {text!r}")
+    return value
+
+
+def positive_int(text: str) -> int:
+    """An argparse type: an integer >= 1."""
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be an integer >= 1, got {text!r}")
+    return value
+
+
+class _Version(argparse.Action):
+    """``--version``: read from the installed metadata only when asked (it costs ~80 ms)."""
+
+    def __init__(self, option_strings, dest=argparse.SUPPRESS, default=argparse.SUPPRESS, help=None):
+        super().__init__(option_strings, dest=dest, default=default, nargs=0, help=help)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        from ._version import __version__
+
+        print(f"{PROG} {__version__}")
+        parser.exit(0)
+
+
+def _json_flag(p) -> None:
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+
+
+#: The names of asperity2d.compare.MEASURES (kept here so --help imports nothing; a test checks
+#: they agree).
+COMPARE_MEASURES = ("critical", "critical-run-up", "first-breakaway", "peak-stick", "mean-stick")
+
+
+def build_parser() -> Parser:
+    """The whole command line; each subcommand names its handler as ``"module:function"``."""
+    parser = Parser(prog=PROG, description="Friction at the asperity scale in 2D (pymunk), and "
+                                           "masses on a moving belt with exact stick/slip.")
+    parser.add_argument("--version", action=_Version, help="print the version and exit")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="command")
+
+    # allow_abbrev=False: a script's own --out must not be read as an abbreviated --output
+    p = sub.add_parser("run", help="run a scene script (.py) or a TOML scene file", allow_abbrev=False,
+                       add_help=False)
+    p.add_argument("-h", "--help", action="store_true", dest="run_help",
+                   help="show this help; after a .py script, the script's own help")
+    p.add_argument("scene", nargs="?",
+                   help="scene script (.py; other arguments go to its main()) or .toml")
     p.add_argument("-o", "--output",
                    help="render to this file (.gif, .png, .svg, .pdf); a script's output directory")
     p.add_argument("--save", help="save the Result (.npz) (TOML scenes)")
-    p.add_argument("--duration", type=float, help="simulated time in s (TOML scenes)")
-    p.add_argument("--json", action="store_true")
-    p.set_defaults(func=cmd_run)
+    p.add_argument("--duration", type=positive_float, help="simulated time in s (TOML scenes)")
+    _json_flag(p)
+    p.set_defaults(handler="asperity2d._commands:run", print_run_help=p.print_help)
 
     p = sub.add_parser("analyze", help="stick-slip events and breakaway force of a saved result")
-    p.add_argument("result")
-    p.add_argument("--json", action="store_true")
-    p.set_defaults(func=cmd_analyze)
+    p.add_argument("result", help="a result saved with --save / Result.save (.npz)")
+    _json_flag(p)
+    p.set_defaults(handler="asperity2d._commands:analyze")
 
     p = sub.add_parser("render", help="render a saved result; the extension picks the renderer")
-    p.add_argument("result")
-    p.add_argument("-o", "--output", required=True)
-    p.add_argument("--json", action="store_true")
-    p.set_defaults(func=cmd_render)
+    p.add_argument("result", help="a result saved with --save / Result.save (.npz)")
+    p.add_argument("-o", "--output", required=True, help=".gif, .png, .svg or .pdf")
+    _json_flag(p)
+    p.set_defaults(handler="asperity2d._commands:render")
 
     p = sub.add_parser("critical", help="critical constant drive force of a TOML scene")
-    p.add_argument("scene")
-    p.add_argument("--rel-tol", type=float, default=0.01)
-    p.add_argument("--json", action="store_true")
-    p.set_defaults(func=cmd_critical)
+    p.add_argument("scene", help="TOML scene file")
+    p.add_argument("--rel-tol", type=positive_float, default=0.01, help="bracket width (default 0.01)")
+    _json_flag(p)
+    p.set_defaults(handler="asperity2d._commands:critical")
 
-    p = sub.add_parser("compare", help="compare spacings over seeds (critical or breakaway force)")
-    p.add_argument("--measure", choices=sorted(MEASURES), default="breakaway")
+    p = sub.add_parser("compare", help="compare spacings over seeds (critical force, stick forces)")
+    p.add_argument("--measure", choices=COMPARE_MEASURES, default="critical",
+                   help="critical: force to move the slider from rest on the surface (default); "
+                        "critical-run-up; peak-stick / mean-stick / first-breakaway: stick forces "
+                        "of a spring-driven pass")
     p.add_argument("--variants", default="regular,random", help="comma-separated spacings")
-    p.add_argument("--seeds", type=int, default=20)
-    p.add_argument("--workers", type=int, default=1)
+    p.add_argument("--seeds", type=positive_int, default=20)
+    p.add_argument("--workers", type=positive_int, default=1)
+    p.add_argument("--scheduler", help="a Dask scheduler address, or 'local' to start one")
     p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                    help="make_scene argument shared by every variant (repeatable)")
     p.add_argument("--save", help="save the comparison (.json) to re-plot later")
     p.add_argument("--load", help="re-use a saved comparison instead of running")
     p.add_argument("-o", "--output", help="comparison plot (.png, .svg, .pdf)")
-    p.add_argument("--json", action="store_true")
-    p.set_defaults(func=cmd_compare)
+    _json_flag(p)
+    p.set_defaults(handler="asperity2d._commands:compare")
 
-    from .belt.cli import add_parser as add_belt_parser
-    from .sweep.cli import add_parser as add_sweep_parser
+    p = sub.add_parser("belt", help="masses on a moving belt (exact stick/slip)",
+                       description="Run a chain from a TOML file or a named preset (see "
+                                   "asperity2d.belt.cli for the chain file's keys).")
+    p.add_argument("chain", nargs="?", help="TOML chain file")
+    p.add_argument("--preset", help="named preset from the thesis tables (see --list-presets)")
+    p.add_argument("--list-presets", action="store_true", help="print the preset names and exit")
+    p.add_argument("--method", choices=("exact", "sign"), help="override the solver")
+    p.add_argument("--t-end", type=positive_float, help="override the duration (s)")
+    p.add_argument("-o", "--output", help="plot (.png/.svg/.pdf), result (.npz) or table (.csv)")
+    _json_flag(p)
+    p.set_defaults(handler="asperity2d.belt.cli:run")
 
-    add_belt_parser(sub)
-    add_sweep_parser(sub)
+    _add_sweep(sub)
     return parser
 
 
-def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
-    args, extra = parser.parse_known_args(argv)
-    if extra and not (args.command == "run" and args.scene.endswith(".py")):
-        parser.error(f"unrecognized arguments: {' '.join(extra)}")
-    args.script_args = extra
-    try:
-        return int(args.func(args) or 0)
-    except (SceneError, SimulationError, FileNotFoundError) as exc:
-        print(f"asperity2d: error: {exc}", file=sys.stderr)
-        return 2
+def _add_sweep(subparsers) -> None:
+    parser = subparsers.add_parser(
+        "sweep", help="run parameter studies over grids and seeds (resumable)",
+        description="Run parameter studies (grid x seeds) into a resumable results store.")
+    sub = parser.add_subparsers(dest="sweep_command", required=True, metavar="{run,status,report,export}")
 
+    p = sub.add_parser("run", help="run the unfinished runs of a study (.toml or .py)")
+    p.add_argument("study", help="study file: .toml, or .py defining STUDY")
+    p.add_argument("--store", required=True, help="results directory of the study")
+    p.add_argument("--workers", type=positive_int, default=None,
+                   help="local worker processes (default: CPU count; 1 = in-process)")
+    p.add_argument("--scheduler", default=None,
+                   help="Dask scheduler address tcp://host:port, or 'local' for a LocalCluster")
+    p.add_argument("--retry-failed", action="store_true", help="re-run runs recorded as failed")
+    p.add_argument("--no-progress", action="store_true", help="hide the progress bar")
+    _json_flag(p)
+
+    p = sub.add_parser("status", help="count done / failed / pending runs of a store")
+    p.add_argument("store", help="results directory")
+    _json_flag(p)
+
+    p = sub.add_parser("report", help="mean, CI and Mann-Whitney U per variant; summary plot")
+    p.add_argument("store", help="results directory")
+    p.add_argument("-o", "--output", default=None,
+                   help="figure path (.png/.pdf/.svg; default: STORE/summary.png)")
+    p.add_argument("--confidence", type=float, default=0.95, help="CI level (default 0.95)")
+    _json_flag(p)
+
+    p = sub.add_parser("export", help="table of finished runs as CSV or .npy (structured)")
+    p.add_argument("store", help="results directory")
+    p.add_argument("-o", "--output", required=True, help="output file: .csv or .npy")
+    _json_flag(p)
+    parser.set_defaults(handler="asperity2d.sweep.cli:run")
+
+
+def _load_script(path):
+    """Import a scene script as a module (registered in ``sys.modules``, so worker processes
+    can pickle its functions). The file must be a readable Python text file; what the
+    script itself raises is the script's own error and propagates unchanged."""
+    import importlib.util
+    from pathlib import Path
+
+    from ._io import FileError, read_bytes
+
+    path = Path(path)
+    data = read_bytes("scene", path)
+    if b"\0" in data:
+        raise FileError("scene", path, "is not a Python script", "it contains NUL bytes")
+    try:
+        importlib.util.decode_source(data)  # UTF-8 unless a coding line says otherwise
+    except (UnicodeDecodeError, SyntaxError, LookupError) as exc:
+        raise FileError("scene", path, "is not UTF-8 text (and declares no other encoding)",
+                        str(exc)) from None
+    spec = importlib.util.spec_from_file_location(f"_asperity2d_scene_{path.stem}", path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+def _exit_status(exc: SystemExit) -> int:
+    """The status ``sys.exit`` would give: None -> 0; a message is printed and gives 1."""
+    if exc.code is None or isinstance(exc.code, int):
+        return exc.code or 0
+    print(exc.code, file=sys.stderr)
+    return 1
+
+
+def _one_line_warning(message, category, filename, lineno, file=None, line=None):
+    print(f"{PROG}: warning: {message}", file=sys.stderr)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the command line on ``argv`` (default ``sys.argv[1:]``); return the exit status."""
+    parser = build_parser()
+    try:
+        args, extra = parser.parse_known_args(argv)
+        script = args.command == "run" and (args.scene or "").endswith(".py")
+        if args.command == "run" and args.run_help:
+            if not script:
+                args.print_run_help()
+                return 0
+            extra.append("--help")  # `asperity2d run x.py --help`: the script's own help
+        if args.command == "run" and args.scene is None:
+            parser.error("the following arguments are required: scene")
+        if extra and not script:
+            parser.error(f"unrecognized arguments: {' '.join(extra)}")
+    except SystemExit as exc:  # --help, --version, or a usage error already printed
+        return _exit_status(exc)
+    args.script_args = extra
+    module, _, name = args.handler.partition(":")
+    handler = getattr(importlib.import_module(module), name)
+    with warnings.catch_warnings():
+        warnings.showwarning = _one_line_warning
+        try:
+            return int(handler(args) or 0)
+        except (SceneError, SimulationError) as exc:
+            return fail(exc)
+        except SystemExit as exc:  # a scene script's own sys.exit / argparse error
+            return _exit_status(exc)
+        except KeyboardInterrupt:
+            print(f"{PROG}: interrupted", file=sys.stderr)
+            return 130

@@ -3,14 +3,20 @@
 Seed 000's comparisons (regular against random spacing, full against half
 triangles, damped against undamped) as a study::
 
-    comparison = compare(critical_force, {"regular": {"spacing": "regular"},
-                                          "random": {"spacing": "random"}}, seeds=range(10))
-    comparison.mann_whitney("regular", "random")
-    comparison.save("renders/spacing.json")   # re-plot later without re-running
+    comparison = compare("critical", {"regular": {"spacing": "regular"},
+                                      "random": {"spacing": "random"}}, seeds=range(10))
+    comparison.versus("random", "regular")      # effect and one-sample Wilcoxon test
+    comparison.save("renders/spacing.json")     # re-plot later without re-running
 
 Each scene is ``make_scene(**base, **variant, seed=seed)``; ``measure(scene)``
-returns a float (NaN is allowed and ignored by the statistics). Results are
-stored in (variant, seed) order, so they do not depend on ``workers``.
+returns a float (NaN is allowed and ignored by the statistics). ``measure`` is
+a callable or the name of one of :data:`MEASURES`. The runs go through the
+sweep executors (:mod:`asperity2d.sweep.executors`: in-process, a local
+process pool, or a Dask cluster), so ``compare`` is the in-memory front end of
+the same machinery as :func:`asperity2d.sweep.run_study`. A variant whose
+scene does not depend on the seed (regular spacing) is measured once and
+reported for every seed. Results are stored in (variant, seed) order; they
+do not depend on the executor.
 """
 
 from __future__ import annotations
@@ -19,33 +25,103 @@ import json
 import math
 import os
 import pickle
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable, Iterable
 
 import numpy as np
 
-from ._io import atomic_write_text
-from .errors import SceneError
+from . import analysis, stats
+from ._io import FileError, atomic_write_text, read_text
+from ._validate import check_int, show
+from .builders import make_scene
+from .critical import critical_force
+from .errors import SceneError, SimulationError
+from .scene import Scene, SpringDrive
+from .simulate import simulate
+from .sweep.executors import make_executor
+from .sweep.progress import Progress
 
 FORMAT = "asperity2d.comparison/1"
 
 
-def _evaluate(measure: Callable, kwargs: dict) -> float:
-    """Build one scene and measure it (module level, so worker processes can run it)."""
-    from .builders import make_scene
+# -- the standard measures (module level: worker processes import them) --------------------------
+def critical_force_rest(scene: Scene) -> float:
+    """Critical constant force (N) from rest on the surface (:func:`asperity2d.critical_force`)."""
+    return critical_force(scene)
 
-    return float(measure(make_scene(**kwargs)))
+
+def critical_force_run_up(scene: Scene) -> float:
+    """Critical constant force (N) with the builder's run-up (``start="run-up"``)."""
+    return critical_force(scene, start="run-up")
 
 
+def spring_pass(scene: Scene):
+    """One spring-driven pass of ``scene`` (its drive made a spring if it was a constant force)."""
+    if not isinstance(scene.drive, SpringDrive):
+        scene = scene.replace(drive=SpringDrive())
+    return simulate(scene)
+
+
+def _or_nan(fn, result) -> float:
+    try:
+        return float(fn(result))
+    except SceneError:  # no stick-to-slip transition in the pass
+        return math.nan
+
+
+def first_breakaway(scene: Scene) -> float:
+    """Drive force (N) at the first stick-to-slip transition of a spring-driven pass."""
+    return _or_nan(analysis.breakaway_force, spring_pass(scene))
+
+
+def peak_stick_force(scene: Scene) -> float:
+    """Largest drive force (N) at a stick-to-slip transition over a spring-driven pass."""
+    return _or_nan(analysis.peak_stick_force, spring_pass(scene))
+
+
+def mean_stick_force(scene: Scene) -> float:
+    """Mean drive force (N) at the stick-to-slip transitions of a spring-driven pass."""
+    return _or_nan(analysis.mean_stick_force, spring_pass(scene))
+
+
+#: Named measures: the CLI's ``--measure`` and ``compare(measure="...")``; each with its
+#: label for plots and verdicts.
+MEASURES = {
+    "critical": (critical_force_rest, "critical force from rest"),
+    "critical-run-up": (critical_force_run_up, "critical force with a run-up"),
+    "first-breakaway": (first_breakaway, "first breakaway force"),
+    "peak-stick": (peak_stick_force, "peak stick force over a pass"),
+    "mean-stick": (mean_stick_force, "mean stick force over a pass"),
+}
+
+
+def measure_label(name: str) -> str:
+    """A plain-language label of a measure's name (the name itself if it is not standard)."""
+    for key, (fn, label) in MEASURES.items():
+        if name in (key, fn.__name__):
+            return label
+    return name.replace("_", " ")
+
+
+def _evaluate(measure: Callable, scene: Scene, where: str) -> float:
+    """Measure one scene (module level, so worker processes can run it)."""
+    try:
+        return float(measure(scene))
+    except Exception as exc:
+        exc.add_note(f"while measuring {where}")
+        raise
+
+
+# -- the result -----------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class Comparison:
     """Measured values per variant (same seeds for every variant) and their statistics.
 
     ``values`` maps variant name to one value per seed (in ``seeds`` order);
     ``variants`` holds each variant's ``make_scene`` arguments, ``base`` the
-    shared ones, ``measure`` the measure's name. Statistics ignore NaN values.
+    shared ones, ``measure`` the measure's name. Statistics (:mod:`asperity2d.stats`)
+    ignore NaN values.
     """
 
     values: dict[str, tuple[float, ...]]
@@ -60,78 +136,41 @@ class Comparison:
                 raise SceneError(f"`values` of variant {name!r} has {len(vals)} entries for "
                                  f"{len(self.seeds)} seeds")
 
-    # -- statistics --------------------------------------------------------
+    def _get(self, name: str) -> np.ndarray:
+        if name not in self.values:
+            raise SceneError(f"`name` must be one of {sorted(self.values)}, got {show(name)}")
+        return np.asarray(self.values[name], dtype=float)
+
     def finite(self, name: str) -> np.ndarray:
         """The variant's finite values."""
-        if name not in self.values:
-            raise SceneError(f"`name` must be one of {sorted(self.values)}, got {name!r}")
-        a = np.asarray(self.values[name], dtype=float)
-        return a[np.isfinite(a)]
+        return stats.finite(self._get(name))
 
-    def mean(self, name: str) -> float:
-        a = self.finite(name)
-        return float(a.mean()) if len(a) else math.nan
-
-    def std(self, name: str) -> float:
-        """Sample standard deviation (ddof=1); NaN with fewer than two values."""
-        a = self.finite(name)
-        return float(a.std(ddof=1)) if len(a) > 1 else math.nan
-
-    def ci(self, name: str, *, level: float = 0.95) -> tuple[float, float]:
-        """Confidence interval of the mean: mean ± t(1-α/2, n-1) · s / sqrt(n)."""
-        from scipy import stats
-
-        if not 0 < level < 1:
-            raise SceneError(f"`level` must be in (0, 1), got {level!r}")
-        a = self.finite(name)
-        if len(a) < 2:
-            return (math.nan, math.nan)
-        half = stats.t.ppf(0.5 + level / 2.0, len(a) - 1) * a.std(ddof=1) / math.sqrt(len(a))
-        return (float(a.mean() - half), float(a.mean() + half))
+    def summary(self, *, level: float = 0.95) -> dict[str, dict]:
+        """Per variant: :func:`asperity2d.stats.describe` (n, missing, mean, std, median, CI)."""
+        return {name: stats.describe(self._get(name), level=level) for name in self.values}
 
     def mann_whitney(self, a: str, b: str, *, alternative: str = "two-sided") -> float:
-        """p-value of the Mann–Whitney U test between variants ``a`` and ``b``
-        (:func:`scipy.stats.mannwhitneyu`, default method: exact for small
-        samples without ties)."""
-        from scipy import stats
+        """p-value of the Mann–Whitney U test between variants ``a`` and ``b``."""
+        return stats.mann_whitney(self._get(a), self._get(b), alternative=alternative)
 
-        x, y = self.finite(a), self.finite(b)
-        if len(x) == 0 or len(y) == 0:
-            return math.nan
-        return float(stats.mannwhitneyu(x, y, alternative=alternative).pvalue)
+    def versus(self, name: str, reference: str, *, alternative: str = "less") -> dict:
+        """Variant ``name`` against variant ``reference``.
 
-    def one_sample(self, name: str, reference: float, *, test: str = "wilcoxon",
-                   alternative: str = "two-sided") -> float:
-        """p-value of a test that variant ``name`` is centred on ``reference``.
-
-        ``test="wilcoxon"`` (default): Wilcoxon signed-rank test of the
-        differences from ``reference`` (:func:`scipy.stats.wilcoxon`; no
-        normality assumption, tests the median). ``test="t"``: one-sample
-        t-test of the mean (:func:`scipy.stats.ttest_1samp`).
+        A reference measured once (seed-independent, e.g. regular spacing) is a
+        value: one-sample Wilcoxon of ``name`` against it
+        (:func:`asperity2d.stats.versus_reference`). Otherwise the seeds pair
+        up: paired Wilcoxon of ``name - reference`` (same seed, same draws),
+        reported in the same fields.
         """
-        from scipy import stats
-
-        a = self.finite(name)
-        if test not in ("wilcoxon", "t"):
-            raise SceneError(f"`test` must be 'wilcoxon' or 't', got {test!r}")
-        if len(a) < 2:
-            return math.nan
-        if test == "t":
-            return float(stats.ttest_1samp(a, reference, alternative=alternative).pvalue)
-        d = a - float(reference)
-        if not np.any(d):
-            return 1.0
-        return float(stats.wilcoxon(d, alternative=alternative).pvalue)
-
-    def summary(self, *, level: float = 0.95) -> dict[str, dict[str, float]]:
-        """Per variant: n (finite values), mean, std, median, ci_low, ci_high."""
-        out = {}
-        for name in self.values:
-            a = self.finite(name)
-            lo, hi = self.ci(name, level=level)
-            out[name] = {"n": int(len(a)), "mean": self.mean(name), "std": self.std(name),
-                         "median": float(np.median(a)) if len(a) else math.nan,
-                         "ci_low": lo, "ci_high": hi}
+        ref = self._get(reference)
+        if np.all(ref == ref[0]):
+            return {**stats.versus_reference(self._get(name), float(ref[0]), alternative=alternative),
+                    "test": "one-sample Wilcoxon signed-rank against the reference value"}
+        out = stats.versus_reference(self._get(name) - ref, 0.0, alternative=alternative)
+        mine, theirs = stats.describe(self._get(name)), stats.describe(ref)
+        out.update(mean=mine["mean"], std=mine["std"], reference=theirs["mean"],
+                   relative_difference=(mine["mean"] - theirs["mean"]) / theirs["mean"],
+                   test="paired Wilcoxon signed-rank (same seeds)")
         return out
 
     # -- persistence -------------------------------------------------------
@@ -153,31 +192,35 @@ class Comparison:
 
     @classmethod
     def load(cls, path: str | os.PathLike) -> "Comparison":
-        """Read a comparison written by :meth:`save`."""
+        """Read a comparison written by :meth:`save`; a file that is not one raises ``SceneError``."""
         path = Path(path)
+        text = read_text("path", path)
         try:
-            data = json.loads(path.read_text(encoding="utf-8"))
-            if data.get("format") != FORMAT:
-                raise ValueError(f"format is {data.get('format')!r}, expected {FORMAT!r}")
+            data = json.loads(text)
+            if not isinstance(data, dict) or data.get("format") != FORMAT:
+                raise ValueError(f"format is {data.get('format') if isinstance(data, dict) else None!r}, "
+                                 f"expected {FORMAT!r}")
             values = {k: tuple(math.nan if v is None else float(v) for v in vals)
                       for k, vals in data["values"].items()}
             return cls(values=values, seeds=tuple(int(s) for s in data["seeds"]),
                        variants=data.get("variants", {}), base=data.get("base", {}),
                        measure=data.get("measure", "value"))
-        except (OSError, ValueError, KeyError, TypeError, AttributeError) as exc:
-            raise SceneError(f"`path` is not a comparison file: {str(path)!r} ({exc})") from None
+        except (ValueError, KeyError, TypeError, AttributeError) as exc:
+            raise FileError("path", path, "is not a comparison file", str(exc)) from None
 
 
-def compare(measure: Callable, variants: dict[str, dict], seeds: Iterable[int], *,
-            base: dict | None = None, progress: bool = True, workers: int = 1) -> Comparison:
+# -- running it -------------------------------------------------------------------------------------
+def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[int], *,
+            base: dict | None = None, progress: bool = True, workers: int = 1,
+            scheduler: str | None = None) -> Comparison:
     """Measure every variant on every seed.
 
     Parameters
     ----------
-    measure : callable
-        ``measure(scene) -> float``, e.g. a critical-force or breakaway
-        function. Must be picklable (a module-level function) when
-        ``workers > 1``.
+    measure : callable or str
+        ``measure(scene) -> float``, or a name from :data:`MEASURES`
+        (``"critical"``, ``"peak-stick"``, ...). A callable must be picklable
+        (a module-level function) to run in worker processes.
     variants : dict of str to dict
         Name -> ``make_scene`` keyword arguments (without ``seed``).
     seeds : iterable of int
@@ -185,58 +228,55 @@ def compare(measure: Callable, variants: dict[str, dict], seeds: Iterable[int], 
     base : dict, optional
         ``make_scene`` arguments shared by all variants (a variant overrides them).
     progress : bool
-        Show a tqdm progress bar.
-    workers : int
-        Processes (``concurrent.futures.ProcessPoolExecutor``); 1 runs in this
-        process. The values do not depend on it.
+        Show a progress bar.
+    workers, scheduler
+        As for :func:`asperity2d.sweep.run_study`: ``workers`` local processes
+        (1: in this process), or a Dask ``scheduler`` address (``"local"``
+        starts one). The values do not depend on them.
     """
-    from tqdm.auto import tqdm
-
+    if isinstance(measure, str):
+        if measure not in MEASURES:
+            raise SceneError(f"`measure` must be one of {', '.join(MEASURES)} or a callable, got {show(measure)}")
+        measure = MEASURES[measure][0]
     if not callable(measure):
-        raise SceneError(f"`measure` must be callable, got {measure!r}")
+        raise SceneError(f"`measure` must be callable, got {show(measure)}")
     if not isinstance(variants, dict) or not variants:
         raise SceneError("`variants` must be a non-empty dict of name -> make_scene arguments")
+    if not all(isinstance(kw, dict) or kw is None for kw in variants.values()):
+        raise SceneError("`variants` must map each name to a dict of make_scene arguments")
     base = dict(base or {})
     seeds = tuple(seeds)
-    if not seeds or not all(isinstance(s, (int, np.integer)) and s >= 0 for s in seeds):
-        raise SceneError(f"`seeds` must be non-negative integers, got {seeds!r}")
-    seeds = tuple(int(s) for s in seeds)
+    if not seeds:
+        raise SceneError("`seeds` must not be empty")
+    seeds = tuple(check_int("seeds", s, minimum=0, maximum=2**63 - 1) for s in seeds)
     if "seed" in base or any("seed" in (kw or {}) for kw in variants.values()):
         raise SceneError("`variants` and `base` must not set `seed` (it comes from `seeds`)")
-    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
-        raise SceneError(f"`workers` must be an integer >= 1, got {workers!r}")
-    tasks = [(name, {**base, **(kw or {}), "seed": s}) for name, kw in variants.items() for s in seeds]
-    from .builders import make_scene
-
-    for _, kwargs in tasks[:: len(seeds)]:
-        make_scene(**kwargs)  # bad arguments fail here, before any run starts
-    if workers > 1:
+    workers = check_int("workers", workers, minimum=1, maximum=1024)
+    if workers > 1 or scheduler is not None:
         try:
             pickle.dumps(measure)
         except Exception as exc:
-            raise SceneError(f"`measure` must be picklable (a module-level function) when "
-                             f"workers > 1 ({exc})") from None
-    bar = tqdm(total=len(tasks), disable=not progress, unit="run", leave=False)
-    results = []
-    try:
-        if workers == 1:
-            for _, kwargs in tasks:
-                results.append(_evaluate(measure, kwargs))
-                bar.update(1)
-        else:
-            with ProcessPoolExecutor(max_workers=workers) as pool:
-                futures = [pool.submit(_evaluate, measure, kwargs) for _, kwargs in tasks]
-                for fut in futures:  # in task order: identical to the serial result
-                    results.append(fut.result())
-                    bar.update(1)
-    except Exception as exc:
-        name, kwargs = tasks[len(results)]
-        exc.add_note(f"while measuring variant {name!r} with seed {kwargs['seed']}")
-        raise
-    finally:
-        bar.close()
-    values = {name: tuple(results[i * len(seeds):(i + 1) * len(seeds)])
-              for i, name in enumerate(variants)}
-    return Comparison(values=values, seeds=seeds,
-                      variants={k: dict(v or {}) for k, v in variants.items()}, base=base,
-                      measure=getattr(measure, "__name__", type(measure).__name__))
+            raise SceneError(f"`measure` must be picklable (a module-level function) to run in worker "
+                             f"processes ({exc})") from None
+    # Build every scene first: bad arguments fail here, before any run starts.
+    jobs, slots = [], {}
+    for name, kw in variants.items():
+        scenes = [make_scene(**base, **(kw or {}), seed=s) for s in seeds]
+        unseeded = all(sc.replace(name="") == scenes[0].replace(name="") for sc in scenes)
+        for j, (seed, scene) in enumerate(zip(seeds, scenes)):
+            if unseeded and j:
+                slots[name, j] = slots[name, 0]  # the scene does not depend on the seed
+                continue
+            slots[name, j] = len(jobs)
+            jobs.append((measure, scene, f"variant {name!r} with seed {seed}"))
+    results: list = [None] * len(jobs)
+    with make_executor(workers=workers, scheduler=scheduler) as executor, \
+            Progress(total=len(jobs), enabled=progress, label="compare") as bar:
+        for index, value in executor.map_unordered(_evaluate, jobs):
+            if isinstance(value, dict):  # Dask reports a run that raised as a failed outcome
+                raise SimulationError(f"{value.get('error')} (while measuring {jobs[index][2]})")
+            results[index] = value
+            bar.update("done" if math.isfinite(value) else "failed")
+    values = {name: tuple(results[slots[name, j]] for j in range(len(seeds))) for name in variants}
+    return Comparison(values=values, seeds=seeds, variants={k: dict(v or {}) for k, v in variants.items()},
+                      base=base, measure=getattr(measure, "__name__", type(measure).__name__))

@@ -16,8 +16,9 @@ from typing import Any
 
 import numpy as np
 
-from ._io import atomic_write, load_npz, save_npz
+from ._io import FileError, atomic_write, load_npz, save_npz
 from .errors import SceneError
+from .scene import Scene
 
 #: Arrays every result carries, in the order they are written to CSV.
 SERIES = (
@@ -166,9 +167,23 @@ class Result:
 
 
 def load(path: str | os.PathLike) -> Result:
-    """Read a :class:`Result` written by :meth:`Result.save`."""
-    from .scene import Scene
+    """Read a :class:`Result` written by :meth:`Result.save`.
 
-    arrays, meta = load_npz(path, SERIES + LOWER_SERIES, kind="an asperity2d result file")
-    scene = Scene.from_dict(meta.pop("scene"))
+    A file that is not one (missing, empty, foreign, truncated, damaged, or
+    with arrays or a scene record that do not fit together) raises a
+    ``SceneError`` naming ``path``.
+    """
+    kind = "an asperity2d result file"
+    arrays, meta = load_npz(path, SERIES + LOWER_SERIES, kind=kind, meta_keys=("scene",))
+    samples = len(arrays["t"]) if arrays["t"].ndim == 1 else -1
+    for name in SERIES + LOWER_SERIES:
+        shape = arrays[name].shape
+        if (shape[-1:] != (samples,) or len(shape) != (2 if name in LOWER_SERIES else 1)
+                or arrays[name].dtype.kind not in "biuf"):
+            raise FileError("path", path, f"is not {kind}", f"array {name!r} has shape {shape}, "
+                            f"dtype {arrays[name].dtype}, for {samples} samples")
+    try:
+        scene = Scene.from_dict(meta.pop("scene"))
+    except Exception as exc:  # noqa: BLE001 - any malformed record; the file is not ours to trust
+        raise FileError("path", path, f"is not {kind}", f"its scene record is invalid: {exc}") from None
     return Result(**arrays, scene=scene, meta=meta)

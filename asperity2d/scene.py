@@ -317,9 +317,11 @@ class Scene:
         return self.lower.profile.base
 
     def natural_frequencies(self) -> dict[str, float]:
-        """Angular natural frequencies (rad/s) of the scene's spring-mass pairs."""
+        """Angular natural frequencies (rad/s) of the scene's spring-mass pairs (inf where a
+        ratio overflows: :class:`~asperity2d.units.Units` refuses those scenes)."""
         k, m = np.asarray(self.lower.stiffness), np.asarray(self.lower.mass)
-        freqs = {"lower": float(np.max(np.sqrt(k / m)))}
+        with np.errstate(over="ignore", divide="ignore"):
+            freqs = {"lower": float(np.max(np.sqrt(k / m)))}
         if self.lower.is_lattice:
             # Gershgorin bound on the lattice's highest horizontal mode.
             row = np.abs(self.lower.lateral_stiffness_matrix()).sum(axis=1)

@@ -1,59 +1,118 @@
-"""Benchmark a 20-seed regular-vs-random comparison at the seed-000 study settings.
+"""Critical force and a 20-seed comparison, against the previous release's code, in one run.
 
-    python benchmarks/bench_studies.py [--quick]
+    python benchmarks/bench_studies.py [--quick] [--json]
 
-Issue 4's target: a 20-seed regular-vs-random comparison at default settings
-finishes in under two minutes on this 2-core machine. Measured here with
-:func:`asperity2d.compare` at the study size (10 lower / 3 upper asperities,
-free slider under 10 mN, the package defaults otherwise), for the critical
-constant force (1 % bisection) and the spring-drive breakaway force, with
-``workers=1`` and ``workers=2``. The regular variant is run for every seed too,
-as a plain ``compare`` call does (it is deterministic; the study scripts run it
-once). Wall times are single measurements on a shared machine: the load at the
-time is printed alongside.
+What a user of the previous code ran: ``critical_force(scene)`` and
+``asperity2d compare --measure critical --seeds 20`` at the command line's
+default size (16 lower / 4 upper asperities, regular vs random spacing). The
+previous code is checked out from git (``BASELINE``, the last commit before
+this round) into a temporary folder; both run the same scene in separate
+interpreters, interleaved, and report CPU time (``time.process_time``) of the
+measurement alone, one worker. Like with like: the previous critical force
+started from the builder's position (the run-up), so the new code is timed
+with ``start="run-up"`` (and, beside it, the new default ``start="rest"``).
+The previous code settled a free slider again in every bisection run and
+measured the seed-independent regular scene once per seed.
+
+Both set-ups: the free slider (the previous default, where settling cost
+57-59 % of a critical force) and seed 000's fixed track (the new default).
+Target (issue 13): at least 2.5x faster.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import os
-import time
+import statistics
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
 
+ROOT = Path(__file__).resolve().parent.parent
+BASELINE = "5c72af9"  # the previous round's last commit
+TARGET = 2.5
+
+_CODE = r"""
+import json, sys, time
 import asperity2d as a
-from asperity2d import studies
+setup, what, seeds, new = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4] == "new"
+size = {"lower_count": 16, "upper_count": 4, "track": setup}
+t0 = time.process_time()
+if what == "critical":
+    scene = a.make_scene(drive="force", **size)
+    value = a.critical_force(scene, start="run-up") if new else a.critical_force(scene)
+else:
+    variants = {"regular": {"spacing": "regular"}, "random": {"spacing": "random"}}
+    base = {**size, "drive": "force"}
+    if new:
+        c = a.compare("critical-run-up", variants, range(seeds), base=base, progress=False)
+    else:
+        from asperity2d.studies import critical_force_of
+        c = a.compare(critical_force_of, variants, range(seeds), base=base, progress=False)
+    value = sum(c.values["random"]) / seeds
+print(json.dumps({"cpu_s": time.process_time() - t0, "value": value}))
+"""
 
-TARGET_S = 120.0
+
+def _baseline_tree(tmp: Path) -> Path:
+    """The previous code, exported from git into ``tmp`` (no checkout of the working tree)."""
+    archive = subprocess.run(["git", "-C", str(ROOT), "archive", BASELINE, "asperity2d"],
+                             capture_output=True, check=True).stdout
+    subprocess.run(["tar", "-x", "-C", str(tmp)], input=archive, check=True)
+    return tmp
+
+
+def _measure(tree: Path | None, setup: str, what: str, seeds: int, new: bool) -> dict:
+    env = {**os.environ, "PYTHONPATH": str(tree if tree is not None else ROOT)}
+    proc = subprocess.run([sys.executable, "-c", _CODE, setup, what, str(seeds), "new" if new else "old"],
+                          capture_output=True, text=True, env=env, cwd=str(tree or ROOT), check=True)
+    return json.loads(proc.stdout.strip().splitlines()[-1])
 
 
 def run(quick: bool = False) -> dict:
-    """Wall time (s) per measure and worker count; ``quick``: 3 seeds instead of 20."""
-    seeds = range(3 if quick else 20)
-    variants = {"regular": {"spacing": "regular"}, "random": {"spacing": "random"}}
+    repeats = 1 if quick else 3
+    seeds = 3 if quick else 20
     rows = {}
-    for measure, drive in ((studies.critical_force_of, "force"), (studies.breakaway_force_of, "spring")):
-        for workers in (1, 2):
-            load = os.getloadavg()[0]
-            start = time.perf_counter()
-            comparison = a.compare(measure, variants, seeds=seeds, progress=False, workers=workers,
-                                   base={**studies.STUDY_SIZE, "drive": drive})
-            wall = time.perf_counter() - start
-            rows[f"{measure.__name__}/workers={workers}"] = {
-                "wall_s": wall, "runs": 2 * len(seeds), "per_run_s": wall / (2 * len(seeds)),
-                "load_before": load, "random_mean_N": comparison.mean("random"),
-                "under_target": wall < TARGET_S}
-    return {"seeds": len(seeds), "target_s": TARGET_S, "rows": rows}
+    with tempfile.TemporaryDirectory() as tmp:
+        old_tree = _baseline_tree(Path(tmp))
+        for setup in ("free", "fixed"):
+            for what in ("critical", "compare"):
+                old, new = [], []
+                for _ in range(repeats):  # interleaved
+                    old.append(_measure(old_tree, setup, what, seeds, new=False))
+                    new.append(_measure(None, setup, what, seeds, new=True))
+                o = statistics.median(r["cpu_s"] for r in old)
+                n = statistics.median(r["cpu_s"] for r in new)
+                rows[f"{setup}/{what}"] = {"old_cpu_s": o, "new_cpu_s": n, "speedup": o / n,
+                                           "old_value_N": old[0]["value"], "new_value_N": new[0]["value"]}
+    return {"baseline": BASELINE, "seeds": seeds, "target": TARGET, "rows": rows}
+
+
+def headline(res):
+    out = []
+    for key, r in res["rows"].items():
+        setup, what = key.split("/")
+        label = ("critical force" if what == "critical" else f"{res['seeds']}-seed compare, critical") + \
+            f", {setup}: previous code / now (CPU)"
+        out.append((label, r["speedup"], f">= {res['target']}"))
+    return out
 
 
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--quick", action="store_true", help="3 seeds instead of 20")
+    p.add_argument("--quick", action="store_true", help="3 seeds, one repeat")
+    p.add_argument("--json", action="store_true")
     args = p.parse_args(argv)
     out = run(quick=args.quick)
-    print(f"{out['seeds']} seeds x 2 variants, study size {studies.STUDY_SIZE} (target < {TARGET_S:.0f} s)")
-    print(f"{'measure / workers':40s} {'wall s':>8s} {'s/run':>7s} {'load':>5s}  target")
-    for name, r in out["rows"].items():
-        print(f"{name:40s} {r['wall_s']:8.1f} {r['per_run_s']:7.2f} {r['load_before']:5.1f}  "
-              f"{'ok' if r['under_target'] else 'MISSED'}")
+    if args.json:
+        print(json.dumps(out))
+        return 0
+    for key, r in out["rows"].items():
+        print(f"{key:16s} previous {r['old_cpu_s']:7.2f} s, now {r['new_cpu_s']:7.2f} s CPU: "
+              f"{r['speedup']:5.2f}x (target >= {TARGET}); values {r['old_value_N'] * 1e3:.4g} / "
+              f"{r['new_value_N'] * 1e3:.4g} mN")
     return 0
 
 

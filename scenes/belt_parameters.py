@@ -6,7 +6,8 @@ The per-table scripts ``belt_stiffness.py`` ... call this with ``--only``.
 
 import numpy as np
 
-from asperity2d.belt import studies as S
+from asperity2d.studies import seed001 as S
+from asperity2d.studies.claims import claim
 
 DEC = lambda v: bool(np.all(np.diff(v) < 0))  # noqa: E731
 INC = lambda v: bool(np.all(np.diff(v) > 0))  # noqa: E731
@@ -46,10 +47,9 @@ def claims_for(which, labels, res):
         regime = [S.classify(r) for r in res]
         return [T("stick-slip starts to vanish at 0.4 m/s (Fig 12)", labels, stick, DEC,
                   "total stick time strictly decreasing with belt speed", "s"),
-                {"claim": "quasi-harmonic oscillation with constant amplitude and period at 0.7 m/s (Fig 13)",
-                 "thesis": "quasi-harmonic", "computed": regime[-1],
-                 "criterion": "regime classifier on the second half of the run",
-                 "verdict": S._v(regime[-1] == "quasi-harmonic")},
+                claim("quasi-harmonic oscillation with constant amplitude and period at 0.7 m/s (Fig 13)",
+                      regime[-1] == "quasi-harmonic", {"thesis": "quasi-harmonic", "computed": regime[-1]},
+                      "regime classifier on the second half of the run"),
                 T("amplitude increases with belt speed", labels, amp, INC, "mean amplitude strictly increasing", "m"),
                 T("number of oscillations increases with belt speed", labels, osc, INC, "count strictly increasing")]
     return [T("long stick interval at the outset when mu0 rises 0.2 -> 0.4 (Fig 14)", labels, first_len, INC,

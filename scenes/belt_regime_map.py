@@ -13,7 +13,7 @@ import numpy as np
 from asperity2d._io import atomic_write_text
 from asperity2d.belt.presets import preset
 from asperity2d.belt.regime import regime_map
-from asperity2d.belt.studies import RENDERS
+from asperity2d.studies.seed001 import RENDERS
 from asperity2d.friction import Stribeck
 
 

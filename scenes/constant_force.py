@@ -11,7 +11,7 @@ figure 10 analogue), a GIF of the run that passes, and summary.json.
 from __future__ import annotations
 
 import asperity2d as a
-from asperity2d import scripting
+from asperity2d.studies import scripting
 from asperity2d.critical import critical_force_bracket
 
 

@@ -25,7 +25,7 @@ from __future__ import annotations
 import numpy as np
 
 import asperity2d as a
-from asperity2d import scripting
+from asperity2d.studies import scripting
 from asperity2d.quasistatic import SEED_DRIVE_VELOCITY, plot_position_velocity
 
 K = 37_200.0  # N/m, seed 000 Table 1 (all springs)

@@ -17,13 +17,13 @@ from __future__ import annotations
 
 import math
 import os
-from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 
 import asperity2d as a
-from asperity2d import scripting
+from asperity2d.studies import scripting
 from asperity2d.compare import Comparison
+from asperity2d.sweep.executors import map_calls
 from asperity2d.quasistatic import SEED_DRIVE_VELOCITY
 
 TABLE1 = dict(base=1e-6, mass=2.88e-16, stiffness=37_200.0, flank_angle=45.0)
@@ -33,7 +33,7 @@ LOAD = 4e-3  # N: 1 mN per tip (see steel_table1.py for why not the package defa
 
 def measure_run(spacing: str, seed: int, quick: bool) -> dict:
     """Simulate one steel scene; stick-slip amplitude and static/kinetic gap (SI)."""
-    scene = a.make_scene(spacing=spacing, seed=seed, drive="spring", normal_load=LOAD,
+    scene = a.make_scene(spacing=spacing, seed=seed, drive="spring", normal_load=LOAD, track="free",
                          lower_count=8 if quick else 14, upper_count=4,
                          drive_velocity=SEED_DRIVE_VELOCITY * FACTOR, **TABLE1)
     result = a.simulate(scene)
@@ -63,11 +63,8 @@ def main(argv=None) -> int:
     out = scripting.out_dir(args, __file__)
     seeds = list(range(2 if args.quick else args.seeds))
     jobs = [(spacing, seed) for spacing in ("regular", "random") for seed in seeds]
-    if args.workers > 1:
-        with ProcessPoolExecutor(args.workers) as pool:
-            rows = list(pool.map(measure_run, *zip(*jobs), [args.quick] * len(jobs)))
-    else:
-        rows = [measure_run(s, seed, args.quick) for s, seed in jobs]
+    rows = map_calls(measure_run, [{"spacing": s, "seed": seed, "quick": args.quick} for s, seed in jobs],
+                     workers=args.workers)
     table = {spacing: [r for (s, _), r in zip(jobs, rows) if s == spacing] for spacing in ("regular", "random")}
     summary = {"seeds": len(seeds), "acceleration_factor": FACTOR, "normal_load_N": LOAD, "runs": table}
     from asperity2d.render.plots import plot_comparison
@@ -81,7 +78,9 @@ def main(argv=None) -> int:
         summary[quantity] = {"stats": stats,
                              "mann_whitney_p": comparison.mann_whitney("regular", "random")}
         if quantity in ("force_drop_N", "gap_over_load"):
-            plot_comparison(comparison, out / f"{quantity}.png")
+            plot_comparison(comparison, out / f"{quantity}.png", unit="mN" if quantity.endswith("_N") else "",
+                            label={"force_drop_N": "mean stick-slip force drop (mN)",
+                                   "gap_over_load": "static - kinetic friction gap / normal load"}[quantity])
         lines.append(f"{quantity}: regular {stats['regular']['mean']:.4g}, random {stats['random']['mean']:.4g} "
                      f"[{stats['random']['ci_low']:.4g}, {stats['random']['ci_high']:.4g}], "
                      f"Mann-Whitney p = {summary[quantity]['mann_whitney_p']:.3g}")

@@ -19,7 +19,11 @@ from __future__ import annotations
 import numpy as np
 
 import asperity2d as a
-from asperity2d import scripting, studies
+from asperity2d import stats
+from asperity2d.studies import scripting
+from asperity2d.studies.claims import claim
+from asperity2d.studies import seed000 as studies
+from asperity2d.sweep.executors import map_calls
 from asperity2d.render.plots import plot_positions
 
 FACTOR = 0.9
@@ -28,17 +32,15 @@ ALPHA = 0.01
 
 def analyse(setup: str, rows: list[dict]) -> tuple[dict, dict]:
     """Travel statistics and the figure-12 claim for one set-up."""
-    from scipy import stats
-
     damped = np.array([r["travel_damped_m"] for r in rows])
     undamped = np.array([r["travel_undamped_m"] for r in rows])
     diff = undamped - damped
-    p = float(stats.wilcoxon(diff, alternative="greater").pvalue) if np.any(diff) else 1.0
+    p = stats.wilcoxon(undamped, damped, alternative="greater")
     numbers = {
         "seeds": len(rows), "force_factor": FACTOR,
-        "critical_force_damped_N": studies.mean_ci([r["critical_force_N"] for r in rows]),
-        "travel_damped_m": studies.mean_ci(damped), "travel_undamped_m": studies.mean_ci(undamped),
-        "travel_difference_m": studies.mean_ci(diff),
+        "critical_force_damped_N": stats.describe([r["critical_force_N"] for r in rows]),
+        "travel_damped_m": stats.describe(damped), "travel_undamped_m": stats.describe(undamped),
+        "travel_difference_m": stats.describe(diff),
         "fraction_undamped_farther": float(np.mean(diff > 0)),
         "fraction_equal": float(np.mean(diff == 0)),
         "fraction_passed_damped": float(np.mean([r["passed_damped"] for r in rows])),
@@ -47,12 +49,12 @@ def analyse(setup: str, rows: list[dict]) -> tuple[dict, dict]:
         "per_seed": rows,
     }
     holds = numbers["fraction_undamped_farther"] > 0.5 and p < ALPHA
-    claim = studies.claim(
+    record = claim(
         "undamped lower asperities let the constant-force slider travel farther than damped "
         "ones (figure 12), at 0.9 x the damped critical force", holds, numbers,
         f"paired Wilcoxon signed-rank of undamped - damped travel, one-sided (greater), p = {p:.3g}; "
         f"holds if the fraction of seeds going farther undamped is > 0.5 and p < {ALPHA}", setup=setup)
-    return numbers, claim
+    return numbers, record
 
 
 def main(argv=None) -> int:
@@ -64,17 +66,17 @@ def main(argv=None) -> int:
     lines = []
     for setup in studies.SETUPS:
         base = {**size, **studies.SETUPS[setup], "spacing": "random", "factor": FACTOR}
-        rows = studies.run_many(studies.damping_travel_run,
+        rows = map_calls(studies.damping_travel_run,
                                 [dict(base, seed=s) for s in range(n_seeds)], workers=args.workers)
-        numbers, claim = analyse(setup, rows)
+        numbers, record = analyse(setup, rows)
         summary["results"][setup] = numbers
-        summary["claims"].append(claim)
+        summary["claims"].append(record)
         lines.append(
             f"[{setup}] travel damped {numbers['travel_damped_m']['mean'] * 1e6:.3g} um, undamped "
             f"{numbers['travel_undamped_m']['mean'] * 1e6:.3g} um; undamped farther in "
             f"{numbers['fraction_undamped_farther']:.0%} of {n_seeds} seeds (equal "
             f"{numbers['fraction_equal']:.0%}), p = {numbers['p_paired_wilcoxon']:.2g}: "
-            f"{claim['verdict'].upper()}")
+            f"{record['verdict'].upper()}")
     # Figure 12 analogue: seed 0 on the fixed track, both dampings at the same force.
     row = summary["results"]["fixed"]["per_seed"][0]
     base = {**size, **studies.SETUPS["fixed"], "spacing": "random", "seed": 0, "drive": "force",

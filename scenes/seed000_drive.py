@@ -22,7 +22,11 @@ from __future__ import annotations
 import math
 
 import asperity2d as a
-from asperity2d import scripting, studies
+from asperity2d import stats
+from asperity2d.studies import scripting
+from asperity2d.studies.claims import claim
+from asperity2d.studies import seed000 as studies
+from asperity2d.sweep.executors import map_calls
 from asperity2d.critical import critical_force_bracket
 from asperity2d.render.plots import plot_positions
 
@@ -72,14 +76,14 @@ def run_setup(setup: str, size: dict) -> tuple[dict, dict, list[dict]]:
                 and numbers["below"]["restarts_after_stick"] == 0
                 and numbers["above"]["restarts_after_stick"] == 0)
     claims = [
-        studies.claim(
+        claim(
             "with a constant force the slider either stops on a flank (and stays stopped) or runs "
             "away over the whole surface; no stick-slip", const_ok,
             {k: numbers[k] for k in ("critical_force_N", "bracket_N", "below", "above")},
             "direct: run status at 0.95 x / 1.05 x the critical force (stuck / passed) and no "
             "forward restart after a stop of at least the scene's slowest period (a stick); "
             "momentary stops (bounces) are counted separately", setup=setup),
-        studies.claim(
+        claim(
             "a spring drive (far end at constant speed) gives stick-slip: force builds while stuck "
             "and drops at each slip", stats["count"] >= 2 and stats["force_drop_mean"] > 0,
             numbers["spring"], "direct: >= 2 detected stick-slip events with positive force drops "

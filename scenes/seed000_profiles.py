@@ -32,7 +32,11 @@ from __future__ import annotations
 import numpy as np
 
 import asperity2d as a
-from asperity2d import scripting, studies
+from asperity2d import stats
+from asperity2d.studies import scripting
+from asperity2d.studies.claims import claim
+from asperity2d.studies import seed000 as studies
+from asperity2d.sweep.executors import map_calls
 from asperity2d.render.plots import plot_positions
 
 PROFILES = ("full", "half")
@@ -44,11 +48,11 @@ def measure(setup: str, *, size: dict, seeds: list[int], workers: int) -> dict:
     base = {**size, **studies.SETUPS[setup]}
     jobs = [dict(base, profile=prof, spacing=spacing, seed=seed)
             for prof in PROFILES for spacing, seed in [("regular", 0)] + [("random", s) for s in seeds]]
-    critical = studies.run_many(studies.critical_force_run, jobs, workers=workers)
-    passes = studies.run_many(studies.spring_pass_run, jobs, workers=workers)
+    critical = map_calls(studies.critical_force_run, jobs, workers=workers)
+    passes = map_calls(studies.spring_pass_run, jobs, workers=workers)
     rows = []
     for c, s in zip(critical, passes):
-        rows.append({**c, **s, "spring_force_N": s["breakaway_force_N" if setup == "free" else "peak_force_N"],
+        rows.append({**c, **s, "spring_force_N": s["first_breakaway_N" if setup == "free" else "peak_stick_force_N"],
                      "back_flank_share": s["back_flank_work_J"] / s["front_flank_work_J"]})
     n = len(seeds) + 1
     return {prof: {"regular": rows[i * n], "random": rows[i * n + 1:(i + 1) * n]}
@@ -70,8 +74,8 @@ def analyse(setup: str, data: dict) -> tuple[dict, list[dict]]:
         half = np.array([r[q] for r in data["half"]["random"]])
         numbers[q] = {"regular_full": full_r, "regular_half": half_r,
                       "regular_ratio_half_over_full": half_r / full_r if full_r else float("nan"),
-                      "random_full": studies.mean_ci(full), "random_half": studies.mean_ci(half),
-                      "random_ratio_half_over_full": studies.mean_ci(_ratio(half, full))}
+                      "random_full": stats.describe(full), "random_half": stats.describe(half),
+                      "random_ratio_half_over_full": stats.describe(_ratio(half, full))}
     for q, text in (("critical_force_N", "critical constant force"),
                     ("keep_moving_force_N", "force to keep the slider moving"),
                     ("mean_drive_force_N", "mean spring-drive force"),
@@ -79,7 +83,7 @@ def analyse(setup: str, data: dict) -> tuple[dict, list[dict]]:
         n = numbers[q]
         ratio = n["random_ratio_half_over_full"]
         holds = n["regular_ratio_half_over_full"] > 1.0 and ratio["ci_low"] > 1.0
-        claims.append(studies.claim(
+        claims.append(claim(
             f"half triangles need a larger {text} than full triangles (figures 9-10)", holds, n,
             f"regular: deterministic ratio {n['regular_ratio_half_over_full']:.3f}; random: 95 % "
             f"t-CI of the per-seed ratio half/full over {ratio['n']} seeds "
@@ -88,7 +92,7 @@ def analyse(setup: str, data: dict) -> tuple[dict, list[dict]]:
     holds = (share["regular_full"] > 0.0 and share["random_full"]["mean"] > 0.0
              and share["regular_half"] <= 0.1 * share["regular_full"]
              and share["random_half"]["mean"] <= 0.1 * share["random_full"]["mean"])
-    claims.append(studies.claim(
+    claims.append(claim(
         "with full triangles the lower spring's restoring force pushes the slider forward on the "
         "back flank once a tip is past an apex; half triangles lose contact (figure 9)", holds,
         {**share, "limiting_flank": "front flank climbing for both profiles: the slider stops "

@@ -22,7 +22,11 @@ from __future__ import annotations
 import numpy as np
 
 import asperity2d as a
-from asperity2d import scripting, studies
+from asperity2d import stats
+from asperity2d.studies import scripting
+from asperity2d.studies.claims import claim
+from asperity2d.studies import seed000 as studies
+from asperity2d.sweep.executors import map_calls
 
 STIFFNESSES = (1_176.0, 3_720.0, 11_760.0)  # N/m
 ALPHA = 0.01
@@ -66,23 +70,23 @@ def main(argv=None) -> int:
         base = {**size, **studies.SETUPS[setup]}
         jobs = [dict(base, drive_stiffness=k, spacing=sp, seed=s) for k in stiffnesses
                 for sp, s in [("regular", 0)] + [("random", s) for s in range(n_seeds)]]
-        rows = studies.run_many(studies.spring_pass_run, jobs, workers=args.workers)
+        rows = map_calls(studies.spring_pass_run, jobs, workers=args.workers)
         per_k, verdicts = {}, {}
         for i, k in enumerate(stiffnesses):
             block = rows[i * (n_seeds + 1):(i + 1) * (n_seeds + 1)]
             regular, randoms = block[0], block[1:]
-            stats = {m: studies.mean_ci([r[m] for r in randoms]) for m in METRICS}
-            per_k[str(k)] = {"regular": {m: regular[m] for m in METRICS}, "random": stats}
-            amp = studies.versus_reference([r["force_drop_mean_N"] for r in randoms],
+            described = {m: stats.describe([r[m] for r in randoms]) for m in METRICS}
+            per_k[str(k)] = {"regular": {m: regular[m] for m in METRICS}, "random": described}
+            amp = stats.versus_reference([r["force_drop_mean_N"] for r in randoms],
                                            regular["force_drop_mean_N"], alternative="less")
             # NaN (no complete slip: one slip carried the slider across) compares False.
             holds = bool(amp["mean"] < regular["force_drop_mean_N"] and amp["p_wilcoxon"] < ALPHA)
             verdicts[str(k)] = "holds" if holds else "does not hold"
             numbers = {"drive_stiffness_N_per_m": k, "force_drop": amp,
-                       "regular": per_k[str(k)]["regular"], "random": stats,
+                       "regular": per_k[str(k)]["regular"], "random": described,
                        "fraction_random_seeds_with_fewer_events":
                            float(np.mean([r["events"] < regular["events"] for r in randoms]))}
-            summary["claims"].append(studies.claim(
+            summary["claims"].append(claim(
                 f"random asperities reduce the stick-slip amplitude (mean force drop) relative to "
                 f"regular ones (abstract), drive stiffness {k:g} N/m", holds, numbers,
                 f"one-sample Wilcoxon signed-rank of random mean drops vs the regular value, "
@@ -90,10 +94,10 @@ def main(argv=None) -> int:
             lines.append(
                 f"[{setup}] k = {k:g} N/m: regular {regular['events']:.0f} events, drop "
                 f"{regular['force_drop_mean_N'] * 1e3:.3g} mN (std {regular['force_drop_std_N'] * 1e3:.3g}, "
-                f"CV {regular['regularity']:.2f}); random {stats['events']['mean']:.1f} events, drop "
+                f"CV {regular['regularity']:.2f}); random {described['events']['mean']:.1f} events, drop "
                 f"{amp['mean'] * 1e3:.3g} mN ({amp['relative_difference'] * 100:+.0f} %, d = "
                 f"{amp['effect_size_d']:.2f}, p = {amp['p_wilcoxon']:.2g}, std "
-                f"{stats['force_drop_std_N']['mean'] * 1e3:.3g}, CV {stats['regularity']['mean']:.2f}): "
+                f"{described['force_drop_std_N']['mean'] * 1e3:.3g}, CV {described['regularity']['mean']:.2f}): "
                 f"{verdicts[str(k)].upper()}")
         summary["results"][setup] = per_k
         summary["drive_dependent"][setup] = {"verdicts": verdicts,

@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import asperity2d as a
 from asperity2d import quasistatic as qs
-from asperity2d import scripting
+from asperity2d.studies import scripting
 
 TABLE1 = dict(base=1e-6, mass=2.88e-16, stiffness=37_200.0, flank_angle=45.0)
 FACTOR = 2000.0

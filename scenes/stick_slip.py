@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 
 import asperity2d as a
-from asperity2d import scripting
+from asperity2d.studies import scripting
 
 
 def build_scene(quick: bool = False, **overrides):

@@ -18,15 +18,15 @@ its mean period. Then:
 
 from __future__ import annotations
 
-from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 
 import asperity2d as a
 from asperity2d import fitting as ft
-from asperity2d import scripting
+from asperity2d.studies import scripting
 from asperity2d import tribometer as tb
-from asperity2d.compare import Comparison
+from asperity2d import stats
+from asperity2d.sweep.executors import map_calls
 
 STIFFNESS = 1000.0  # N/m, drive spring
 VELOCITY = 10.0  # m/s, drive speed (quasi-static: see scenes/tribometer.py)
@@ -90,11 +90,8 @@ def main(argv=None) -> int:
     count = 24 if args.quick else LOWER_COUNT
     seeds = list(range(args.seeds))
     jobs = [("regular", 0)] + [("random", s) for s in seeds]
-    if args.workers > 1:
-        with ProcessPoolExecutor(args.workers) as pool:
-            results = list(pool.map(run_surface, *zip(*jobs), [count] * len(jobs)))
-    else:
-        results = [run_surface(s, seed, count) for s, seed in jobs]
+    results = map_calls(run_surface, [{"spacing": s, "seed": seed, "lower_count": count} for s, seed in jobs],
+                        workers=args.workers)
     regular, randoms = results[0], results[1:]
     half = len(seeds) // 2
     calibration = ft.fit_stick_slip(randoms[:half])
@@ -105,8 +102,7 @@ def main(argv=None) -> int:
         row["regular_law_ratio"] = _describe(result, regular_law)["ratio"]
         table["random"].append(row)
     held = [r for r in table["random"] if r["held_out"]]
-    gaps = Comparison(values={"random": tuple(r["gap"] for r in table["random"])}, seeds=tuple(seeds),
-                      measure="mu_s - mu_k")
+    gaps = [r["gap"] for r in table["random"]]
     reg = table["regular"][0]
     summary = {
         "drive_stiffness_N_per_m": STIFFNESS, "drive_velocity_m_per_s": VELOCITY, "lower_count": count,
@@ -114,8 +110,8 @@ def main(argv=None) -> int:
         "held_out_ratio": {"mean": float(np.mean([r["ratio"] for r in held])),
                            "max_abs_error": float(np.max(np.abs([r["ratio"] - 1 for r in held])))},
         "regular_law_on_random_ratio": float(np.mean([r["regular_law_ratio"] for r in held])),
-        "gap": {"regular": reg["gap"], "random": gaps.summary()["random"],
-                "wilcoxon_p_vs_regular": gaps.one_sample("random", reg["gap"])},
+        "gap": {"regular": reg["gap"], "random": stats.describe(gaps),
+                "wilcoxon_p_vs_regular": stats.wilcoxon(gaps, reference=reg["gap"])},
     }
     _plot(table, out / "stick_slip_law.png")
     if not args.no_gif:

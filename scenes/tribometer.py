@@ -17,7 +17,7 @@ import numpy as np
 
 import asperity2d as a
 from asperity2d import fitting as ft
-from asperity2d import scripting
+from asperity2d.studies import scripting
 from asperity2d import tribometer as tb
 from asperity2d.errors import SimulationError
 

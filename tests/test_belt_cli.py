@@ -1,4 +1,4 @@
-"""The belt subcommand in-process, and the study scripts in their quick form."""
+"""The belt subcommand in-process (through the top-level ``main``), and the study scripts in their quick form."""
 
 import importlib.util
 import json
@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from asperity2d.belt import load
-from asperity2d.belt.cli import main
+from asperity2d.cli import main
 from asperity2d.belt.presets import names, preset
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -34,17 +34,17 @@ def test_toml_chain_and_outputs(tmp_path, capsys):
     assert (tmp_path / "r.svg").read_text().lstrip().startswith("<?xml")
 
 
-@pytest.mark.parametrize("argv", [
-    ["belt", "--preset", "nope"],
-    ["belt"],
-    ["belt", "missing.toml"],
-    ["belt", "--preset", "table2-3dof", "-o", "x.gif"],
-    ["belt", "--preset", "table2-3dof", "--t-end", "-1"],
+@pytest.mark.parametrize("argv, needle", [
+    (["belt", "--preset", "nope"], "`preset`"),
+    (["belt"], "`--preset`"),
+    (["belt", "missing.toml"], "`chain` does not exist"),
+    (["belt", "--preset", "table2-3dof", "-o", "x.gif"], "`--output` must end in"),
+    (["belt", "--preset", "table2-3dof", "--t-end", "-1"], "argument --t-end"),
 ])
-def test_bad_input_exits_2_with_one_line(argv, capsys):
+def test_bad_input_exits_2_with_one_line(argv, needle, capsys):
     assert main(argv) == 2
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and "Traceback" not in err and "`" in err
+    assert err.count("\n") == 1 and "Traceback" not in err and needle in err
 
 
 def test_bad_toml_key_is_named(tmp_path, capsys):

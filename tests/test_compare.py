@@ -73,45 +73,31 @@ def test_a_failing_run_names_its_variant_and_seed():
     assert f"variant 'random' with seed {seed}" in "".join(info.value.__notes__)
 
 
-def test_statistics_against_hand_computed_values():
-    c = Comparison(values={"a": (1.0, 2.0, 3.0, 4.0, 5.0), "b": (2.0, 4.0, 6.0, 8.0, math.nan)},
-                   seeds=(0, 1, 2, 3, 4))
-    assert c.mean("a") == 3.0
-    assert c.std("a") == pytest.approx(math.sqrt(2.5))
-    t975_4 = 2.7764451051977987  # Student t, 97.5 % quantile, 4 degrees of freedom (tables)
-    half = t975_4 * math.sqrt(2.5) / math.sqrt(5)
-    lo, hi = c.ci("a")
-    assert (lo, hi) == (pytest.approx(3.0 - half, rel=1e-12), pytest.approx(3.0 + half, rel=1e-12))
-    # NaN is ignored: b has four values 2, 4, 6, 8
-    assert c.mean("b") == 5.0 and c.std("b") == pytest.approx(math.sqrt(20 / 3))
-    s = c.summary()
-    assert s["b"]["n"] == 4 and s["b"]["median"] == 5.0 and s["a"]["ci_high"] == pytest.approx(hi)
-    single = Comparison(values={"one": (1.0,)}, seeds=(0,))
-    assert all(math.isnan(v) for v in single.ci("one"))
+def test_a_seed_independent_variant_is_measured_once():
+    calls = []
+
+    def measure(scene):
+        calls.append(scene.lower.spacing)
+        return float(len(calls))
+
+    c = compare(measure, {"regular": {"spacing": "regular"}, "random": {"spacing": "random"}}, range(5),
+                base={"lower_count": 4}, progress=False)
+    assert len(calls) == 1 + 5  # regular spacing does not depend on the seed
+    assert c.values["regular"] == (1.0,) * 5 and len(set(c.values["random"])) == 5
 
 
-def test_mann_whitney_matches_scipy_and_the_exact_count():
-    c = Comparison(values={"low": (1.0, 2.0, 3.0), "high": (4.0, 5.0, 6.0)}, seeds=(0, 1, 2))
-    # fully separated samples of 3 and 3: exact two-sided p = 2 / C(6, 3) = 0.1
-    assert c.mann_whitney("low", "high") == pytest.approx(0.1)
-    assert c.mann_whitney("low", "high", alternative="less") == pytest.approx(0.05)
-    rng = np.random.default_rng(0)
-    x, y = rng.normal(0, 1, 12), rng.normal(0.8, 1, 12)
-    c2 = Comparison(values={"x": tuple(x), "y": tuple(y)}, seeds=tuple(range(12)))
-    assert c2.mann_whitney("x", "y") == stats.mannwhitneyu(x, y).pvalue
-
-
-def test_one_sample_tests():
-    c = Comparison(values={"a": (1.1, 1.2, 1.3, 1.4, 1.5)}, seeds=(0, 1, 2, 3, 4))
-    # all five above the reference: exact signed-rank two-sided p = 2 / 2**5
-    assert c.one_sample("a", 1.0) == pytest.approx(2 / 32)
-    assert c.one_sample("a", 1.0, test="t") == pytest.approx(
-        stats.ttest_1samp([1.1, 1.2, 1.3, 1.4, 1.5], 1.0).pvalue)
-    assert c.one_sample("a", 1.3, test="t") == pytest.approx(1.0)
-    with pytest.raises(a.SceneError, match="`test`"):
-        c.one_sample("a", 1.0, test="z")
+def test_summary_and_versus_use_the_statistics_module():
+    c = Comparison(values={"ref": (2.0,) * 5, "a": (1.0, 1.2, 1.4, 1.6, 1.8), "b": (1.1, 1.3, 1.5, 1.7, 2.1)},
+                   seeds=tuple(range(5)))
+    assert c.summary()["a"] == a.stats.describe([1.0, 1.2, 1.4, 1.6, 1.8])
+    one = c.versus("a", "ref")  # a deterministic reference: one-sample test against the value
+    assert one["reference"] == 2.0 and one["below"] == 5 and one["relative_difference"] == pytest.approx(-0.3)
+    assert one["p_wilcoxon"] == pytest.approx(1 / 32)  # all five below: exact one-sided signed-rank p
+    paired = c.versus("a", "b")  # seeds pair up: differences a - b are all -0.1 or -0.3
+    assert paired["test"].startswith("paired") and paired["p_wilcoxon"] == pytest.approx(1 / 32)
+    assert paired["relative_difference"] == pytest.approx((1.4 - 1.54) / 1.54)
     with pytest.raises(a.SceneError, match="`name`"):
-        c.mean("missing")
+        c.versus("missing", "ref")
 
 
 def test_save_load_round_trip(tmp_path):
@@ -134,3 +120,10 @@ def test_bad_files_and_shapes(tmp_path):
         Comparison.load(tmp_path / "missing.json")
     with pytest.raises(a.SceneError, match="`values`"):
         Comparison(values={"a": (1.0, 2.0)}, seeds=(0,))
+
+
+def test_the_command_line_offers_exactly_the_standard_measures():
+    from asperity2d.cli import COMPARE_MEASURES
+    from asperity2d.compare import MEASURES
+
+    assert COMPARE_MEASURES == tuple(MEASURES)

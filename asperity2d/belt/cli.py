@@ -4,99 +4,86 @@
     asperity2d belt chain.toml -o run.png          # plot chosen by extension (.png/.svg/.pdf)
     asperity2d belt --preset table3-k20 -o run.npz # or save the result (.npz) / export (.csv)
 
-A chain file holds the keyword arguments of ``simulate_chain`` at top level
-(masses, springs, dampers, mu_s, mu_k, v_belt, x0, v0, t_end, g, normal_load,
-method, n_samples, rtol) and optionally a ``[friction]`` table
-(``law = "Stribeck"`` plus its parameters). Thin: parse, call, print.
+A chain file holds the keyword arguments of ``simulate_chain`` at top level:
+``masses``, ``springs``, ``dampers``, ``v_belt``, ``x0``, ``v0``, ``t_end`` and
+``mu_s`` are required (``mu_s`` unless a ``[friction]`` table gives the law,
+e.g. ``law = "Stribeck"`` plus its parameters); ``mu_k``, ``g``,
+``normal_load``, ``method``, ``n_samples``, ``rtol``, ``atol`` and
+``integrator`` are optional. The parser is built in :mod:`asperity2d.cli`;
+this module only runs the parsed command. Thin: parse, call, print.
 """
 
 from __future__ import annotations
 
-import argparse
 import json
-import sys
-import tomllib
 from pathlib import Path
 
-from ..errors import SceneError, SimulationError
+from .. import _io
+from ..errors import SceneError
 
-ALLOWED = {"masses", "springs", "dampers", "mu_s", "mu_k", "v_belt", "x0", "v0", "t_end", "g", "normal_load",
-           "method", "n_samples", "rtol", "atol", "integrator", "friction"}
-
-
-def add_parser(subparsers) -> argparse.ArgumentParser:
-    """Register ``belt`` on an ``argparse`` subparsers object; ``run`` is set as the handler."""
-    p = subparsers.add_parser("belt", help="masses on a moving belt (exact stick/slip)",
-                              description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("chain", nargs="?", type=Path, help="TOML chain file")
-    p.add_argument("--preset", help="named preset from the thesis tables (see --list-presets)")
-    p.add_argument("--list-presets", action="store_true", help="print the preset names and exit")
-    p.add_argument("--method", choices=("exact", "sign"), help="override the solver")
-    p.add_argument("--t-end", type=float, help="override the duration (s)")
-    p.add_argument("-o", "--output", type=Path, help="plot (.png/.svg/.pdf), result (.npz) or table (.csv)")
-    p.add_argument("--json", action="store_true", help="print one JSON summary object")
-    p.set_defaults(func=run)
-    return p
+REQUIRED = ("masses", "springs", "dampers", "v_belt", "x0", "v0", "t_end")
+OPTIONAL = ("mu_s", "mu_k", "g", "normal_load", "method", "n_samples", "rtol", "atol", "integrator",
+            "friction")
+ALLOWED = frozenset(REQUIRED + OPTIONAL)
+#: Settings that the solver uses without checking their type first.
+_TYPES = {"method": (str,), "integrator": (str,), "n_samples": (int,), "rtol": (int, float)}
+OUTPUTS = (".png", ".svg", ".pdf", ".npz", ".csv")
 
 
-def load_chain(path: Path) -> dict:
-    """Keyword arguments for ``simulate_chain`` from a TOML file."""
-    from ..friction import law_from_dict
-
-    try:
-        data = tomllib.loads(Path(path).read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise SceneError(f"`chain` file not found: {str(path)!r}") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise SceneError(f"`chain` is not valid TOML: {exc}") from None
+def load_chain(path) -> dict:
+    """Keyword arguments for ``simulate_chain`` from a TOML chain file (``SceneError`` if unusable)."""
+    data = _io.read_toml("chain", path)
     unknown = sorted(set(data) - ALLOWED)
     if unknown:
-        raise SceneError(f"`{unknown[0]}` is not a chain parameter (allowed: {', '.join(sorted(ALLOWED))})")
+        raise SceneError(f"`{unknown[0]}` in {str(path)!r} is not a chain parameter "
+                         f"(allowed: {', '.join(sorted(ALLOWED))})")
+    missing = [key for key in REQUIRED if key not in data]
+    if "mu_s" not in data and "friction" not in data:
+        missing.append("mu_s")
+    if missing:
+        raise SceneError(f"`{missing[0]}` is missing from chain file {str(path)!r} (required: "
+                         f"{', '.join(REQUIRED)}, and mu_s or a [friction] table)")
+    for key, types in _TYPES.items():
+        if key in data and (isinstance(data[key], bool) or not isinstance(data[key], types)):
+            raise SceneError(f"`{key}` in {str(path)!r} must be of type "
+                             f"{' or '.join(t.__name__ for t in types)}, got {data[key]!r}")
     if "friction" in data:
+        from ..friction import law_from_dict
+
+        if not isinstance(data["friction"], dict):
+            raise SceneError(f"`friction` in {str(path)!r} must be a [friction] table with a `law`, "
+                             f"got {data['friction']!r}")
         try:
             data["friction"] = law_from_dict(data["friction"])
-        except TypeError as exc:
+        except TypeError as exc:  # a parameter the law does not take
             raise SceneError(f"`friction` table is invalid: {exc}") from None
     return data
 
 
 def run(args) -> int:
-    """Run the subcommand; 0 on success, 2 on bad input (one line on stderr)."""
+    """Run the parsed ``belt`` command; bad input raises ``SceneError`` (one line, exit 2)."""
     from . import presets
 
-    try:
-        if args.list_presets:
-            for name in presets.names():
-                print(f"{name:20s} {presets.describe(name)}")
-            return 0
-        if (args.chain is None) == (args.preset is None):
-            raise SceneError("give either a `chain` TOML file or `--preset`")
-        kwargs = presets.preset(args.preset) if args.preset else load_chain(args.chain)
-        if args.method:
-            kwargs["method"] = args.method
-        if args.t_end is not None:
-            kwargs["t_end"] = args.t_end
-        out = args.output
-        if out is not None and out.suffix.lower() not in (".png", ".svg", ".pdf", ".npz", ".csv"):
-            raise SceneError(f"`--output` must end in .png, .svg, .pdf, .npz or .csv, got {str(out)!r}")
-        from .regime import classify
-        from .solver import simulate_chain
+    if args.list_presets:
+        for name in presets.names():
+            print(f"{name:20s} {presets.describe(name)}")
+        return 0
+    if (args.chain is None) == (args.preset is None):
+        raise SceneError("give either a `chain` TOML file or `--preset`")
+    out = args.output and _io.output_path("--output", args.output, suffixes=OUTPUTS)
+    kwargs = presets.preset(args.preset) if args.preset else load_chain(args.chain)
+    if args.method:
+        kwargs["method"] = args.method
+    if args.t_end is not None:
+        kwargs["t_end"] = args.t_end
+    from .regime import classify
+    from .solver import simulate_chain
 
-        result = simulate_chain(**kwargs)
-        written = None
-        if out is not None:
-            suffix = out.suffix.lower()
-            if suffix == ".npz":
-                written = result.save(out)
-            elif suffix == ".csv":
-                written = result.export(out)
-            else:
-                from .plots import plot_chain
-
-                written = plot_chain(result, out, title=args.preset or str(args.chain))
-    except (SceneError, SimulationError, TypeError) as exc:
-        print(f"asperity2d belt: error: {exc}", file=sys.stderr)
-        return 2
+    result = simulate_chain(**kwargs)
+    written = None
+    if out:
+        with _io.argument("--output"), _io.writing("--output", out):
+            written = _write(result, Path(out), title=args.preset or str(args.chain))
     summary = {
         "source": args.preset or str(args.chain),
         "n": result.n,
@@ -118,13 +105,12 @@ def run(args) -> int:
     return 0
 
 
-def main(argv=None) -> int:
-    """Stand-alone entry (``python -m asperity2d.belt.cli``) until the top-level CLI wires ``add_parser``."""
-    parser = argparse.ArgumentParser(prog="asperity2d")
-    add_parser(parser.add_subparsers(dest="command", required=True))
-    args = parser.parse_args(argv)
-    return args.func(args)
+def _write(result, out: Path, *, title: str) -> Path:
+    suffix = out.suffix.lower()
+    if suffix == ".npz":
+        return result.save(out)
+    if suffix == ".csv":
+        return result.export(out)
+    from .plots import plot_chain
 
-
-if __name__ == "__main__":
-    raise SystemExit(main())
+    return plot_chain(result, out, title=title)

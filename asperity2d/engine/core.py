@@ -62,17 +62,19 @@ class Engine:
 
     ``iterations`` is pymunk's solver iteration count. ``step_hooks`` are
     callables run after every step (after projection and the friction
-    switch), e.g. :class:`asperity2d.engine.energy.EnergyMeter`.
+    switch), e.g. :class:`asperity2d.engine.energy.EnergyMeter`. ``engaged``
+    starts a fixed-track slider over the surface, its track raised, for
+    :meth:`settle` to lower it into contact.
     """
 
-    def __init__(self, scene: Scene, dt: float, *, iterations: int = 20):
+    def __init__(self, scene: Scene, dt: float, *, iterations: int = 20, engaged: bool = False):
         self.scene = scene
         self.units = u = Units.for_scene(scene)
         check_scales(scene, u)  # before pymunk sees a value it cannot represent
         self.dt = dt  # s
         self.dt_internal = dt / u.time
         self.layout = build(scene, u, self.dt_internal, iterations=iterations,
-                            friction=scene.contact.mu_kinetic)
+                            friction=scene.contact.mu_kinetic, engaged=engaged)
         self.switch = StickSlip(scene, u, self.layout, self.dt_internal)
         self.drive = Drive(scene, u)
         self.load_internal = scene.slider.normal_load / u.force if scene.slider.track == "free" else 0.0
@@ -212,7 +214,7 @@ class Engine:
             np.abs(off, out=off)
             drift = float(np.maximum.reduce(off))
         if layout.fixed_slider:
-            drift = max(drift, abs(self._slider[1] - layout.slider_y0))
+            drift = max(drift, abs(self._slider[1] - layout.slider_y_track))
         if drift > self.max_solver_drift:
             self.max_solver_drift = drift
         if drift > TRACK_TOLERANCE:
@@ -223,7 +225,7 @@ class Engine:
                 rows[layout.lower_rows, 0] = layout.lower_x0
                 rows[layout.lower_rows, 2] = 0.0
             if layout.fixed_slider:
-                rows[layout.slider_row, 1] = layout.slider_y0
+                rows[layout.slider_row, 1] = layout.slider_y_track
                 rows[layout.slider_row, 3] = 0.0
             batch.set_space_bodies(layout.space, BODY_FIELDS, self._body_buf)
             self._slider = rows[layout.slider_row].tolist()
@@ -233,6 +235,8 @@ class Engine:
         """Bring the scene to rest before t = 0, in phases; return the time spent (s).
 
         * a free slider comes down onto the surface under its load, its x held;
+          a fixed-track slider started over the surface (``engaged``) has its
+          track lowered into place over one slowest period, its x held;
         * with a spring drive, x is then released so the slider finds its
           equilibrium against the spring's preload;
         * with ``push`` (N), x is released and the slider pushed along +x with
@@ -251,7 +255,9 @@ class Engine:
         layout, d, dt = self.layout, self.drive, self.dt_internal
         space, body = layout.space, layout.slider
         free = self.scene.slider.track == "free"
-        phases = (["drop"] if free else []) + (["spring"] if d.spring else []) + (["push"] if push else [])
+        lowering = layout.fixed_slider and layout.slider_y_track != layout.slider_y0
+        phases = (["drop"] if free or lowering else []) + (["spring"] if d.spring else []) + \
+            (["push"] if push else [])
         if not phases:
             return 0.0
         period = max(1, int(self.scene.slowest_period() / self.dt))
@@ -276,6 +282,8 @@ class Engine:
             calm, done = 0, 0
             while done < share and calm < 4:
                 n = min(window, share - done)
+                if phase == "drop" and lowering:
+                    self._lower_track(min(1.0, (done + n) / period))
                 for _ in range(n):
                     fx = d.k * (d.origin - self._slider[0]) if d.spring else 0.0
                     body.force = (fx + (push_i if phase == "push" else 0.0), -load)
@@ -297,6 +305,14 @@ class Engine:
             self._arbiters = read_arbiters(space, self._arb_buf, layout)
             self.switch.update(self._arbiters, rows, layout)
         return spent * self.dt
+
+    def _lower_track(self, fraction: float) -> None:
+        """Move the fixed track ``fraction`` of the way from its start to its working height."""
+        layout = self.layout
+        y = layout.slider_y_start + fraction * (layout.slider_y0 - layout.slider_y_start)
+        layout.slider_groove.groove_a = (-1e6, y)
+        layout.slider_groove.groove_b = (1e6, y)
+        layout.slider_y_track = y
 
     def copy(self) -> "Engine":
         """An independent engine continuing from this one's state (hooks are not copied).

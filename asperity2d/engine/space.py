@@ -73,6 +73,9 @@ class Layout:
     slider_y0: float
     tracked: bool  # lower asperities on vertical grooves (False: MATLAB lattice)
     fixed_slider: bool
+    slider_groove: pymunk.GrooveJoint | None = None  # the fixed track
+    slider_y_start: float = 0.0  # where the slider starts (above slider_y0 when lowered onto the surface)
+    slider_y_track: float = 0.0  # the fixed track's height now (projection target)
     slider_row: int = 0
     lower_rows: slice | np.ndarray | None = None
     lower_index: dict | None = None
@@ -109,7 +112,12 @@ class Layout:
         body_at = {id(b): k for k, b in enumerate(self.space.bodies)}
         shape_at = {id(s): k for k, s in enumerate(self.space.shapes)}
         bodies, shapes = list(space.bodies), list(space.shapes)
-        out = Layout(space=space, slider=bodies[body_at[id(self.slider)]],
+        groove = None
+        if self.slider_groove is not None:
+            at = [id(c) for c in self.space.constraints].index(id(self.slider_groove))
+            groove = list(space.constraints)[at]
+        out = Layout(space=space, slider=bodies[body_at[id(self.slider)]], slider_groove=groove,
+                     slider_y_start=self.slider_y_start, slider_y_track=self.slider_y_track,
                      lower_bodies=[bodies[body_at[id(b)]] for b in self.lower_bodies],
                      lower_shapes=[shapes[shape_at[id(s)]] for s in self.lower_shapes],
                      lower_x0=self.lower_x0, lower_apex_x=self.lower_apex_x,
@@ -119,11 +127,15 @@ class Layout:
         return out
 
 
-def build(scene, units: Units, dt: float, *, iterations: int, friction: float) -> Layout:
+def build(scene, units: Units, dt: float, *, iterations: int, friction: float,
+          engaged: bool = False) -> Layout:
     """Build ``scene`` in a new space stepped with ``dt`` (internal units).
 
     ``friction`` is the lower shapes' initial coefficient (the slider's shapes
-    have 1.0, so a contact's coefficient is the lower shape's).
+    have 1.0, so a contact's coefficient is the lower shape's). A fixed-track
+    slider starts before the surface, or with ``engaged`` over it (its rear tip
+    above the first lower valley, like a free slider) with its track raised
+    clear of the tips, to be lowered onto the surface by ``Engine.settle``.
     """
     space = pymunk.Space(threaded=False)  # threaded stepping is not reproducible
     space.iterations = iterations
@@ -132,12 +144,14 @@ def build(scene, units: Units, dt: float, *, iterations: int, friction: float) -
     space.collision_bias = per_step_bias(CORRECTION_PER_STEP, dt)
     bias = per_step_bias(CORRECTION_PER_STEP, dt)
     lower = _build_lower(space, scene, units, bias, friction)
-    slider = _build_slider(space, scene, units, bias, lower)
+    slider = _build_slider(space, scene, units, bias, lower, engaged)
     _build_floor(space, scene, units, lower["x0"], friction)
     layout = Layout(space=space, slider=slider["body"], lower_bodies=lower["bodies"],
                     lower_shapes=lower["shapes"], lower_x0=lower["x0"], lower_apex_x=lower["apex"],
                     lower_height=lower["height"], upper_apex=slider["apex"], slider_y0=slider["y0"],
-                    tracked=not scene.lower.is_lattice, fixed_slider=scene.slider.track == "fixed")
+                    tracked=not scene.lower.is_lattice, fixed_slider=scene.slider.track == "fixed",
+                    slider_groove=slider["groove"], slider_y_start=slider["y_start"],
+                    slider_y_track=slider["y_start"])
     layout.index()
     return layout
 
@@ -197,19 +211,20 @@ def _build_lattice(space, lower, u: Units, x, bodies) -> None:
         space.add(link)
 
 
-def _build_slider(space, scene, u: Units, bias: float, lower: dict) -> dict:
+def _build_slider(space, scene, u: Units, bias: float, lower: dict, engaged: bool) -> dict:
     s = scene.slider
     h_up = s.depth / u.length  # the deepest tip below the slider's datum
     apex = s.tips() / u.length  # relative to the slider's reference point, the rear tip
     body = pymunk.Body(s.mass / u.mass, math.inf)
     x_lower, apex_lower = lower["x0"], lower["apex"]
-    if s.track == "fixed":
+    clear = lower["height"] + h_up + 1e-3  # the tips just clear of the lower tips
+    if s.track == "fixed" and not engaged:
         # Start left of the surface: the front asperity's base ends a tenth
         # of a base before the first lower asperity's base begins. The deepest
         # upper tip runs `interference` below the highest lower tip.
         right = float(np.ravel(s.runs()[1])[-1]) / u.length
         x0 = x_lower[0] - lower["left"] - right - apex[-1] - 0.1
-        y0 = lower["height"] - s.interference / u.length + h_up
+        y0 = y_start = lower["height"] - s.interference / u.length + h_up
     else:
         # Start at the beginning of the surface, just clear of the tips: the
         # first upper tip over the first valley (or, with a single lower
@@ -220,8 +235,10 @@ def _build_slider(space, scene, u: Units, bias: float, lower: dict) -> dict:
             flat = scene.lower.profile.kind == "flat"
             x_tip = apex_lower[0] - (0.0 if flat else 0.5 * lower["left"])
         x0 = x_tip - apex[0]
-        y0 = lower["height"] + h_up + 1e-3
-    body.position = (x0, y0)
+        y0 = y_start = clear
+        if s.track == "fixed":  # the track's height; the slider starts above it
+            y0 = lower["height"] - s.interference / u.length + h_up
+    body.position = (x0, y_start)
     flt = pymunk.ShapeFilter(categories=SLIDER, mask=LOWER | FLOOR)
     shapes = []
     for c, outline in zip(apex, s.outlines()):
@@ -229,11 +246,12 @@ def _build_slider(space, scene, u: Units, bias: float, lower: dict) -> dict:
         shape.filter, shape.collision_type, shape.friction = flt, SLIDER, 1.0
         shapes.append(shape)
     space.add(body, *shapes)
+    groove = None
     if s.track == "fixed":
-        groove = pymunk.GrooveJoint(space.static_body, body, (-1e6, y0), (1e6, y0), (0.0, 0.0))
+        groove = pymunk.GrooveJoint(space.static_body, body, (-1e6, y_start), (1e6, y_start), (0.0, 0.0))
         groove.error_bias = bias
         space.add(groove)
-    return {"body": body, "apex": apex, "y0": y0}
+    return {"body": body, "apex": apex, "y0": y0, "y_start": y_start, "groove": groove}
 
 
 def _build_floor(space, scene, u: Units, x_lower, friction: float) -> None:

@@ -129,34 +129,47 @@ def plot_force_displacement(result, path: str | os.PathLike, *, dpi: int = 120) 
     return _save(fig, path, dpi)
 
 
+#: Units plot_comparison can show values (given in SI) in, with their factors.
+UNITS = {"mN": 1e3, "N": 1.0, "µm": 1e6, "": 1.0}
+
+
 def plot_comparison(comparison, path: str | os.PathLike, *, reference: float | None = None,
-                    label: str | None = None, dpi: int = 120) -> Path:
+                    label: str | None = None, unit: str = "mN", dpi: int = 120) -> Path:
     """Strip and box plot of each variant's values, with the mean and its 95 % CI.
 
-    ``comparison`` is a :class:`~asperity2d.compare.Comparison`;
-    ``reference`` draws a horizontal line (e.g. the flank-law force);
-    ``label`` names the y axis (default: the measure's name).
+    ``comparison`` is a :class:`~asperity2d.compare.Comparison` of SI values
+    (forces in N), shown in ``unit`` (a key of :data:`UNITS`; ``""`` for a
+    dimensionless quantity); ``reference`` (SI) draws a horizontal line (e.g.
+    the flank-law force); ``label`` names the y axis (default: the measure's
+    plain-language name and the unit).
     """
+    from .. import stats
+    from ..compare import measure_label
+
     names = list(comparison.values)
     if not names:
         raise SceneError("`comparison` has no variants to plot")
+    if unit not in UNITS:
+        raise SceneError(f"`unit` must be one of {', '.join(map(repr, UNITS))}, got {unit!r}")
+    scale = UNITS[unit]
     fig, (ax,) = _figure(1, width=max(4.0, 1.3 * len(names) + 2.0), height=3.6)
-    data = [comparison.finite(name) for name in names]
+    data = [comparison.finite(name) * scale for name in names]
     ax.boxplot(data, positions=range(len(names)), widths=0.5, showfliers=False,
                medianprops={"color": "0.3"})
     rng = np.random.default_rng(0)  # jitter only: fixed so the figure is reproducible
     for i, (name, values) in enumerate(zip(names, data)):
         ax.plot(i + rng.uniform(-0.15, 0.15, len(values)), values, "o", ms=3.5, alpha=0.6,
                 color=f"C{i % 10}")
-        if len(values) >= 2:
-            lo, hi = comparison.ci(name)
-            ax.errorbar([i + 0.32], [comparison.mean(name)], yerr=[[comparison.mean(name) - lo],
-                        [hi - comparison.mean(name)]], fmt="D", color="k", ms=4, capsize=3)
+        d = stats.describe(values)
+        if d["n"] >= 2:
+            ax.errorbar([i + 0.32], [d["mean"]], yerr=[[d["mean"] - d["ci_low"]], [d["ci_high"] - d["mean"]]],
+                        fmt="D", color="k", ms=4, capsize=3)
     if reference is not None:
-        ax.axhline(reference, color="red", lw=0.8, ls="--", label=f"reference {reference:.4g}")
+        ax.axhline(reference * scale, color="red", lw=0.8, ls="--",
+                   label=f"reference {reference * scale:.4g} {unit}".rstrip())
         ax.legend(loc="best", fontsize=8)
     ax.set_xticks(range(len(names)), names, rotation=20 if len(names) > 4 else 0)
-    ax.set_ylabel(label or comparison.measure)
+    ax.set_ylabel(label or measure_label(comparison.measure) + (f" ({unit})" if unit else ""))
     ax.set_title(f"{len(comparison.seeds)} seeds per variant; diamonds: mean, 95 % CI",
                  fontsize=9)
     return _save(fig, path, dpi)

@@ -9,14 +9,13 @@ grid point and a figure.
 """
 
 from .executors import DaskExecutor, LocalExecutor, execute_run, make_executor
-from .report import Comparison, Summary, VariantStats, plot_summary, summarize
+from .report import Summary, VariantStats, VariantTest, plot_summary, summarize
 from .runner import SweepSummary, run_study
 from .record import CorruptRunWarning, RunRecord
 from .store import ResultStore, StoreStatus
 from .study import RunSpec, Study, load_study, run_key
 
 __all__ = [
-    "Comparison",
     "CorruptRunWarning",
     "DaskExecutor",
     "LocalExecutor",
@@ -28,6 +27,7 @@ __all__ = [
     "Summary",
     "SweepSummary",
     "VariantStats",
+    "VariantTest",
     "execute_run",
     "load_study",
     "make_executor",

@@ -285,6 +285,25 @@ def make_executor(
     return DaskExecutor(scheduler=scheduler, workers=workers)
 
 
+def _call(fn: Callable, kwargs: Mapping[str, Any]) -> Any:
+    return fn(**kwargs)
+
+
+def map_calls(fn: Callable, kwargs_list: Sequence[Mapping[str, Any]], *, workers: int | None = 1,
+              scheduler: str | None = None) -> list:
+    """``[fn(**kw) for kw in kwargs_list]`` on an executor (in-process, local processes or
+    Dask), returned in order. ``fn`` must be a module-level function to run in worker
+    processes; an exception in a run is raised here."""
+    jobs = [(fn, dict(kw)) for kw in kwargs_list]
+    out: list = [None] * len(jobs)
+    with make_executor(workers=workers, scheduler=scheduler) as executor:
+        for index, value in executor.map_unordered(_call, jobs):
+            if isinstance(executor, DaskExecutor) and isinstance(value, dict) and value.get("status") == "failed":
+                raise RuntimeError(f"{value.get('error')} (call {index} of {fn.__name__})")
+            out[index] = value
+    return out
+
+
 def jobs_for(run: str, specs: Iterable, quantities: Sequence[str] | None) -> list[tuple]:
     """Argument tuples of :func:`execute_run` for run specs."""
     q = None if quantities is None else tuple(quantities)

@@ -1,13 +1,13 @@
 """Summaries of a finished (or partly finished) study: statistics, tests, a figure.
 
 For every grid point (*variant*) and quantity: the number of finite values,
-mean, sample standard deviation and the two-sided confidence interval of the
-mean from the t-distribution, ``mean ± t(1-α/2, n-1)·s/√n``.
+mean, sample standard deviation and the two-sided t confidence interval of the
+mean (:func:`asperity2d.stats.describe`).
 
 Comparisons: for every grid parameter with exactly two values (regular vs
 random spacing, full vs half profile, ...), each pair of variants that differ
 only in that parameter is compared with the two-sided Mann–Whitney U test
-(``scipy.stats.mannwhitneyu``). No multiple-comparison correction is applied.
+(:func:`asperity2d.stats.mann_whitney`). No multiple-comparison correction is applied.
 """
 
 from __future__ import annotations
@@ -19,6 +19,7 @@ from typing import Any
 
 import numpy as np
 
+from .. import stats
 from .._io import atomic_write
 from ..errors import SceneError
 from .store import ResultStore, quantity_names
@@ -41,7 +42,7 @@ class VariantStats:
 
 
 @dataclass(frozen=True)
-class Comparison:
+class VariantTest:
     """Mann–Whitney U test of one quantity between two variants differing in ``parameter``."""
 
     parameter: str
@@ -50,7 +51,6 @@ class Comparison:
     quantity: str
     n_a: int
     n_b: int
-    u: float
     p_value: float
 
 
@@ -64,7 +64,7 @@ class Summary:
     variants: tuple[Variant, ...]
     counts: tuple[tuple[int, int], ...]
     stats: tuple[VariantStats, ...]
-    comparisons: tuple[Comparison, ...]
+    comparisons: tuple[VariantTest, ...]
 
     def stat(self, variant: Variant | dict, quantity: str) -> VariantStats:
         """The :class:`VariantStats` of ``quantity`` at ``variant``."""
@@ -92,30 +92,13 @@ class Summary:
             variants.append(entry)
         comparisons = [
             {"parameter": c.parameter, "a": dict(c.variant_a), "b": dict(c.variant_b),
-             "quantity": c.quantity, "n_a": c.n_a, "n_b": c.n_b, "u": num(c.u),
+             "quantity": c.quantity, "n_a": c.n_a, "n_b": c.n_b,
              "p_value": num(c.p_value), "test": "mann-whitney-u two-sided"}
             for c in self.comparisons
         ]
         return {"study": self.study, "confidence": self.confidence,
                 "quantities": list(self.quantities), "variants": variants,
                 "comparisons": comparisons}
-
-
-def mean_ci(values, *, confidence: float = 0.95) -> tuple[int, float, float, float, float]:
-    """``(n, mean, std, ci_low, ci_high)`` of the finite values (t-distribution CI)."""
-    x = np.asarray(values, dtype=float)
-    x = x[np.isfinite(x)]
-    n = len(x)
-    if n == 0:
-        return 0, math.nan, math.nan, math.nan, math.nan
-    mean = float(x.mean())
-    if n == 1:
-        return 1, mean, math.nan, math.nan, math.nan
-    std = float(x.std(ddof=1))
-    from scipy import stats  # imported here: scipy.stats costs ~1 s, runs never need it
-
-    half = float(stats.t.ppf(0.5 + confidence / 2, n - 1)) * std / math.sqrt(n)
-    return n, mean, std, mean - half, mean + half
 
 
 def summarize(store: str | Path | ResultStore, *, confidence: float = 0.95) -> Summary:
@@ -138,9 +121,8 @@ def summarize(store: str | Path | ResultStore, *, confidence: float = 0.95) -> S
         for q in names:
             x = np.array([r.quantities.get(q, np.nan) for r in done], dtype=float)
             values[variant, q] = x[np.isfinite(x)]
-            all_stats.append(VariantStats(variant, q, *mean_ci(x, confidence=confidence)))
-    from scipy import stats
-
+            d = stats.describe(x, level=confidence)
+            all_stats.append(VariantStats(variant, q, d["n"], d["mean"], d["std"], d["ci_low"], d["ci_high"]))
     comparisons = []
     for param, options in study.grid.items():
         if len(options) != 2:
@@ -151,12 +133,8 @@ def summarize(store: str | Path | ResultStore, *, confidence: float = 0.95) -> S
             other = tuple((k, options[1] if k == param else v) for k, v in variant)
             for q in names:
                 a, b = values[variant, q], values[other, q]
-                if len(a) and len(b):
-                    res = stats.mannwhitneyu(a, b, alternative="two-sided")
-                    u, p = float(res.statistic), float(res.pvalue)
-                else:
-                    u = p = math.nan
-                comparisons.append(Comparison(param, variant, other, q, len(a), len(b), u, p))
+                comparisons.append(VariantTest(param, variant, other, q, len(a), len(b),
+                                               stats.mann_whitney(a, b)))
     return Summary(study.name, confidence, names, tuple(by_variant), tuple(counts),
                    tuple(all_stats), tuple(comparisons))
 

@@ -21,34 +21,27 @@ import csv
 import io
 import json
 import platform
-import sys
 import warnings
 from dataclasses import dataclass
-from importlib import metadata
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from .._io import atomic_write_text
+from .._version import distribution_version
 from ..errors import SceneError
 from .record import (FORMAT, CorruptRunError, CorruptRunWarning, RunRecord, decode_run,
                      encode_run, now)
 from .study import KEY_LENGTH, Study
 
-def _version(dist: str) -> str:
-    try:
-        return metadata.version(dist)
-    except metadata.PackageNotFoundError:  # e.g. a source checkout that is not installed
-        return str(getattr(sys.modules.get(dist), "__version__", "unknown"))
-
 
 def versions() -> dict[str, str]:
     """Versions recorded in the manifest: asperity2d, numpy, pymunk, Python."""
     return {
-        "asperity2d": _version("asperity2d"),
+        "asperity2d": distribution_version("asperity2d"),
         "numpy": np.__version__,
-        "pymunk": _version("pymunk"),
+        "pymunk": distribution_version("pymunk"),
         "python": platform.python_version(),
     }
 
@@ -96,6 +89,8 @@ class ResultStore:
             raise SceneError(f"`store` manifest is unreadable: {str(self.manifest_path)!r} ({exc})") from None
         if not isinstance(manifest, dict) or manifest.get("format") != FORMAT:
             raise SceneError(f"`store` manifest is not format {FORMAT}: {str(self.manifest_path)!r}")
+        if not isinstance(manifest.get("study"), dict) or not isinstance(manifest.get("sessions", []), list):
+            raise SceneError(f"`store` manifest has no valid study record: {str(self.manifest_path)!r}")
         return manifest
 
     def study(self) -> Study:

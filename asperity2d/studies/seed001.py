@@ -1,9 +1,10 @@
-"""Helpers for the seed-001 study scripts in ``scenes/belt_*.py``.
+"""Seed 001's studies: masses on a moving belt (the ``scenes/belt_*.py`` scripts).
 
-Every quantitative statement of the thesis becomes a record
-``{"claim", "thesis", "computed", "criterion", "verdict"}`` with the verdict
-"holds" or "does not hold" judged by a criterion fixed before looking at the
-numbers (default: within ``REL_TOL`` = 5 % for a number read off a figure).
+Every quantitative statement of the thesis becomes a claim record
+(:mod:`asperity2d.studies.claims`) whose numbers hold the thesis' value and the
+computed one, judged by a criterion fixed before looking at the numbers
+(default: within ``REL_TOL`` = 5 % for a number read off a figure).
+:func:`belt_chain_run` is the sweep run function of ``scenes/belt_study.toml``.
 """
 
 from __future__ import annotations
@@ -15,9 +16,10 @@ from pathlib import Path
 import numpy as np
 
 from .._io import atomic_write_text
-from .presets import preset
-from .regime import classify
-from .solver import simulate_chain
+from ..belt import presets, regime, simulate_chain
+from ..belt.presets import preset
+from ..belt.regime import classify
+from .claims import claim
 
 REL_TOL = 0.05
 RENDERS = Path(__file__).resolve().parents[2] / "renders" / "belt"
@@ -29,20 +31,18 @@ def run(name: str, *, quick: bool = False, **overrides):
 
 
 def number_claim(text, thesis_value, computed, unit="s", rel_tol=REL_TOL):
+    """A number read off the thesis against the computed one."""
     ok = abs(computed - thesis_value) <= rel_tol * abs(thesis_value)
-    return {"claim": text, "thesis": f"{thesis_value} {unit}", "computed": f"{computed:.6g} {unit}",
-            "criterion": f"|computed - thesis| <= {rel_tol:.0%} of thesis", "verdict": _v(ok)}
+    return claim(text, ok, numbers={"thesis": f"{thesis_value} {unit}", "computed": f"{computed:.6g} {unit}"},
+                 test=f"|computed - thesis| <= {rel_tol:.0%} of thesis")
 
 
 def trend_claim(text, labels, values, expect, criterion, unit=""):
-    """``expect(values) -> bool``; values listed against labels."""
+    """A stated trend: ``expect(values) -> bool``; values listed against labels."""
     ok = bool(expect(np.asarray(values, dtype=float)))
-    return {"claim": text, "thesis": "trend", "computed": {str(l): _r(v) for l, v in zip(labels, values)},
-            "unit": unit, "criterion": criterion, "verdict": _v(ok)}
-
-
-def _v(ok):
-    return "holds" if ok else "does not hold"
+    return claim(text, ok, numbers={"thesis": "trend", "unit": unit,
+                                    "computed": {str(lab): _r(v) for lab, v in zip(labels, values)}},
+                 test=criterion)
 
 
 def _r(v):
@@ -107,14 +107,15 @@ def cli(study, name: str, argv=None) -> int:
     summary["solver"] = "asperity2d.belt exact event-driven (closed-form phases, brentq switches)"
     summary["verdict_rule"] = f"numbers read off the thesis' figures hold within {REL_TOL:.0%}; trends as stated"
     if not args.quick:
-        from .plots import plot_chain
+        from ..belt.plots import plot_chain
 
         for label, result in results.items():
             path = plot_chain(result, args.out / f"{name}_{label}.png", title=f"{name}: {label}")
             summary.setdefault("plots", []).append(str(path))
     atomic_write_text(args.out / f"{name}.json", json.dumps(summary, indent=2, default=_json_default) + "\n")
     for c in summary.get("claims", []):
-        print(f"[{c['verdict']:>13}] {c['claim']}: thesis {c['thesis']}, computed {c['computed']}")
+        print(f"[{c['verdict']:>13}] {c['claim']}: thesis {c['numbers']['thesis']}, "
+              f"computed {c['numbers']['computed']}")
     print(f"wrote {args.out / (name + '.json')}")
     return 0
 
@@ -127,3 +128,24 @@ def _json_default(obj):
     if isinstance(obj, np.ndarray):
         return obj.tolist()
     return str(obj)
+
+
+def belt_chain_run(*, seed: int = 0, preset_name: str = "table2-3dof", ic_spread: float = 0.0,
+                   **overrides) -> dict:
+    """Sweep run for a seed-001 belt chain: regime and stick-slip measures.
+
+    ``preset_name`` is a :mod:`asperity2d.belt.presets` name; ``overrides``
+    replace its ``simulate_chain`` arguments (``v_belt``, ``mu_s``, ...). With
+    ``ic_spread`` > 0 the initial displacements get seeded uniform noise of
+    that half-width (m): a Monte-Carlo over initial conditions.
+    """
+    kwargs = presets.preset(preset_name, **overrides)
+    if ic_spread > 0:
+        rng = np.random.default_rng(seed)
+        x0 = np.asarray(kwargs["x0"], dtype=float)
+        kwargs["x0"] = list(x0 + rng.uniform(-ic_spread, ic_spread, len(x0)))
+    result = simulate_chain(**kwargs)
+    label = regime.classify(result)
+    return {"stick_slip": float(label == "stick-slip"), "quasi_harmonic": float(label == "quasi-harmonic"),
+            "total_stick_s": float(sum(total_stick(result))), "amplitude_m": float(max(amplitude(result))),
+            "energy_balance_error": float(result.energy_balance_error())}

@@ -2,7 +2,10 @@
 
 Every script has ``main(argv=None) -> int`` and accepts ``--quick`` (small
 settings, used by the tests), ``--json`` (print one JSON object), ``-o DIR``
-(where outputs go, default ``renders/<script name>``) and ``--no-gif``.
+(where outputs go, default ``renders/<script name>``) and ``--no-gif``. Its
+parser is the command line's (:class:`asperity2d.cli.Parser`): a bad argument
+is one line on stderr and exit status 2, whether the script runs as
+``python scenes/X.py`` or as ``asperity2d run scenes/X.py``.
 """
 
 from __future__ import annotations
@@ -13,11 +16,14 @@ import math
 import os
 from pathlib import Path
 
-from ._io import atomic_write_text
+from .._io import atomic_write_text, output_dir, writing
 
 
 def parser(description: str) -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(description=description)
+    """The common arguments of a scene script; ``p.error(message)`` reports a bad value."""
+    from ..cli import Parser
+
+    p = Parser(description=description)
     p.add_argument("--quick", action="store_true", help="small, fast settings (tests, smoke runs)")
     p.add_argument("--json", action="store_true", help="print one JSON summary object")
     p.add_argument("-o", "--out-dir", help="output directory (default renders/<script>)")
@@ -47,13 +53,15 @@ def study_args(description: str, argv, *, default_seeds: int, minimum_seeds: int
 
 
 def out_dir(args, script_file: str) -> Path:
-    """The output directory for a script (created)."""
+    """The output directory for a script (created); ``SceneError`` naming ``-o`` if it cannot be."""
     if args.out_dir:
         path = Path(args.out_dir)
     else:
         root = Path(os.environ.get("ASPERITY2D_RENDERS", Path(script_file).resolve().parent.parent / "renders"))
         path = root / Path(script_file).stem
-    path.mkdir(parents=True, exist_ok=True)
+    output_dir("-o", path)
+    with writing("-o", path):
+        path.mkdir(parents=True, exist_ok=True)
     return path
 
 

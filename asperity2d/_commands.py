@@ -1,0 +1,246 @@
+"""What the asperity subcommands of ``asperity2d`` do: run, analyze, render, critical, compare.
+
+Each handler checks every file argument before any work (so a bad ``--save``
+is refused before a long run, not after it), calls the library and prints a
+summary (text, or one JSON object with ``--json``). Errors are ``SceneError``
+naming the argument as the user typed it; :func:`asperity2d.cli.main` prints
+them as one line and exits with status 2. The parser is in :mod:`asperity2d.cli`.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+from . import _io
+from .cli import PLOT_SUFFIXES, _load_script
+from .errors import SceneError
+
+#: Keys of a TOML scene's ``[run]`` table.
+RUN_KEYS = ("duration",)
+
+
+def scene_from_toml(path, *, arg: str = "scene"):
+    """``(Scene, run settings)`` from a TOML scene file.
+
+    The file holds ``make_scene``'s arguments, at top level or under
+    ``[scene]``, and optionally a ``[run]`` table (``duration`` in s). Every
+    problem -- the file, its TOML, a table of the wrong type, an unknown key --
+    is a ``SceneError`` naming it.
+    """
+    data = _io.read_toml(arg, path)
+    run = data.pop("run", {})
+    if not isinstance(run, dict):
+        raise SceneError(f"`run` in {str(path)!r} must be a [run] table, got {_kind(run)}")
+    for key in run:
+        if key not in RUN_KEYS:
+            raise SceneError(f"`{key}` in [run] of {str(path)!r} is not a run setting "
+                             f"(allowed: {', '.join(RUN_KEYS)})")
+    if "duration" in run:
+        d = run["duration"]
+        if isinstance(d, bool) or not isinstance(d, (int, float)) or not (math.isfinite(d) and d > 0):
+            raise SceneError(f"`duration` in [run] of {str(path)!r} must be a number > 0, got {d!r}")
+    if "scene" in data:
+        params = data.pop("scene")
+        if not isinstance(params, dict):
+            raise SceneError(f"`scene` in {str(path)!r} must be a [scene] table of make_scene "
+                             f"arguments, got {_kind(params)}")
+        if data:
+            raise SceneError(f"`{next(iter(data))}` in {str(path)!r} is outside [scene]: put every "
+                             "make_scene argument under [scene] (or all at top level)")
+    else:
+        params = data
+    from .builders import make_scene
+    from .surface.source import resolve_paths  # profile files named relative to the TOML file
+
+    return make_scene(**resolve_paths(params, Path(path).parent)), run
+
+
+def _kind(value) -> str:
+    return f"{type(value).__name__} {value!r}"[:80]
+
+
+def _emit(args, summary: dict, lines: list[str]) -> None:
+    print(json.dumps(summary, default=float) if args.json else "\n".join(lines))
+
+
+def _checked_duration(scene, duration: float, arg: str) -> float:
+    """``duration`` if it fits simulate's step budget at the scene's default dt (named as ``arg``;
+    simulate checks settling too)."""
+    from .simulate import MAX_STEPS, default_dt
+
+    dt = default_dt(scene)
+    if duration > MAX_STEPS * dt:
+        raise SceneError(f"`{arg}` = {duration:.3g} s is more than the {MAX_STEPS:.0e}-step budget at the "
+                         f"default dt ({dt:.3g} s) of this scene: at most {MAX_STEPS * dt:.3g} s")
+    return duration
+
+
+def run(args) -> int:
+    """``asperity2d run SCENE``: a scene script's ``main(argv)``, or a TOML scene."""
+    path = _io.input_path("scene", args.scene)
+    if path.suffix == ".py":
+        return _run_script(path, args)
+    if path.suffix != ".toml":
+        raise SceneError(f"`scene` must be a .py script or a .toml scene file, got {str(path)!r}")
+    save = args.save and _io.output_path("--save", args.save, suffixes=(".npz",))
+    output = args.output and _io.output_path("--output", args.output, suffixes=_render_suffixes())
+    scene, settings = scene_from_toml(path)
+    if args.duration is not None:
+        duration = _checked_duration(scene, args.duration, "--duration")
+    elif "duration" in settings:
+        duration = _checked_duration(scene, float(settings["duration"]), "duration")
+    else:
+        duration = None
+    from .simulate import simulate
+
+    result = simulate(scene, duration)
+    if save:
+        with _io.argument("--save"), _io.writing("--save", save):
+            result.save(save)
+    if output:
+        from .render import render as render_result
+
+        with _io.argument("--output"), _io.writing("--output", output):
+            render_result(result, output)
+    summary = result.summary()
+    _emit(args, summary, [f"{k}: {v}" for k, v in summary.items()])
+    return 0
+
+
+def _run_script(path: Path, args) -> int:
+    import sys
+
+    for option, value in (("--save", args.save), ("--duration", args.duration)):
+        if value is not None:
+            raise SceneError(f"`{option}` applies to TOML scenes; a script takes its own arguments")
+    module = _load_script(path)
+    if not callable(getattr(module, "main", None)):
+        raise SceneError(f"`scene` script {str(path)!r} has no main(argv) function")
+    argv = list(args.script_args) + (["--json"] if args.json else [])
+    argv += ["-o", args.output] if args.output else []
+    saved, sys.argv = sys.argv, [str(path), *argv]  # the script's usage names the script
+    try:
+        return int(module.main(argv) or 0)
+    finally:
+        sys.argv = saved
+
+
+def _render_suffixes() -> tuple[str, ...]:
+    from .render import RENDERERS
+
+    return tuple(RENDERERS)
+
+
+def _load_result(arg: str, path):
+    from .result import load
+
+    with _io.argument(arg):
+        return load(path)
+
+
+def analyze(args) -> int:
+    """``asperity2d analyze RESULT``: events and breakaway force of a saved run."""
+    from .analysis import breakaway_force, event_statistics, stick_slip_events
+
+    result = _load_result("result", args.result)
+    summary = result.summary()
+    summary["events"] = event_statistics(stick_slip_events(result))
+    try:
+        summary["breakaway_force_N"] = breakaway_force(result)
+    except SceneError:  # constant-force drive, or no stick-to-slip transition
+        summary["breakaway_force_N"] = None
+    _emit(args, summary, [f"{k}: {v}" for k, v in summary.items()])
+    return 0
+
+
+def render(args) -> int:
+    """``asperity2d render RESULT -o FILE``: render a saved run again."""
+    from .render import render as render_result
+
+    output = _io.output_path("--output", args.output, suffixes=_render_suffixes())
+    result = _load_result("result", args.result)
+    with _io.argument("--output"), _io.writing("--output", output):
+        out = render_result(result, output)
+    _emit(args, {"output": str(out)}, [f"wrote {out}"])
+    return 0
+
+
+def critical(args) -> int:
+    """``asperity2d critical SCENE``: the critical constant drive force (bisection)."""
+    path = _io.input_path("scene", args.scene)
+    if path.suffix != ".toml":
+        raise SceneError(f"`scene` must be a .toml scene file, got {str(path)!r}")
+    scene, _ = scene_from_toml(path)
+    from .critical import critical_force_bracket
+
+    bracket = critical_force_bracket(scene, rel_tol=args.rel_tol)
+    summary = {"critical_force_N": bracket.value, "stops_N": bracket.stops,
+               "passes_N": bracket.passes, "runs": bracket.runs}
+    _emit(args, summary, [f"{k}: {v}" for k, v in summary.items()])
+    return 0
+
+
+def _parse_set(items: list[str]) -> dict:
+    """``key=value`` pairs (values parsed as TOML scalars) into make_scene arguments."""
+    import tomllib
+
+    out = {}
+    for item in items:
+        key, sep, text = item.partition("=")
+        if not sep:
+            raise SceneError(f"`--set` takes key=value, got {item!r}")
+        try:
+            out[key.strip()] = tomllib.loads(f"v = {text}")["v"]
+        except tomllib.TOMLDecodeError:
+            out[key.strip()] = text
+    return out
+
+
+def compare(args) -> int:
+    """``asperity2d compare``: a measure of each spacing over seeds, with statistics."""
+    save = args.save and _io.output_path("--save", args.save, suffixes=(".json",))
+    output = args.output and _io.output_path("--output", args.output, suffixes=PLOT_SUFFIXES)
+    from .compare import Comparison, measure_label
+    from .compare import compare as run_compare
+
+    if args.load:
+        with _io.argument("--load"):
+            comparison = Comparison.load(_io.input_path("--load", args.load))
+    else:
+        variants = {name: {"spacing": name} for name in args.variants.split(",")}
+        base = _parse_set(args.set)
+        base.setdefault("drive", "force" if args.measure.startswith("critical") else "spring")
+        comparison = run_compare(args.measure, variants, range(args.seeds), base=base, progress=not args.json,
+                                 workers=args.workers, scheduler=args.scheduler)
+    if save:
+        with _io.argument("--save"), _io.writing("--save", save):
+            comparison.save(save)
+    if output:
+        from .render.plots import plot_comparison
+
+        with _io.argument("--output"), _io.writing("--output", output):
+            plot_comparison(comparison, output)
+    stats = comparison.summary()
+    summary = {"measure": comparison.measure, "seeds": len(comparison.seeds), "variants": stats}
+    names = list(comparison.values)
+    if len(names) >= 2:
+        summary["mann_whitney_p"] = {f"{names[0]} vs {other}": comparison.mann_whitney(names[0], other)
+                                     for other in names[1:]}
+    lines = [f"{name}: mean {s['mean']:.5g}, 95 % CI [{s['ci_low']:.5g}, {s['ci_high']:.5g}] (n = {s['n']})"
+             for name, s in stats.items()]
+    lines += [f"Mann-Whitney U {pair}: p = {p:.3g}" for pair, p in summary.get("mann_whitney_p", {}).items()]
+    if "regular" in names:  # each other spacing against regular, in words
+        from .studies import claims
+
+        summary["claims"] = []
+        for other in (n for n in names if n != "regular"):
+            numbers = comparison.versus(other, "regular", alternative="less")
+            record = claims.claim(f"{other} spacing lowers the {measure_label(comparison.measure)}",
+                                  claims.judge(numbers, 0.01), numbers,
+                                  f"{numbers['test']}, one-sided (lower); holds if p < 0.01")
+            summary["claims"].append(record)
+            lines.append(claims.verdict_line(record))
+    _emit(args, summary, lines)
+    return 0

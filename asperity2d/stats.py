@@ -1,0 +1,104 @@
+"""Statistics of measured values: the one place the package computes intervals and tests.
+
+Everything goes through :mod:`scipy.stats` (imported when first used: it
+costs about a second). Non-finite values (a run that produced no number) are
+left out and counted separately, so ``n`` is always the number of finite
+values actually used.
+
+* :func:`describe` -- n, mean, sample std, median and the t confidence
+  interval of the mean (``scipy.stats.ttest_1samp(...).confidence_interval``);
+* :func:`mann_whitney` -- two independent samples (``mannwhitneyu``);
+* :func:`wilcoxon` -- one sample against a reference value, or two paired
+  samples (``wilcoxon`` on the differences);
+* :func:`versus_reference` -- :func:`describe` plus the effect against a
+  deterministic reference and its one-sample Wilcoxon test.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ._validate import check_choice
+from .errors import SceneError
+
+ALTERNATIVES = ("two-sided", "less", "greater")
+
+
+def finite(values) -> np.ndarray:
+    """The finite values of ``values`` as a float array."""
+    a = np.asarray(values, dtype=float).ravel()
+    return a[np.isfinite(a)]
+
+
+def describe(values, *, level: float = 0.95) -> dict:
+    """``n`` (finite values), ``missing`` (non-finite ones), ``mean``, ``std`` (ddof=1),
+    ``median``, ``ci_low``/``ci_high`` (t interval of the mean at ``level``; NaN below 2 values)."""
+    from scipy import stats
+
+    if not 0.0 < level < 1.0:
+        raise SceneError(f"`level` must be in (0, 1), got {level!r}")
+    a = finite(values)
+    out = {"n": int(len(a)), "missing": int(np.size(values) - len(a)),
+           "mean": float(a.mean()) if len(a) else math.nan,
+           "std": float(a.std(ddof=1)) if len(a) > 1 else math.nan,
+           "median": float(np.median(a)) if len(a) else math.nan,
+           "ci_low": math.nan, "ci_high": math.nan}
+    if len(a) > 1:
+        if np.ptp(a) == 0:  # no spread: the interval is the value itself
+            out["ci_low"] = out["ci_high"] = out["mean"]
+        else:
+            ci = stats.ttest_1samp(a, 0.0).confidence_interval(level)
+            out["ci_low"], out["ci_high"] = float(ci.low), float(ci.high)
+    return out
+
+
+def mann_whitney(a, b, *, alternative: str = "two-sided") -> float:
+    """p-value of the Mann–Whitney U test of independent samples ``a`` and ``b`` (NaN if one is empty)."""
+    from scipy import stats
+
+    check_choice("alternative", alternative, ALTERNATIVES)
+    x, y = finite(a), finite(b)
+    if not len(x) or not len(y):
+        return math.nan
+    return float(stats.mannwhitneyu(x, y, alternative=alternative).pvalue)
+
+
+def wilcoxon(a, b=None, *, reference: float | None = None, alternative: str = "two-sided") -> float:
+    """p-value of the Wilcoxon signed-rank test: ``a`` against a ``reference`` value, or ``a``
+    paired with ``b`` (pairs with a non-finite member are dropped). 1.0 when every difference
+    is zero; NaN with no pairs."""
+    from scipy import stats
+
+    check_choice("alternative", alternative, ALTERNATIVES)
+    if (b is None) == (reference is None):
+        raise SceneError("give `b` (paired samples) or `reference` (one sample), not both")
+    x = np.asarray(a, dtype=float).ravel()
+    y = np.full_like(x, float(reference)) if b is None else np.asarray(b, dtype=float).ravel()
+    if len(x) != len(y):
+        raise SceneError(f"`a` and `b` must pair up, got {len(x)} and {len(y)} values")
+    d = (x - y)[np.isfinite(x) & np.isfinite(y)]
+    if not len(d):
+        return math.nan
+    if not np.any(d):
+        return 1.0
+    return float(stats.wilcoxon(d, alternative=alternative).pvalue)
+
+
+def versus_reference(values, reference: float, *, alternative: str = "less", level: float = 0.95) -> dict:
+    """:func:`describe` of ``values`` plus their effect against a deterministic ``reference``:
+    ``reference``, ``difference`` (mean - reference), ``relative_difference`` (fraction),
+    ``below`` / ``above`` (how many values are under / over it), ``effect_size_d``
+    ((mean - reference) / std), ``p_wilcoxon`` (one-sided in ``alternative``) and
+    ``p_wilcoxon_two_sided``."""
+    out = describe(values, level=level)
+    a = finite(values)
+    diff = out["mean"] - reference
+    out.update(reference=float(reference), difference=diff,
+               relative_difference=diff / reference if reference else math.nan,
+               below=int(np.sum(a < reference)), above=int(np.sum(a > reference)),
+               effect_size_d=diff / out["std"] if out["std"] and out["std"] > 0 else math.nan,
+               p_wilcoxon=wilcoxon(a, reference=reference, alternative=alternative),
+               p_wilcoxon_two_sided=wilcoxon(a, reference=reference))
+    return out

@@ -1,0 +1,61 @@
+"""Claim records: a source document's statement, the numbers measured, the test, the verdict.
+
+Every study script writes its claims in this one format (in its
+``summary.json``)::
+
+    {"claim": "random spacing lowers the critical force", "verdict": "holds",
+     "numbers": {...}, "test": "one-sample Wilcoxon ..., holds if p < 0.01",
+     "setup": "fixed"}
+
+The criterion is fixed before the numbers are looked at; a claim that fails is
+reported, never tuned until it holds. :func:`verdict_line` says it in one line
+a newcomer can read.
+"""
+
+from __future__ import annotations
+
+import math
+
+HOLDS, FAILS, UNTESTABLE = "holds", "does not hold", "not testable with so few seeds"
+
+
+def judge(numbers: dict, alpha: float, *, direction: str = "less") -> str:
+    """The verdict of a one-sided Wilcoxon comparison (:func:`asperity2d.stats.versus_reference`
+    numbers): holds if the mean moved in ``direction`` and p < ``alpha``; untestable when even
+    every seed on the claimed side could not reach it (the exact one-sided p is then 2**-n)."""
+    if 0.5 ** numbers.get("n", 0) >= alpha:
+        return UNTESTABLE
+    moved = numbers["mean"] < numbers["reference"] if direction == "less" else numbers["mean"] > numbers["reference"]
+    return HOLDS if moved and numbers["p_wilcoxon"] < alpha else FAILS
+
+
+def claim(text: str, holds: bool | str, numbers: dict, test: str, *, setup: str | None = None) -> dict:
+    """A claim record: the statement, its verdict (a bool, or a verdict from :func:`judge`), the
+    numbers behind it and the test used."""
+    verdict = holds if isinstance(holds, str) else (HOLDS if holds else FAILS)
+    out = {"claim": text, "verdict": verdict, "numbers": numbers, "test": test}
+    if setup is not None:
+        out["setup"] = setup
+    return out
+
+
+def effect(numbers: dict) -> str:
+    """``"-19 %, 10/10 seeds below, Wilcoxon p = 0.001"`` from :func:`asperity2d.stats.versus_reference`
+    numbers (or whatever part of it ``numbers`` has)."""
+    parts = []
+    rel = numbers.get("relative_difference")
+    if rel is not None and math.isfinite(rel):
+        parts.append(f"{100 * rel:+.0f} %")
+    if "below" in numbers and "n" in numbers:
+        parts.append(f"{numbers['below']}/{numbers['n']} seeds below")
+    p = numbers.get("p_wilcoxon")
+    if p is not None and math.isfinite(p):
+        parts.append(f"Wilcoxon p = {p:.2g}")
+    return ", ".join(parts)
+
+
+def verdict_line(record: dict) -> str:
+    """``"<claim>: holds (<effect>)"``, with the set-up in brackets when the record has one."""
+    setup = f"[{record['setup']}] " if record.get("setup") else ""
+    detail = effect(record.get("numbers", {}))
+    return f"{setup}{record['claim']}: {record['verdict']}" + (f" ({detail})" if detail else "")
