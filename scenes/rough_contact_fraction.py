@@ -33,8 +33,11 @@ import math
 
 import numpy as np
 
-from asperity2d import make_scene, scripting
-from asperity2d.rough import rough_run, run_many
+from asperity2d import make_scene
+from asperity2d.studies import scripting
+from asperity2d.studies.claims import claim, verdict_line
+from asperity2d.studies.rough import rough_run
+from asperity2d.sweep.executors import map_calls
 from asperity2d.surface import fraction_above
 from asperity2d.units import MIN_LENGTH_RATIO
 
@@ -85,18 +88,18 @@ def analyse(rows: list[dict], size: dict, levels, n_seeds: int) -> tuple[dict, l
                                      "z": (touched / total - p) / se, "asperities": total}
         worst[dist] = max(abs(v["z"]) for v in table[dist].values())
     mismatched = [r for r in rows if r["touched_matches_above_level"] != 1.0]
-    claims = [{
-        "claim": "per realisation, the asperities touched over the pass are exactly those whose summit "
-                 "is above the track's tip height",
-        "holds": not mismatched, "realisations": len(rows),
-        "simulated": sum(1 for r in rows if r.get("simulated", True)), "mismatched": len(mismatched)}]
+    claims = [claim(
+        "per realisation, the asperities touched over the pass are exactly those whose summit is "
+        "above the track's tip height", not mismatched,
+        {"realisations": len(rows), "simulated": sum(1 for r in rows if r.get("simulated", True)),
+         "mismatched": len(mismatched)},
+        "every run: the set of lower asperities touched at any recorded step == summits above L")]
     for dist in DISTRIBUTIONS:
-        claims.append({
-            "claim": f"{dist} heights: the fraction touched equals the closed-form fraction of summit "
-                     "heights above the track height",
-            "holds": bool(worst[dist] < 3.0), "max_abs_z": worst[dist],
-            "test": f"|observed - closed form| < 3 binomial SE at each of {len(levels)} levels, "
-                    f"{n} asperities x {n_seeds} seeds per level"})
+        claims.append(claim(
+            f"{dist} heights: the fraction touched equals the closed-form fraction of summit heights "
+            "above the track height", bool(worst[dist] < 3.0), {"max_abs_z": worst[dist]},
+            f"|observed - closed form| < 3 binomial SE at each of {len(levels)} levels, "
+            f"{n} asperities x {n_seeds} seeds per level"))
     return table, claims
 
 
@@ -129,7 +132,7 @@ def main(argv=None) -> int:
     rows = []
     for dist in DISTRIBUTIONS:
         jobs, empty = jobs_for(size, dist, levels, seeds)
-        measured = run_many(rough_run, [kw for _, kw in jobs], workers=args.workers)
+        measured = map_calls(rough_run, [kw for _, kw in jobs], workers=args.workers)
         rows += [{**row, **m} for (row, _), m in zip(jobs, measured)] + empty
     table, claims = analyse(rows, size, levels, len(seeds))
     plot(table, out / "contact_fraction.png")
@@ -141,7 +144,7 @@ def main(argv=None) -> int:
                "outputs": ["contact_fraction.png"]}
     lines = [f"{d} L = mean {float(k):+g} std: touched {v['observed']:.3f}, closed form {v['closed_form']:.3f} "
              f"(z = {v['z']:+.2f})" for d, t in table.items() for k, v in t.items()]
-    lines += [f"{'holds' if c['holds'] else 'does not hold'}: {c['claim']}" for c in claims]
+    lines += [verdict_line(c) for c in claims]
     return scripting.finish(args, summary, out, lines)
 
 

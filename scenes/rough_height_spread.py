@@ -42,9 +42,12 @@ import math
 
 import numpy as np
 
-from asperity2d import scripting
-from asperity2d.rough import run_many, rough_run, spearman, stats_of
+from asperity2d import stats
 from asperity2d.scene import SEED_000, kinetic_default
+from asperity2d.studies import scripting
+from asperity2d.studies.claims import HOLDS, UNTESTABLE, claim, judge, verdict_line
+from asperity2d.studies.rough import rough_run, spearman, trend_claim
+from asperity2d.sweep.executors import map_calls
 
 SPREADS = (0.0, 0.05, 0.1, 0.15, 0.2)  # sigma / base
 QUICK_SPREADS = (0.0, 0.2)
@@ -55,84 +58,79 @@ SETUPS = {"free": {"track": "free"}, "fixed": {"track": "fixed", "interference":
 QUANTITIES = ("critical_force_N", "mean_stick_force_N", "touched_fraction", "max_contacts",
               "steepest_touched_flank_deg", "steepest_upper_flank_deg", "breakaway_angle_deg")
 LOAD, MU_K = SEED_000["normal_load"], kinetic_default(SEED_000["mu_static"])  # N; the free slider's
+ALPHA = 0.05
 
 
 def measure(setup: str, spreads, seeds, size, workers: int) -> list[dict]:
+    """One row per (spread, seed); a spread of 0 is deterministic: one run."""
+    keys = [(s, seed) for s in spreads for seed in (seeds if s else seeds[:1])]
     jobs = [dict(size, **SETUPS[setup], seed=seed, **({"height_std": s * BASE} if s else {}))
-            for s in spreads for seed in (seeds if s else seeds[:1])]
-    rows = run_many(rough_run, jobs, workers=workers)
-    return [{**r, "spread": s, "seed": j["seed"]} for r, j, s in
-            zip(rows, jobs, [s for s in spreads for _ in (seeds if s else seeds[:1])])]
+            for s, seed in keys]
+    rows = map_calls(rough_run, jobs, workers=workers)
+    return [{**r, "spread": s, "seed": seed} for r, (s, seed) in zip(rows, keys)]
 
 
-def _trend(claims, text, x, y, sign):
-    rho, p = spearman(x, y)
-    claims.append({"claim": text, "holds": bool(np.sign(rho) == sign and p < 0.05), "spearman_rho": rho,
-                   "p": p, "test": "Spearman rank correlation, two-sided, p < 0.05"})
-
-
-def _below_uniform(claims, text, rows, q, spreads):
-    """Every spread's values below the uniform surface's (one-sided Wilcoxon against it)."""
-    from scipy.stats import wilcoxon
-
+def _below_uniform(text: str, rows: list[dict], q: str, spreads, setup: str) -> dict:
+    """Every spread's values below the uniform surface's: one-sided Wilcoxon against it at each."""
     uniform = next(r[q] for r in rows if r["spread"] == 0.0)
-    ps = {}
-    for s in spreads[1:]:
-        v = np.array([r[q] for r in rows if r["spread"] == s]) - uniform
-        v = v[np.isfinite(v)]
-        ps[f"{s:g}"] = float(wilcoxon(v, alternative="less").pvalue) if len(v) >= 2 and np.any(v) else math.nan
-    claims.append({"claim": text, "holds": bool(ps and all(p < 0.05 for p in ps.values())),
-                   "uniform_value": uniform, "wilcoxon_p_per_spread": ps,
-                   "test": "one-sided Wilcoxon signed-rank against the uniform value, p < 0.05 at every spread"})
+    per = {f"{s:g}": stats.versus_reference([r[q] for r in rows if r["spread"] == s], uniform)
+           for s in spreads[1:]}
+    verdicts = [judge(n, ALPHA) for n in per.values()]
+    verdict = (UNTESTABLE if UNTESTABLE in verdicts else
+               all(v == HOLDS for v in verdicts))
+    return claim(text, verdict, {"uniform_value": uniform, "per_spread": per},
+                 f"one-sided Wilcoxon signed-rank against the uniform surface's value at every spread; "
+                 f"holds if every mean is below it with p < {ALPHA:g}", setup=setup)
 
 
 def analyse(setup: str, rows: list[dict], spreads) -> tuple[dict, list[dict]]:
-    per_spread = {f"{s:g}": {q: stats_of([r[q] for r in rows if r["spread"] == s]) for q in QUANTITIES}
+    per_spread = {f"{s:g}": {q: stats.describe([r[q] for r in rows if r["spread"] == s]) for q in QUANTITIES}
                   for s in spreads}
     spread = [r["spread"] for r in rows]
     col = {q: [r[q] for r in rows] for q in rows[0]}
-    claims = []
     sanity = {"floor_touched_runs": int(np.nansum(col["floor_touched"])),
               "track_bottomed_runs": int(np.nansum(col["track_bottomed"])),
               "not_passed_runs": int(len(rows) - np.nansum(col["passed"]))}
     if setup == "free":
-        _trend(claims, "free slider: the critical force rises with the height spread", spread,
-               col["critical_force_N"], 1)
-        _trend(claims, "free slider: the mean stick force rises with the height spread", spread,
-               col["mean_stick_force_N"], 1)
-        _trend(claims, "free slider, mechanism: the contact angle the breakaway forces imply "
-                       "(atan(F / N) - atan mu_s) rises with the spread", spread, col["breakaway_angle_deg"], 1)
-        # the flank law of the steepest lower flank touched, with the kinetic coefficient
         law = np.array([LOAD * math.tan(math.radians(t) + math.atan(MU_K))
                         for t in col["steepest_touched_flank_deg"]])
         ratio = np.array(col["critical_force_N"]) / law
         rho, p = spearman(spread, ratio)
-        claims.append({
-            "claim": "free slider, mechanism: the critical force follows the flank law "
-                     "L tan(theta* + atan mu_k) of the steepest lower flank it touches",
-            "holds": bool(not p < 0.05), "ratio": stats_of(ratio), "spearman_rho": rho, "p": p,
-            "test": "no significant Spearman trend of F_c / flank law with sigma (p >= 0.05)"})
         angle = np.array(col["breakaway_angle_deg"])
         sanity["breakaway_within_3deg_of"] = {
             "steepest_lower_flank_touched": float(np.mean(np.abs(angle - col["steepest_touched_flank_deg"]) < 3)),
             "steepest_upper_flank": float(np.mean(np.abs(angle - col["steepest_upper_flank_deg"]) < 3))}
+        claims = [
+            trend_claim("free slider: the critical force rises with the height spread", spread,
+                        col["critical_force_N"], 1, setup=setup),
+            trend_claim("free slider: the mean stick force rises with the height spread", spread,
+                        col["mean_stick_force_N"], 1, setup=setup),
+            trend_claim("free slider, mechanism: the contact angle the breakaway forces imply "
+                        "(atan(F / N) - atan mu_s) rises with the spread", spread, col["breakaway_angle_deg"],
+                        1, setup=setup),
+            claim("free slider, mechanism: the critical force follows the flank law "
+                  "L tan(theta* + atan mu_k) of the steepest lower flank it touches",
+                  UNTESTABLE if not math.isfinite(p) else bool(not p < ALPHA),
+                  {"ratio": stats.describe(ratio), "spearman_rho": rho, "p": p},
+                  f"no Spearman trend of F_c / flank law with sigma (p >= {ALPHA:g})", setup=setup)]
     else:
-        _trend(claims, "fixed track: the critical force falls with the height spread", spread,
-               col["critical_force_N"], -1)
-        _trend(claims, "fixed track: the mean stick force falls with the height spread", spread,
-               col["mean_stick_force_N"], -1)
-        _below_uniform(claims, "fixed track: any height spread lowers the critical force below the "
-                               "uniform surface's", rows, "critical_force_N", spreads)
-        _below_uniform(claims, "fixed track: any height spread lowers the mean stick force below the "
-                               "uniform surface's", rows, "mean_stick_force_N", spreads)
-        _trend(claims, "fixed track, mechanism: fewer lower asperities are touched as the spread grows",
-               spread, col["touched_fraction"], -1)
-        _trend(claims, "fixed track, mechanism: fewer pairs engage at once as the spread grows", spread,
-               col["max_contacts"], -1)
         rough = [r for r in rows if r["spread"] > 0]
-        _trend(claims, "fixed track, mechanism: with a spread, the mean stick force rises with the "
-                       "steepest lower flank touched", [r["steepest_touched_flank_deg"] for r in rough],
-               [r["mean_stick_force_N"] for r in rough], 1)
+        claims = [
+            trend_claim("fixed track: the critical force falls with the height spread", spread,
+                        col["critical_force_N"], -1, setup=setup),
+            trend_claim("fixed track: the mean stick force falls with the height spread", spread,
+                        col["mean_stick_force_N"], -1, setup=setup),
+            _below_uniform("fixed track: any height spread lowers the critical force below the uniform "
+                           "surface's", rows, "critical_force_N", spreads, setup),
+            _below_uniform("fixed track: any height spread lowers the mean stick force below the uniform "
+                           "surface's", rows, "mean_stick_force_N", spreads, setup),
+            trend_claim("fixed track, mechanism: fewer lower asperities are touched as the spread grows",
+                        spread, col["touched_fraction"], -1, setup=setup),
+            trend_claim("fixed track, mechanism: fewer pairs engage at once as the spread grows", spread,
+                        col["max_contacts"], -1, setup=setup),
+            trend_claim("fixed track, mechanism: with a spread, the mean stick force rises with the "
+                        "steepest lower flank touched", [r["steepest_touched_flank_deg"] for r in rough],
+                        [r["mean_stick_force_N"] for r in rough], 1, setup=setup)]
     observed = {q: dict(zip(("spearman_rho", "p"), spearman(spread, col[q]))) for q in QUANTITIES}
     return {"per_spread": per_spread, "sanity": sanity, "spearman_vs_spread": observed}, claims
 
@@ -148,7 +146,7 @@ def plot(results: dict, path) -> None:
             v = np.array([r[q] for r in rows]) * 1e3
             ax.plot(s + 0.004 * (i - 0.5), v, "o", ms=3, alpha=0.5, color=f"C{i}")
             xs = sorted(set(s))
-            means = [np.nanmean(v[s == x]) for x in xs]
+            means = [stats.describe(v[s == x])['mean'] for x in xs]
             ax.plot(xs, means, "-", color=f"C{i}", label=f"{setup}: mean")
         ax.set_yscale("log")
         ax.set_ylabel(label)
@@ -181,7 +179,7 @@ def main(argv=None) -> int:
             lines.append(f"{setup} sigma/base {s:g}: critical {n['critical_force_N']['mean'] * 1e3:.3g} mN, "
                          f"mean stick {n['mean_stick_force_N']['mean'] * 1e3:.3g} mN, touched "
                          f"{n['touched_fraction']['mean']:.2f}, contacts at once {n['max_contacts']['mean']:.2g}")
-    lines += [f"{'holds' if c['holds'] else 'does not hold'}: {c['claim']}" for c in summary["claims"]]
+    lines += [verdict_line(c) for c in summary["claims"]]
     return scripting.finish(args, summary, out, lines)
 
 

@@ -38,9 +38,12 @@ import math
 
 import numpy as np
 
-from asperity2d import scripting
-from asperity2d.rough import run_many, self_affine_run, spearman, stats_of
+from asperity2d import stats
 from asperity2d.scene import SEED_000, kinetic_default
+from asperity2d.studies import scripting
+from asperity2d.studies.claims import UNTESTABLE, claim, verdict_line
+from asperity2d.studies.rough import self_affine_run, spearman, trend_claim
+from asperity2d.sweep.executors import map_calls
 
 HURSTS, QUICK_HURSTS = (0.3, 0.5, 0.7, 0.9), (0.3, 0.9)
 RMS = 0.15e-6  # m
@@ -53,17 +56,12 @@ SLIDER, QUICK_SLIDER = dict(upper_count=3), dict(upper_count=1, drive_velocity=1
 QUANTITIES = ("critical_force_N", "mean_stick_force_N", "lower_count", "rms_slope", "touched_count",
               "above_level_fraction", "steepest_touched_flank_deg", "breakaway_angle_deg", "max_contacts")
 MU_K = kinetic_default(SEED_000["mu_static"])
-
-
-def _trend(claims, text, x, y, sign):
-    rho, p = spearman(x, y)
-    claims.append({"claim": text, "holds": bool(np.sign(rho) == sign and p < 0.05), "spearman_rho": rho,
-                   "p": p, "test": "Spearman rank correlation, two-sided, p < 0.05"})
+ALPHA = 0.05
 
 
 def analyse(setup: str, rows: list[dict], hursts, load: float) -> tuple[dict, list[dict]]:
     valid = [r for r in rows if r.get("valid") == 1.0]
-    per_h = {f"{h:g}": {q: stats_of([r[q] for r in valid if r["hurst"] == h]) for q in QUANTITIES}
+    per_h = {f"{h:g}": {q: stats.describe([r[q] for r in valid if r["hurst"] == h]) for q in QUANTITIES}
              for h in hursts}
     hs = [r["hurst"] for r in valid]
     col = {q: [r[q] for r in valid] for q in (valid[0] if valid else {})}
@@ -72,30 +70,32 @@ def analyse(setup: str, rows: list[dict], hursts, load: float) -> tuple[dict, li
               "track_bottomed_runs": int(np.nansum(col.get("track_bottomed", []))),
               "not_passed_runs": int(len(valid) - np.nansum(col.get("passed", []))),
               "level_raised_runs": int(np.nansum([r.get("level_raised", 0.0) for r in rows]))}
-    claims = []
     if not valid:
-        return {"per_hurst": per_h, "sanity": sanity}, claims
-    _trend(claims, "rms slope falls as H grows at fixed rms height (the profiles' premise)", hs,
-           col["rms_slope"], -1)
+        return {"per_hurst": per_h, "sanity": sanity}, []
+    claims = [trend_claim("rms slope falls as H grows at fixed rms height (the profiles' premise)", hs,
+                          col["rms_slope"], -1, setup=setup)]
     for q, text in (("critical_force_N", "critical force"), ("mean_stick_force_N", "mean stick force")):
-        _trend(claims, f"{setup}: the {text} falls as H grows (fixed rms)", hs, col[q], -1)
-    _trend(claims, f"{setup}, mechanism: the steepest lower flank touched falls as H grows", hs,
-           col["steepest_touched_flank_deg"], -1)
+        claims.append(trend_claim(f"{setup}: the {text} falls as H grows (fixed rms)", hs, col[q], -1,
+                                  setup=setup))
+    claims.append(trend_claim(f"{setup}, mechanism: the steepest lower flank touched falls as H grows",
+                              hs, col["steepest_touched_flank_deg"], -1, setup=setup))
     if setup == "free":
         law = np.array([load * math.tan(min(math.radians(t) + math.atan(MU_K), math.radians(89.0)))
                         for t in col["steepest_touched_flank_deg"]])
         ratio = np.array(col["critical_force_N"]) / law
         rho, p = spearman(hs, ratio)
-        claims.append({"claim": "free, mechanism: the critical force follows the flank law "
-                                "L tan(theta* + atan mu_k) of the steepest lower flank touched",
-                       "holds": bool(not p < 0.05), "ratio": stats_of(ratio), "spearman_rho": rho, "p": p,
-                       "test": "no significant Spearman trend of F_c / flank law with H (p >= 0.05)"})
+        claims.append(claim("free, mechanism: the critical force follows the flank law "
+                            "L tan(theta* + atan mu_k) of the steepest lower flank touched",
+                            UNTESTABLE if not math.isfinite(p) else bool(not p < ALPHA),
+                            {"ratio": stats.describe(ratio), "spearman_rho": rho, "p": p},
+                            f"no Spearman trend of F_c / flank law with H (p >= {ALPHA:g})", setup=setup))
     else:
-        _trend(claims, "fixed, mechanism: fewer summits rise above the track as H grows", hs,
-               col["above_level_fraction"], -1)
-        claims.append({"claim": "fixed: the asperities touched are exactly those above the track",
-                       "holds": bool(all(v == 1.0 for v in col["touched_matches_above_level"])),
-                       "runs": len(valid)})
+        claims.append(trend_claim("fixed, mechanism: fewer summits rise above the track as H grows", hs,
+                                  col["above_level_fraction"], -1, setup=setup))
+        claims.append(claim("fixed: the asperities touched are exactly those above the track",
+                            bool(all(v == 1.0 for v in col["touched_matches_above_level"])),
+                            {"runs": len(valid)}, "every run: touched set == summits above the track",
+                            setup=setup))
     observed = {q: dict(zip(("spearman_rho", "p"), spearman(hs, col[q]))) for q in QUANTITIES}
     return {"per_hurst": per_h, "sanity": sanity, "spearman_vs_hurst": observed}, claims
 
@@ -113,7 +113,7 @@ def plot(results: dict, path) -> None:
             v = np.array([r[q] for r in rows]) * scale
             ax.plot(h + 0.01 * (i - 0.5), v, "o", ms=3, alpha=0.5, color=f"C{i}")
             xs = sorted(set(h))
-            ax.plot(xs, [np.nanmean(v[h == x]) for x in xs], "-", color=f"C{i}", label=f"{setup}: mean")
+            ax.plot(xs, [stats.describe(v[h == x])['mean'] for x in xs], "-", color=f"C{i}", label=f"{setup}: mean")
         ax.set_ylabel(label, fontsize=8)
         ax.legend(fontsize=7)
     axes[0].set_yscale("log")
@@ -132,7 +132,7 @@ def main(argv=None) -> int:
                             "seeds": args.seeds, "setups": {}, "claims": []}
     for setup, params in SETUPS.items():
         jobs = [dict(profile, **slider, **params, hurst=h, seed=s) for h in hursts for s in range(args.seeds)]
-        rows = run_many(self_affine_run, jobs, workers=args.workers)
+        rows = map_calls(self_affine_run, jobs, workers=args.workers)
         results[setup] = [{**r, "hurst": j["hurst"], "seed": j["seed"]} for r, j in zip(rows, jobs)]
         numbers, claims = analyse(setup, results[setup], hursts, params.get("normal_load", 0.0))
         summary["setups"][setup] = {"parameters": params, **numbers, "runs": results[setup]}
@@ -147,7 +147,7 @@ def main(argv=None) -> int:
                          f"{n['rms_slope']['mean']:.2f}, critical {n['critical_force_N']['mean'] * 1e3:.3g} mN, "
                          f"mean stick {n['mean_stick_force_N']['mean'] * 1e3:.3g} mN, steepest flank touched "
                          f"{n['steepest_touched_flank_deg']['mean']:.3g}°")
-    lines += [f"{'holds' if c['holds'] else 'does not hold'}: {c['claim']}" for c in summary["claims"]]
+    lines += [verdict_line(c) for c in summary["claims"]]
     return scripting.finish(args, summary, out, lines)
 
 

@@ -34,8 +34,11 @@ from pathlib import Path
 import numpy as np
 
 import asperity2d as a
-from asperity2d import scripting, surface
-from asperity2d.rough import fixed_track_interference, measure, pass_measures, stats_of
+from asperity2d import surface
+from asperity2d.studies import scripting
+from asperity2d import stats
+from asperity2d.studies.claims import claim, verdict_line
+from asperity2d.studies.rough import fixed_track_interference, measure, pass_measures
 from asperity2d.surface.source import surface_asperities
 
 DATA = Path(__file__).resolve().parent / "data" / "measured_style_profile.csv"
@@ -86,22 +89,25 @@ def main(argv=None) -> int:
 
     f, r = runs["free"], runs["free_regular_median"]
     claims = [
-        {"claim": "fixed track: the asperities touched are exactly those whose summit is above the track",
-         "holds": runs["fixed"]["touched_matches_above_level"] == 1.0,
-         "touched": runs["fixed"]["touched_count"], "above_level": runs["fixed"]["above_level_fraction"] * lower.count},
-        {"claim": "free slider: the profile needs a larger critical force than a regular surface of its "
-                  "median asperity",
-         "holds": bool(f["critical_force_N"] > r["critical_force_N"]),
-         "ratio": f["critical_force_N"] / r["critical_force_N"]},
+        claim("fixed track: the asperities touched are exactly those whose summit is above the track",
+              runs["fixed"]["touched_matches_above_level"] == 1.0,
+              {"touched": runs["fixed"]["touched_count"],
+               "above_level": runs["fixed"]["above_level_fraction"] * lower.count},
+              "the set touched at any step of the pass == summits above the track", setup="fixed"),
+        claim("free slider: the profile needs a larger critical force than a regular surface of its "
+              "median asperity", bool(f["critical_force_N"] > r["critical_force_N"]),
+              {"profile_N": f["critical_force_N"], "regular_median_N": r["critical_force_N"],
+               "ratio": f["critical_force_N"] / r["critical_force_N"]},
+              "one realisation: direct comparison of the two critical forces", setup="free"),
     ]
     angles = np.degrees(np.arctan2(shapes.heights, np.asarray(shapes.left_runs)))
     summary = {
         "profile": {"file": str(DATA), "synthetic": True, "points": profile.count,
                     "length_m": profile.length, "rms_height_m": rms,
                     "cropped": bool(args.quick)},
-        "asperities": {"count": lower.count, "height_m": stats_of(shapes.heights),
-                       "base_m": stats_of(shapes.bases), "summit_m": stats_of(shapes.summits),
-                       "left_flank_deg": stats_of(angles), "mean_pitch_m": lower.spacing.mean_pitch},
+        "asperities": {"count": lower.count, "height_m": stats.describe(shapes.heights),
+                       "base_m": stats.describe(shapes.bases), "summit_m": stats.describe(shapes.summits),
+                       "left_flank_deg": stats.describe(angles), "mean_pitch_m": lower.spacing.mean_pitch},
         "track_height_m": probe.lower.top - fixed.slider.interference,
         "track_set_by": "the rigid valley floor" if raised else "one rms above the mean line", "runs": runs,
         "claims": claims, "outputs": outputs}
@@ -112,7 +118,7 @@ def main(argv=None) -> int:
         lines.append(f"{name}: critical {m['critical_force_N'] * 1e3:.3g} mN, mean stick "
                      f"{m['mean_stick_force_N'] * 1e3:.3g} mN, touched {m['touched_count']:.0f}, "
                      f"breakaway angle {m['breakaway_angle_deg']:.1f}°")
-    lines += [f"{'holds' if c['holds'] else 'does not hold'}: {c['claim']}" for c in claims]
+    lines += [verdict_line(c) for c in claims]
     return scripting.finish(args, summary, out, lines)
 
 

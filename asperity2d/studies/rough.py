@@ -1,4 +1,4 @@
-"""Measures of rough-surface scenes, shared by the ``scenes/rough_*.py`` studies.
+"""Issue 14's rough-surface studies: measures of rough scenes, shared by ``scenes/rough_*.py``.
 
 Top-level, picklable run functions (``fn(*, seed, **params) -> dict of numbers``,
 the signature :mod:`asperity2d.sweep` runs too), each building one scene with
@@ -16,22 +16,22 @@ that a touch of a few steps is not missed): the mean drive force at the stick-to
 lower asperities that touched the slider, the most contacts at once, the
 steepest flank among the asperities that touched, and the contact angle the
 breakaway forces imply (:func:`breakaway_angle`), to tell which flanks set them.
-:func:`run_many` maps a run function over parameter sets on worker processes.
+The scripts map them over parameter sets with
+:func:`asperity2d.sweep.executors.map_calls` and summarise with :mod:`asperity2d.stats`.
 """
 
 from __future__ import annotations
 
 import math
-from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 
-from .analysis import mean_stick_force, stick_slip_events
-from .builders import make_scene
-from .critical import critical_force
-from .errors import SceneError
-from .scene import Scene, SpringDrive
-from .simulate import simulate
+from ..analysis import mean_stick_force, stick_slip_events
+from ..builders import make_scene
+from ..critical import critical_force
+from ..errors import SceneError
+from ..scene import Scene, SpringDrive
+from ..simulate import simulate
 
 
 def flank_angles(scene: Scene) -> dict[str, np.ndarray]:
@@ -142,7 +142,7 @@ def self_affine_run(*, seed: int = 0, hurst: float, rms_height: float, length: f
     ``level_raised`` = 1); returns ``valid`` = 0 and no measures when that
     level is above every summit. ``params`` go to ``make_scene``.
     """
-    from .surface import rms_slope, self_affine_profile
+    from ..surface import rms_slope, self_affine_profile
 
     profile = self_affine_profile(n=points, length=length, rms_height=rms_height, hurst=hurst,
                                   q_min=2 * math.pi / longest, q_max=2 * math.pi / shortest,
@@ -162,24 +162,17 @@ def self_affine_run(*, seed: int = 0, hurst: float, rms_height: float, length: f
     return out
 
 
-def run_many(fn, kwargs_list: list[dict], *, workers: int = 1, progress: bool = True) -> list[dict]:
-    """``[fn(**kw) for kw in kwargs_list]`` in that order, on ``workers`` processes
-    (``fn`` must be a module-level function)."""
-    from tqdm.auto import tqdm
+def trend_claim(text: str, x, y, sign: int, *, setup: str | None = None, alpha: float = 0.05) -> dict:
+    """A claim record (:func:`asperity2d.studies.claims.claim`) that ``y`` rises (``sign`` = 1) or
+    falls (-1) with ``x``: holds if the Spearman correlation has that sign with p < ``alpha``."""
+    from .claims import UNTESTABLE, claim
 
-    if workers <= 1:
-        return [fn(**kw) for kw in tqdm(kwargs_list, disable=not progress, leave=False)]
-    with ProcessPoolExecutor(max_workers=workers) as pool:
-        futures = [pool.submit(fn, **kw) for kw in kwargs_list]
-        return [f.result() for f in tqdm(futures, disable=not progress, leave=False)]
-
-
-def stats_of(values) -> dict:
-    """``n``, ``mean``, ``std`` and the 95 % t-interval of the finite ``values``."""
-    from .sweep.report import mean_ci
-
-    n, mean, std, lo, hi = mean_ci(values)
-    return {"n": n, "mean": mean, "std": std, "ci_low": lo, "ci_high": hi}
+    rho, p = spearman(x, y)
+    n = int(np.sum(np.isfinite(np.asarray(x, float)) & np.isfinite(np.asarray(y, float))))
+    verdict = UNTESTABLE if not math.isfinite(p) else bool(np.sign(rho) == sign and p < alpha)
+    return claim(text, verdict, {"spearman_rho": rho, "p": p, "n": n},
+                 f"Spearman rank correlation over {n} runs, two-sided; holds if "
+                 f"{'positive' if sign > 0 else 'negative'} with p < {alpha:g}", setup=setup)
 
 
 def spearman(x, y) -> tuple[float, float]:
