@@ -135,10 +135,12 @@ def fraction_above(level: float, *, mean: float, std: float, distribution: str =
         return fraction_above(max(level, floor), mean=mean, std=std, distribution=distribution) / kept
     if std == 0:
         return float(mean > level)
-    if distribution == "gaussian":
-        return float(norm.sf(level, loc=mean, scale=std))
-    half_width = math.sqrt(3.0) * std
-    return float(np.clip((mean + half_width - level) / (2.0 * half_width), 0.0, 1.0))
+    with np.errstate(over="ignore", divide="ignore"):  # a vanishing std: z = +-inf, the tail is 0 or 1
+        z = (np.float64(level) - mean) / np.float64(std)
+        if distribution == "gaussian":
+            return float(norm.sf(z))
+        half_width = math.sqrt(3.0) * std
+        return float(np.clip((mean + half_width - level) / (2.0 * half_width), 0.0, 1.0))
 
 
 def random_shapes(shape, count: int, *, std: float, name: str, distribution: str,
