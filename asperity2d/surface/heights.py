@@ -152,6 +152,7 @@ def random_shapes(shape, count: int, *, std: float, name: str, distribution: str
     from ..shapes import Shapes
     from ..units import MIN_LENGTH_RATIO
 
+    std = check_nonnegative(name, std)  # a plain float (a Fraction or NumPy scalar may come in)
     limit = max_std(shape.height, floor, distribution=distribution)
     if std > limit:
         raise SceneError(
