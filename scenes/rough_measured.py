@@ -49,6 +49,16 @@ LOAD = 0.3e-3
 QUICK_LENGTH = 8e-6  # m of the trace used by --quick
 
 
+def triangle_wave(count: int, base: float, height: float) -> tuple[np.ndarray, np.ndarray]:
+    """``count`` touching isosceles triangles of ``base`` and ``height`` (m) on z = 0, sampled
+    every base / 64, with half a base of flat ground at each end: ``(x, z)`` in m."""
+    x = np.arange(0.0, (count + 1) * base, base / 64.0)
+    u = x / base - 0.5  # in bases, from the first foot
+    inside = (u >= 0) & (u <= count)
+    z = np.where(inside, height * (1.0 - np.abs(2.0 * (u % 1.0) - 1.0)), 0.0)
+    return x, z
+
+
 def load(quick: bool) -> surface.SurfaceProfile:
     profile = surface.read_profile(DATA)
     if quick:
@@ -71,10 +81,10 @@ def main(argv=None) -> int:
     free = a.make_scene(lower_surface=profile, track="free", normal_load=LOAD, **slider)
     lower = free.lower
     shapes = lower.shapes
-    # bases touching (pitch = base): a regular surface with gaps lets the slider's tips fall
-    # through onto the guard floor (0.44 µm bases, 29 nm high, at the profile's 0.6 µm pitch)
-    regular = a.make_scene(track="free", normal_load=LOAD, base=lower.profile.base, height=lower.profile.height,
-                           lower_count=lower.count, pitch=lower.profile.base, **slider)
+    # the same slider on a regular surface of the median asperity, bases touching, built through
+    # the same profile path from a triangle wave
+    regular = a.make_scene(lower_surface=triangle_wave(lower.count, lower.profile.base, lower.profile.height),
+                           surface_detrend=False, track="free", normal_load=LOAD, **slider)
     fixed_pass, pass_result = pass_measures(fixed)
     runs = {"fixed": {"critical_force_N": a.critical_force(fixed), **fixed_pass},
             "free": measure(free), "free_regular_median": measure(regular)}
