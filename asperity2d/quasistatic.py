@@ -160,9 +160,9 @@ def plot_position_velocity(result, path, *, title: str = "", dpi: int = 120):
     The velocity panel shows the collision spikes where the slider hits a
     lower flank. Matplotlib is imported lazily.
     """
-    from .render.plots import _figure, _save
+    from .render.plots import figure, save
 
-    fig, (ax_x, ax_v) = _figure(2, height=2.4)
+    fig, (ax_x, ax_v) = figure(2, height=2.4)
     t = np.asarray(result.t) * 1e6
     ax_x.plot(t, (np.asarray(result.x) - result.x[0]) * 1e6, lw=1.0, label="slider")
     if np.isfinite(result.drive_x).any():
@@ -175,4 +175,4 @@ def plot_position_velocity(result, path, *, title: str = "", dpi: int = 120):
     ax_v.set_xlabel("time (µs)")
     if title:
         ax_x.set_title(title, fontsize=9)
-    return _save(fig, path, dpi)
+    return save(fig, path, dpi)

@@ -103,7 +103,7 @@ def check_scales(scene, units: Units) -> None:
               "force": (units.force, "N", f"the stiffness scale ({setter}) times the asperity `base`"),
               "velocity": (units.velocity, "m/s", f"`base` times the highest natural frequency ({setter})"),
               "length": (units.length, "m", "the asperity `base`"),
-              "acceleration": (units.acceleration, "m/s^2", f"`base` times the frequency scale squared")}
+              "acceleration": (units.acceleration, "m/s^2", "`base` times the frequency scale squared")}
     lower, slider, drive = scene.lower, scene.slider, scene.drive
     # (name, kind, values): values may be an array (one per asperity), checked in one pass
     checks = [("mass", "mass", lower.mass), ("slider_mass", "mass", slider.mass),

@@ -169,13 +169,13 @@ def main(argv=None) -> int:
         numbers, claims = analyse(setup, rows)
         summary["results"][setup] = numbers
         summary["claims"].extend(claims)
-        for reading, claim in zip(READINGS, claims):
+        for reading, verdict in zip(READINGS, claims):
             n = numbers[reading]
             lines.append(
                 f"[{setup}] {READINGS[reading]}: travel damped {numbers['travel_damped_m']['mean'] * 1e6:.3g} um, "
                 f"{reading} {n['travel_m']['mean'] * 1e6:.3g} um (reach {n['reach_m']['mean'] * 1e6:.3g}); farther in {n['fraction_farther']:.0%} of "
                 f"{n_seeds} seeds (equal {n['fraction_equal']:.0%}, time limit {n['fraction_time_limit']:.0%}), "
-                f"p = {n['p_paired_wilcoxon']:.2g}: {claim['verdict'].upper()}")
+                f"p = {n['p_paired_wilcoxon']:.2g}: {verdict['verdict'].upper()}")
         lines.append(mechanism_line(setup, numbers))
     plot_shares(summary, out / "energy_shares.png")
     # Figure 12 analogue: seed 0 on the fixed track, the three scenes at the same force.

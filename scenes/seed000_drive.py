@@ -22,11 +22,9 @@ from __future__ import annotations
 import math
 
 import asperity2d as a
-from asperity2d import stats
 from asperity2d.studies import scripting
 from asperity2d.studies.claims import claim
 from asperity2d.studies import seed000 as studies
-from asperity2d.sweep.executors import map_calls
 from asperity2d.critical import critical_force_bracket
 from asperity2d.render.plots import plot_positions
 

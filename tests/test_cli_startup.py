@@ -63,3 +63,15 @@ def test_unknown_attribute_is_an_attribute_error():
 
     with pytest.raises(AttributeError, match="no attribute 'nope'"):
         asperity2d.nope  # noqa: B018
+
+
+def test_render_help_names_every_renderer(capsys):
+    # the help text is written by hand (importing the renderers would load matplotlib and
+    # imageio at parse time), so this keeps it from drifting when a renderer is added
+    from asperity2d.cli import main
+    from asperity2d.render import RENDERERS
+
+    assert main(["render", "--help"]) == 0
+    text = capsys.readouterr().out
+    missing = [suffix for suffix in RENDERERS if suffix not in text]
+    assert not missing, f"`asperity2d render --help` does not name {missing}"

@@ -2,9 +2,7 @@
 
 import math
 
-import numpy as np
 import pytest
-from scipy import stats
 
 import asperity2d as a
 from asperity2d.compare import Comparison, compare

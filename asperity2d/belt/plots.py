@@ -7,30 +7,22 @@ format follows the extension (.png, .svg, .pdf).
 
 from __future__ import annotations
 
-import io
 from pathlib import Path
 
 import numpy as np
 
-from .._io import atomic_write
-from ..errors import SceneError
+from ..render.plots import save
 from .regime import REGIMES
-
-FORMATS = (".png", ".svg", ".pdf")
 
 
 def save_figure(fig, path) -> Path:
-    """Save ``fig`` to ``path`` atomically; the extension picks the format."""
-    path = Path(path)
-    suffix = path.suffix.lower()
-    if suffix not in FORMATS:
-        raise SceneError(f"`path` must end in {', '.join(FORMATS)}, got {str(path)!r}")
-    buf = io.BytesIO()
-    fig.savefig(buf, format=suffix[1:], dpi=110, bbox_inches="tight")
+    """Save a pyplot ``fig`` to ``path`` atomically (the extension picks the format) and close it."""
     import matplotlib.pyplot as plt
 
-    plt.close(fig)
-    return atomic_write(path, lambda fh: fh.write(buf.getvalue()))
+    try:
+        return save(fig, path, dpi=110, bbox_inches="tight")
+    finally:
+        plt.close(fig)
 
 
 def plot_chain(result, path=None, *, title: str = ""):

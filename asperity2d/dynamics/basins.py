@@ -42,7 +42,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import SceneError, SimulationError
-from .cycles import chain_cycle, limit_cycle
+from .cycles import chain_cycle
 
 LABELS = ("rest", "pure slip", "stick-slip", "irregular")
 RUN_CPU_LIMIT = 60.0  # s of CPU per grid point

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import SceneError
-from ..render.plots import _figure, _save
+from ..render.plots import figure, save
 from .basins import LABELS
 
 #: class colours of a basin map: rest, pure slip, stick-slip period 1, 2, >=3, irregular; failed runs grey
@@ -25,7 +25,7 @@ def plot_spectra(spectra, path: str | os.PathLike, *, unit: str = "", title: str
 
     The dominant frequency and its harmonics are marked on each curve.
     """
-    fig, axes = _figure(1, width=7.5, height=3.6)
+    fig, axes = figure(1, width=7.5, height=3.6)
     ax = axes[0]
     for label, sp in spectra:
         keep = (sp.frequency > 0) & (sp.frequency <= (f_max if f_max else np.inf))
@@ -38,7 +38,7 @@ def plot_spectra(spectra, path: str | os.PathLike, *, unit: str = "", title: str
     ax.set_ylabel(f"PSD ({unit}²/Hz)" if unit else "PSD")
     ax.legend(fontsize=7, loc="upper right")
     ax.set_title(title or "power spectra (dots: dominant frequency and its harmonics)", fontsize=9)
-    return _save(fig, path, dpi)
+    return save(fig, path, dpi)
 
 
 DETAILS = {"last_stick": "time of the last stick onset (s)", "period": "period of the limit cycle (s)",
@@ -57,7 +57,7 @@ def plot_basins(basins, path: str | os.PathLike, *, detail: str = "last_stick", 
     code[lab == 0], code[lab == 1], code[lab == 3] = 0, 1, 5
     stick = lab == 2
     code[stick] = np.clip(mult[stick] + 1, 2, 4)  # period 1 -> 2, period 2 -> 3, period >= 3 -> 4
-    fig, axes = _figure(1, width=10.0, height=4.2)
+    fig, axes = figure(1, width=10.0, height=4.2)
     fig.clear()
     ax1, ax2 = fig.subplots(1, 2)
     extent = _extent(basins.x_values, basins.y_values)
@@ -84,20 +84,20 @@ def plot_basins(basins, path: str | os.PathLike, *, detail: str = "last_stick", 
         ax.set_ylabel(_axis_label(basins.y_name))
     if title:
         fig.suptitle(title, fontsize=10)
-    return _save(fig, path, dpi)
+    return save(fig, path, dpi)
 
 
 def plot_section(section, path: str | os.PathLike, *, x: int = 0, y: int = 1, title: str = "",
                  dpi: int = 120) -> Path:
     """Scatter of a Poincaré section's coordinates ``x`` and ``y`` (indices), coloured by time."""
-    fig, axes = _figure(1, width=5.0, height=4.2)
+    fig, axes = figure(1, width=5.0, height=4.2)
     ax = axes[0]
     sc = ax.scatter(section.points[:, x], section.points[:, y], c=section.t, s=6, cmap="viridis")
     fig.colorbar(sc, ax=ax, label="time (s)")
     ax.set_xlabel(_axis_label(section.names[x]))
     ax.set_ylabel(_axis_label(section.names[y]))
     ax.set_title(title or f"Poincaré section: {section.description}", fontsize=9)
-    return _save(fig, path, dpi)
+    return save(fig, path, dpi)
 
 
 def _extent(xs, ys):

@@ -20,8 +20,9 @@ from ..errors import SceneError
 FORMATS = (".png", ".svg", ".pdf")
 
 
-def _figure(rows: int, *, width: float = 7.0, height: float = 2.2, sharex: bool = True):
-    """A (figure, axes) pair on the Agg canvas, without pyplot's global state."""
+def figure(rows: int, *, width: float = 7.0, height: float = 2.2, sharex: bool = True):
+    """A (figure, axes) pair on the Agg canvas, without pyplot's global state: ``rows``
+    stacked axes of ``width`` x ``height`` inches each. Every plot in the package starts here."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
@@ -31,7 +32,9 @@ def _figure(rows: int, *, width: float = 7.0, height: float = 2.2, sharex: bool 
     return fig, axes
 
 
-def _save(fig, path: str | os.PathLike, dpi: int) -> Path:
+def save(fig, path: str | os.PathLike, dpi: int, *, bbox_inches: str | None = None) -> Path:
+    """Write ``fig`` to ``path`` atomically (format from the extension, one of FORMATS) and
+    return the path; every plot in the package is saved here."""
     path = Path(path)
     fmt = path.suffix.lower()
     if fmt not in FORMATS:
@@ -39,7 +42,7 @@ def _save(fig, path: str | os.PathLike, dpi: int) -> Path:
 
     def write(fh):
         buf = io.BytesIO()
-        fig.savefig(buf, format=fmt[1:], dpi=dpi)
+        fig.savefig(buf, format=fmt[1:], dpi=dpi, bbox_inches=bbox_inches)
         fh.write(buf.getvalue())
 
     return atomic_write(path, write)
@@ -62,7 +65,7 @@ def plot_run(result, path: str | os.PathLike, *, events=None, dpi: int = 120) ->
         events = stick_slip_events(result) if isinstance(result.scene.drive, SpringDrive) else []
     events = list(events)
     t = np.asarray(result.t) * 1e6
-    fig, (ax_x, ax_v, ax_f) = _figure(3)
+    fig, (ax_x, ax_v, ax_f) = figure(3)
     ax_x.plot(t, np.asarray(result.x) * 1e6, color="C0", lw=1, label="slider")
     if np.isfinite(result.drive_x).any():
         ax_x.plot(t, np.asarray(result.drive_x) * 1e6, color="0.6", lw=1, ls="--", label="drive end")
@@ -89,7 +92,7 @@ def plot_run(result, path: str | os.PathLike, *, events=None, dpi: int = 120) ->
             ax.axvline(e.t_slip * 1e6, color="red", lw=0.7, alpha=0.8)
         ax_f.plot([e.t_slip * 1e6], [e.force_peak * 1e3], "v", color="red", ms=4)
     ax_x.set_title(f"{result.scene.name or 'run'}: {len(events)} stick–slip events", fontsize=10)
-    return _save(fig, path, dpi)
+    return save(fig, path, dpi)
 
 
 def plot_force_displacement(result, path: str | os.PathLike, *, dpi: int = 120) -> Path:
@@ -101,7 +104,7 @@ def plot_force_displacement(result, path: str | os.PathLike, *, dpi: int = 120) 
     from ..analysis import friction_traces
 
     tr = friction_traces(result)
-    fig, (ax_d, ax_v) = _figure(2, height=2.8, sharex=False)
+    fig, (ax_d, ax_v) = figure(2, height=2.8, sharex=False)
     ax_d.plot(tr["displacement"] * 1e6, tr["friction_force"] * 1e3, lw=0.8, color="C2",
               label="contact (friction)")
     ax_d.plot(tr["displacement"] * 1e6, tr["drive_force"] * 1e3, lw=0.8, color="C3", label="drive")
@@ -126,7 +129,7 @@ def plot_force_displacement(result, path: str | os.PathLike, *, dpi: int = 120) 
         ax_v.legend(loc="upper left", fontsize=8)
     ax_v.set_xlabel("slider velocity (m/s)")
     ax_v.set_ylabel("friction force (mN)")
-    return _save(fig, path, dpi)
+    return save(fig, path, dpi)
 
 
 #: Units plot_comparison can show values (given in SI) in, with their factors.
@@ -152,7 +155,7 @@ def plot_comparison(comparison, path: str | os.PathLike, *, reference: float | N
     if unit not in UNITS:
         raise SceneError(f"`unit` must be one of {', '.join(map(repr, UNITS))}, got {unit!r}")
     scale = UNITS[unit]
-    fig, (ax,) = _figure(1, width=max(4.0, 1.3 * len(names) + 2.0), height=3.6)
+    fig, (ax,) = figure(1, width=max(4.0, 1.3 * len(names) + 2.0), height=3.6)
     data = [comparison.finite(name) * scale for name in names]
     ax.boxplot(data, positions=range(len(names)), widths=0.5, showfliers=False,
                medianprops={"color": "0.3"})
@@ -172,7 +175,7 @@ def plot_comparison(comparison, path: str | os.PathLike, *, reference: float | N
     ax.set_ylabel(label or measure_label(comparison.measure) + (f" ({unit})" if unit else ""))
     ax.set_title(f"{len(comparison.seeds)} seeds per variant; diamonds: mean, 95 % CI",
                  fontsize=9)
-    return _save(fig, path, dpi)
+    return save(fig, path, dpi)
 
 
 def plot_positions(results, labels, path: str | os.PathLike, *, dpi: int = 120) -> Path:
@@ -182,10 +185,10 @@ def plot_positions(results, labels, path: str | os.PathLike, *, dpi: int = 120) 
     """
     if len(results) != len(labels):
         raise SceneError(f"`labels` must have one entry per result ({len(results)}), got {len(labels)}")
-    fig, (ax,) = _figure(1, height=3.2)
+    fig, (ax,) = figure(1, height=3.2)
     for result, label in zip(results, labels):
         ax.plot(result.t * 1e6, (result.x - result.x[0]) * 1e6, label=label)
     ax.set_xlabel("time (µs)")
     ax.set_ylabel("slider travel (µm)")
     ax.legend(loc="best", fontsize="small")
-    return _save(fig, path, dpi)
+    return save(fig, path, dpi)

@@ -151,12 +151,12 @@ def plot_spectrogram(t, y, path: str | os.PathLike, *, time_scale: float = 1.0, 
     default Nyquist) and never above 20 kHz heard."""
     from scipy import signal as sps
 
-    from .plots import _figure, _save
+    from .plots import figure, save
 
     fs = 1.0 / (t[1] - t[0])
     nperseg = int(min(max(64, t.size // 48), t.size))
     f, tt, S = sps.spectrogram(y - np.mean(y), fs=fs, nperseg=nperseg, noverlap=nperseg * 3 // 4)
-    fig, axes = _figure(1, width=7.5, height=3.6)
+    fig, axes = figure(1, width=7.5, height=3.6)
     ax = axes[0]
     db = 10 * np.log10(np.maximum(S, S.max() * 1e-12))
     im = ax.pcolormesh(t[0] + tt, f, db, shading="auto", cmap="magma", vmin=db.max() - 80, vmax=db.max())
@@ -168,4 +168,4 @@ def plot_spectrogram(t, y, path: str | os.PathLike, *, time_scale: float = 1.0, 
     heard = ax.secondary_yaxis("right", functions=(lambda v: v * time_scale, lambda v: v / time_scale))
     heard.set_ylabel("heard (Hz)")
     ax.set_title(title, fontsize=9)
-    return _save(fig, path, dpi)
+    return save(fig, path, dpi)

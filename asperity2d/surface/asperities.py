@@ -36,7 +36,6 @@ The rule, step by step (``find_asperities``):
 from __future__ import annotations
 
 import bisect
-import math
 from dataclasses import dataclass
 
 import numpy as np

@@ -6,42 +6,18 @@ extension) atomically and returns its path. Lengths are drawn in micrometres.
 
 from __future__ import annotations
 
-import io
 import os
 from pathlib import Path
 
 import numpy as np
 
-from .._io import atomic_write
 from ..errors import SceneError
+from ..render.plots import figure, save
 from .asperities import Asperities
 from .profile import SurfaceProfile
 from .stats import HurstFit, PowerSpectrum
 
-FORMATS = (".png", ".svg", ".pdf")
 UM = 1e6  # metres -> micrometres
-
-
-def _figure(rows: int, *, width: float = 8.0, height: float = 2.6):
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(width, height * rows), layout="constrained")
-    FigureCanvasAgg(fig)
-    return fig, fig.subplots(rows, 1, squeeze=False)[:, 0]
-
-
-def _save(fig, path, dpi: int) -> Path:
-    path = Path(path)
-    if path.suffix.lower() not in FORMATS:
-        raise SceneError(f"`path` must end in one of {', '.join(FORMATS)}, got {str(path)!r}")
-
-    def write(fh):
-        buf = io.BytesIO()
-        fig.savefig(buf, format=path.suffix.lower()[1:], dpi=dpi)
-        fh.write(buf.getvalue())
-
-    return atomic_write(path, write)
 
 
 def plot_asperities(profile: SurfaceProfile, asperities: Asperities, path: str | os.PathLike, *,
@@ -56,7 +32,7 @@ def plot_asperities(profile: SurfaceProfile, asperities: Asperities, path: str |
     """
     from matplotlib.collections import PolyCollection
 
-    fig, (ax,) = _figure(1)
+    fig, (ax,) = figure(1, width=8.0, height=2.6)
     x, z = profile.x, profile.z
     a = asperities
     if x_range is not None:
@@ -91,13 +67,13 @@ def plot_asperities(profile: SurfaceProfile, asperities: Asperities, path: str |
                  f"({a.absorbed} summits absorbed, {a.trimmed} triangles trimmed)", fontsize=9)
     ax.legend(loc="upper right", fontsize=7)
     ax.autoscale_view()
-    return _save(fig, path, dpi)
+    return save(fig, path, dpi)
 
 
 def plot_spectrum(spectrum: PowerSpectrum, path: str | os.PathLike, *, fit: HurstFit | None = None,
                   dpi: int = 120) -> Path:
     """Power spectral density C(q) on log-log axes, with the Hurst fit's line over its band."""
-    fig, (ax,) = _figure(1, width=6.0, height=3.6)
+    fig, (ax,) = figure(1, width=6.0, height=3.6)
     ax.loglog(spectrum.q, spectrum.psd, color="0.3", lw=0.7, label=f"C(q), {spectrum.method}")
     if fit is not None:
         q = np.geomspace(fit.q_min, fit.q_max, 50)
@@ -106,4 +82,4 @@ def plot_spectrum(spectrum: PowerSpectrum, path: str | os.PathLike, *, fit: Hurs
     ax.set_xlabel("wavenumber q (rad/m)")
     ax.set_ylabel("C(q) (m³)")
     ax.legend(fontsize=8)
-    return _save(fig, path, dpi)
+    return save(fig, path, dpi)

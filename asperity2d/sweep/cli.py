@@ -17,7 +17,6 @@ import math
 import sys
 
 from .. import _io
-from ..errors import SceneError
 
 
 def _fmt(x) -> str:
