@@ -26,11 +26,6 @@ sys.path.insert(0, str(HERE.parent))
 from asperity2d._io import atomic_write_text  # noqa: E402
 
 
-def _gif(res):
-    return [("GIF frames: Pillow speed-up over matplotlib", res["speedup"], ">= 20"),
-            ("GIF frames per second (Pillow)", res["pillow_fps"], "")]
-
-
 def _sweep(res):
     cpu = res["overhead"]["cpu"]
     thr = res["throughput"]["cpu"]
@@ -53,8 +48,8 @@ def _generic(res, prefix=""):
     return rows
 
 
-HEADLINES = {"gif": _gif, "sweep": _sweep}
-ORDER = ("core", "gif", "belt", "sweep", "studies", "steel")
+HEADLINES = {"sweep": _sweep}  # the other modules define headline()
+ORDER = ("core", "steel", "studies", "belt", "basins", "gif", "surface", "sweep", "startup")
 
 
 def _load(name):
