@@ -174,7 +174,7 @@ def headline(res: dict) -> list[tuple[str, float, str]]:
     return rows
 
 
-def _save(res: dict, path: Path) -> None:
+def save(res: dict, path: Path) -> None:
     """Put the results under ``results.belt`` and refresh the belt headline rows, keeping everything else."""
     data = json.loads(path.read_text()) if path.exists() else {"results": {}, "headline": []}
     data.setdefault("results", {})["belt"] = res
@@ -206,7 +206,7 @@ def main(argv=None) -> int:
     for figure, value, target in headline(res):
         print(f"{figure:<{width}}  {value:>10.3g}   target {target}")
     if not args.no_save:
-        _save(res, HERE / "results.json")
+        save(res, HERE / "results.json")
         print(f"appended under 'belt' in {HERE / 'results.json'}")
     return 0
 

@@ -28,7 +28,7 @@ from asperity2d.belt import presets, simulate_chain
 from asperity2d.dynamics import signal, spectrum
 from asperity2d.dynamics.basins import LABELS, classify_chain
 from asperity2d.dynamics.plots import plot_spectra
-from asperity2d.render.plots import _figure, _save
+from asperity2d.render.plots import figure, save
 from asperity2d.render.sound import write_wav
 
 SPEEDS = (0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 1.0)
@@ -99,7 +99,7 @@ def main(argv=None) -> int:
 
 def plot_trends(summary, path):
     """THD and stick fraction of both windows against belt speed."""
-    fig, (ax1, ax2) = _figure(2, width=7.0, height=2.6)
+    fig, (ax1, ax2) = figure(2, width=7.0, height=2.6)
     for chain, rows in summary["chains"].items():
         v = [r["v_belt"] for r in rows]
         for key, style in (("first_10s", "--"), ("steady", "-")):
@@ -110,7 +110,7 @@ def plot_trends(summary, path):
     ax2.set_xlabel("belt speed (m/s)")
     ax1.legend(fontsize=7)
     ax1.set_title("harmonic distortion and sticking against belt speed", fontsize=9)
-    return _save(fig, path, 120)
+    return save(fig, path, 120)
 
 
 if __name__ == "__main__":

@@ -112,9 +112,9 @@ def analyse(rows: list[dict], size: dict, levels, n_seeds: int) -> tuple[dict, l
 
 
 def plot(table: dict, path) -> None:
-    from asperity2d.render.plots import _figure, _save
+    from asperity2d.render.plots import figure, save
 
-    fig, (ax,) = _figure(1, width=6.5, height=3.6)
+    fig, (ax,) = figure(1, width=6.5, height=3.6)
     grid = np.linspace(MEAN - 2.2 * STD, MEAN + 2.2 * STD, 200)
     for i, (dist, rows) in enumerate(table.items()):
         ax.plot(grid * 1e6, [fraction_above(g, mean=MEAN, std=STD, distribution=dist) for g in grid],
@@ -128,7 +128,7 @@ def plot(table: dict, path) -> None:
     ax.set_ylabel("fraction of lower asperities touched")
     ax.set_title(f"heights {MEAN * 1e6:g} ± {STD * 1e6:g} µm", fontsize=9)
     ax.legend(fontsize=7)
-    _save(fig, path, 120)
+    save(fig, path, 120)
 
 
 def main(argv=None) -> int:

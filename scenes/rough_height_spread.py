@@ -136,9 +136,9 @@ def analyse(setup: str, rows: list[dict], spreads) -> tuple[dict, list[dict]]:
 
 
 def plot(results: dict, path) -> None:
-    from asperity2d.render.plots import _figure, _save
+    from asperity2d.render.plots import figure, save
 
-    fig, axes = _figure(2, width=9.0, height=3.0, sharex=True)
+    fig, axes = figure(2, width=9.0, height=3.0, sharex=True)
     for ax, q, label in ((axes[0], "critical_force_N", "critical force (mN)"),
                          (axes[1], "mean_stick_force_N", "mean stick force (mN)")):
         for i, (setup, rows) in enumerate(results.items()):
@@ -153,7 +153,7 @@ def plot(results: dict, path) -> None:
         ax.legend(fontsize=8)
     axes[1].set_xlabel("height spread sigma / base")
     axes[0].set_title("random heights, regular spacing; points: seeds", fontsize=9)
-    _save(fig, path, 120)
+    save(fig, path, 120)
 
 
 def main(argv=None) -> int:

@@ -101,9 +101,9 @@ def analyse(setup: str, rows: list[dict], hursts, load: float) -> tuple[dict, li
 
 
 def plot(results: dict, path) -> None:
-    from asperity2d.render.plots import _figure, _save
+    from asperity2d.render.plots import figure, save
 
-    fig, axes = _figure(3, width=8.0, height=2.6, sharex=True)
+    fig, axes = figure(3, width=8.0, height=2.6, sharex=True)
     for ax, q, label, scale in ((axes[0], "critical_force_N", "critical force (mN)", 1e3),
                                 (axes[1], "mean_stick_force_N", "mean stick force (mN)", 1e3),
                                 (axes[2], "steepest_touched_flank_deg", "steepest flank touched (°)", 1.0)):
@@ -119,7 +119,7 @@ def plot(results: dict, path) -> None:
     axes[0].set_yscale("log")
     axes[1].set_yscale("log")
     axes[2].set_xlabel("Hurst exponent H (rms height fixed at 0.15 µm)")
-    _save(fig, path, 120)
+    save(fig, path, 120)
 
 
 def main(argv=None) -> int:

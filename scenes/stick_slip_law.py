@@ -56,9 +56,9 @@ def _describe(result, law) -> dict:
 
 
 def _plot(table, path):
-    from asperity2d.render.plots import _figure, _save
+    from asperity2d.render.plots import figure, save
 
-    fig, (ax_gap, ax_period) = _figure(2, height=2.6, sharex=False)
+    fig, (ax_gap, ax_period) = figure(2, height=2.6, sharex=False)
     regular = table["regular"][0]
     rows = table["random"]
     seeds = [r["seed"] for r in rows]
@@ -80,7 +80,7 @@ def _plot(table, path):
     ax_period.set_xlabel("asperity stick-slip period (pitches)")
     ax_period.set_ylabel("belt solver (pitches)")
     ax_period.legend(fontsize=7)
-    return _save(fig, path, 120)
+    return save(fig, path, 120)
 
 
 def main(argv=None) -> int:

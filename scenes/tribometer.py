@@ -23,9 +23,9 @@ from asperity2d.errors import SimulationError
 
 
 def _plots(curve, loops, fits, path):
-    from asperity2d.render.plots import _figure, _save
+    from asperity2d.render.plots import figure, save
 
-    fig, (ax_v, ax_x) = _figure(2, height=3.0, sharex=False)
+    fig, (ax_v, ax_x) = figure(2, height=3.0, sharex=False)
     ok = ft.steady_mask(curve)
     ax_v.errorbar(curve.velocity[ok], curve.force[ok] * 1e3, yerr=curve.spread[ok] * 1e3, fmt="o", ms=3)
     ax_v.plot(curve.velocity[~ok], curve.force[~ok] * 1e3, "x", color="gray", label="lift-off")
@@ -38,7 +38,7 @@ def _plots(curve, loops, fits, path):
     ax_x.plot(loops.displacement * 1e9, loops.force * 1e3, lw=0.8)
     ax_x.set_xlabel("slider displacement from rest (nm)")
     ax_x.set_ylabel("friction (mN)")
-    return _save(fig, path, 120)
+    return save(fig, path, 120)
 
 
 #: (drive stiffness N/m, drive speed m/s, lower asperities): the calibration
@@ -87,9 +87,9 @@ def _stick_slip_periods(stribeck, *, quick: bool) -> tuple:
 
 def _period_plot(periods, path):
     """Stick-slip period in pitches against drive stiffness: asperities vs belt solver."""
-    from asperity2d.render.plots import _figure, _save
+    from asperity2d.render.plots import figure, save
 
-    fig, (ax,) = _figure(1, height=3.0)
+    fig, (ax,) = figure(1, height=3.0)
     line = periods["belt_curve"]
     ax.plot(line["stiffness_N_per_m"], line["pitches"], "-", lw=0.8, color="gray",
             label=f"belt solver, calibrated law, {line['velocity_m_per_s']:g} m/s")
@@ -103,7 +103,7 @@ def _period_plot(periods, path):
     ax.set_xlabel("drive spring stiffness (N/m)")
     ax.set_ylabel("stick-slip period x V / pitch")
     ax.legend(fontsize=7)
-    return _save(fig, path, 120)
+    return save(fig, path, 120)
 
 
 def _macroscopic_chain(law, out) -> dict:
