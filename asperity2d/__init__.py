@@ -26,6 +26,7 @@ _LAZY = {
     "make_scene": "builders",
     "Result": "result", "load": "result",
     "Passed": "simulate", "Stuck": "simulate", "Travelled": "simulate", "simulate": "simulate",
+    "Run": "simulate",
     "CriticalForce": "critical", "critical_force": "critical", "critical_force_bracket": "critical",
     "Event": "analysis", "breakaway_force": "analysis", "event_statistics": "analysis",
     "friction_traces": "analysis", "stick_slip_events": "analysis", "peak_stick_force": "analysis",
@@ -35,7 +36,7 @@ _LAZY = {
     "__version__": "_version",
 }
 _SUBPACKAGES = ("belt", "friction", "sweep", "tribometer", "fitting", "quasistatic", "studies", "stats",
-                "surface")
+                "surface", "dynamics")
 
 
 def __getattr__(name):
@@ -73,7 +74,7 @@ sys.modules[__name__].__class__ = _Package
 __all__ = [
     "__version__", "SceneError", "SimulationError", "Profile", "RegularSpacing",
     "RandomSpacing", "ConstantForce", "Contact", "LowerSurface", "Scene", "Slider",
-    "SpringDrive", "make_scene", "Result", "load", "simulate", "Passed", "Stuck", "Travelled",
+    "SpringDrive", "make_scene", "Result", "load", "simulate", "Run", "Passed", "Stuck", "Travelled",
     "CriticalForce", "critical_force", "critical_force_bracket", "Event", "breakaway_force",
     "peak_stick_force", "mean_stick_force", "event_statistics", "friction_traces", "stick_slip_events",
     "Comparison", "compare", "render",
