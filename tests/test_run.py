@@ -93,3 +93,19 @@ def test_gravity_does_not_trip_the_divergence_guard():
     result = a.simulate(a.make_scene(gravity=4e14, **SMALL), duration=4e-9)
     assert np.all(np.isfinite(result.v))
     assert math.isfinite(result.meta["max_overlap_fraction"])
+
+
+def test_a_scene_wider_than_a_million_bases_keeps_its_slider_and_floor():
+    # fuzz-found: with a 5 m pitch on a 1 µm base the slider started 5.6e6 bases left of the
+    # surface, outside the fixed track's old [-1e6, 1e6] groove, which snapped it onto the
+    # groove's end at 4e6 bases per time unit (the divergence guard then fired at step 10).
+    scene = a.make_scene(spacing="random", drive="force", seed=0, lower_count=3, upper_count=2, pitch=5.0)
+    result = a.simulate(scene, 2e-10, settle=False, record_every=1)
+    # the constant force alone moves it from rest (the tips are metres from any contact):
+    # pymunk moves positions with the velocity before the step's kick, so after n steps
+    # x - x0 = F dt^2 n (n - 1) / 2M, i.e. F t (t - dt) / 2M. Tolerance: 1e-14 m absolute is
+    # ~10 ulp of a position 5.6 m from the origin; 1e-6 relative covers the rounding of the
+    # recorded times (t is summed step by step)
+    t = result.t - result.t[0]
+    expected = scene.drive.force * t * (t - (t[1] - t[0])) / (2 * scene.slider.mass)
+    assert np.allclose(result.x - result.x[0], expected, rtol=1e-6, atol=1e-14)

@@ -157,7 +157,7 @@ def build(scene, units: Units, dt: float, *, iterations: int, friction: float,
     bias = per_step_bias(CORRECTION_PER_STEP, dt)
     lower = _build_lower(space, scene, units, bias, friction)
     slider = _build_slider(space, scene, units, bias, lower, engaged)
-    _build_floor(space, scene, units, lower["x0"], friction)
+    _build_floor(space, scene, units, lower["x0"], friction, slider["extent"])
     layout = Layout(space=space, slider=slider["body"], lower_bodies=lower["bodies"],
                     lower_shapes=lower["shapes"], lower_x0=lower["x0"], lower_apex_x=lower["apex"],
                     lower_height=lower["height"], upper_apex=slider["apex"], slider_y0=slider["y0"],
@@ -260,22 +260,38 @@ def _build_slider(space, scene, u: Units, bias: float, lower: dict, engaged: boo
         shape.elasticity = 1.0
         shapes.append(shape)
     space.add(body, *shapes)
+    # from the slider's start to its rear tip past the last lower asperity
+    extent = (x0, float(x_lower[-1]) + float(apex[-1] - apex[0]) + 1.0)
     groove = None
     if s.track == "fixed":
-        groove = pymunk.GrooveJoint(space.static_body, body, (-1e6, y_start), (1e6, y_start), (0.0, 0.0))
+        lo, hi = _reach(-1e6, 1e6, *extent)
+        groove = pymunk.GrooveJoint(space.static_body, body, (lo, y_start), (hi, y_start), (0.0, 0.0))
         groove.error_bias = bias
         space.add(groove)
-    return {"body": body, "apex": apex, "y0": y0, "y_start": y_start, "groove": groove}
+    return {"body": body, "apex": apex, "y0": y0, "y_start": y_start, "groove": groove, "extent": extent}
 
 
-def _build_floor(space, scene, u: Units, x_lower, friction: float) -> None:
+#: How far (in bases) the slider's track and the floor reach beyond the scene, at least.
+_MARGIN = 1e5
+
+
+def _reach(lo: float, hi: float, *xs: float) -> tuple[float, float]:
+    """The x range (internal units) of the slider's track or the floor: [lo, hi] (the range
+    every ordinary scene fits in, kept as it was so those scenes stay bit-identical), widened
+    to cover every x in ``xs`` with a margin. (With a pitch 1e6 times the base, a fixed
+    [-1e6, 1e6] track snapped a slider that started outside it onto its end at 4e6 bases per
+    time unit.)"""
+    return min(lo, min(xs) - _MARGIN), max(hi, max(xs) + _MARGIN)
+
+
+def _build_floor(space, scene, u: Units, x_lower, friction: float, extent: tuple[float, float]) -> None:
     # A guard at the bottom of the lower tracks: upper tips that sink into
     # wide gaps (or half triangles that would fall through) land on it. It
     # is deep enough never to carry load in ordinary contact: travel_down
     # below the lowest base level.
     y = scene.lower.floor / u.length
-    x_lo = x_lower[0] - 1e6
-    floor = pymunk.Segment(space.static_body, (x_lo, y), (-x_lo, y), 0.0)
+    lo, hi = _reach(float(x_lower[0]) - 1e6, 1e6 - float(x_lower[0]), *extent)
+    floor = pymunk.Segment(space.static_body, (lo, y), (hi, y), 0.0)
     segments = [floor]
     # A profile's valleys between lower asperities (rigid substrate, touched by the slider only).
     for line in scene.lower.substrate or ():
