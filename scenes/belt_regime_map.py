@@ -13,15 +13,17 @@ import numpy as np
 from asperity2d._io import atomic_write_text
 from asperity2d.belt.presets import preset
 from asperity2d.belt.regime import regime_map
-from asperity2d.studies.seed001 import RENDERS
+from asperity2d.studies.seed001 import renders
 from asperity2d.friction import Stribeck
 
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="belt_regime_map", description=__doc__)
     parser.add_argument("--quick", action="store_true", help="coarse 3x3 grids, no plots")
-    parser.add_argument("--out", type=Path, default=RENDERS)
+    parser.add_argument("-o", "--out", type=Path, default=None,
+                        help="output directory (default renders/belt in the working directory)")
     args = parser.parse_args(argv)
+    args.out = args.out or renders()
     size = 3 if args.quick else 10
     law = Stribeck(mu_s=0.4, mu_k=0.25, v_s=0.05)
     stribeck = dict(masses=[1.0], springs=[10.0, 0.0], dampers=[0.0, 0.0], friction=law, v_belt=0.1,

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 from pathlib import Path
 
 import numpy as np
@@ -22,7 +23,13 @@ from ..belt.regime import classify
 from .claims import claim
 
 REL_TOL = 0.05
-RENDERS = Path(__file__).resolve().parents[2] / "renders" / "belt"
+
+
+def renders() -> Path:
+    """The default output directory of the seed-001 scripts: ``belt`` under
+    ``$ASPERITY2D_RENDERS`` (the scene scripts' output root) or ``renders/belt`` in the
+    working directory -- never inside the installed package."""
+    return Path(os.environ.get("ASPERITY2D_RENDERS", Path.cwd() / "renders")) / "belt"
 
 
 def run(name: str, *, quick: bool = False, **overrides):
@@ -101,8 +108,10 @@ def cli(study, name: str, argv=None) -> int:
     """Common ``main``: parse --quick / --out, run ``study(quick) -> (summary, {label: result})``, write outputs."""
     parser = argparse.ArgumentParser(prog=f"belt_{name}", description=study.__doc__)
     parser.add_argument("--quick", action="store_true", help="fewer samples, no plots (for tests)")
-    parser.add_argument("--out", type=Path, default=RENDERS, help="output directory")
+    parser.add_argument("-o", "--out", type=Path, default=None,
+                        help="output directory (default renders/belt in the working directory)")
     args = parser.parse_args(argv)
+    args.out = args.out or renders()
     summary, results = study(args.quick)
     summary["solver"] = "asperity2d.belt exact event-driven (closed-form phases, brentq switches)"
     summary["verdict_rule"] = f"numbers read off the thesis' figures hold within {REL_TOL:.0%}; trends as stated"

@@ -91,10 +91,6 @@ class RunRecord:
         }
 
 
-def _checksum(payload: Mapping[str, Any]) -> str:
-    return "sha256:" + hashlib.sha256(canonical_json(payload).encode("utf-8")).hexdigest()
-
-
 def checksum(payload: Mapping[str, Any]) -> str:
     """``"sha256:<hex>"`` of the canonical JSON of ``payload``."""
     return "sha256:" + hashlib.sha256(canonical_json(payload).encode("utf-8")).hexdigest()
