@@ -38,8 +38,9 @@ def _loaded(code: str) -> list[str]:
     "from asperity2d.cli import main; main(['sweep', 'run', '--help'])",
     "from asperity2d.cli import main; main(['run', 'missing.toml'])",
     "from asperity2d.cli import main; main(['run', 'scene.toml', '--duration', 'nan'])",
+    "from asperity2d.cli import main; main(['belt', 'missing.toml'])",
 ], ids=["import", "errors and dir", "--help", "belt --help", "sweep run --help", "missing file",
-        "bad value"])
+        "bad value", "belt: missing file"])
 def test_nothing_heavy_is_loaded_before_first_use(code):
     assert _loaded(code) == []
 

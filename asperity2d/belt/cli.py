@@ -63,20 +63,22 @@ def load_chain(path) -> dict:
 
 def run(args) -> int:
     """Run the parsed ``belt`` command; bad input raises ``SceneError`` (one line, exit 2)."""
-    from . import presets
-
     if args.chain == "basins":
         from ..dynamics.cli import run_basins
 
         return run_basins(args)
+    if (args.chain is None) == (args.preset is None) and not args.list_presets:
+        raise SceneError("give either a `chain` TOML file or `--preset`")
+    out = args.output and _io.output_path("--output", args.output, suffixes=OUTPUTS)
+    # the user's file is read (and refused) before the solver and NumPy are imported
+    kwargs = None if args.preset or args.list_presets else load_chain(args.chain)
+    from . import presets
+
     if args.list_presets:
         for name in presets.names():
             print(f"{name:20s} {presets.describe(name)}")
         return 0
-    if (args.chain is None) == (args.preset is None):
-        raise SceneError("give either a `chain` TOML file or `--preset`")
-    out = args.output and _io.output_path("--output", args.output, suffixes=OUTPUTS)
-    kwargs = presets.preset(args.preset) if args.preset else load_chain(args.chain)
+    kwargs = kwargs if kwargs is not None else presets.preset(args.preset)
     if args.method:
         kwargs["method"] = args.method
     if args.t_end is not None:
