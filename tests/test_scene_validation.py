@@ -95,3 +95,13 @@ def test_cli_bad_input_as_a_subprocess_has_no_traceback(tmp_path):
     assert proc.returncode == 2
     assert "Traceback" not in proc.stderr
     assert len(proc.stderr.strip().splitlines()) == 1 and "`mu_static`" in proc.stderr
+
+
+def test_the_dataclass_defaults_are_the_builders_defaults():
+    # one source of truth (scene.SEED_000): Scene() and make_scene() build the same scene;
+    # only the builder names it after its arguments
+    import dataclasses
+
+    built = a.make_scene()
+    assert dataclasses.replace(built, name="") == a.Scene()
+    assert built.slider.track == "fixed" and built.contact.mu_kinetic == 0.2
