@@ -145,6 +145,11 @@ def _row_event(events, r, a, b, ga, gb, da, db, opening, horizon):
         # did it leave zero the right way (even to second order, g' = 0 at a border) and
         # cross back within this interval? then the crossing is the switch; else switch at once
         ts = np.linspace(a, b, 33)[1:-1]
+        if da > 0 > db:
+            # a short excursion (g' > 0 at the start, the return within one sample spacing)
+            # can fall between the samples: its top, where g' = 0, is sampled too (fuzz: a
+            # mass pushed 4e-4 over the Coulomb limit flipped between +/-1 at one instant)
+            ts = np.sort(np.append(ts, _zero(lambda t: f(t)[1:], a, b, da, db)))
         gs = np.array([f(t)[0] for t in ts])
         up = np.flatnonzero(gs > 0)
         if up.size:
