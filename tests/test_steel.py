@@ -70,7 +70,7 @@ def test_steel_quick_ladder_converges_as_the_speed_up_shrinks(capsys, tmp_path):
     out = json.loads(capsys.readouterr().out)
     free = out["setups"]["free"]
     assert free["factors"] == [8000.0, 4000.0, 2000.0] and free["production_factor"] == 4000.0
-    assert all(r["status"] == "passed" and r["events"] >= 3 for r in free["rungs"])
+    assert all(r["status"] == "passed" and r["events"] >= 2 for r in free["rungs"])  # >= 2 whole cycles
     assert free["max_overlap_fraction"] <= 0.02 and free["max_track_drift_fraction"] <= 1e-6
     q = free["quantities"]
     for name, entry in q.items():
