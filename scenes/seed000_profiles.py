@@ -164,6 +164,19 @@ def verdict_line(record: dict) -> str:
             f"x{n['regular_half_over_full']:.3f})")
 
 
+def flank_laws(friction: str, critical: dict) -> dict:
+    """The free slider's flank laws under its load L: pushed up 45° flanks from rest against
+    mu_s, L tan(45° + atan mu_s), or kept sliding from flank to flank at mu_k,
+    L tan(45° + atan mu_k) (N); and each regular critical force over both."""
+    load = a.make_scene(**studies.SETUPS["free"]).slider.normal_load
+    laws = {kind: load * math.tan(math.radians(45.0) + math.atan(FRICTIONS[friction][f"mu_{kind}"]))
+            for kind in ("static", "kinetic")}
+    return {"static_N": laws["static"], "kinetic_N": laws["kinetic"],
+            "static_over_kinetic": laws["static"] / laws["kinetic"],
+            "regular_critical_over_law": {p: {k: _ratio(c, law) for k, law in laws.items()}
+                                          for p, c in critical.items()}}
+
+
 def mechanism(setup: str, results: dict) -> dict:
     """What makes half and full triangles differ, in numbers: per friction pair, the contact work
     books of every profile (the back-flank push), the full slider's mean push against the
@@ -186,6 +199,8 @@ def mechanism(setup: str, results: dict) -> dict:
                 "half_over_full": {c["measure"]: {"regular": c["numbers"]["regular_half_over_full"],
                                                   "random": c["numbers"]["random_half_over_full"]}
                                    for c in res["claims"] if c["half"] == half}}
+        if setup == "free":
+            entry["flank_law"] = flank_laws(friction, {p: d["regular"]["critical_force_N"] for p, d in data.items()})
         out[friction] = entry
     if set(FRICTIONS) <= set(out):
         out["switch_effect"] = {}
@@ -212,6 +227,13 @@ def mechanism_lines(setup: str, mech: dict) -> list[str]:
             "keep-moving difference (half - full) of "
             + ", ".join(f"{1e3 * m[h]['keep_moving_difference_half_minus_full_N']['mean']:.3g} mN ({h})"
                         for h in HALVES[setup]))
+        if "flank_law" in m:
+            law = m["flank_law"]
+            lines.append(f"[{setup}] {friction}: regular critical force from rest over the flank laws "
+                         f"(static {1e3 * law['static_N']:.3g} mN, kinetic {1e3 * law['kinetic_N']:.3g} mN, ratio "
+                         f"{law['static_over_kinetic']:.3f}): " + ", ".join(
+                             f"{p} x{r['static']:.3f} static / x{r['kinetic']:.3f} kinetic"
+                             for p, r in law["regular_critical_over_law"].items()))
     return lines
 
 
