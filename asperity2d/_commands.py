@@ -52,8 +52,9 @@ def scene_from_toml(path, *, arg: str = "scene"):
     else:
         params = data
     from .builders import make_scene
+    from .surface.source import resolve_paths  # profile files named relative to the TOML file
 
-    return make_scene(**params), run
+    return make_scene(**resolve_paths(params, Path(path).parent)), run
 
 
 def _kind(value) -> str:

@@ -21,7 +21,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .builders import make_scene
 from .errors import SceneError
+from .result import Result
 from .scene import SpringDrive
 
 #: Default thresholds as multiples of the drive velocity V. A slider released
@@ -303,9 +305,6 @@ def synthetic_stick_slip(*, n_events: int = 8, seed: int = 0, noise: float = 0.0
     Returns ``(result, truth)`` where ``truth`` holds the onset sample
     indices ``slip_index`` and the re-stick indices ``end_index``.
     """
-    from .result import Result
-    from .builders import make_scene
-
     scene = make_scene(lower_count=2, upper_count=1) if scene is None else scene
     V, k = scene.drive.velocity, scene.drive.stiffness
     dt = 1e-3 * scene.base / V

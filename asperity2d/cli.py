@@ -154,9 +154,27 @@ def build_parser() -> Parser:
     p.add_argument("-o", "--output", help="plot (.png/.svg/.pdf), result (.npz) or table (.csv)")
     _json_flag(p)
     p.set_defaults(handler="asperity2d.belt.cli:run")
+    _add_belt_basins(p)
 
     _add_sweep(sub)
     return parser
+
+
+def _add_belt_basins(p) -> None:
+    """``asperity2d belt basins ...`` options (used after the word ``basins``; see asperity2d.dynamics.cli)."""
+    g = p.add_argument_group("basins: asperity2d belt basins (--preset|--chain-file) [options]")
+    g.add_argument("--x", dest="basins_x", default="x1", help="first coordinate: x1..xn (m) or v1..vn (m/s)")
+    g.add_argument("--y", dest="basins_y", default="v1", help="second coordinate (default v1)")
+    g.add_argument("--x-range", dest="basins_x_range", default="-0.5,0.5",
+                   help="LO,HI of the first coordinate (write --x-range=-0.5,0.5 when LO < 0)")
+    g.add_argument("--y-range", dest="basins_y_range", default="-0.5,0.5", help="LO,HI of the second")
+    g.add_argument("--grid", dest="basins_grid", default="41", help="points per axis: N or NX,NY")
+    g.add_argument("--chain-file", dest="basins_chain", help="TOML chain file (instead of --preset)")
+    g.add_argument("--store", dest="basins_store", help="sweep store directory (default: <output>.runs)")
+    g.add_argument("--workers", dest="basins_workers", type=positive_int, help="local worker processes")
+    g.add_argument("--scheduler", dest="basins_scheduler", help="Dask scheduler address, or 'local'")
+    g.add_argument("--rtol", dest="basins_rtol", type=positive_float, default=1e-6,
+                   help="relative tolerance of the limit-cycle test")
 
 
 def _add_sweep(subparsers) -> None:

@@ -31,11 +31,16 @@ from typing import Callable, Iterable
 
 import numpy as np
 
-from . import stats
+from . import analysis, stats
 from ._io import FileError, atomic_write_text, read_text
 from ._validate import check_int, show
+from .builders import make_scene
+from .critical import critical_force
 from .errors import SceneError, SimulationError
 from .scene import Scene, SpringDrive
+from .simulate import simulate
+from .sweep.executors import make_executor
+from .sweep.progress import Progress
 
 FORMAT = "asperity2d.comparison/1"
 
@@ -43,22 +48,16 @@ FORMAT = "asperity2d.comparison/1"
 # -- the standard measures (module level: worker processes import them) --------------------------
 def critical_force_rest(scene: Scene) -> float:
     """Critical constant force (N) from rest on the surface (:func:`asperity2d.critical_force`)."""
-    from .critical import critical_force
-
     return critical_force(scene)
 
 
 def critical_force_run_up(scene: Scene) -> float:
     """Critical constant force (N) with the builder's run-up (``start="run-up"``)."""
-    from .critical import critical_force
-
     return critical_force(scene, start="run-up")
 
 
 def spring_pass(scene: Scene):
     """One spring-driven pass of ``scene`` (its drive made a spring if it was a constant force)."""
-    from .simulate import simulate
-
     if not isinstance(scene.drive, SpringDrive):
         scene = scene.replace(drive=SpringDrive())
     return simulate(scene)
@@ -73,23 +72,17 @@ def _or_nan(fn, result) -> float:
 
 def first_breakaway(scene: Scene) -> float:
     """Drive force (N) at the first stick-to-slip transition of a spring-driven pass."""
-    from .analysis import breakaway_force
-
-    return _or_nan(breakaway_force, spring_pass(scene))
+    return _or_nan(analysis.breakaway_force, spring_pass(scene))
 
 
 def peak_stick_force(scene: Scene) -> float:
     """Largest drive force (N) at a stick-to-slip transition over a spring-driven pass."""
-    from .analysis import peak_stick_force as peak
-
-    return _or_nan(peak, spring_pass(scene))
+    return _or_nan(analysis.peak_stick_force, spring_pass(scene))
 
 
 def mean_stick_force(scene: Scene) -> float:
     """Mean drive force (N) at the stick-to-slip transitions of a spring-driven pass."""
-    from .analysis import mean_stick_force as mean
-
-    return _or_nan(mean, spring_pass(scene))
+    return _or_nan(analysis.mean_stick_force, spring_pass(scene))
 
 
 #: Named measures: the CLI's ``--measure`` and ``compare(measure="...")``; each with its
@@ -241,10 +234,6 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
         (1: in this process), or a Dask ``scheduler`` address (``"local"``
         starts one). The values do not depend on them.
     """
-    from .builders import make_scene
-    from .sweep.executors import make_executor
-    from .sweep.progress import Progress
-
     if isinstance(measure, str):
         if measure not in MEASURES:
             raise SceneError(f"`measure` must be one of {', '.join(MEASURES)} or a callable, got {show(measure)}")

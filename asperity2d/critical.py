@@ -35,6 +35,7 @@ from dataclasses import dataclass
 from ._validate import check_choice, check_int, check_positive
 from .errors import SceneError
 from .scene import ConstantForce, Scene
+from .simulate import MAX_STEPS, Run, default_duration, default_stops
 
 STARTS = ("rest", "entry", "run-up")
 #: The settling push of ``start="rest"``, as a fraction of the flank-law estimate.
@@ -85,8 +86,6 @@ def settled_run(scene: Scene, *, start: str = "rest", dt: float | None = None, i
                 max_steps: int | None = None):
     """A :class:`~asperity2d.simulate.Run` of ``scene`` with its drive replaced by a zero
     constant force, settled for ``start`` (see the module doc): fork it and set the force."""
-    from .simulate import MAX_STEPS, Run
-
     check_choice("start", start, STARTS)
     run = Run(scene.replace(drive=ConstantForce(force=0.0)), dt=dt, iterations=iterations,
               max_steps=MAX_STEPS if max_steps is None else max_steps, engaged=start == "rest")
@@ -100,8 +99,6 @@ def settled_run(scene: Scene, *, start: str = "rest", dt: float | None = None, i
 def passes(base, force: float) -> bool:
     """Does a constant ``force`` (N), applied to a fork of the settled run ``base``, carry the
     slider over the whole lower surface?"""
-    from .simulate import default_duration, default_stops
-
     run = base.fork()
     run.set_drive_force(force)
     scene = base.scene.replace(drive=ConstantForce(force=force))

@@ -26,6 +26,8 @@ from __future__ import annotations
 
 import math
 from dataclasses import astuple, dataclass, fields
+from decimal import Decimal
+from numbers import Real
 
 import numpy as np
 
@@ -35,15 +37,31 @@ __all__ = ["Coulomb", "StaticKinetic", "CoulombViscous", "Stribeck", "Dahl", "Lu
 
 
 def _check(name: str, value: float, *, positive: bool = False) -> None:
-    """Raise SceneError unless ``value`` is a finite number >= 0 (or > 0)."""
-    if not isinstance(value, (int, float, np.floating, np.integer)) or isinstance(value, bool):
-        raise SceneError(f"`{name}` must be a number, got {value!r}")
-    if not math.isfinite(value):
-        raise SceneError(f"`{name}` must be finite, got {value!r}")
-    if positive and value <= 0:
-        raise SceneError(f"`{name}` must be > 0, got {value!r}")
-    if value < 0:
-        raise SceneError(f"`{name}` must be >= 0, got {value!r}")
+    """Raise SceneError unless ``value`` is a finite real number >= 0 (or > 0) of magnitude <= 1e100.
+
+    Same rules as :mod:`asperity2d.belt.validate` (which cannot be imported here: the belt
+    package imports this module); formatting the message never raises.
+    """
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (Real, Decimal)):
+        raise SceneError(f"`{name}` must be a real number, got {_show(value)}")
+    try:
+        number = float(value)
+    except (OverflowError, ValueError, TypeError):
+        number = math.inf
+    if not math.isfinite(number) or abs(number) > 1e100:
+        raise SceneError(f"`{name}` must be finite and at most 1e100, got {_show(value)}")
+    if positive and number <= 0:
+        raise SceneError(f"`{name}` must be > 0, got {_show(value)}")
+    if number < 0:
+        raise SceneError(f"`{name}` must be >= 0, got {_show(value)}")
+
+
+def _show(value) -> str:
+    try:
+        text = repr(value)
+    except Exception:  # noqa: BLE001 -- e.g. an int beyond Python's digit limit
+        text = f"<{type(value).__name__}>"
+    return text if len(text) <= 60 else text[:57] + "..."
 
 
 class FrictionLaw:
@@ -94,13 +112,18 @@ class FrictionLaw:
 
 def law_from_dict(record: dict) -> FrictionLaw:
     """Inverse of ``FrictionLaw.to_dict``."""
+    laws = {c.__name__: c for c in (Coulomb, StaticKinetic, CoulombViscous, Stribeck, Dahl, LuGre)}
+    if not isinstance(record, dict):
+        raise SceneError(f"`friction` must be a table with a `law` entry, got {_show(record)}")
     record = dict(record)
-    cls = {c.__name__: c for c in (Coulomb, StaticKinetic, CoulombViscous, Stribeck, Dahl, LuGre)}.get(
-        record.pop("law", None)
-    )
+    name = record.pop("law", None)
+    cls = laws.get(name) if isinstance(name, str) else None
     if cls is None:
-        raise SceneError(f"`friction` names an unknown law: {record!r}")
-    return cls(**record)
+        raise SceneError(f"`friction` law must be one of {', '.join(laws)}, got {_show(name)}")
+    try:
+        return cls(**record)
+    except TypeError as exc:  # a missing or unknown parameter of the law
+        raise SceneError(f"`friction` parameters do not fit {cls.__name__}: {exc}") from None
 
 
 @dataclass(frozen=True)
@@ -133,7 +156,7 @@ class StaticKinetic(FrictionLaw):
         _check("mu_s", self.mu_s)
         _check("mu_k", self.mu_k)
         if self.mu_k > self.mu_s:
-            raise SceneError(f"`mu_k` must be <= `mu_s` ({self.mu_s!r}), got {self.mu_k!r}")
+            raise SceneError(f"`mu_k` must be <= `mu_s` ({_show(self.mu_s)}), got {_show(self.mu_k)}")
 
     def curve(self, v):
         return self.mu_k * np.sign(v)
@@ -194,7 +217,7 @@ class Stribeck(FrictionLaw):
         _check("delta", self.delta, positive=True)
         _check("sigma2", self.sigma2)
         if self.mu_k > self.mu_s:
-            raise SceneError(f"`mu_k` must be <= `mu_s` ({self.mu_s!r}), got {self.mu_k!r}")
+            raise SceneError(f"`mu_k` must be <= `mu_s` ({_show(self.mu_s)}), got {_show(self.mu_k)}")
 
     def g(self, v):
         """Magnitude of the Coulomb-Stribeck part, mu_k..mu_s (dimensionless)."""
@@ -275,7 +298,7 @@ class LuGre(FrictionLaw):
         _check("mu_k", self.mu_k, positive=True)
         _check("v_s", self.v_s, positive=True)
         if self.mu_k > self.mu_s:
-            raise SceneError(f"`mu_k` must be <= `mu_s` ({self.mu_s!r}), got {self.mu_k!r}")
+            raise SceneError(f"`mu_k` must be <= `mu_s` ({_show(self.mu_s)}), got {_show(self.mu_k)}")
 
     def stribeck(self) -> Stribeck:
         return Stribeck(self.mu_s, self.mu_k, self.v_s, 2.0, self.sigma2)

@@ -17,6 +17,11 @@ runs of its two flanks from the tip: ``left`` (towards -x) and ``right``.
   same height, same flank, half the base.
 * ``flat``: a rectangle (a flat block or surface, for Coulomb checks); its
   "tip" is the middle of its top face.
+
+A :class:`Profile` gives every asperity of a surface one shape. :class:`Shapes`
+overrides it per asperity (a rough surface: random heights, or the summits of
+a measured profile): each asperity's own height, flank runs and base level.
+:class:`ExplicitSpacing` places tips at given positions (a profile's summits).
 """
 
 from __future__ import annotations
@@ -26,7 +31,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import check_choice, check_finite, check_int, check_nonnegative, check_positive, show
+from ._validate import (MAX_COUNT, check_choice, check_finite, check_int, check_nonnegative,
+                        check_positive, show)
 from .errors import SceneError
 
 KINDS = ("full", "half", "flat")
@@ -87,11 +93,24 @@ class Profile:
 
         ``upper=True`` gives the slider's downward-pointing version.
         """
-        left, right = self.runs(upper=upper)
-        h = -self.height if upper else self.height
-        if self.kind == "flat":
-            return [(-left, 0.0), (right, 0.0), (right, h), (-left, h)]
-        return [(-left, 0.0), (right, 0.0), (0.0, h)]
+        return outline(self.kind, *self.runs(upper=upper), self.height, 0.0, upper=upper)
+
+
+def outline(kind: str, left: float, right: float, height: float, level: float, *,
+            upper: bool) -> list[tuple[float, float]]:
+    """Vertices (m) of one asperity relative to its tip's x and the surface's rest datum.
+
+    The base line lies at ``level`` and the tip ``height`` beyond it, both
+    measured in the direction the tips point: up for the lower surface,
+    down (negative y) for the slider (``upper=True``).
+    """
+    # 0.0 - level, not -level: a zero level stays +0.0, so a uniform surface's
+    # vertices are the very floats they were before per-asperity shapes existed.
+    base = 0.0 - level if upper else level
+    tip = base - height if upper else level + height
+    if kind == "flat":
+        return [(-left, base), (right, base), (right, tip), (-left, tip)]
+    return [(-left, base), (right, base), (0.0, tip)]
 
 
 def half_of(full: Profile) -> Profile:
@@ -102,13 +121,62 @@ def half_of(full: Profile) -> Profile:
     return Profile(kind="half", base=full.base / 2.0, height=full.height)
 
 
-def _check_overlap(name: str, tips: np.ndarray, left: float, right: float) -> None:
-    """Bases of neighbouring asperities may touch but not overlap."""
-    if len(tips) > 1:
+def _check_overlap(name: str, tips: np.ndarray, left, right) -> None:
+    """Bases of neighbouring asperities may touch but not overlap.
+
+    ``left`` / ``right`` are the runs from each tip to its feet (m): one value
+    for all asperities, or one per asperity.
+    """
+    if len(tips) < 2:
+        return
+    if np.ndim(left) == 0 and np.ndim(right) == 0:
         gaps = np.diff(tips) - (left + right)
         if gaps.min() < -1e-9 * (left + right):
             raise SceneError(f"`{name}` is too small: asperity bases ({left + right:g} m wide) would "
                              f"overlap (closest tips {float(np.diff(tips).min()):g} m apart)")
+        return
+    left, right = _per_tip(left, len(tips)), _per_tip(right, len(tips))
+    need = right[:-1] + left[1:]
+    gaps = np.diff(tips) - need
+    slack = 1e-9 * float(np.max(left + right))
+    if gaps.min() < -slack:
+        i = int(np.argmin(gaps))
+        raise SceneError(f"`{name}` is too small: the bases of asperities {i} and {i + 1} would overlap "
+                         f"(tips {float(tips[i + 1] - tips[i]):g} m apart, their flanks need "
+                         f"{float(need[i]):g} m)")
+
+
+def float_array(name: str, value, count: int | None, *, minimum: str | None = None) -> np.ndarray:
+    """``value`` as a 1-D array of finite floats, ``count`` long if given; ``minimum`` is
+    None, ``"positive"`` or ``"nonnegative"``. A bad entry is named ``name[i]``. Numeric
+    arrays are checked in one pass (a profile can hold thousands of asperities)."""
+    if isinstance(value, (str, bytes, dict)) or not hasattr(value, "__len__"):
+        raise SceneError(f"`{name}` must be a sequence of numbers, got {show(value)}")
+    raw = np.asarray(value)
+    if raw.ndim != 1:
+        raise SceneError(f"`{name}` must be one-dimensional, got shape {raw.shape}")
+    if raw.dtype.kind in "fiu":
+        arr = raw.astype(float)
+    else:  # strings, booleans, objects: the scalar checks name the entry
+        check = {"positive": check_positive, "nonnegative": check_nonnegative}.get(minimum, check_finite)
+        arr = np.array([check(f"{name}[{i}]", v) for i, v in enumerate(raw.tolist())], dtype=float)
+    if count is not None and len(arr) != count:
+        raise SceneError(f"`{name}` must have {count} entries (one per asperity), got {len(arr)}")
+    bad = ~np.isfinite(arr)
+    if minimum == "positive":
+        bad |= ~(arr > 0)
+    elif minimum == "nonnegative":
+        bad |= ~(arr >= 0)
+    if np.any(bad):
+        i = int(np.argmax(bad))
+        need = {"positive": "finite and > 0", "nonnegative": "finite and >= 0"}.get(minimum, "finite")
+        raise SceneError(f"`{name}[{i}]` must be {need}, got {arr[i]!r}")
+    return arr
+
+
+def _per_tip(runs, count: int) -> np.ndarray:
+    out = np.asarray(runs, dtype=float)
+    return np.full(count, float(out)) if out.ndim == 0 else out
 
 
 @dataclass(frozen=True)
@@ -157,13 +225,25 @@ class RandomSpacing:
         object.__setattr__(self, "seed", check_int("seed", self.seed, minimum=0, maximum=2**63 - 1))
         object.__setattr__(self, "offset", check_finite("offset", self.offset))
 
-    def tips(self, left: float, right: float, *, name: str = "mean_pitch") -> np.ndarray:
-        """Tip x positions (m) for asperities whose bases reach ``left`` / ``right`` of the tip."""
-        shortest = left + right + self.min_gap
-        if self.count > 1 and self.mean_pitch < shortest:
+    def tips(self, left, right, *, name: str = "mean_pitch") -> np.ndarray:
+        """Tip x positions (m) for asperities whose bases reach ``left`` / ``right`` of the tip.
+
+        With one run per asperity (arrays), gap i is drawn between its own
+        shortest value ``right[i] + left[i + 1] + min_gap`` and twice the mean
+        pitch minus it, so every gap still averages ``mean_pitch``; equal runs
+        give exactly the tips of the scalar case (same draws, same floats).
+        """
+        if np.ndim(left) == 0 and np.ndim(right) == 0:
+            shortest = left + right + self.min_gap
+            widest = shortest
+        else:
+            left, right = _per_tip(left, self.count), _per_tip(right, self.count)
+            shortest = right[:-1] + left[1:] + self.min_gap
+            widest = float(shortest.max()) if self.count > 1 else 0.0
+        if self.count > 1 and self.mean_pitch < widest:
             raise SceneError(
                 f"`{name}` ({self.mean_pitch:g} m) must be >= base + min_gap "
-                f"({shortest:g} m): asperities on one surface would overlap")
+                f"({widest:g} m): asperities on one surface would overlap")
         rng = np.random.default_rng(self.seed)
         spread = 2.0 * (self.mean_pitch - shortest)
         gaps = shortest + spread * rng.random(self.count - 1)
@@ -174,4 +254,47 @@ class RandomSpacing:
         return self.mean_pitch
 
 
-Spacing = RegularSpacing | RandomSpacing
+@dataclass(frozen=True)
+class ExplicitSpacing:
+    """Tips at the given x ``positions`` (m, strictly increasing), e.g. a profile's summits.
+
+    ``mean_pitch`` (m) defaults to the mean distance between neighbouring
+    tips; a single tip needs it given (it sets run lengths and views).
+    """
+
+    positions: tuple[float, ...]
+    mean_pitch: float | None = None
+
+    def __post_init__(self):
+        pos = float_array("positions", self.positions, None)
+        if len(pos) < 1:
+            raise SceneError("`positions` must hold at least one tip")
+        if len(pos) > MAX_COUNT:
+            raise SceneError(f"`positions` must hold <= {MAX_COUNT} tips, got {len(pos)}")
+        steps = np.diff(pos)
+        if np.any(steps <= 0):
+            i = int(np.argmax(steps <= 0))
+            raise SceneError(f"`positions` must increase: {pos[i + 1]!r} follows {pos[i]!r} at index {i + 1}")
+        object.__setattr__(self, "positions", tuple(pos.tolist()))
+        if self.mean_pitch is None:
+            if len(pos) == 1:
+                raise SceneError("`mean_pitch` is required with a single tip position")
+            object.__setattr__(self, "mean_pitch", float((pos[-1] - pos[0]) / (len(pos) - 1)))
+        object.__setattr__(self, "mean_pitch", check_positive("mean_pitch", self.mean_pitch))
+
+    @property
+    def count(self) -> int:
+        return len(self.positions)
+
+    @property
+    def pitch(self) -> float:
+        return self.mean_pitch
+
+    def tips(self, left, right, *, name: str = "positions") -> np.ndarray:
+        """The tip positions (m), checked for overlapping bases."""
+        out = np.array(self.positions, dtype=float)
+        _check_overlap(name, out, left, right)
+        return out
+
+
+Spacing = RegularSpacing | RandomSpacing | ExplicitSpacing

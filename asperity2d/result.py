@@ -18,6 +18,7 @@ import numpy as np
 
 from ._io import FileError, atomic_write, load_npz, save_npz
 from .errors import SceneError
+from .scene import Scene
 
 #: Arrays every result carries, in the order they are written to CSV.
 SERIES = (
@@ -172,8 +173,6 @@ def load(path: str | os.PathLike) -> Result:
     with arrays or a scene record that do not fit together) raises a
     ``SceneError`` naming ``path``.
     """
-    from .scene import Scene
-
     kind = "an asperity2d result file"
     arrays, meta = load_npz(path, SERIES + LOWER_SERIES, kind=kind, meta_keys=("scene",))
     samples = len(arrays["t"]) if arrays["t"].ndim == 1 else -1

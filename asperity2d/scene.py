@@ -18,7 +18,8 @@ import numpy as np
 from ._validate import (check_choice, check_finite, check_nonnegative, check_positive, check_text,
                         per_item, show)
 from .errors import SceneError
-from .geometry import Profile, RandomSpacing, RegularSpacing, Spacing
+from .geometry import ExplicitSpacing, Profile, RandomSpacing, RegularSpacing, Spacing
+from .shapes import Shapes, SurfaceGeometry, check_substrate
 
 TRACKS = ("free", "fixed")
 
@@ -55,14 +56,23 @@ def kinetic_default(mu_static: float) -> float:
 
 
 @dataclass(frozen=True)
-class LowerSurface:
+class LowerSurface(SurfaceGeometry):
     """Asperities on vertical spring-damper tracks (seed 000 figures 5, 7, 8).
+
+    Every asperity has ``profile``'s shape unless ``shapes`` (a
+    :class:`~asperity2d.shapes.Shapes` record) gives each its own height,
+    flank runs and base level; ``profile`` then still sets the kind and the
+    scene's length scale (its base). ``substrate`` (polylines of (x, z)
+    points, m, x in the tips' frame, z in the datum) is rigid valley floor
+    between asperities, touched only by the slider: a measured profile's
+    valleys, so the slider's tips cannot sink below them (see
+    :mod:`asperity2d.surface.source`).
 
     ``mass`` (kg), ``stiffness`` (N/m) and ``damping`` (N s/m) are scalars or
     one value per asperity; they are stored as tuples. ``damping=None`` gives
     each track ``damping_ratio`` of its critical damping 2 sqrt(k m).
     ``travel_down`` and ``travel_up`` (m) limit each track below / above the
-    rest position (default: the asperity height).
+    rest position (default: the (tallest) asperity height).
 
     ``lateral_stiffness`` (N/m) turns the tracks into seed 000's MATLAB
     lattice (its figure 14, equations 9-18): the peaks then move in x and y,
@@ -84,10 +94,15 @@ class LowerSurface:
     travel_up: float | None = None
     lateral_stiffness: float | tuple[float, ...] | None = None
     lateral_damping: float | tuple[float, ...] = 0.0
+    shapes: Shapes | None = None
+    substrate: tuple | None = None
 
     def __post_init__(self):
         n = self.spacing.count
         s = object.__setattr__
+        self._check_shapes()
+        if self.substrate is not None:
+            s(self, "substrate", check_substrate(self.substrate))
         s(self, "mass", per_item("mass", self.mass, n, allow_zero=False))
         s(self, "stiffness", per_item("stiffness", self.stiffness, n, allow_zero=False))
         s(self, "damping_ratio", check_nonnegative("damping_ratio", self.damping_ratio))
@@ -101,14 +116,27 @@ class LowerSurface:
                                                   allow_zero=True))
         s(self, "lateral_damping", per_item("lateral_damping", self.lateral_damping, n + 1,
                                             allow_zero=True))
+        tallest = self.profile.height if self.shapes is None else max(self.shapes.heights)
         for name in ("travel_down", "travel_up"):
             value = getattr(self, name)
-            s(self, name, self.profile.height if value is None else check_positive(name, value))
+            s(self, name, tallest if value is None else check_positive(name, value))
         self.tips()  # validates that asperities do not overlap
 
     @property
-    def count(self) -> int:
-        return self.spacing.count
+    def top(self) -> float:
+        """Rest height of the highest tip above the datum (m)."""
+        return self.profile.height if self.shapes is None else float(np.max(self.shapes.summits))
+
+    @property
+    def floor(self) -> float:
+        """Height of the engine's guard floor (m): ``travel_down`` below the lowest base level
+        (or substrate point), the bottom of the tracks."""
+        if self.shapes is None and self.substrate is None:
+            return 0.0 - self.travel_down
+        lowest = min(self.shape_set().levels)
+        if self.substrate:
+            lowest = min(lowest, min(z for line in self.substrate for _, z in line))
+        return lowest - self.travel_down
 
     @property
     def is_lattice(self) -> bool:
@@ -117,7 +145,7 @@ class LowerSurface:
 
     def tips(self) -> np.ndarray:
         """Tip x positions (m)."""
-        return self.spacing.tips(*self.profile.runs(upper=False))
+        return self.spacing.tips(*self.runs())
 
     def lateral_stiffness_matrix(self) -> np.ndarray:
         """The n x n horizontal stiffness matrix K (N/m) of the lattice's springs."""
@@ -129,14 +157,19 @@ class LowerSurface:
 
 
 @dataclass(frozen=True)
-class Slider:
+class Slider(SurfaceGeometry):
     """The upper body carrying its own asperities, on a horizontal track.
 
     ``track="fixed"`` (seed 000's Working Model set-up): held at a fixed height
-    such that its tips reach ``interference`` (m, default a quarter of the
-    asperity height) below the lower tips' rest height. ``track="free"``: free
-    to move vertically, pressed down by ``normal_load`` (N).
+    such that its deepest tip reaches ``interference`` (m, default a quarter
+    of its profile's height) below the rest height of the highest lower tip
+    (with varied heights: the tallest lower summit; with equal ones, every
+    lower tip). ``track="free"``: free to move vertically, pressed down by
+    ``normal_load`` (N). ``shapes`` gives each upper asperity its own shape
+    (heights and levels measured downwards), as for :class:`LowerSurface`.
     """
+
+    _upper = True
 
     profile: Profile = field(default_factory=lambda: _FULL)
     spacing: Spacing = field(default_factory=lambda: RegularSpacing(
@@ -145,8 +178,10 @@ class Slider:
     track: str = SEED_000["track"]
     normal_load: float = SEED_000["normal_load"]
     interference: float | None = None
+    shapes: Shapes | None = None
 
     def __post_init__(self):
+        self._check_shapes()
         object.__setattr__(self, "mass", check_positive("slider_mass", self.mass))
         check_choice("track", self.track, TRACKS)
         object.__setattr__(self, "normal_load", check_nonnegative("normal_load", self.normal_load))
@@ -157,12 +192,13 @@ class Slider:
         self.tips()
 
     @property
-    def count(self) -> int:
-        return self.spacing.count
+    def depth(self) -> float:
+        """How far the deepest tip reaches below the slider's datum (m)."""
+        return self.profile.height if self.shapes is None else float(np.max(self.shapes.summits))
 
     def tips(self) -> np.ndarray:
         """Tip x positions relative to the rearmost tip (m)."""
-        t = self.spacing.tips(*self.profile.runs(upper=True))
+        t = self.spacing.tips(*self.runs())
         return t - t[0]
 
 
@@ -212,12 +248,18 @@ class Contact:
     ``slip_distance=0`` switches on the instantaneous slip speed alone. A
     sliding contact sticks again when its slip speed falls below
     ``stick_speed`` (m/s, default 1e-4 of base x natural frequency).
+
+    ``restitution`` (in [0, 1], pymunk's elasticity) is the ratio of the
+    normal relative speed after an impact to that before: 0 (the default) is
+    a perfectly inelastic impact, which loses the normal part of the relative
+    kinetic energy; 1 loses nothing.
     """
 
     mu_static: float = SEED_000["mu_static"]
     mu_kinetic: float | None = None
     slip_distance: float | None = None
     stick_speed: float | None = None
+    restitution: float = 0.0
 
     def __post_init__(self):
         s = object.__setattr__
@@ -232,6 +274,9 @@ class Contact:
             s(self, "slip_distance", check_nonnegative("slip_distance", self.slip_distance))
         if self.stick_speed is not None:
             s(self, "stick_speed", check_positive("stick_speed", self.stick_speed))
+        s(self, "restitution", check_nonnegative("restitution", self.restitution))
+        if self.restitution > 1:
+            raise SceneError(f"`restitution` must be <= 1, got {self.restitution!r}")
 
 
 @dataclass(frozen=True)
@@ -255,10 +300,25 @@ class Scene:
             raise SceneError(f"`drive` must be a SpringDrive or ConstantForce, got {show(self.drive)}")
         if self.slider.track == "free" and self.slider.normal_load == 0 and self.gravity == 0:
             raise SceneError("`normal_load` must be > 0 for a free slider when `gravity` is 0")
-        if self.slider.track == "fixed" and self.slider.interference >= self.lower.profile.height:
-            raise SceneError(
-                f"`interference` ({self.slider.interference:g} m) must be smaller than the lower "
-                f"asperity height ({self.lower.profile.height:g} m): the tips would reach the base")
+        if self.slider.track == "fixed":
+            # Measured from the highest lower tip; it must not reach that asperity's base.
+            if self.lower.shapes is None:
+                height, what = self.lower.profile.height, "the lower asperity height"
+            else:
+                i = int(np.argmax(self.lower.shapes.summits))
+                height, what = self.lower.shapes.heights[i], f"the height of the highest lower asperity ({i})"
+            if self.slider.interference >= height:
+                raise SceneError(
+                    f"`interference` ({self.slider.interference:g} m) must be smaller than {what} "
+                    f"({height:g} m): the tips would reach the base")
+            if self.lower.substrate:
+                level = self.lower.top - self.slider.interference
+                highest = max(z for line in self.lower.substrate for _, z in line)
+                if highest >= level:
+                    raise SceneError(
+                        f"`interference` ({self.slider.interference:g} m) puts the fixed track's tips at "
+                        f"{level:g} m, at or below the profile's rigid valley floor ({highest:g} m): the "
+                        "slider would jam; use a smaller `interference`")
 
     # -- derived quantities --------------------------------------------------
     @property
@@ -266,9 +326,11 @@ class Scene:
         return self.lower.profile.base
 
     def natural_frequencies(self) -> dict[str, float]:
-        """Angular natural frequencies (rad/s) of the scene's spring-mass pairs."""
+        """Angular natural frequencies (rad/s) of the scene's spring-mass pairs (inf where a
+        ratio overflows: :class:`~asperity2d.units.Units` refuses those scenes)."""
         k, m = np.asarray(self.lower.stiffness), np.asarray(self.lower.mass)
-        freqs = {"lower": float(np.max(np.sqrt(k / m)))}
+        with np.errstate(over="ignore", divide="ignore"):
+            freqs = {"lower": float(np.max(np.sqrt(k / m)))}
         if self.lower.is_lattice:
             # Gershgorin bound on the lattice's highest horizontal mode.
             row = np.abs(self.lower.lateral_stiffness_matrix()).sum(axis=1)
@@ -302,7 +364,8 @@ class Scene:
 
 
 _TYPES = {c.__name__: c for c in (Scene, LowerSurface, Slider, ConstantForce, SpringDrive,
-                                  Contact, Profile, RegularSpacing, RandomSpacing)}
+                                  Contact, Profile, RegularSpacing, RandomSpacing, ExplicitSpacing,
+                                  Shapes)}
 
 
 def _to_plain(obj):

@@ -88,7 +88,9 @@ def check_scales(scene, units: Units) -> None:
     its internal unit (:class:`Units`); a ratio outside :data:`RATIO_RANGE`
     (or a length under :data:`MIN_LENGTH_RATIO` bases) raises
     :class:`SceneError` naming the parameter as ``make_scene`` spells it and
-    the parameter that set the scale.
+    the parameter that set the scale. Per-asperity values (masses,
+    stiffnesses, and the heights and bases of :class:`~asperity2d.shapes.Shapes`)
+    are checked in one pass each; the message names the asperity.
     """
     from .scene import SpringDrive
 
@@ -103,17 +105,26 @@ def check_scales(scene, units: Units) -> None:
               "length": (units.length, "m", "the asperity `base`"),
               "acceleration": (units.acceleration, "m/s^2", f"`base` times the frequency scale squared")}
     lower, slider, drive = scene.lower, scene.slider, scene.drive
-    checks = [("mass", "mass", v) for v in lower.mass] + [("slider_mass", "mass", slider.mass)]
-    checks += [("stiffness", "stiffness", v) for v in lower.stiffness]
-    checks += [("damping", "damping", v) for v in lower.damping if v > 0]
+    # (name, kind, values): values may be an array (one per asperity), checked in one pass
+    checks = [("mass", "mass", lower.mass), ("slider_mass", "mass", slider.mass),
+              ("stiffness", "stiffness", lower.stiffness),
+              ("damping", "damping", [v for v in lower.damping if v > 0])]
     if lower.is_lattice:
-        checks += [("lateral_stiffness", "stiffness", v) for v in lower.lateral_stiffness if v > 0]
-    checks += [("lateral_damping", "damping", v) for v in lower.lateral_damping if v > 0]
+        checks.append(("lateral_stiffness", "stiffness", [v for v in lower.lateral_stiffness if v > 0]))
+    checks.append(("lateral_damping", "damping", [v for v in lower.lateral_damping if v > 0]))
+    tips = lower.tips()
     checks += [("pitch", "length", lower.spacing.mean_pitch), ("pitch", "length", slider.spacing.mean_pitch),
                ("travel_down", "length", lower.travel_down), ("travel_up", "length", lower.travel_up),
-               ("height", "length", lower.profile.height), ("height", "length", slider.profile.height),
-               ("base", "length", slider.profile.base),
-               ("surface length", "length", float(lower.tips()[-1] - lower.tips()[0]) or lower.profile.base)]
+               ("height", "length", lower.heights()), ("height", "length", slider.heights()),
+               ("base", "length", slider.shape_set().bases),
+               ("surface length", "length", float(tips[-1] - tips[0]) or lower.profile.base)]
+    if lower.shapes is not None:
+        checks.append(("base", "length", lower.shapes.bases))
+    for surface in (lower, slider):
+        if surface.shapes is not None:
+            span = float(np.ptp(surface.shapes.levels))
+            if span > 0:  # how far apart the base levels lie (a measured profile's summits)
+                checks.append(("base level spread", "length", span))
     if slider.track == "free":
         checks.append(("normal_load", "force", slider.normal_load))
     else:
@@ -129,13 +140,20 @@ def check_scales(scene, units: Units) -> None:
     if scene.gravity > 0:
         checks.append(("gravity", "acceleration", scene.gravity))
     low, high = RATIO_RANGE
-    for name, kind, value in checks:
+    for name, kind, values in checks:
         scale, unit, what = scales[kind]
+        values = np.atleast_1d(np.asarray(values, dtype=float))
+        if not len(values):
+            continue
         with np.errstate(all="ignore"):
-            ratio = float(value) / scale
+            ratios = values / scale
         floor = MIN_LENGTH_RATIO if name in ("height", "interference") else low
-        if not (math.isfinite(ratio) and floor <= ratio <= high):
+        bad = ~((ratios >= floor) & (ratios <= high))  # also NaN and inf
+        if np.any(bad):
+            i = int(np.argmax(bad))
+            value, ratio = float(values[i]), float(ratios[i])
+            which = f" (asperity {i})" if len(values) > 1 else ""
             raise SceneError(
-                f"`{name}` = {show(value)} {unit} is {ratio:.3g} times its scale in this scene "
+                f"`{name}`{which} = {show(value)} {unit} is {ratio:.3g} times its scale in this scene "
                 f"({scale:.3g} {unit}, set by {what}); the engine resolves {floor:g} to {high:g} times: "
                 f"bring `{name}` closer to the scene's other parameters")

@@ -1,60 +1,158 @@
-"""Seed 000 figure 12: damped vs undamped lower asperities (undamped travels farther).
+"""Seed 000 figure 12: damped vs undamped lower asperities (undamped travels farther), and why.
 
 Random spacing on both surfaces. For every seed the critical constant force of
-the damped scene (lower springs at damping ratio 0.1, the package default) is
-bisected; then a constant force of 0.9 x that value pushes the damped scene
-and the same scene with undamped lower asperities (damping ratio 0). Reported
-per set-up (free slider under load; seed 000's fixed-height track): each
-slider's travel from its start to where it stopped (m; a slider that passes
-the whole surface stops counting there), the fraction of seeds in which the
-undamped slider went farther, and a paired Wilcoxon signed-rank test of
-undamped - damped travel (one-sided, "greater"). The claim holds if more than
-half the seeds went farther undamped and p < 0.01.
+the damped scene (lower springs at damping ratio 0.1, the package default;
+inelastic contacts) is bisected; then a constant force of 0.9 x that value
+pushes three scenes: ``damped``; ``undamped``, the track dampers off (damping
+ratio 0); and ``elastic``, the dampers off and contact restitution 1 (no
+impact loss either): the two readings of "undamped". Reported per set-up (free
+slider under load; seed 000's fixed-height track) and per reading: each
+slider's travel from its start to where it stopped (m; a slider that passes the
+whole surface stops counting there), the fraction of seeds in which it went
+farther than the damped one, and a paired Wilcoxon signed-rank test of the
+travel difference (one-sided, "greater"). The claim holds if more than half
+the seeds went farther and p < 0.01.
+
+Mechanism: every run is metered (:mod:`asperity2d.engine.energy`); the
+summary gives each energy channel as a share of the drive work (force x
+travel, pooled over the seeds), over the whole run and over the damped
+slider's path only (up to where it stopped). Over one path the drive work is
+the same, so what the undamped slider keeps (``kept``: stored, kinetic
+included) is what the damped one lost in the channels that differ: those
+decide the travel. A slider that neither passes
+nor comes to rest (it rattles in a valley: elastic impacts return it) is
+counted where the time limit finds it; ``reach`` is the farthest it got.
 
     python scenes/seed000_damping.py [--seeds 20] [--workers 2]
 """
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 import asperity2d as a
 from asperity2d import stats
-from asperity2d.studies import scripting
-from asperity2d.studies.claims import claim
-from asperity2d.studies import seed000 as studies
-from asperity2d.sweep.executors import map_calls
 from asperity2d.render.plots import plot_positions
+from asperity2d.studies import scripting
+from asperity2d.studies import seed000 as studies
+from asperity2d.studies.claims import claim
+from asperity2d.sweep.executors import map_calls
 
 FACTOR = 0.9
 ALPHA = 0.01
+READINGS = {"undamped": "track dampers off", "elastic": "track dampers off and restitution 1"}
+LABELS = ("damped", *READINGS)
+LOSSES = ("friction_work", "normal_work", "damper_work", "stop_work")
 
 
-def analyse(setup: str, rows: list[dict]) -> tuple[dict, dict]:
-    """Travel statistics and the figure-12 claim for one set-up."""
+def shares(rows: list[dict], label: str, *, same_path: bool = False) -> dict:
+    """Share of the drive work per energy channel, pooled over the seeds (sum of the channel /
+    sum of the drive work: a run that barely moved does not weigh like one that crossed).
+
+    ``same_path``: over the damped slider's travel only, from the seeds whose slider got
+    that far (``seeds`` says how many).
+    """
+    key = f"{label}_same_" if same_path else f"{label}_"
+    rows = [r for r in rows if np.isfinite(r[f"{key}drive_work_J"])]
+    work = sum(r[f"{key}drive_work_J"] for r in rows)
+    out = {k: (sum(r[f"{key}{k}_J"] for r in rows) / work if rows else math.nan)
+           for k in studies.DAMPING_CHANNELS[1:]}
+    return {**out, "seeds": len(rows)}
+
+
+def analyse(setup: str, rows: list[dict]) -> tuple[dict, list[dict]]:
+    """Travel statistics, energy shares and the figure-12 claim (one per reading) for one set-up."""
     damped = np.array([r["travel_damped_m"] for r in rows])
-    undamped = np.array([r["travel_undamped_m"] for r in rows])
-    diff = undamped - damped
-    p = stats.wilcoxon(undamped, damped, alternative="greater")
-    numbers = {
-        "seeds": len(rows), "force_factor": FACTOR,
-        "critical_force_damped_N": stats.describe([r["critical_force_N"] for r in rows]),
-        "travel_damped_m": stats.describe(damped), "travel_undamped_m": stats.describe(undamped),
-        "travel_difference_m": stats.describe(diff),
-        "fraction_undamped_farther": float(np.mean(diff > 0)),
-        "fraction_equal": float(np.mean(diff == 0)),
-        "fraction_passed_damped": float(np.mean([r["passed_damped"] for r in rows])),
-        "fraction_passed_undamped": float(np.mean([r["passed_undamped"] for r in rows])),
-        "p_paired_wilcoxon": p,
-        "per_seed": rows,
-    }
-    holds = numbers["fraction_undamped_farther"] > 0.5 and p < ALPHA
-    record = claim(
-        "undamped lower asperities let the constant-force slider travel farther than damped "
-        "ones (figure 12), at 0.9 x the damped critical force", holds, numbers,
-        f"paired Wilcoxon signed-rank of undamped - damped travel, one-sided (greater), p = {p:.3g}; "
-        f"holds if the fraction of seeds going farther undamped is > 0.5 and p < {ALPHA}", setup=setup)
-    return numbers, record
+    numbers = {"seeds": len(rows), "force_factor": FACTOR,
+               "critical_force_damped_N": stats.describe([r["critical_force_N"] for r in rows]),
+               "travel_damped_m": stats.describe(damped),
+               "reach_damped_m": stats.describe([r["reach_damped_m"] for r in rows]),
+               "fraction_passed_damped": float(np.mean([r["passed_damped"] for r in rows])),
+               "energy_shares": {label: shares(rows, label) for label in LABELS},
+               "energy_shares_same_path": {label: shares(rows, label, same_path=True) for label in LABELS},
+               "per_seed": rows}
+    claims = []
+    for reading, meaning in READINGS.items():
+        travel = np.array([r[f"travel_{reading}_m"] for r in rows])
+        diff = travel - damped
+        p = stats.wilcoxon(travel, damped, alternative="greater")
+        n = {"travel_m": stats.describe(travel), "travel_difference_m": stats.describe(diff),
+             "reach_m": stats.describe([r[f"reach_{reading}_m"] for r in rows]),
+             "fraction_farther": float(np.mean(diff > 0)), "fraction_equal": float(np.mean(diff == 0)),
+             "fraction_passed": float(np.mean([r[f"passed_{reading}"] for r in rows])),
+             "fraction_time_limit": float(np.mean([1 - r[f"passed_{reading}"] - r[f"stuck_{reading}"]
+                                                   for r in rows])),
+             "p_paired_wilcoxon": p}
+        numbers[reading] = n
+        holds = n["fraction_farther"] > 0.5 and p < ALPHA
+        claims.append(claim(
+            f"undamped lower asperities ({meaning}) let the constant-force slider travel farther than "
+            f"damped ones (figure 12), at {FACTOR} x the damped critical force", holds,
+            {"reading": reading, **n, "travel_damped_m": numbers["travel_damped_m"],
+             "energy_shares_damped": numbers["energy_shares"]["damped"],
+             f"energy_shares_{reading}": numbers["energy_shares"][reading],
+             f"energy_shares_same_path_{reading}": numbers["energy_shares_same_path"][reading]},
+            f"paired Wilcoxon signed-rank of {reading} - damped travel, one-sided (greater), "
+            f"p = {p:.3g}; holds if the fraction of seeds going farther is > 0.5 and p < {ALPHA}",
+            setup=setup))
+    u = numbers["undamped"]  # the first reading under the names the study has always used
+    numbers.update(travel_undamped_m=u["travel_m"], travel_difference_m=u["travel_difference_m"],
+                   fraction_undamped_farther=u["fraction_farther"], fraction_equal=u["fraction_equal"],
+                   fraction_passed_undamped=u["fraction_passed"], p_paired_wilcoxon=u["p_paired_wilcoxon"])
+    return numbers, claims
+
+
+def mechanism_line(setup: str, numbers: dict) -> str:
+    """Where the drive work went over the damped slider's path, per reading (% of it)."""
+    parts = []
+    for label in LABELS:
+        sh = numbers["energy_shares_same_path"][label]
+        s = {k: v * 100 for k, v in sh.items() if k != "seeds"}
+        parts.append(f"{label} ({sh['seeds']} seeds): friction {s['friction_work']:.0f}, impacts "
+                     f"{s['normal_work']:.0f}, dampers {s['damper_work']:.0f}, stops {s['stop_work']:.0f}, "
+                     f"kept {s['stored_energy_change']:.0f}, numerical {s['numerical']:+.0f}")
+    return f"[{setup}] over the damped slider's path, % of the drive work: " + "; ".join(parts)
+
+
+def plot_shares(summary: dict, path) -> None:
+    """Stacked bars: where the drive work went over the damped slider's path, per set-up and
+    reading (pooled shares, %; "stored" includes the kinetic energy the slider still has)."""
+    import io
+
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    from asperity2d._io import atomic_write
+
+    names = ("friction_work", "normal_work", "damper_work", "stop_work", "stored_energy_change", "numerical")
+    legend = ("friction", "impacts (normal)", "dampers", "travel stops", "stored (change)", "numerical")
+    fig = Figure(figsize=(7.5, 3.6), layout="constrained")
+    FigureCanvasAgg(fig)
+    ax = fig.subplots()
+    ticks = []
+    for i, (setup, numbers) in enumerate(summary["results"].items()):
+        for j, label in enumerate(LABELS):
+            x = 4 * i + j
+            ticks.append((x, f"{setup}\n{label}"))
+            up = down = 0.0  # positive shares stack up, negative ones down
+            for k, (name, text) in enumerate(zip(names, legend)):
+                v = numbers["energy_shares_same_path"][label][name] * 100
+                ax.bar(x, v, bottom=up if v >= 0 else down, color=f"C{k}", label=text if x == 0 else None)
+                up, down = (up + v, down) if v >= 0 else (up, down + v)
+    ax.set_xticks([t for t, _ in ticks], [s for _, s in ticks], fontsize="small")
+    ax.set_ylabel("share of the drive work (%)")
+    ax.set_title("over the damped slider's path (to where it stopped)", fontsize="small")
+    ax.axhline(0.0, color="k", lw=0.5)
+    ax.legend(fontsize="x-small", ncol=3, loc="upper center", bbox_to_anchor=(0.5, -0.22))
+
+    def write(fh):
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png", dpi=120)
+        fh.write(buf.getvalue())
+
+    atomic_write(path, write)
 
 
 def main(argv=None) -> int:
@@ -62,27 +160,31 @@ def main(argv=None) -> int:
     n_seeds = args.seeds
     out = scripting.out_dir(args, __file__)
     size = studies.QUICK_SIZE if args.quick else studies.STUDY_SIZE
-    summary = {"size": size, "setups": studies.SETUPS, "results": {}, "claims": []}
+    summary = {"size": size, "setups": studies.SETUPS, "readings": READINGS, "results": {}, "claims": []}
     lines = []
     for setup in studies.SETUPS:
         base = {**size, **studies.SETUPS[setup], "spacing": "random", "factor": FACTOR}
-        rows = map_calls(studies.damping_travel_run,
-                                [dict(base, seed=s) for s in range(n_seeds)], workers=args.workers)
-        numbers, record = analyse(setup, rows)
+        rows = map_calls(studies.damping_travel_run, [dict(base, seed=s) for s in range(n_seeds)],
+                         workers=args.workers)
+        numbers, claims = analyse(setup, rows)
         summary["results"][setup] = numbers
-        summary["claims"].append(record)
-        lines.append(
-            f"[{setup}] travel damped {numbers['travel_damped_m']['mean'] * 1e6:.3g} um, undamped "
-            f"{numbers['travel_undamped_m']['mean'] * 1e6:.3g} um; undamped farther in "
-            f"{numbers['fraction_undamped_farther']:.0%} of {n_seeds} seeds (equal "
-            f"{numbers['fraction_equal']:.0%}), p = {numbers['p_paired_wilcoxon']:.2g}: "
-            f"{record['verdict'].upper()}")
-    # Figure 12 analogue: seed 0 on the fixed track, both dampings at the same force.
+        summary["claims"].extend(claims)
+        for reading, claim in zip(READINGS, claims):
+            n = numbers[reading]
+            lines.append(
+                f"[{setup}] {READINGS[reading]}: travel damped {numbers['travel_damped_m']['mean'] * 1e6:.3g} um, "
+                f"{reading} {n['travel_m']['mean'] * 1e6:.3g} um (reach {n['reach_m']['mean'] * 1e6:.3g}); farther in {n['fraction_farther']:.0%} of "
+                f"{n_seeds} seeds (equal {n['fraction_equal']:.0%}, time limit {n['fraction_time_limit']:.0%}), "
+                f"p = {n['p_paired_wilcoxon']:.2g}: {claim['verdict'].upper()}")
+        lines.append(mechanism_line(setup, numbers))
+    plot_shares(summary, out / "energy_shares.png")
+    # Figure 12 analogue: seed 0 on the fixed track, the three scenes at the same force.
     row = summary["results"]["fixed"]["per_seed"][0]
     base = {**size, **studies.SETUPS["fixed"], "spacing": "random", "seed": 0, "drive": "force",
             "drive_force": row["force_N"]}
-    runs = {label: a.simulate(a.make_scene(**base, **({"damping_ratio": 0.0} if label == "undamped" else {})))
-            for label in ("damped", "undamped")}
+    variants = {"damped": {}, "undamped": {"damping_ratio": 0.0},
+                "elastic": {"damping_ratio": 0.0, "restitution": 1.0}}
+    runs = {label: a.simulate(a.make_scene(**base, **kw)) for label, kw in variants.items()}
     plot_positions(list(runs.values()), [f"{k} ({r.status})" for k, r in runs.items()],
                    out / "positions_fixed_seed0.png")
     if not args.no_gif:

@@ -3,6 +3,7 @@
     asperity2d belt --preset table2-3dof --json
     asperity2d belt chain.toml -o run.png          # plot chosen by extension (.png/.svg/.pdf)
     asperity2d belt --preset table3-k20 -o run.npz # or save the result (.npz) / export (.csv)
+    asperity2d belt basins --preset table2-3dof -o basins.png   # initial-condition basins (asperity2d.dynamics.cli)
 
 A chain file holds the keyword arguments of ``simulate_chain`` at top level:
 ``masses``, ``springs``, ``dampers``, ``v_belt``, ``x0``, ``v0``, ``t_end`` and
@@ -64,6 +65,10 @@ def run(args) -> int:
     """Run the parsed ``belt`` command; bad input raises ``SceneError`` (one line, exit 2)."""
     from . import presets
 
+    if args.chain == "basins":
+        from ..dynamics.cli import run_basins
+
+        return run_basins(args)
     if args.list_presets:
         for name in presets.names():
             print(f"{name:20s} {presets.describe(name)}")

@@ -1,166 +1,170 @@
-"""Closed-form motion of a chain between two switching events (constant belt speed).
+"""Closed-form motion of a whole chain between two switches (constant belt speed).
 
-Between events every mass is either stuck (x = x_s0 + V·tau, v = V exactly)
+Between switches every mass is either stuck (x = x_s0 + V·tau, v = V exactly)
 or slipping under a constant kinetic force. The slipping masses split into
 independent *segments* -- maximal runs joined by a spring or damper -- since
-a stuck mass acts on its neighbours as a wall moving at V. Each segment obeys
+a stuck mass acts on its neighbours as a wall moving at V. Each segment moves
+as in :mod:`.modal`; the eigendecompositions are cached per segment for the
+whole run, so a switch costs O(L²) per segment of L masses, not O(L³).
 
-    y' = A·y + p + q·tau,   y = [x; v],   A = [[0, I], [-M⁻¹K, -M⁻¹C]]
-
-whose exact solution is the matrix exponential: with the particular solution
-x_p = alpha + beta·tau (K·beta = M·q, K·alpha = M·p - C·beta, with
-M·p, M·q the constant and ramp forces) and
-A = W·diag(lam)·W⁻¹, y(tau) = Re(W·(c·exp(lam·tau))) + y_p(tau). When K is
-singular or A is defective, the augmented system [y, tau, 1] is propagated
-with ``scipy.linalg.expm`` instead. Cost: O(L³) to set up a segment of L
-masses, O(L²) per evaluation time.
+When every segment has a modal form, the phase carries ``motion``: one
+:class:`~.modal.ModalForm` whose rows are x (n), v (n) and a (n), from which
+the event functions are composed in closed form.
 """
 
 from __future__ import annotations
 
-import numpy as np
-import scipy.linalg as sla
+import math
 
+import numpy as np
+
+from .backend import RawRun
+from .energy import modal_work, power_maps, quadrature_work
+from .events import event_map
+from .loop import event_loop
+from .modal import ModalForm, block_matrix, scale_columns
+from .segment import Segment, SegmentModes
 from .spec import link_force
 
+#: bounded memory on long chains: at most this many cached segments and mode patterns
+CACHE_SIZE = 512
 
-class Modal:
-    """What a segment of masses lo..hi needs that does not depend on the state: A, K, C, eig(A).
 
-    Cached per (lo, hi) by :class:`LinearPhase` so that an event costs O(L²), not O(L³).
+def run_closed_form(spec, options) -> RawRun:
+    """Event-driven run with closed-form phases (constant belt speed, piecewise-constant friction)."""
+    segments: dict = {}
+    templates: dict = {}
+
+    def make_phase(modes, x, v, t):
+        key = np.asarray(modes, dtype=np.int8).tobytes()
+        template = templates.get(key)
+        if template is None:
+            template = templates[key] = Template(spec, modes, segments)
+            _bound(templates)
+        return LinearPhase(template, x, v)
+
+    return event_loop(spec, options, make_phase)
+
+
+def _bound(cache):
+    if len(cache) > CACHE_SIZE:
+        cache.pop(next(iter(cache)))
+
+
+class Template:
+    """What a phase needs that depends only on the chain and its mode pattern (cached per run).
+
+    The segments and their modes; ``lam`` (S,) and ``shapes`` (3n, S): the
+    rows x, v, a of every segment's modes, so that a phase's motion is
+    ``Re((shapes·coef)·exp(lam·tau)) + c0 + c1·tau``; the event-function and
+    power maps (linear in the state) and their products with ``shapes``.
     """
 
-    def __init__(self, spec, lo, hi):
-        m = spec.m[lo : hi + 1]
-        k, c = spec.k, spec.c
-        L = hi - lo + 1
-        K = np.diag(k[lo : hi + 1] + k[lo + 1 : hi + 2])
-        C = np.diag(c[lo : hi + 1] + c[lo + 1 : hi + 2])
-        off = np.arange(L - 1)
-        K[off, off + 1] = K[off + 1, off] = -k[lo + 1 : hi + 1]
-        C[off, off + 1] = C[off + 1, off] = -c[lo + 1 : hi + 1]
-        minv = 1.0 / m
-        A = np.zeros((2 * L, 2 * L))
-        A[:L, L:] = np.eye(L)
-        A[L:, :L] = -minv[:, None] * K
-        A[L:, L:] = -minv[:, None] * C
-        self.L, self.m, self.K, self.C, self.A = L, m, K, C, A
-        lam, W = np.linalg.eig(A)
-        self.rate = float(np.max(np.abs(lam)))
-        self.exact = _well_posed(K, lam, W)
-        if self.exact:
-            self.lam, self.W = lam, W
-            self.K_lu = sla.lu_factor(K)
-            self.W_lu = sla.lu_factor(W)
-
-
-class Segment:
-    """Exact trajectory of slipping masses lo..hi, time measured from the phase start."""
-
-    def __init__(self, modal, lo, hi, spec, x0, v0, fric, left, right, V):
-        self.idx = np.arange(lo, hi + 1)
-        self.L = L = modal.L
-        k, c = spec.k, spec.c
-        # forcing from the neighbours: stuck masses move as x_s0 + V·tau, walls stay at 0
-        p = np.array(fric, dtype=float)
-        q = np.zeros(L)
-        if left is not None:
-            p[0] += k[lo] * left + c[lo] * V
-            q[0] += k[lo] * V
-        if right is not None:
-            p[-1] += k[hi + 1] * right + c[hi + 1] * V
-            q[-1] += k[hi + 1] * V
-        y0 = np.concatenate([x0, v0])
-        self.rate = modal.rate
-        self.exact = modal.exact
-        if not modal.exact:
-            # singular K or defective A: propagate the augmented system [y, tau, 1] with expm
-            aug = np.zeros((2 * L + 2, 2 * L + 2))
-            aug[: 2 * L, : 2 * L] = modal.A
-            aug[L : 2 * L, 2 * L] = q / modal.m
-            aug[L : 2 * L, 2 * L + 1] = p / modal.m
-            aug[2 * L, 2 * L + 1] = 1.0
-            self.aug = aug
-            self.z0 = np.concatenate([y0, [0.0, 1.0]])
-            return
-        # p, q are forces (N, N/s): K·beta = q, K·alpha = p - C·beta
-        beta = sla.lu_solve(modal.K_lu, q)
-        alpha = sla.lu_solve(modal.K_lu, p - modal.C @ beta)
-        self.alpha = np.concatenate([alpha, beta])
-        self.beta = np.concatenate([beta, np.zeros(L)])
-        self.lam, self.W = modal.lam, modal.W
-        self.coef = sla.lu_solve(modal.W_lu, (y0 - self.alpha).astype(complex))
-
-    def evaluate(self, tau: np.ndarray) -> np.ndarray:
-        """State y = [x; v] (2L, len(tau)) at times ``tau`` (s) after the phase start."""
-        tau = np.atleast_1d(np.asarray(tau, dtype=float))
+    def __init__(self, spec, modes, segments):
+        n, V = spec.n, spec.v_belt
+        self.spec, self.V = spec, float(V)
+        self.modes = np.asarray(modes)
+        self.stuck = self.modes == 0
+        #: kinetic force on each slipping mass (N): opposes the relative velocity
+        self.fric_slip = -self.modes * spec.kinetic_force
+        self.runs = []
+        for lo, hi in _runs(self.stuck, spec):
+            if (lo, hi) not in segments:
+                segments[lo, hi] = SegmentModes(spec, lo, hi)
+                _bound(segments)
+            self.runs.append((lo, hi, segments[lo, hi]))
+        rate = max((m.rate for _, _, m in self.runs), default=0.0)
+        #: scan step (s): 1/16 of the fastest period, or no limit for an all-stuck chain
+        self.step = 2 * math.pi / (16 * rate) if rate > 0 else math.inf
+        self.exact = all(m.exact for _, _, m in self.runs)
         if not self.exact:
-            return np.column_stack([(sla.expm(self.aug * s) @ self.z0)[: 2 * self.L] for s in tau])
-        growth = np.exp(np.outer(self.lam, tau)) * self.coef[:, None]
-        return (self.W @ growth).real + self.alpha[:, None] + self.beta[:, None] * tau[None, :]
+            return
+        blocks, col = [], 0
+        for lo, hi, m in self.runs:
+            L, S = hi - lo + 1, m.lam.size
+            idx, cols = lo + np.arange(L), col + np.arange(S)
+            blocks += [(idx, cols, m.shapes[:L]), (n + idx, cols, m.shapes[L:]), (2 * n + idx, cols, m.shapes[L:] * m.lam)]
+            col += S
+        self.lam = np.concatenate([m.lam for _, _, m in self.runs]) if self.runs else np.zeros(0, complex)
+        self.shapes = block_matrix(blocks, (3 * n, col))
+        self.kind, self.mass, self.event_map, self.event_offset = event_map(spec, self.modes, self.V)
+        self.event_shapes = self.event_map @ self.shapes
+        self.event_shapes_abs = abs(self.event_shapes)
+        self.power_map, self.power_offset, self.rate_map = power_maps(spec, self.stuck, self.fric_slip, self.V)
+        self.power_shapes, self.rate_shapes = self.power_map @ self.shapes, self.rate_map @ self.shapes
 
 
 class LinearPhase:
-    """The whole chain between two events: stuck masses ride the belt, segments move exactly."""
+    """The chain from one switch to the next: stuck masses ride the belt, segments move exactly.
 
-    def __init__(self, spec, modes, x0, v0, V, cache=None):
-        self.spec = spec
-        cache = {} if cache is None else cache
-        self.modes = np.asarray(modes)
-        self.x0 = np.asarray(x0, dtype=float)
-        self.v0 = np.asarray(v0, dtype=float)
-        self.V = float(V)
-        n = spec.n
-        stuck = self.modes == 0
-        self.stuck = stuck
-        # kinetic force on each slipping mass: opposes the relative velocity
-        self.fric_slip = -self.modes * spec.law.kinetic_coefficient * spec.normal
-        link = (spec.k[1:n] != 0) | (spec.c[1:n] != 0)
+    ``template`` the mode pattern's :class:`Template`; ``x0``, ``v0`` (m, m/s) the state
+    at the phase start. ``motion`` (rows x, v, a) and ``coef`` exist when every segment
+    has a modal form.
+    """
+
+    def __init__(self, template, x0, v0):
+        spec, V = template.spec, template.V
+        self.template, self.spec, self.V = template, spec, V
+        self.modes, self.stuck, self.fric_slip, self.step = template.modes, template.stuck, template.fric_slip, template.step
+        self.x0, self.v0 = np.asarray(x0, dtype=float), np.asarray(v0, dtype=float)
+        k, c, n = spec.k, spec.c, spec.n
         self.segments = []
-        i = 0
-        while i < n:
-            if stuck[i]:
-                i += 1
-                continue
-            j = i
-            while j + 1 < n and not stuck[j + 1] and link[j]:
-                j += 1
-            # a neighbour outside the segment is stuck (moves with the belt) or unlinked (its
-            # link coefficients are zero, so its value does not matter); walls are None
-            left = self.x0[i - 1] if i > 0 else None
-            right = self.x0[j + 1] if j + 1 < n else None
-            modal = cache.get((i, j))
-            if modal is None:
-                modal = cache[(i, j)] = Modal(spec, i, j)
-                if len(cache) > 512:  # bounded memory on long chains
-                    cache.pop(next(iter(cache)))
-            sl = slice(i, j + 1)
-            self.segments.append(
-                Segment(modal, i, j, spec, self.x0[sl], self.v0[sl], self.fric_slip[sl], left, right, self.V)
-            )
-            i = j + 1
-        rate = max([s.rate for s in self.segments], default=0.0)
-        #: scan step (s): 1/16 of the fastest period, or the whole horizon for all-stuck chains
-        self.step = 0.4 / rate if rate > 0 else np.inf
+        for lo, hi, modes in template.runs:
+            p = self.fric_slip[lo : hi + 1].copy()
+            q = np.zeros(hi - lo + 1)
+            # a neighbour outside the segment is stuck (it moves as x_s0 + V·tau) or unlinked
+            # (zero coefficients: its value does not matter); walls never move
+            if lo > 0:
+                p[0] += k[lo] * self.x0[lo - 1] + c[lo] * V
+                q[0] += k[lo] * V
+            if hi < n - 1:
+                p[-1] += k[hi + 1] * self.x0[hi + 1] + c[hi + 1] * V
+                q[-1] += k[hi + 1] * V
+            y0 = np.concatenate([self.x0[lo : hi + 1], self.v0[lo : hi + 1]])
+            self.segments.append(Segment(modes, lo, y0, p, q))
+        self.motion = None
+        if template.exact:
+            # stuck rows: x = x0 + V·tau, v = V, a = 0; segment rows: particular solution + modes
+            c0 = np.concatenate([self.x0, np.full(n, V), np.zeros(n)])
+            c1 = np.concatenate([np.full(n, V), np.zeros(2 * n)])
+            for seg in self.segments:
+                rows = np.concatenate([seg.lo + np.arange(seg.L), n + seg.lo + np.arange(seg.L)])
+                c0[rows], c1[rows] = seg.c0, seg.c1
+            self.coef = np.concatenate([s.coef for s in self.segments]) if self.segments else np.zeros(0, complex)
+            self.motion = ModalForm(template.lam, scale_columns(template.shapes, self.coef), c0, c1)
 
-    def evaluate(self, tau, masses=None):
-        """Positions, velocities, accelerations (each (n, len(tau))) at ``tau`` (s) after the phase start.
+    def form(self, shapes, rows_map, offset) -> ModalForm:
+        """The modal form of ``rows_map @ [x; v; a] + offset`` given ``shapes = rows_map @ template.shapes``."""
+        m = self.motion
+        return ModalForm(m.lam, scale_columns(shapes, self.coef), rows_map @ m.c0 + offset, rows_map @ m.c1)
 
-        With ``masses`` (indices), only the segments holding them are computed: rows of other
-        slipping masses are then meaningless (used by the root finder, which reads one row).
-        """
+    def evaluate(self, tau):
+        """Positions, velocities, accelerations (each (n, T)) at ``tau`` (s) after the phase start."""
         tau = np.atleast_1d(np.asarray(tau, dtype=float))
         n = self.spec.n
-        x = self.x0[:, None] + self.V * tau[None, :] * np.ones((n, 1))
+        if self.motion is not None:
+            y = self.motion.at(tau)
+            return y[:n], y[n : 2 * n], y[2 * n :]
+        x = self.x0[:, None] + self.V * tau[None, :]
         v = np.full((n, tau.size), self.V)
         for seg in self.segments:
-            if masses is not None and not np.any((masses >= seg.idx[0]) & (masses <= seg.idx[-1])):
-                continue
             y = seg.evaluate(tau)
-            x[seg.idx] = y[: seg.L]
-            v[seg.idx] = y[seg.L :]
-        a = self.acceleration(x, v)
+            x[seg.lo : seg.lo + seg.L] = y[: seg.L]
+            v[seg.lo : seg.lo + seg.L] = y[seg.L :]
+        a = (self.spring_damper_force(x, v) + self.fric_slip[:, None]) / self.spec.m[:, None]
+        a[self.stuck] = 0.0
         return x, v, a
+
+    def sample(self, tau):
+        """Positions, velocities, friction forces (n, T) and work integrals (3, T, J) at ``tau`` (s)."""
+        tau = np.asarray(tau, dtype=float)
+        if self.motion is None:
+            x, v, a = self.evaluate(tau)
+            return x, v, self.friction_force(x, v, a, tau), quadrature_work(self, tau)
+        y = self.motion.at(tau)
+        n = self.spec.n
+        x, v = y[:n], y[n : 2 * n]
+        return x, v, self.friction_force(x, v, None, tau), modal_work(self, tau)
 
     def belt_velocity(self, tau):
         return np.full(np.size(tau), self.V)
@@ -177,25 +181,19 @@ class LinearPhase:
     def spring_damper_force(self, x, v):
         return link_force(self.spec.k, x) + link_force(self.spec.c, v)
 
-    def acceleration(self, x, v):
-        a = (self.spring_damper_force(x, v) + self.fric_slip[:, None]) / self.spec.m[:, None]
-        a[self.stuck] = 0.0
-        return a
 
-
-def _well_posed(K, lam, W) -> bool:
-    """True when K is invertible and eig(A) is safely diagonalisable (cheap checks first).
-
-    K (symmetric, positive semi-definite) is singular when the segment is anchored by no
-    spring; A is defective only when eigenvalues coincide, so well-separated eigenvalues
-    skip the O(L³) condition number of W.
-    """
-    w_min = sla.eigvalsh_tridiagonal(np.diag(K).copy(), np.diag(K, 1).copy(), select="i", select_range=(0, 0))[0] \
-        if K.shape[0] > 1 else K[0, 0]
-    if w_min <= 1e-10 * np.max(np.abs(K)):
-        return False
-    scale = np.max(np.abs(lam))
-    gaps = np.abs(lam[:, None] - lam[None, :]) + np.eye(lam.size) * scale
-    if gaps.min() > 1e-6 * scale:
-        return True
-    return np.linalg.cond(W) < 1e8
+def _runs(stuck, spec):
+    """(lo, hi) of each maximal run of slipping masses joined by a spring or damper."""
+    n = spec.n
+    linked = (spec.k[1:n] != 0) | (spec.c[1:n] != 0)
+    out, i = [], 0
+    while i < n:
+        if stuck[i]:
+            i += 1
+            continue
+        j = i
+        while j + 1 < n and not stuck[j + 1] and linked[j]:
+            j += 1
+        out.append((i, j))
+        i = j + 1
+    return out

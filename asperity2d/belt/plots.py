@@ -10,8 +10,11 @@ from __future__ import annotations
 import io
 from pathlib import Path
 
+import numpy as np
+
 from .._io import atomic_write
 from ..errors import SceneError
+from .regime import REGIMES
 
 FORMATS = (".png", ".svg", ".pdf")
 
@@ -74,10 +77,7 @@ def plot_regime_map(regime_map, path=None):
     if path is not None:
         matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
-    import numpy as np
     from matplotlib.colors import ListedColormap
-
-    from .regime import REGIMES
 
     rm = regime_map
     codes = np.vectorize(REGIMES.index)(np.asarray(rm.labels))

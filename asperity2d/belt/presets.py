@@ -44,6 +44,11 @@ PRESETS = {
 }
 
 
+#: ``simulate_chain`` arguments a preset does not set but accepts as overrides
+RUN_SETTINGS = frozenset({"method", "n_samples", "t_eval", "rtol", "atol", "integrator", "friction", "normal_load",
+                          "g", "include_events", "max_events", "max_steps"})
+
+
 def names() -> list[str]:
     return sorted(PRESETS)
 
@@ -53,12 +58,17 @@ def describe(name: str) -> str:
 
 
 def preset(name: str, **overrides) -> dict:
-    """Keyword arguments for ``simulate_chain`` for preset ``name``, updated by ``overrides``."""
+    """Keyword arguments for ``simulate_chain`` for preset ``name``, updated by ``overrides``.
+
+    A ``friction`` law replaces the preset's ``mu_s`` / ``mu_k``.
+    """
     kwargs = _lookup(name)[0]()
-    unknown = set(overrides) - set(kwargs) - {"method", "n_samples", "t_eval", "rtol", "atol", "integrator",
-                                              "friction", "normal_load", "g", "include_events"}
+    unknown = set(overrides) - set(kwargs) - RUN_SETTINGS
     if unknown:
         raise SceneError(f"`{sorted(unknown)[0]}` is not a parameter of preset {name!r}")
+    if overrides.get("friction") is not None:
+        kwargs.pop("mu_s")
+        kwargs.pop("mu_k")
     kwargs.update(overrides)
     return kwargs
 

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import SceneError
+from .solver import simulate_chain
 
 REGIMES = ("steady sliding", "stick-slip", "quasi-harmonic", "stuck")
 AXES = ("v_belt", "k", "c", "m", "mu")
@@ -88,8 +89,6 @@ def regime_map(base: dict, x_name: str, x_values, y_name: str, y_values, *, prog
 
     ``k`` sets every non-zero spring, ``c`` every damper, ``m`` every mass, ``mu`` both coefficients.
     """
-    from .solver import simulate_chain
-
     for name in (x_name, y_name):
         if name not in AXES:
             raise SceneError(f"`axis` must be one of {', '.join(AXES)}, got {name!r}")

@@ -15,22 +15,14 @@ import numpy as np
 
 from .._io import atomic_write, load_npz, save_npz
 from ..errors import SceneError
+from ..friction import law_from_dict
+from .backend import Event, RawRun
 from .spec import ChainSpec, link_extension, link_force
 
 #: Per-mass arrays (n, T).
 MASS_SERIES = ("x", "v", "state", "friction_force", "spring_force", "damper_force")
 #: Scalar series (T,), all in J.
 ENERGY_SERIES = ("belt_work", "friction_dissipation", "damper_dissipation", "kinetic_energy", "spring_energy")
-
-
-@dataclass(frozen=True)
-class Event:
-    """A switch of one mass at time ``t`` (s): ``kind`` is "stick", "slip" or "reverse"; ``x`` its position (m)."""
-
-    t: float
-    mass: int
-    kind: str
-    x: float
 
 
 @dataclass(eq=False)
@@ -127,35 +119,31 @@ class BeltResult:
         return atomic_write(path, write)
 
 
-def assemble(spec: ChainSpec, out: dict) -> BeltResult:
-    """Build a BeltResult from a solver's raw arrays (adds forces and stored energies)."""
-    x, v = out["x"], out["v"]
-    ext = link_extension(x)
-    state = np.array(out["state"], dtype=np.int8)
-    frictionless = (spec.law.static_coefficient * spec.normal == 0) & (spec.law.kinetic_coefficient * spec.normal == 0)
+def assemble(spec: ChainSpec, raw: RawRun, meta: dict) -> BeltResult:
+    """Build a BeltResult from a back-end's raw run (adds forces and stored energies); ``meta`` replaces raw.meta."""
+    x, v = raw.x, raw.v
+    state = np.array(raw.state, dtype=np.int8)
+    frictionless = ~spec.frictional
     if frictionless.any():
-        V = spec.belt_velocity(out["t"])
+        V = spec.belt_velocity(raw.t)
         state[frictionless] = np.sign(v[frictionless] - V[None, :])
-    work = out["work"]
-    meta = dict(out["meta"])
+    meta = dict(meta)
     meta["chain"] = spec.to_dict()
     return BeltResult(
-        t=out["t"], x=x, v=v, state=state,
-        friction_force=out["friction_force"],
+        t=raw.t, x=x, v=v, state=state,
+        friction_force=raw.friction_force,
         spring_force=link_force(spec.k, x),
         damper_force=link_force(spec.c, v),
-        belt_work=work[0], friction_dissipation=work[1], damper_dissipation=work[2],
+        belt_work=raw.work[0], friction_dissipation=raw.work[1], damper_dissipation=raw.work[2],
         kinetic_energy=0.5 * (spec.m[:, None] * v**2).sum(axis=0),
-        spring_energy=0.5 * (spec.k[:, None] * ext**2).sum(axis=0),
-        stick_intervals=[[tuple(map(float, iv)) for iv in per] for per in out["stick_intervals"]],
-        events=list(out["events"]), chain=spec, meta=meta,
+        spring_energy=0.5 * (spec.k[:, None] * link_extension(x) ** 2).sum(axis=0),
+        stick_intervals=[[tuple(map(float, iv)) for iv in per] for per in raw.stick_intervals],
+        events=list(raw.events), chain=spec, meta=meta,
     )
 
 
 def load(path: str | os.PathLike) -> BeltResult:
     """Read a :class:`BeltResult` written by :meth:`BeltResult.save`."""
-    from ..friction import law_from_dict
-
     arrays, meta = load_npz(path, ("t",) + MASS_SERIES + ENERGY_SERIES, kind="a belt result file")
     events = [Event(**e) for e in meta.pop("events")]
     intervals = [[tuple(iv) for iv in per] for per in meta.pop("stick_intervals")]
@@ -163,6 +151,6 @@ def load(path: str | os.PathLike) -> BeltResult:
     chain = None
     if not isinstance(c["v_belt"], str):
         law = law_from_dict(c["friction"])
-        chain = ChainSpec(c["masses"], c["springs"], c["dampers"], law.static_coefficient, None, c["v_belt"],
+        chain = ChainSpec(c["masses"], c["springs"], c["dampers"], None, None, c["v_belt"],
                           c["x0"], c["v0"], c["t_end"], c["g"], c["normal_load"], law)
     return BeltResult(**arrays, stick_intervals=intervals, events=events, chain=chain, meta=meta)

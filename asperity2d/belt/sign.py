@@ -7,20 +7,26 @@ no static friction: the stick phase is represented by the solver chattering
 about v = v_belt, which costs many tiny steps and never holds the velocity
 exactly at belt speed -- compare with ``method="exact"``. With a
 static/kinetic law only ``mu_k`` is used (sign() has one coefficient).
+Every right-hand-side evaluation counts against ``max_steps``.
 """
 
 from __future__ import annotations
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from ..errors import SimulationError
-from .hybrid import intervals_from_state
+from .backend import RawRun, StepBudget, intervals_from_state
+
+#: samples within this fraction of the velocity scale of belt speed count as "stuck"
+STICK_BAND = 1e-3
 
 
-def run_sign(spec, samples, *, rtol, atol, integrator, stick_band=1e-3):
-    """Integrate the sign() model; ``stick_band`` (fraction of the velocity scale) marks 'stuck' samples."""
+def run_sign(spec, options) -> RawRun:
+    """Integrate the sign() model; samples within ``STICK_BAND`` of belt speed are marked stuck."""
+    from scipy.integrate import solve_ivp  # lazily: keeps `import asperity2d.belt` free of SciPy
+
     n, law = spec.n, spec.law
+    budget = StepBudget(options.max_steps)
     normal = spec.normal
     mu = law.kinetic_coefficient if law.piecewise_constant else None
 
@@ -35,6 +41,7 @@ def run_sign(spec, samples, *, rtol, atol, integrator, stick_band=1e-3):
     pad = np.zeros(n + 2)
 
     def rhs(t, y):  # lean: this is called millions of times while the solver chatters
+        budget.spend(t)
         x, v = y[:n], y[n : 2 * n]
         V = const_v if const_v is not None else spec.belt_velocity(t)
         fric = friction(v - V)
@@ -48,24 +55,18 @@ def run_sign(spec, samples, *, rtol, atol, integrator, stick_band=1e-3):
         return out.copy()
 
     y0 = np.concatenate([spec.x0, spec.v0, np.zeros(3)])
-    atol_ = 1e-6 if atol is None else atol  # MATLAB ode113's default AbsTol
-    sol = solve_ivp(rhs, (0.0, spec.t_end), y0, method=integrator, t_eval=samples, rtol=rtol,
+    atol_ = 1e-6 if options.atol is None else options.atol  # MATLAB ode113's default AbsTol
+    sol = solve_ivp(rhs, (0.0, spec.t_end), y0, method=options.integrator, t_eval=options.samples, rtol=options.rtol,
                     atol=np.concatenate([np.full(2 * n, atol_), np.full(3, atol_ * 1e3)]))
     if not sol.success:
         raise SimulationError(f"sign() integration failed: {sol.message}", time=float(sol.t[-1]))
     x, v = sol.y[:n], sol.y[n : 2 * n]
     V = spec.belt_velocity(sol.t)
     vr = v - V[None, :]
-    from .solver import velocity_scale
-
-    band = stick_band * velocity_scale(spec)
+    band = STICK_BAND * spec.velocity_scale
     near = np.where(np.abs(vr) <= band, 0, np.sign(vr)).astype(int)
-    return {
-        "t": sol.t, "x": x, "v": v, "state": np.sign(vr).astype(int),
-        "friction_force": friction(vr),
-        "work": sol.y[2 * n :], "events": [],
-        "stick_intervals": intervals_from_state(sol.t, near),
-        "meta": {"n_events": 0, "nfev": int(sol.nfev), "n_steps_hint": int(sol.nfev),
-                 "stick_band": band, "mu_used": mu,
-                 "note": "sign() mode: state is sign(v - v_belt); stick_intervals are samples within stick_band"},
-    }
+    return RawRun(
+        t=sol.t, x=x, v=v, state=np.sign(vr).astype(int), friction_force=friction(vr), work=sol.y[2 * n :],
+        events=[], stick_intervals=intervals_from_state(sol.t, near),
+        meta={"n_events": 0, "nfev": int(sol.nfev), "stick_band": band, "mu_used": mu,
+              "note": "sign() mode: state is sign(v - v_belt); stick_intervals are samples within stick_band"})

@@ -1,4 +1,4 @@
-"""The chain of masses on a moving belt: a frozen, validated specification.
+"""The chain of masses on a moving belt: a frozen, validated specification and its scales.
 
 n masses ``m_i`` (kg) sit in a row on a belt moving at ``v_belt`` (m/s).
 Spring ``k_j`` (N/m) and damper ``c_j`` (N·s/m), j = 0..n, join mass j-1 to
@@ -7,50 +7,23 @@ the left wall, ``springs[n]`` ties mn to the right wall; a zero removes the
 link. Positions ``x_i`` (m) are measured from the configuration in which
 every spring is unstretched. Each mass presses on the belt with the normal
 load ``N_i`` (N, default m_i·g) and feels friction from ``friction``.
+
+The scales the solvers need (fastest rate, velocity and length scales, the
+scan step) are properties of the spec, computed once.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Callable
 
 import numpy as np
 
-from ..errors import SceneError
+from ..errors import SceneError, SimulationError
 from ..friction import Coulomb, FrictionLaw, StaticKinetic
-
-
-def _vector(name, value, length=None, *, positive=False, nonneg=False) -> tuple:
-    try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise SceneError(f"`{name}` must be a sequence of numbers, got {value!r}") from None
-    if arr.ndim != 1 or arr.size == 0:
-        raise SceneError(f"`{name}` must be a non-empty 1-D sequence, got shape {arr.shape}")
-    if length is not None and arr.size != length:
-        raise SceneError(f"`{name}` must have {length} entries, got {arr.size}")
-    bad = ~np.isfinite(arr)
-    if bad.any():
-        raise SceneError(f"`{name}` must be finite, got {arr[bad][0]!r} at index {int(np.argmax(bad))}")
-    if positive and (arr <= 0).any():
-        raise SceneError(f"`{name}` must be > 0, got {arr[arr <= 0][0]!r}")
-    if nonneg and (arr < 0).any():
-        raise SceneError(f"`{name}` must be >= 0, got {arr[arr < 0][0]!r}")
-    return tuple(float(a) for a in arr)
-
-
-def _scalar(name, value, *, positive=False, nonneg=False) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise SceneError(f"`{name}` must be a number, got {value!r}")
-    value = float(value)
-    if not math.isfinite(value):
-        raise SceneError(f"`{name}` must be finite, got {value!r}")
-    if positive and value <= 0:
-        raise SceneError(f"`{name}` must be > 0, got {value!r}")
-    if nonneg and value < 0:
-        raise SceneError(f"`{name}` must be >= 0, got {value!r}")
-    return value
+from . import validate as check
 
 
 @dataclass(frozen=True)
@@ -58,14 +31,14 @@ class ChainSpec:
     """A validated belt chain (all SI). Build it through :func:`simulate_chain` or directly.
 
     ``v_belt`` is a constant (m/s) or a callable ``v_belt(t)`` (ramps);
-    ``mu_k`` defaults to ``mu_s``; ``friction`` overrides (mu_s, mu_k) with a
-    law from :mod:`asperity2d.friction`.
+    ``mu_k`` defaults to ``mu_s``; ``friction`` (a law from
+    :mod:`asperity2d.friction`) replaces (mu_s, mu_k) -- give one or the other.
     """
 
     masses: tuple
     springs: tuple
     dampers: tuple
-    mu_s: float
+    mu_s: float | None
     mu_k: float | None
     v_belt: float | Callable[[float], float]
     x0: tuple
@@ -78,81 +51,192 @@ class ChainSpec:
 
     def __post_init__(self):
         s = object.__setattr__
-        s(self, "masses", _vector("masses", self.masses, positive=True))
+        s(self, "masses", check.vector("masses", self.masses, positive=True))
         n = len(self.masses)
-        s(self, "springs", _vector("springs", self.springs, n + 1, nonneg=True))
-        s(self, "dampers", _vector("dampers", self.dampers, n + 1, nonneg=True))
-        s(self, "x0", _vector("x0", self.x0, n))
-        s(self, "v0", _vector("v0", self.v0, n))
-        s(self, "t_end", _scalar("t_end", self.t_end, positive=True))
-        s(self, "g", _scalar("g", self.g, nonneg=True))
+        s(self, "springs", check.vector("springs", self.springs, n + 1, nonneg=True))
+        s(self, "dampers", check.vector("dampers", self.dampers, n + 1, nonneg=True))
+        s(self, "x0", check.vector("x0", self.x0, n))
+        s(self, "v0", check.vector("v0", self.v0, n))
+        s(self, "t_end", check.real("t_end", self.t_end, positive=True))
+        s(self, "g", check.real("g", self.g, nonneg=True))
         if self.normal_load is not None:
-            s(self, "normal_load", _vector("normal_load", self.normal_load, n, nonneg=True))
+            s(self, "normal_load", check.vector("normal_load", self.normal_load, n, nonneg=True))
         if callable(self.v_belt):
-            probe = self.v_belt(0.0)
-            _scalar("v_belt", probe)
+            try:
+                probe = self.v_belt(0.0)
+            except Exception as exc:  # noqa: BLE001 -- the user's callable; report, do not crash
+                raise SceneError(f"`v_belt` raised {type(exc).__name__} at t = 0: {check.show(exc, 120)}") from None
+            check.real("v_belt", probe)
         else:
-            s(self, "v_belt", _scalar("v_belt", self.v_belt))
+            s(self, "v_belt", check.real("v_belt", self.v_belt))
+        s(self, "law", self._law())
+        check.scales(self)
+
+    def _law(self) -> FrictionLaw:
         if self.friction is not None:
             if not isinstance(self.friction, FrictionLaw):
-                raise SceneError(f"`friction` must be a law from asperity2d.friction, got {self.friction!r}")
-            s(self, "law", self.friction)
-        else:
-            mu_s = _scalar("mu_s", self.mu_s, nonneg=True)
-            mu_k = mu_s if self.mu_k is None else _scalar("mu_k", self.mu_k, nonneg=True)
-            if mu_k > mu_s:
-                raise SceneError(f"`mu_s` must be >= `mu_k` ({mu_k!r}), got {mu_s!r}")
-            s(self, "mu_s", mu_s)
-            s(self, "mu_k", mu_k)
-            s(self, "law", Coulomb(mu_s) if mu_s == mu_k else StaticKinetic(mu_s, mu_k))
+                raise SceneError(f"`friction` must be a law from asperity2d.friction, got {check.show(self.friction)}")
+            if self.mu_s is not None or self.mu_k is not None:
+                raise SceneError("give either `mu_s` / `mu_k` or `friction`, not both")
+            for name, value in zip(self.friction.param_names, self.friction.params):
+                check.real(f"friction.{name}", float(value))
+            return self.friction
+        if self.mu_s is None:
+            raise SceneError("`mu_s` is required unless `friction` is given")
+        mu_s = check.real("mu_s", self.mu_s, nonneg=True)
+        mu_k = mu_s if self.mu_k is None else check.real("mu_k", self.mu_k, nonneg=True)
+        if mu_k > mu_s:
+            raise SceneError(f"`mu_s` must be >= `mu_k` ({mu_k!r}), got {mu_s!r}")
+        object.__setattr__(self, "mu_s", mu_s)
+        object.__setattr__(self, "mu_k", mu_k)
+        return Coulomb(mu_s) if mu_s == mu_k else StaticKinetic(mu_s, mu_k)
 
     # -- derived arrays ---------------------------------------------------
     @property
     def n(self) -> int:
         return len(self.masses)
 
-    @property
+    @cached_property
     def m(self) -> np.ndarray:
         return np.asarray(self.masses)
 
-    @property
+    @cached_property
     def k(self) -> np.ndarray:
         return np.asarray(self.springs)
 
-    @property
+    @cached_property
     def c(self) -> np.ndarray:
         return np.asarray(self.dampers)
 
-    @property
+    @cached_property
     def normal(self) -> np.ndarray:
         """Normal load per mass (N)."""
         if self.normal_load is not None:
             return np.asarray(self.normal_load)
         return self.m * self.g
 
+    @cached_property
+    def static_limit(self) -> np.ndarray:
+        """Largest static friction force per mass (N), mu_s·N_i."""
+        return self.law.static_coefficient * self.normal
+
+    @cached_property
+    def kinetic_force(self) -> np.ndarray:
+        """Kinetic friction magnitude per mass (N) for piecewise-constant laws, mu_k·N_i."""
+        return self.law.kinetic_coefficient * self.normal
+
+    @cached_property
+    def frictional(self) -> np.ndarray:
+        """True for masses that feel any friction (the others never stick)."""
+        return (self.static_limit > 0) | (self.kinetic_force > 0)
+
     @property
     def constant_belt(self) -> bool:
         return not callable(self.v_belt)
 
+    # -- scales -----------------------------------------------------------
+    @cached_property
+    def rate_bound(self) -> float:
+        """Upper bound (1/s) on |lambda| of every mode of every segment of the chain.
+
+        For lambda²·M + lambda·C + K singular, |lambda| <= c' + sqrt(k') with c', k' the
+        spectral radii of M⁻¹C and M⁻¹K, each bounded by its largest row sum
+        2·max((c_i + c_i+1)/m_i) (Gershgorin). Zero for a chain with no links.
+        """
+        k_row = 2 * float(np.max((self.k[:-1] + self.k[1:]) / self.m))
+        c_row = 2 * float(np.max((self.c[:-1] + self.c[1:]) / self.m))
+        return c_row + math.sqrt(k_row)
+
+    @cached_property
+    def fastest_rate(self) -> float:
+        """max |lambda| (1/s) of the whole chain slipping (an O(n³) eigenvalue problem; cached)."""
+        n = self.n
+        A = np.zeros((2 * n, 2 * n))
+        A[:n, n:] = np.eye(n)
+        A[n:, :n] = -self.stiffness_matrix() / self.m[:, None]
+        A[n:, n:] = -self.damping_matrix() / self.m[:, None]
+        return float(np.max(np.abs(np.linalg.eigvals(A))))
+
+    @cached_property
+    def scan_step(self) -> float:
+        """Time step (s) of the budget estimate: 1/16 of the fastest period; t_end for a linkless chain."""
+        rate = self.rate_bound
+        return 2 * math.pi / (16 * rate) if rate > 0 else self.t_end
+
+    @cached_property
+    def omega(self) -> float:
+        """Stiffest spring-mass frequency sqrt(max(k_i + k_i+1) / min m) (rad/s); 1 without springs."""
+        return math.sqrt(float(np.max(self.k[:-1] + self.k[1:]) / np.min(self.m))) if self.k.any() else 1.0
+
+    @cached_property
+    def velocity_scale(self) -> float:
+        """A velocity (m/s) that normalises the slip event functions and the switching tolerance.
+
+        The largest of the belt speed, the initial speeds and the speed swing
+        mu_s·N/(m·omega) of a static-friction release (at least 1e-12 m/s).
+        """
+        swing = float(np.max(self.static_limit / self.m)) / self.omega
+        return float(max(abs(self.belt_velocity(0.0)), float(np.max(np.abs(self.v0))), swing, 1e-12))
+
+    @cached_property
+    def length_scale(self) -> float:
+        """A length (m): the initial offsets, or the velocity scale over omega."""
+        return max(float(np.max(np.abs(self.x0))), self.velocity_scale / self.omega)
+
+    @cached_property
+    def force_scale(self) -> float:
+        """A force (N) > 0: the largest static limit, spring force at the length scale, or inertial force
+        m·v_scale·omega."""
+        return max(float(np.max(self.static_limit)), float(np.max(self.k)) * self.length_scale,
+                   float(np.max(self.m)) * self.velocity_scale * self.omega, 1e-300)
+
+    @cached_property
+    def limit_scale(self) -> np.ndarray:
+        """Per mass, the force (N) that normalises its static-limit event functions and tolerances:
+        mu_s·N_i, but at least 1e-12 of the force scale (a vanishing limit must not overflow them)."""
+        return np.maximum(self.static_limit, 1e-12 * self.force_scale)
+
+    @cached_property
+    def energy_scale(self) -> float:
+        """An energy (J) > 0: the force scale times the length scale, or the kinetic energy at the velocity scale."""
+        return max(self.force_scale * self.length_scale,
+                   float(np.max(self.m)) * self.velocity_scale * self.velocity_scale, 1e-300)
+
+    # -- belt -------------------------------------------------------------
     def belt_velocity(self, t):
-        """Belt speed (m/s) at time(s) ``t``."""
-        if callable(self.v_belt):
-            return np.vectorize(lambda s: float(self.v_belt(s)))(t) if np.ndim(t) else float(self.v_belt(t))
-        return np.full(np.shape(t), self.v_belt) if np.ndim(t) else float(self.v_belt)
+        """Belt speed (m/s) at time(s) ``t`` (s)."""
+        if not callable(self.v_belt):
+            return np.full(np.shape(t), self.v_belt) if np.ndim(t) else float(self.v_belt)
+        if np.ndim(t):
+            return np.array([self._call_belt(s) for s in np.ravel(t)]).reshape(np.shape(t))
+        return self._call_belt(t)
+
+    def _call_belt(self, t) -> float:
+        value = self.v_belt(float(t))
+        try:
+            out = float(value)
+        except (TypeError, ValueError, OverflowError):
+            out = math.nan
+        if not math.isfinite(out):
+            raise SimulationError(f"`v_belt`({float(t):.6g}) returned {check.show(value)}, not a finite number",
+                                  time=float(t))
+        return out
 
     def belt_acceleration(self, t) -> float:
         """dv_belt/dt (m/s²); central difference for callables, 0 for a constant belt."""
         if not callable(self.v_belt):
             return 0.0
         h = 1e-6 * max(1.0, abs(t))
-        return (float(self.v_belt(t + h)) - float(self.v_belt(t - h))) / (2 * h)
+        return (self._call_belt(t + h) - self._call_belt(t - h)) / (2 * h)
 
+    # -- matrices ---------------------------------------------------------
     def stiffness_matrix(self) -> np.ndarray:
         """Tridiagonal K (N/m) with M·x'' + C·x' + K·x = friction."""
-        return _tridiag(self.k)
+        return tridiagonal(self.k)
 
     def damping_matrix(self) -> np.ndarray:
-        return _tridiag(self.c)
+        """Tridiagonal C (N·s/m)."""
+        return tridiagonal(self.c)
 
     def to_dict(self) -> dict:
         return {
@@ -169,7 +253,8 @@ class ChainSpec:
         }
 
 
-def _tridiag(links: np.ndarray) -> np.ndarray:
+def tridiagonal(links: np.ndarray) -> np.ndarray:
+    """The (n, n) matrix of n+1 links (wall, between masses, wall) acting on n masses."""
     n = len(links) - 1
     out = np.diag(links[:-1] + links[1:])
     idx = np.arange(n - 1)
@@ -178,16 +263,28 @@ def _tridiag(links: np.ndarray) -> np.ndarray:
     return out
 
 
+def force_row(spec, i: int):
+    """(columns, coefficients) of the spring + damper force on mass ``i`` (N) over the state [x; v].
+
+    F_i = k_i·x_i-1 - (k_i + k_i+1)·x_i + k_i+1·x_i+1 + (the same with c and v); column j is
+    x_j, column n + j is v_j; zero coefficients are left out.
+    """
+    n, cols, coefs = spec.n, [], []
+    for base, links in ((0, spec.k), (n, spec.c)):
+        for j, coef in ((i - 1, links[i]), (i, -(links[i] + links[i + 1])), (i + 1, links[i + 1])):
+            if 0 <= j < n and coef != 0:
+                cols.append(base + j)
+                coefs.append(float(coef))
+    return cols, coefs
+
+
 def link_force(links: np.ndarray, x: np.ndarray) -> np.ndarray:
     """Force on each mass (N) from links of coefficient ``links`` (n+1,) acting on ``x`` (n, ...).
 
     With springs and positions it is the spring force; with dampers and
     velocities the damper force. Walls sit at 0 and never move.
     """
-    x = np.asarray(x, dtype=float)
-    pad = np.zeros((1,) + x.shape[1:])
-    elong = np.diff(np.concatenate([pad, x, pad]), axis=0)  # (n+1, ...) link extension
-    tension = links.reshape((-1,) + (1,) * (x.ndim - 1)) * elong
+    tension = links.reshape((-1,) + (1,) * (np.ndim(x) - 1)) * link_extension(x)
     return tension[1:] - tension[:-1]
 
 

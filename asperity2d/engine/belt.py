@@ -18,11 +18,14 @@ from dataclasses import dataclass
 import numpy as np
 import pymunk
 
-from .._validate import check_int, check_nonnegative, check_positive, per_item
+from ..belt import validate as check
+from ..belt.spec import ChainSpec
 from ..errors import SceneError
 
 _SPACING = 1.0  # m between rest positions (geometry only: springs are linear in x)
 _BOX = (0.2, 0.1)  # m, width and height of each mass
+#: fixed-step budget: a Python loop over pymunk steps runs ~1e5 steps per second
+MAX_STEPS = 20_000_000
 
 
 @dataclass(frozen=True)
@@ -53,31 +56,30 @@ def simulate_chain_rigid(masses, springs, dampers, *, mu_s: float, mu_k: float |
     """Run the chain in pymunk with a fixed step (default T/400 of the fastest mode).
 
     Arguments as :func:`asperity2d.belt.simulate_chain` (SI; ``x0`` are the
-    displacements from the rest positions where every spring is unstretched).
+    displacements from the rest positions where every spring is unstretched),
+    validated by the same :class:`~asperity2d.belt.spec.ChainSpec`; the belt
+    speed must be a constant and ``g`` > 0 (gravity holds the boxes on the belt).
     """
-    m = per_item("masses", masses, len(np.atleast_1d(masses)), allow_zero=False)
-    n = len(m)
-    k = per_item("springs", springs, n + 1, allow_zero=True)
-    c = per_item("dampers", dampers, n + 1, allow_zero=True)
-    try:
-        x0 = np.broadcast_to(np.asarray(x0, dtype=float), (n,))
-        v0 = np.broadcast_to(np.asarray(v0, dtype=float), (n,))
-    except ValueError:
-        raise SceneError(f"`x0` and `v0` must have {n} entries (one per mass)") from None
-    if not (np.isfinite(x0).all() and np.isfinite(v0).all()):
-        raise SceneError("`x0` and `v0` must be finite")
-    mu_k = mu_s if mu_k is None else mu_k
-    check_nonnegative("mu_s", mu_s)
-    check_nonnegative("mu_k", mu_k)
-    if mu_k > mu_s:
-        raise SceneError(f"`mu_s` ({mu_s!r}) must be >= `mu_k` ({mu_k!r})")
-    check_positive("t_end", t_end)
-    check_positive("g", g)
-    record_every = check_int("record_every", record_every, minimum=1)
+    spec = ChainSpec(masses, springs, dampers, mu_s, mu_k, v_belt, x0, v0, t_end, g)
+    if not spec.constant_belt:
+        raise SceneError("`v_belt` must be a number for the rigid-body chain (no ramps)")
+    if spec.g <= 0:
+        raise SceneError(f"`g` must be > 0 for the rigid-body chain, got {spec.g!r}")
+    m, k, c, n = spec.masses, spec.springs, spec.dampers, spec.n
+    x0, v0, v_belt, g = np.array(spec.x0), np.array(spec.v0), spec.v_belt, spec.g
+    mu_s, mu_k = spec.law.static_coefficient, spec.law.kinetic_coefficient
+    record_every = check.integer("record_every", record_every, minimum=1)
+    iterations = check.integer("iterations", iterations, minimum=1, maximum=10_000)
+    slip_distance = check.real("slip_distance", slip_distance, positive=True)
     rows = np.array(k[:-1]) + np.array(k[1:]) + np.abs(k[:-1]) + np.abs(k[1:])
     omega = math.sqrt(max(float(np.max(rows / np.array(m))), 1e-12))
-    dt = (2 * math.pi / omega) / 400 if dt is None else check_positive("dt", dt)
-    v_stick = 1e-3 * max(abs(v_belt), 1e-3) if stick_speed is None else stick_speed
+    dt = (2 * math.pi / omega) / 400 if dt is None else check.real("dt", dt, positive=True)
+    steps = int(math.ceil(spec.t_end / dt - 1e-9))
+    if steps > MAX_STEPS:
+        raise SceneError(f"`t_end` / `dt` = {steps:,} steps, over the budget of {MAX_STEPS:,}; shorten `t_end` "
+                         "or raise `dt`")
+    v_stick = 1e-3 * max(abs(v_belt), 1e-3) if stick_speed is None else check.real("stick_speed", stick_speed,
+                                                                                     positive=True)
 
     space = pymunk.Space(threaded=False)
     space.gravity = (0.0, -g)
@@ -113,7 +115,6 @@ def simulate_chain_rigid(masses, springs, dampers, *, mu_s: float, mu_k: float |
         space.add(link)
 
     slid = [0.0] * n
-    steps = int(math.ceil(t_end / dt - 1e-9))
     samples = steps // record_every + 1
     t_out, x_out = np.empty(samples), np.empty((n, samples))
     v_out, s_out = np.empty((n, samples)), np.empty((n, samples), dtype=bool)

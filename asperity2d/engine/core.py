@@ -62,9 +62,11 @@ class Engine:
 
     ``iterations`` is pymunk's solver iteration count. ``step_hooks`` are
     callables run after every step (after projection and the friction
-    switch), e.g. :class:`asperity2d.engine.energy.EnergyMeter`. ``engaged``
-    starts a fixed-track slider over the surface, its track raised, for
-    :meth:`settle` to lower it into contact.
+    switch), e.g. :class:`asperity2d.engine.energy.EnergyMeter`;
+    ``projection_hooks`` are called with the bodies' rows just before the
+    track projection (so a meter can see what the projection removes).
+    ``engaged`` starts a fixed-track slider over the surface, its track
+    raised, for :meth:`settle` to lower it into contact.
     """
 
     def __init__(self, scene: Scene, dt: float, *, iterations: int = 20, engaged: bool = False):
@@ -81,8 +83,11 @@ class Engine:
         self.step_count = 0
         self.max_solver_drift = 0.0  # largest drift off a track before projection (base units)
         self.step_hooks: list = []
+        self.projection_hooks: list = []
         self._body_buf, self._arb_buf = None, batch.Buffer()
         self._arbiters = None  # the last step's contacts, when read
+        self._changes = 0  # counts what changes the space: forks of an unchanged engine share a snapshot
+        self._snapshot = None
         self._read_bodies()
         self.drive.start(self._slider[0])
 
@@ -149,7 +154,8 @@ class Engine:
         """Advance ``n`` steps, applying the drive and the load before each."""
         layout, d, dt, load = self.layout, self.drive, self.dt_internal, self.load_internal
         space, body, switch = layout.space, layout.slider, self.switch
-        hooks = self.step_hooks
+        hooks, before_projection = self.step_hooks, self.projection_hooks
+        self._changes += 1
         for _ in range(n):
             x, _, vx, _ = self._slider
             if d.spring:
@@ -165,6 +171,8 @@ class Engine:
             space.step(dt)
             self.step_count += 1
             rows = self._read_bodies()
+            for hook in before_projection:
+                hook(rows)
             self._project(rows)
             if switch.active:
                 self._arbiters = read_arbiters(space, self._arb_buf, layout)
@@ -254,6 +262,7 @@ class Engine:
         """
         layout, d, dt = self.layout, self.drive, self.dt_internal
         space, body = layout.space, layout.slider
+        self._changes += 1
         free = self.scene.slider.track == "free"
         lowering = layout.fixed_slider and layout.slider_y_track != layout.slider_y0
         phases = (["drop"] if free or lowering else []) + (["spring"] if d.spring else []) + \
@@ -320,13 +329,15 @@ class Engine:
         Copies of one engine step bit-identically to each other (they differ
         from the original in the last bits: pymunk rebuilds the contact cache).
         """
+        if self._snapshot is None or self._snapshot[0] != self._changes:
+            self._snapshot = (self._changes, self.layout.snapshot())
         out = object.__new__(Engine)
         out.__dict__.update(self.__dict__)
-        out.layout = self.layout.copy()
+        out.layout = self.layout.copy(self._snapshot[1])
         out.switch = self.switch.copy_to(out.layout)
         out.drive = object.__new__(Drive)
         out.drive.__dict__.update(self.drive.__dict__)
-        out.step_hooks = []
+        out.step_hooks, out.projection_hooks = [], []
         out._body_buf, out._arb_buf = None, batch.Buffer()
         out._arbiters = None
         out._read_bodies()

@@ -7,11 +7,15 @@ is in it. Bodies (seed 000 figures 5-8, DESIGN.md section 5):
 * each lower asperity is ``Body(m, inf)`` (it cannot rotate) on a vertical
   ``GrooveJoint`` (its track, limited to the travel) with a vertical
   ``DampedSpring`` to ground; in the MATLAB lattice the groove is left out
-  and horizontal ``DampedSpring`` links join the peaks;
+  and horizontal ``DampedSpring`` links join the peaks. The body sits at its
+  tip's x and at y = 0 at rest; its polygon is its own shape
+  (:meth:`~asperity2d.scene.LowerSurface.outlines`), whose base line lies at
+  the asperity's base level, so a body's y is always its displacement from rest;
 * the slider is one ``Body(M, inf)`` carrying every upper triangle, on a
   horizontal groove (fixed track) or free vertically;
 * a static floor at the bottom of the tracks stops upper tips from falling
-  through wide gaps; it touches only the slider;
+  through wide gaps; it touches only the slider; so do the static segments
+  of a profile's valleys between its asperities (``LowerSurface.substrate``);
 * shape filters keep lower asperities from touching each other.
 
 pymunk's ``DampedSpring`` applies its damping as an exact exponential decay
@@ -22,6 +26,7 @@ step; only the drive damper (applied as a force, :mod:`.core`) limits dt.
 from __future__ import annotations
 
 import math
+import pickle
 from dataclasses import dataclass
 
 import numpy as np
@@ -52,8 +57,10 @@ class Layout:
     ``slider_row`` and ``lower_rows`` (a slice when contiguous);
     ``lower_index`` maps a body id (a pointer value) to its lower asperity index.
     ``lower_x0`` / ``lower_apex_x``
-    are the rest x of each lower base centre / apex, ``upper_apex`` the
-    apexes' x relative to the slider, ``slider_y0`` its starting height.
+    are the rest x of each lower body / apex (the same: bodies sit at their
+    tips), ``lower_height`` the rest height of the highest lower tip,
+    ``upper_apex`` the apexes' x relative to the slider, ``slider_y0`` its
+    starting height.
     """
 
     space: pymunk.Space
@@ -97,11 +104,15 @@ class Layout:
         by_id = {b.id: b for b in self.space.bodies}
         self.masses = np.array([by_id[int(i)].mass if int(i) in by_id else 0.0 for i in ids])
 
-    def copy(self) -> "Layout":
-        """An independent copy of the space (``pymunk.Space.copy``: bodies, joints and
-        the contact cache), with every reference re-pointed. Copies of one layout
-        step bit-identically to each other."""
-        space = self.space.copy()
+    def snapshot(self) -> bytes:
+        """The space pickled (bodies, joints and the contact cache): :meth:`copy` restores it."""
+        return pickle.dumps(self.space, protocol=pickle.HIGHEST_PROTOCOL)
+
+    def copy(self, snapshot: bytes | None = None) -> "Layout":
+        """An independent copy of the space from ``snapshot`` (default: taken now), with every
+        reference re-pointed. Copies of one layout step bit-identically to each other.
+        (Unpickling a snapshot is 3.5x cheaper than ``pymunk.Space.copy``'s deep copy.)"""
+        space = pickle.loads(self.snapshot() if snapshot is None else snapshot)
         # pymunk copies bodies and shapes in order (new ids): match them by position
         body_at = {id(b): k for k, b in enumerate(self.space.bodies)}
         shape_at = {id(s): k for k, s in enumerate(self.space.shapes)}
@@ -126,16 +137,23 @@ def build(scene, units: Units, dt: float, *, iterations: int, friction: float,
     """Build ``scene`` in a new space stepped with ``dt`` (internal units).
 
     ``friction`` is the lower shapes' initial coefficient (the slider's shapes
-    have 1.0, so a contact's coefficient is the lower shape's). A fixed-track
-    slider starts before the surface, or with ``engaged`` over it (its rear tip
-    above the first lower valley, like a free slider) with its track raised
-    clear of the tips, to be lowered onto the surface by ``Engine.settle``.
+    have 1.0, so a contact's coefficient is the lower shape's); their
+    elasticity is the scene's contact ``restitution`` (the slider's is 1.0).
+    A fixed-track slider starts before the surface, or with ``engaged`` over
+    it (its rear tip above the first lower valley, like a free slider) with
+    its track raised clear of the tips, to be lowered onto the surface by
+    ``Engine.settle``.
     """
     space = pymunk.Space(threaded=False)  # threaded stepping is not reproducible
     space.iterations = iterations
     space.gravity = (0.0, -scene.gravity / units.acceleration)
     space.collision_slop = COLLISION_SLOP
     space.collision_bias = per_step_bias(CORRECTION_PER_STEP, dt)
+    # Contacts are remembered for one step only: with pymunk's default (3) a contact that
+    # touches again within 3 steps of separating reports the impulse remembered from before,
+    # which was never applied (with restitution 1, up to ~700 load impulses in the recorded
+    # normal force), while its warm start brings nothing a fixed small dt needs.
+    space.collision_persistence = 1
     bias = per_step_bias(CORRECTION_PER_STEP, dt)
     lower = _build_lower(space, scene, units, bias, friction)
     slider = _build_slider(space, scene, units, bias, lower, engaged)
@@ -152,16 +170,16 @@ def build(scene, units: Units, dt: float, *, iterations: int, friction: float,
 
 def _build_lower(space, scene, u: Units, bias: float, friction: float) -> dict:
     lower = scene.lower
-    verts = [(x / u.length, y / u.length) for x, y in lower.profile.vertices(upper=False)]
     x0 = lower.tips() / u.length
     down, up = lower.travel_down / u.length, lower.travel_up / u.length
     flt = pymunk.ShapeFilter(categories=LOWER, mask=SLIDER)
     bodies, shapes = [], []
-    for x, m, k, c in zip(x0, lower.mass, lower.stiffness, lower.damping):
+    for x, outline, m, k, c in zip(x0, lower.outlines(), lower.mass, lower.stiffness, lower.damping):
         body = pymunk.Body(m / u.mass, math.inf)
         body.position = (x, 0.0)
-        shape = pymunk.Poly(body, verts)
+        shape = pymunk.Poly(body, [(vx / u.length, vy / u.length) for vx, vy in outline])
         shape.filter, shape.collision_type, shape.friction = flt, LOWER, friction
+        shape.elasticity = scene.contact.restitution  # x the slider's 1.0
         # The vertical spring hangs from far below, so it stays vertical
         # (to 1e-2 rad per base of sideways motion in the lattice).
         joints = [pymunk.DampedSpring(space.static_body, body, (x, -_SPRING_REST), (0.0, 0.0),
@@ -175,8 +193,9 @@ def _build_lower(space, scene, u: Units, bias: float, friction: float) -> dict:
         shapes.append(shape)
     if lower.is_lattice:
         _build_lattice(space, lower, u, x0, bodies)
-    return {"bodies": bodies, "shapes": shapes, "x0": x0, "height": lower.profile.height / u.length,
-            "apex": x0, "left": lower.profile.runs(upper=False)[0] / u.length}
+    left = lower.runs()[0]
+    return {"bodies": bodies, "shapes": shapes, "x0": x0, "height": lower.top / u.length,
+            "apex": x0, "left": float(np.ravel(left)[0]) / u.length}
 
 
 def _build_lattice(space, lower, u: Units, x, bodies) -> None:
@@ -207,15 +226,16 @@ def _build_lattice(space, lower, u: Units, x, bodies) -> None:
 
 def _build_slider(space, scene, u: Units, bias: float, lower: dict, engaged: bool) -> dict:
     s = scene.slider
-    h_up = s.profile.height / u.length
+    h_up = s.depth / u.length  # the deepest tip below the slider's datum
     apex = s.tips() / u.length  # relative to the slider's reference point, the rear tip
     body = pymunk.Body(s.mass / u.mass, math.inf)
     x_lower, apex_lower = lower["x0"], lower["apex"]
     clear = lower["height"] + h_up + 1e-3  # the tips just clear of the lower tips
     if s.track == "fixed" and not engaged:
         # Start left of the surface: the front asperity's base ends a tenth
-        # of a base before the first lower asperity's base begins.
-        right = s.profile.runs(upper=True)[1] / u.length
+        # of a base before the first lower asperity's base begins. The deepest
+        # upper tip runs `interference` below the highest lower tip.
+        right = float(np.ravel(s.runs()[1])[-1]) / u.length
         x0 = x_lower[0] - lower["left"] - right - apex[-1] - 0.1
         y0 = y_start = lower["height"] - s.interference / u.length + h_up
     else:
@@ -233,11 +253,11 @@ def _build_slider(space, scene, u: Units, bias: float, lower: dict, engaged: boo
             y0 = lower["height"] - s.interference / u.length + h_up
     body.position = (x0, y_start)
     flt = pymunk.ShapeFilter(categories=SLIDER, mask=LOWER | FLOOR)
-    verts = s.profile.vertices(upper=True)
     shapes = []
-    for c in apex:
-        shape = pymunk.Poly(body, [(c + x / u.length, y / u.length) for x, y in verts])
+    for c, outline in zip(apex, s.outlines()):
+        shape = pymunk.Poly(body, [(c + x / u.length, y / u.length) for x, y in outline])
         shape.filter, shape.collision_type, shape.friction = flt, SLIDER, 1.0
+        shape.elasticity = 1.0
         shapes.append(shape)
     space.add(body, *shapes)
     groove = None
@@ -251,10 +271,18 @@ def _build_slider(space, scene, u: Units, bias: float, lower: dict, engaged: boo
 def _build_floor(space, scene, u: Units, x_lower, friction: float) -> None:
     # A guard at the bottom of the lower tracks: upper tips that sink into
     # wide gaps (or half triangles that would fall through) land on it. It
-    # is deep enough never to carry load in ordinary contact.
-    y = -scene.lower.travel_down / u.length
+    # is deep enough never to carry load in ordinary contact: travel_down
+    # below the lowest base level.
+    y = scene.lower.floor / u.length
     x_lo = x_lower[0] - 1e6
     floor = pymunk.Segment(space.static_body, (x_lo, y), (-x_lo, y), 0.0)
-    floor.filter = pymunk.ShapeFilter(categories=FLOOR, mask=SLIDER)
-    floor.collision_type, floor.friction = FLOOR, friction
-    space.add(floor)
+    segments = [floor]
+    # A profile's valleys between lower asperities (rigid substrate, touched by the slider only).
+    for line in scene.lower.substrate or ():
+        pts = [(vx / u.length, vz / u.length) for vx, vz in line]
+        segments += [pymunk.Segment(space.static_body, a, b, 0.0) for a, b in zip(pts[:-1], pts[1:])]
+    for segment in segments:
+        segment.filter = pymunk.ShapeFilter(categories=FLOOR, mask=SLIDER)
+        segment.collision_type, segment.friction = FLOOR, friction
+        segment.elasticity = scene.contact.restitution
+    space.add(*segments)

@@ -3,7 +3,8 @@
 ``render(result, "run.gif")`` writes an animated GIF, ``"run.mp4"`` a video
 (:mod:`.animate`: Pillow frames, imageio encoding; MP4 needs the ``video``
 extra); ``.png`` / ``.svg`` / ``.pdf`` write the time-series plot
-(:mod:`.plots`, matplotlib, imported only when used). ``result`` may be a
+(:mod:`.plots`, matplotlib, imported only when used); ``.wav`` writes the
+sound of the run and its spectrogram (:mod:`.sound`). ``result`` may be a
 :class:`~asperity2d.result.Result` or the path of one saved with
 ``Result.save``, so a run is rendered again without re-simulating.
 """
@@ -17,14 +18,15 @@ from ..errors import SceneError
 
 #: Output extensions and the renderer each selects.
 RENDERERS = {".gif": "animation", ".mp4": "animation", ".png": "plot", ".svg": "plot",
-             ".pdf": "plot"}
+             ".pdf": "plot", ".wav": "sound"}
 
 
 def render(result, path: str | os.PathLike, **options) -> Path:
     """Render ``result`` to ``path``, choosing the renderer by extension.
 
-    ``options`` go to :func:`~asperity2d.render.animate.render_animation` (``.gif``, ``.mp4``)
-    or :func:`~asperity2d.render.plots.plot_run` (``.png``, ``.svg``, ``.pdf``).
+    ``options`` go to :func:`~asperity2d.render.animate.render_animation` (``.gif``, ``.mp4``),
+    :func:`~asperity2d.render.plots.plot_run` (``.png``, ``.svg``, ``.pdf``)
+    or :func:`~asperity2d.render.sound.write_wav` (``.wav``).
 
     Raises
     ------
@@ -39,6 +41,10 @@ def render(result, path: str | os.PathLike, **options) -> Path:
         from ..result import load
 
         result = load(result)
+    if kind == "sound":
+        from .sound import write_wav
+
+        return write_wav(result, path, **options).path
     if kind == "animation":
         from .animate import render_animation
 

@@ -9,7 +9,8 @@ plugin (the palette images as they are, no re-quantisation), ``.mp4`` (H.264)
 through its ffmpeg plugin, which needs the optional extra
 ``pip install "asperity2d[video]"`` (imageio-ffmpeg, with its own ffmpeg).
 
-What is drawn (seed 000, figures 5–8): the lower asperities on their vertical
+What is drawn (seed 000, figures 5–8): the lower asperities (each with its own
+shape, :meth:`~asperity2d.scene.LowerSurface.outlines`) on their vertical
 spring tracks, standing on a ground band whose top is the engine's guard floor
 (the bottom of the tracks, ``-travel_down``), the slider's bar and its downward
 asperities, the drive spring as a zig-zag from the slider's front to the
@@ -64,13 +65,17 @@ class Layout:
     def __init__(self, result, *, width: int, height: int, view_width: float | None = None):
         scene = result.scene
         self.result, self.width, self.height = result, width, height
-        self.lower_poly = np.asarray(scene.lower.profile.vertices(upper=False))
-        self.upper_poly = np.asarray(scene.slider.profile.vertices(upper=True))
+        # each asperity's own polygon (m, relative to its tip's x and the rest datum)
+        self.lower_polys = [np.asarray(v) for v in scene.lower.outlines()]
+        self.upper_polys = [np.asarray(v) for v in scene.slider.outlines()]
+        self.lower_levels = np.array(scene.lower.shape_set().levels)
+        self.substrate = [np.asarray(line) for line in scene.lower.substrate or ()]
         self.lower_centers = scene.lower.tips()
         self.upper_centers = scene.slider.tips()
-        self.base, h = scene.base, scene.lower.profile.height
+        self.base, h = scene.base, scene.lower.top
         self.pitch = scene.lower.spacing.mean_pitch
-        span = self.upper_centers[-1] + scene.slider.profile.base
+        self.upper_front = self.upper_centers[-1] + float(np.ravel(scene.slider.runs()[1])[-1])
+        span = self.upper_front - self.upper_centers[0] + float(np.ravel(scene.slider.runs()[0])[0])
         if view_width is None:
             view_width = span + 4.0 * self.pitch
         if not view_width > 0:
@@ -79,7 +84,7 @@ class Layout:
         self.bar = 0.3 * self.base
         # The engine's guard floor (it stops sinking upper tips) is at the bottom of
         # the lower tracks; the track springs are drawn standing on it.
-        self.track_floor = -scene.lower.travel_down
+        self.track_floor = scene.lower.floor
         y_top = float(np.nanmax(result.y)) + self.bar
         y_bot = self.track_floor - 0.3 * h
         usable = height - TEXT_HEIGHT - 6
@@ -113,19 +118,24 @@ def frame_shapes(layout: Layout, k: int, *, frame: int = 0, frames: int = 1) -> 
     lower, tracks = [], []
     floor_py = L.to_px(0.0, L.track_floor, left)[1]
     for i in visible:
-        X, Y = L.to_px(cx[i] + L.lower_poly[:, 0], r.lower_dy[i, k] + L.lower_poly[:, 1], left)
+        poly = L.lower_polys[i]
+        X, Y = L.to_px(cx[i] + poly[:, 0], r.lower_dy[i, k] + poly[:, 1], left)
         lower.append(list(zip(X.tolist(), Y.tolist())))
-        px, base_py = L.to_px(cx[i], r.lower_dy[i, k], left)
+        px, base_py = L.to_px(cx[i], r.lower_dy[i, k] + L.lower_levels[i], left)
         tracks.append(zigzag(float(floor_py), float(base_py), float(px), coils=4,
                              amplitude=max(2.0, 0.12 * L.base * L.scale), vertical=True))
     upper = []
-    for c in L.upper_centers:
-        X, Y = L.to_px(x + c + L.upper_poly[:, 0], y + L.upper_poly[:, 1], left)
+    for c, poly in zip(L.upper_centers, L.upper_polys):
+        X, Y = L.to_px(x + c + poly[:, 0], y + poly[:, 1], left)
         upper.append(list(zip(X.tolist(), Y.tolist())))
-    front = x + L.upper_centers[-1] + 0.5 * L.base
+    front = x + L.upper_front
     bx0, by0 = L.to_px(x - 0.5 * L.base, y + L.bar, left)
     bx1, by1 = L.to_px(front, y, left)
-    shapes = {"lower": lower, "tracks": tracks, "upper": upper,
+    substrate = []
+    for line in L.substrate:
+        X, Y = L.to_px(line[:, 0], line[:, 1], left)
+        substrate.append(list(zip(X.tolist(), Y.tolist())))
+    shapes = {"lower": lower, "tracks": tracks, "upper": upper, "substrate": substrate,
               "bar": (float(bx0), float(by0), float(bx1), float(by1)),
               "ground": (0.0, float(floor_py), float(L.width), float(L.height)),
               "spring": [], "drive": None}
@@ -153,6 +163,8 @@ def draw_frame(shapes: dict, *, width: int, height: int, font=None):
     d.rectangle(shapes["ground"], fill=GROUND)
     for pts in shapes["tracks"]:
         d.line(pts, fill=OUTLINE, width=1)
+    for pts in shapes.get("substrate", ()):
+        d.line(pts, fill=OUTLINE, width=2)
     for pts in shapes["lower"]:
         d.polygon(pts, fill=LOWER, outline=OUTLINE)
     for pts in shapes["upper"]:

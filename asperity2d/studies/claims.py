@@ -45,7 +45,7 @@ def effect(numbers: dict) -> str:
     parts = []
     rel = numbers.get("relative_difference")
     if rel is not None and math.isfinite(rel):
-        parts.append(f"{100 * rel:+.0f} %")
+        parts.append(f"{100 * rel:+.0f} %" if abs(rel) >= 0.095 else f"{100 * rel:+.1g} %")
     if "below" in numbers and "n" in numbers:
         parts.append(f"{numbers['below']}/{numbers['n']} seeds below")
     p = numbers.get("p_wilcoxon")

@@ -148,25 +148,61 @@ def spring_pass_run(*, seed: int = 0, contact_work: bool = False, **params) -> d
     return out
 
 
+#: Energy channels :func:`damping_travel_run` reports for each run (J, see
+#: :mod:`asperity2d.engine.energy`); ``numerical`` sums the method's channels.
+DAMPING_CHANNELS = ("drive_work", "stored_energy_change", "friction_work", "normal_work", "damper_work",
+                    "stop_work", "numerical")
+
+
 def damping_travel_run(*, seed: int = 0, factor: float = 0.9, **params) -> dict:
     """Seed 000 figure 12: constant force ``factor`` x the damped critical force, damped vs undamped.
 
     The critical force is bisected on the damped scene (``params`` as given);
-    the same force then pushes the damped scene and the scene with undamped
-    lower asperities (``damping_ratio=0``). Returns the force (N), each
-    slider's final travel from its start (m) and whether it passed (1/0).
+    the same force then pushes three scenes: ``damped`` (as given),
+    ``undamped`` (track dampers off, ``damping_ratio=0``) and ``elastic``
+    (dampers off and contact ``restitution=1``: no impact loss either).
+    Returns the force (N), each slider's final travel from its start and the
+    farthest it got (``travel_<label>_m``, ``reach_<label>_m``, m), whether
+    it passed or came to rest (``passed_<label>``, ``stuck_<label>``, 1/0;
+    neither: the time limit) and its energy books (``<label>_<channel>_J``
+    for :data:`DAMPING_CHANNELS`), also over the damped slider's travel only
+    (``<label>_same_<channel>_J``: the books when it first got as far as the
+    damped one stopped; NaN if it never did), which compares the channels
+    over one path.
     """
+    from ..engine.energy import EnergyMeter
+    from ..simulate import Run, Travelled, default_duration, default_stops
+
     params = {k: v for k, v in params.items() if k != "damping"}
     damped = make_scene(seed=seed, drive="force", **params)
     # the pushes below start where the builder puts the slider: so does this threshold
     critical = critical_force(damped, start="run-up")
     force = factor * critical
     out = {"critical_force_N": critical, "force_N": force}
-    undamped = make_scene(seed=seed, drive="force", **{**params, "damping_ratio": 0.0})
-    for label, scene in (("damped", damped), ("undamped", undamped)):
-        result = simulate(scene.replace(drive=ConstantForce(force=force)))
+    undamped = {**params, "damping_ratio": 0.0}
+    scenes = {"damped": damped, "undamped": make_scene(seed=seed, drive="force", **undamped),
+              "elastic": make_scene(seed=seed, drive="force", **{**undamped, "restitution": 1.0})}
+    for label, scene in scenes.items():
+        scene = scene.replace(drive=ConstantForce(force=force))
+        run = Run(scene)  # as simulate() runs it, metered, with a look at the damped travel
+        if scene.slider.track == "free":
+            run.settle()
+        meter = EnergyMeter(run.engine)
+        stops, duration = default_stops(scene), default_duration(scene)
+        same = {}
+        if label != "damped" and out["travel_damped_m"] > 0:
+            if run.advance(duration, stop=[*stops, Travelled(out["travel_damped_m"])]) == "travelled":
+                same = meter.report()
+                run.advance(duration - run.time, stop=stops)
+        else:
+            run.advance(duration, stop=stops)
+        books, result = meter.report(), run.result()
+        same = books if label == "damped" else same
         out[f"travel_{label}_m"] = float(result.x[-1] - result.x[0])
-        out[f"passed_{label}"] = float(result.status == "passed")
+        out[f"reach_{label}_m"] = float(result.x.max() - result.x[0])
+        out[f"passed_{label}"] = float(run.status == "passed")
+        out[f"stuck_{label}"] = float(run.status == "stuck")
+        for k in DAMPING_CHANNELS:
+            out[f"{label}_{k}_J"] = float(books[f"{k}_J"])
+            out[f"{label}_same_{k}_J"] = float(same.get(f"{k}_J", math.nan))
     return out
-
-

@@ -8,10 +8,14 @@ Data flow (all SI)::
                                        flank runs, base levels, stiffness, mass)
         plot_asperities, plot_spectrum
     random_heights, fraction_above          (random summit heights for a scene)
+    make_scene(lower_surface=..., upper_surface=..., height_std=...)
+        -> source.surface_asperities -> source.surface_spec: the scene's per-asperity
+           Shapes, tip positions and rigid valley floor (asperity2d.shapes)
 
 Modules: :mod:`.profile` (record and generators), :mod:`.read` (text traces;
 instrument files through the optional SurfaceTopography), :mod:`.stats`,
 :mod:`.asperities` (the summit-to-triangle rule), :mod:`.heights`,
+:mod:`.source` (a profile, arrays or file as a scene surface),
 :mod:`.plot` (matplotlib, imported inside the plotting functions).
 """
 

@@ -45,10 +45,14 @@ def _save(fig, path, dpi: int) -> Path:
 
 
 def plot_asperities(profile: SurfaceProfile, asperities: Asperities, path: str | os.PathLike, *,
-                    x_range: tuple[float, float] | None = None, dpi: int = 120) -> Path:
+                    x_range: tuple[float, float] | None = None, highlight=None,
+                    level: float | None = None, dpi: int = 120) -> Path:
     """The profile (line) with its triangular asperities laid over it (shaded, apexes marked).
 
     ``x_range`` (m) zooms in on a stretch; the default shows the whole trace.
+    ``highlight`` (one bool per asperity) draws those asperities in a second
+    colour (e.g. the ones a run touched); ``level`` (m, the profile's datum)
+    draws a horizontal line (e.g. a fixed track's tip height).
     """
     from matplotlib.collections import PolyCollection
 
@@ -65,11 +69,20 @@ def plot_asperities(profile: SurfaceProfile, asperities: Asperities, path: str |
     else:
         a_shown = np.ones(a.count, dtype=bool)
     feet_l, feet_r, apex = a.left_feet[a_shown], a.right_feet[a_shown], a.apex_x[a_shown]
-    level, top = a.base_levels[a_shown], a.summits[a_shown]
-    triangles = np.stack([np.column_stack([feet_l, level]), np.column_stack([apex, top]),
-                          np.column_stack([feet_r, level])], axis=1) * UM
-    ax.add_collection(PolyCollection(triangles, facecolors="tab:orange", edgecolors="tab:red",
+    base, top = a.base_levels[a_shown], a.summits[a_shown]
+    triangles = np.stack([np.column_stack([feet_l, base]), np.column_stack([apex, top]),
+                          np.column_stack([feet_r, base])], axis=1) * UM
+    marked = np.zeros(a.count, dtype=bool) if highlight is None else np.asarray(highlight, dtype=bool)
+    if marked.shape != (a.count,):
+        raise SceneError(f"`highlight` must hold one bool per asperity ({a.count}), got shape {marked.shape}")
+    marked = marked[a_shown]
+    colours = np.where(marked, "tab:blue", "tab:orange")
+    ax.add_collection(PolyCollection(triangles, facecolors=colours, edgecolors="tab:red",
                                      alpha=0.35, linewidths=0.8, label="asperities"))
+    if highlight is not None:
+        ax.plot([], [], "s", color="tab:blue", alpha=0.5, label=f"highlighted ({int(marked.sum())})")
+    if level is not None:
+        ax.axhline(level * UM, color="tab:green", lw=0.8, ls="--", label="level")
     ax.plot(x * UM, z * UM, color="0.2", lw=0.6, label="profile")
     ax.plot(apex * UM, top * UM, "v", color="tab:red", ms=3, label="summits")
     ax.set_xlabel("x (µm)")

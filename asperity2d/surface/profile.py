@@ -64,6 +64,10 @@ class SurfaceProfile:
         object.__setattr__(self, "z", z)
         object.__setattr__(self, "metadata", MappingProxyType(dict(self.metadata)))
 
+    def __reduce__(self):
+        # the read-only metadata mapping does not pickle; process pools (compare, sweeps) need to
+        return (SurfaceProfile, (np.array(self.x), np.array(self.z), self.name, dict(self.metadata)))
+
     @property
     def count(self) -> int:
         """Number of points."""

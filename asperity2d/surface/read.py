@@ -5,7 +5,8 @@ The file's extension picks the reader (like the renderers):
 * ``.csv``, ``.txt``, ``.dat``, ``.tsv``, ``.xy``: two numeric columns x, z in
   the ``unit`` the caller states, separated by commas, semicolons, tabs or
   spaces. Blank lines and comment lines (``#``, ``%``, ``//``) are skipped; a
-  comment ``# unit: um`` is checked against ``unit``; one column-header line
+  comment ``# unit: um`` is checked against ``unit``, or states it when the
+  caller gives none (a file with neither is refused); one column-header line
   (e.g. ``x,z``) before the first number is skipped. Anything else that is not
   two finite numbers is a :class:`~asperity2d.SceneError` naming the file and
   its line.
@@ -46,8 +47,9 @@ def read_profile(path: str | os.PathLike, *, unit: str | None = None, line: int 
     Parameters
     ----------
     unit : {"m", "mm", "um", "µm", "nm"}
-        Unit of both columns of a text file (required there), or of an
-        instrument file that does not record one.
+        Unit of both columns of a text file (required there unless the file
+        states it in a ``# unit: ...`` comment), or of an instrument file
+        that does not record one.
     line : int, optional
         Scan line to take from a 2-D instrument map.
     name : str, optional
@@ -59,16 +61,14 @@ def read_profile(path: str | os.PathLike, *, unit: str | None = None, line: int 
     if not path.is_file():
         raise SceneError(f"`path` is not a file: {str(path)!r}")
     if path.suffix.lower() in TEXT_SUFFIXES:
-        if unit is None:
-            raise SceneError(f"`unit` is required for a text profile ({', '.join(UNITS)}): {path.name}")
-        x, z, comments = _read_text(path, unit)
+        x, z, comments, unit = _read_text(path, unit)
         meta = {"source": str(path), "unit": unit, "comments": comments}
     else:
         x, z, meta = _read_instrument(path, unit, line)
     return SurfaceProfile(x, z, name=path.name if name is None else name, metadata=meta)
 
 
-def _read_text(path: Path, unit: str):
+def _read_text(path: Path, unit: str | None):
     try:
         text = path.read_text(encoding="utf-8-sig")
     except (OSError, UnicodeDecodeError) as exc:
@@ -81,12 +81,20 @@ def _read_text(path: Path, unit: str):
         if s.startswith(_COMMENTS):
             comments.append(s)
             declared = _UNIT_COMMENT.match(s)
-            if declared and UNITS.get(declared.group(1)) != UNITS[unit]:
+            if declared and unit is None:
+                unit = declared.group(1)
+                if unit not in UNITS:
+                    raise SceneError(f"`unit`: {path.name} line {number} states {unit!r}; "
+                                     f"the reader knows {', '.join(UNITS)}")
+            elif declared and UNITS.get(declared.group(1)) != UNITS[unit]:
                 raise SceneError(f"`unit` is {unit!r} but {path.name} line {number} says "
                                  f"{declared.group(1)!r}")
             continue
         numbers.append(number)
         rows.append(s)
+    if unit is None:
+        raise SceneError(f"`unit` is required for a text profile ({', '.join(UNITS)}): {path.name} "
+                         "states none (a comment line '# unit: um' would)")
     if rows and _fields(rows[0]) is None:  # one column-header line such as "x,z"
         del numbers[0], rows[0]
     if len(rows) < 3:
@@ -105,7 +113,7 @@ def _read_text(path: Path, unit: str):
         raise SceneError(f"`path` {path.name} line {numbers[i]}: x must increase, got "
                          f"{values[i, 0]!r} after {values[i - 1, 0]!r}")
     scale = UNITS[unit]
-    return values[:, 0] * scale, values[:, 1] * scale, comments
+    return values[:, 0] * scale, values[:, 1] * scale, comments, unit
 
 
 def _fields(row: str) -> list[float] | None:

@@ -1,0 +1,133 @@
+"""The belt back-end contract: what every solver back-end receives and what it returns.
+
+A back-end is a function ``run(spec, options) -> RawRun`` listed in
+``solver.METHODS`` with the predicate that says which chains it solves:
+
+* ``spec`` -- the validated :class:`~asperity2d.belt.spec.ChainSpec` (SI, with its scales);
+* ``options`` -- :class:`RunOptions`, the validated run settings;
+* the :class:`RawRun` it returns holds the sampled motion (SI) and the switching record;
+  :func:`asperity2d.belt.result.assemble` adds the derived forces and energies.
+
+Back-ends never print, never write files and raise only ``SceneError`` (bad input) or
+``SimulationError`` (a run that went wrong or over its budget).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import SceneError, SimulationError
+from . import validate as check
+
+INTEGRATORS = ("LSODA", "Radau", "BDF", "DOP853", "RK45")
+
+
+@dataclass(frozen=True)
+class Event:
+    """A switch of one mass at time ``t`` (s) at position ``x`` (m).
+
+    ``kind`` is "stick", "slip", "reverse" (slip direction flips through belt
+    speed) or "graze": the mass touched belt speed tangentially and the stick
+    condition held only at that instant, so it kept slipping (see
+    :mod:`asperity2d.belt.modes` for the rule).
+    """
+
+    t: float
+    mass: int
+    kind: str
+    x: float
+
+
+@dataclass(frozen=True)
+class RunOptions:
+    """Validated run settings shared by all back-ends.
+
+    ``samples`` (s) are the output times; ``include_events`` adds every switching
+    instant; ``rtol`` / ``atol`` / ``integrator`` drive ``solve_ivp`` where one is
+    used; ``max_events`` bounds the switches and ``max_steps`` the work (scan
+    steps or right-hand-side evaluations) of one run.
+    """
+
+    samples: np.ndarray
+    include_events: bool = True
+    rtol: float = 1e-8
+    atol: float | None = None
+    integrator: str = "LSODA"
+    max_events: int = 1_000_000
+    max_steps: int = 1_000_000
+
+    @classmethod
+    def build(cls, spec, *, n_samples, t_eval, include_events, rtol, atol, integrator, max_events, max_steps):
+        """Check every setting against ``spec`` (names the parameter the user wrote)."""
+        max_steps = check.integer("max_steps", max_steps, minimum=1)
+        samples = _sample_times(spec, n_samples, t_eval)
+        check.budget(spec, samples.size, max_steps)
+        rtol = check.real("rtol", rtol, positive=True)
+        if not 1e-13 <= rtol <= 0.1:
+            raise SceneError(f"`rtol` must be within [1e-13, 0.1], got {check.show(rtol)}")
+        return cls(
+            samples=samples,
+            include_events=check.flag("include_events", include_events),
+            rtol=rtol,
+            atol=None if atol is None else check.real("atol", atol, positive=True),
+            integrator=check.choice("integrator", integrator, INTEGRATORS),
+            max_events=check.integer("max_events", max_events, minimum=1),
+            max_steps=max_steps,
+        )
+
+
+def _sample_times(spec, n_samples, t_eval) -> np.ndarray:
+    if t_eval is not None:
+        t = np.array(check.vector("t_eval", t_eval, nonneg=True))
+        if np.any(np.diff(t) <= 0) or t[-1] > spec.t_end:
+            raise SceneError(f"`t_eval` must increase strictly within [0, t_end={spec.t_end!r}]")
+        return t
+    n = check.integer("n_samples", n_samples, minimum=2, maximum=check.MAX_VALUES)
+    return np.linspace(0.0, spec.t_end, n)
+
+
+@dataclass(frozen=True)
+class RawRun:
+    """What a back-end returns (SI).
+
+    ``t`` (T,) sample times; ``x``, ``v`` (n, T) positions and velocities;
+    ``state`` (n, T) 0 stuck, ±1 slipping faster / slower than the belt;
+    ``friction_force`` (n, T) N; ``work`` (3, T) cumulative belt work, friction
+    and damper dissipation (J); ``events`` the switches; ``stick_intervals``
+    per mass the (start, end) times (s); ``meta`` diagnostics.
+    """
+
+    t: np.ndarray
+    x: np.ndarray
+    v: np.ndarray
+    state: np.ndarray
+    friction_force: np.ndarray
+    work: np.ndarray
+    events: list = field(default_factory=list)
+    stick_intervals: list = field(default_factory=list)
+    meta: dict = field(default_factory=dict)
+
+
+class StepBudget:
+    """Counts right-hand-side evaluations of an integrator against ``max_steps``."""
+
+    def __init__(self, max_steps: int):
+        self.left = self.max_steps = max_steps
+
+    def spend(self, t: float) -> None:
+        self.left -= 1
+        if self.left < 0:
+            raise SimulationError(f"the integrator needed more than `max_steps` = {self.max_steps:,} right-hand-side "
+                                  f"evaluations before t = {t:.6g} s; raise `max_steps` or shorten `t_end`", time=t)
+
+
+def intervals_from_state(t, state) -> list:
+    """Stick intervals (t_start, t_end) per mass from a sampled state array (0 = stuck)."""
+    out = []
+    for row in state:
+        stuck = np.concatenate([[False], row == 0, [False]])
+        edges = np.flatnonzero(np.diff(stuck.astype(int)))
+        out.append([(float(t[a]), float(t[b - 1])) for a, b in zip(edges[::2], edges[1::2]) if b - 1 > a])
+    return out

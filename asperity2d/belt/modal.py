@@ -1,0 +1,182 @@
+"""Sums of exponentials: the closed form of everything a phase of the exact solver follows.
+
+Between two switches every quantity of a chain at constant belt speed --
+positions, velocities, accelerations, event functions, powers -- is a
+:class:`ModalForm`
+
+    r(tau) = Re(B · exp(lam·tau)) + c0 + c1·tau
+
+with ``lam`` the modes of the slipping segments (:mod:`.segment`). Linear maps
+and time derivatives of a ModalForm are ModalForms, integrals and integrals of
+squares are closed form: event functions and their derivatives come exactly,
+and many times are evaluated with one ``exp``/``cos``/``sin`` and two real
+matrix products. Long chains store ``B`` as a sparse matrix (block structure:
+each row touches one or two segments).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+#: above this many exponentials, forms are stored as sparse matrices (cost ~ non-zeros, not R·S)
+SPARSE_ABOVE = 64
+#: linear maps wider than this many state rows are stored as sparse matrices
+DENSE_MAP_WIDTH = 48
+
+
+class ModalForm:
+    """Rows ``r(tau) = Re(B @ exp(lam * tau)) + c0 + c1 * tau`` (``B`` complex, dense or scipy CSR).
+
+    ``lam`` holds one eigenvalue of each complex-conjugate pair (Im >= 0) with the
+    pair's weight 2 folded into ``B``: real outputs need only half the exponentials,
+    evaluated in real arithmetic (``exp``, ``cos``, ``sin`` and two real matrix products,
+    which NumPy does far faster than one complex product).
+    """
+
+    __slots__ = ("lam", "B", "Br", "Bi", "c0", "c1")
+
+    def __init__(self, lam, B, c0, c1):
+        self.lam, self.B, self.c0, self.c1 = lam, B, c0, c1
+        self.Br, self.Bi = B.real, B.imag
+
+    def growth(self, tau):
+        """(Re, Im) of exp(lam·tau), each (S, T)."""
+        phase = np.multiply.outer(self.lam.imag, tau)
+        cos, sin = np.cos(phase), np.sin(phase)
+        if np.any(self.lam.real):
+            amp = np.exp(np.multiply.outer(self.lam.real, tau))
+            cos *= amp
+            sin *= amp
+        return cos, sin
+
+    def at(self, tau, growth=None) -> np.ndarray:
+        """Values (R, T) at times ``tau`` (s, (T,)); ``growth`` reuses :meth:`growth` of the same times."""
+        cos, sin = self.growth(tau) if growth is None else growth
+        return self.Br @ cos - self.Bi @ sin + self.c0[:, None] + np.multiply.outer(self.c1, tau)
+
+    def integral(self, tau) -> np.ndarray:
+        """Integrals from 0 to ``tau`` (R, T) in closed form (every lam non-zero).
+
+        (exp(lam·tau) - 1)/lam is formed from expm1 and 2·sin²(omega·tau/2), never as a
+        difference of nearly equal numbers: short phases keep their relative accuracy.
+        """
+        tau = np.asarray(tau, dtype=float)
+        a, w = np.multiply.outer(self.lam.real, tau), np.multiply.outer(self.lam.imag, tau)
+        cos, sin = np.cos(w), np.sin(w)
+        re = np.expm1(a) * cos - 2.0 * np.sin(0.5 * w) ** 2  # Re(exp(lam tau) - 1)
+        im = np.exp(a) * sin
+        Bl = scale_columns(self.B, 1.0 / self.lam)
+        return (Bl.real @ re - Bl.imag @ im + np.multiply.outer(self.c0, tau)
+                + np.multiply.outer(0.5 * self.c1, np.square(tau)))
+
+    def derivative(self) -> "ModalForm":
+        """d/dtau of every row."""
+        return ModalForm(self.lam, scale_columns(self.B, self.lam), self.c1, np.zeros_like(self.c1))
+
+    def compose(self, L, offset) -> "ModalForm":
+        """The rows ``L @ r(tau) + offset`` (L real, dense or sparse like ``B``)."""
+        B = L @ self.Br + 1j * (L @ self.Bi) if isinstance(self.B, np.ndarray) else L @ self.B
+        return ModalForm(self.lam, B, L @ self.c0 + offset, L @ self.c1)
+
+    def scalar(self, r: int) -> tuple:
+        """(lam, b, c0, c1) of row ``r`` with only its non-zero exponentials, for root finding."""
+        if isinstance(self.B, np.ndarray):
+            b = self.B[r]
+            keep = b != 0
+            return self.lam[keep], b[keep], float(self.c0[r]), float(self.c1[r])
+        lo, hi = self.B.indptr[r], self.B.indptr[r + 1]  # CSR row r, without fancy indexing
+        return self.lam[self.B.indices[lo:hi]], self.B.data[lo:hi], float(self.c0[r]), float(self.c1[r])
+
+
+def scale_columns(B, w):
+    """B·diag(w) for dense or sparse B."""
+    return B * w if isinstance(B, np.ndarray) else B @ _sparse().diags_array(w)
+
+
+def square_integral(form: ModalForm, weights, tau) -> np.ndarray:
+    """∫_0^tau Σ_j w_j·r_j(s)² ds (T,) in closed form, for rows without a ramp (c1 = 0).
+
+    With r_j = Re(z_j) + e_j, z_j = d_j·exp(lam·s): Re(z)² = ½Re(z²) + ½|z|², so the
+    integral is a sum over pairs of exponentials exp((lam_a + lam_b)s) and
+    exp((lam_a + conj lam_b)s), each integrated by :func:`phi`.
+    """
+    tau = np.asarray(tau, dtype=float)
+    w = np.asarray(weights, dtype=float)
+    d, e = form.B, form.c0
+    dw = _scale_rows(d, w)
+    out = float(w @ e**2) * tau
+    lin = (e * w) @ d if isinstance(d, np.ndarray) else np.asarray(d.T @ (e * w)).ravel()
+    out += 2 * (phi(np.multiply.outer(form.lam, tau)) * np.multiply.outer(lin, tau)).real.sum(axis=0)
+    for other, conj in ((d, False), (d.conj(), True)):
+        Q = cmatmul(dw.T, other) if isinstance(d, np.ndarray) else (dw.T @ other).tocoo()
+        a, b, q = (np.nonzero(Q) + (Q[np.nonzero(Q)],)) if isinstance(Q, np.ndarray) else (Q.row, Q.col, Q.data)
+        lam_b = form.lam[b].conj() if conj else form.lam[b]
+        mu = form.lam[a] + lam_b
+        out += 0.5 * (q[:, None] * phi(np.multiply.outer(mu, tau)) * tau[None, :]).real.sum(axis=0)
+    return out
+
+
+def cmatmul(a, b):
+    """Dense complex matrix product through real products (NumPy's complex matmul is far slower)."""
+    return a.real @ b.real - a.imag @ b.imag + 1j * (a.real @ b.imag + a.imag @ b.real)
+
+
+def _scale_rows(B, w):
+    return B * w[:, None] if isinstance(B, np.ndarray) else _sparse().diags_array(w) @ B
+
+
+def phi(z):
+    """(exp(z) - 1)/z elementwise, accurate near z = 0 (series for |z| < 0.5, 1 at 0)."""
+    z = np.asarray(z, dtype=complex)
+    small = np.abs(z) < 0.5
+    out = np.empty_like(z)
+    zs = z[small]
+    term, acc = np.ones_like(zs), np.ones_like(zs)
+    for k in range(2, 20):  # |z|^17/18! < 1e-20 for |z| < 0.5
+        term = term * zs / k
+        acc = acc + term
+    out[small] = acc
+    big = z[~small]
+    out[~small] = (np.exp(big) - 1.0) / big
+    return out
+
+
+def block_matrix(blocks, shape):
+    """Dense or CSR complex matrix of ``shape`` from (rows, cols, values) blocks."""
+    if shape[1] <= SPARSE_ABOVE:
+        out = np.zeros(shape, dtype=complex)
+        for rows, cols, values in blocks:
+            out[np.ix_(rows, cols)] = values
+        return out
+    sp = _sparse()
+    if not blocks:
+        return sp.csr_array(shape, dtype=complex)
+    r = np.concatenate([np.repeat(rows, len(cols)) for rows, cols, _ in blocks])
+    c = np.concatenate([np.tile(cols, len(rows)) for rows, cols, _ in blocks])
+    v = np.concatenate([np.ravel(values) for _, _, values in blocks])
+    return sp.csr_array((v, (r, c)), shape=shape)
+
+
+def linear_map(shape, entries):
+    """A real (R, C) matrix from (row, col, value) triples (duplicates add up).
+
+    CSR beyond ``DENSE_MAP_WIDTH`` columns: the maps of a phase (event functions,
+    powers) have a handful of non-zeros per row, so a dense product would cost R·C·S.
+    """
+    r, c, v = (np.asarray(a) for a in entries)
+    if shape[1] <= DENSE_MAP_WIDTH:
+        out = np.zeros(shape)
+        np.add.at(out, (r.astype(int), c.astype(int)), v)
+        return out
+    return _sparse().csr_array((v.astype(float), (r.astype(int), c.astype(int))), shape=shape)
+
+
+def stack_rows(a, b):
+    """The rows of ``a`` then ``b`` (both dense or both sparse)."""
+    return np.vstack([a, b]) if isinstance(a, np.ndarray) else _sparse().vstack([a, b], format="csr")
+
+
+def _sparse():
+    import scipy.sparse  # lazily: only long chains need it, and start-up stays light
+
+    return scipy.sparse

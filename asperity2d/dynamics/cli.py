@@ -1,0 +1,88 @@
+"""``asperity2d belt basins``: an initial-condition basin map of a belt chain.
+
+    asperity2d belt basins --preset table2-3dof --x x1 --x-range=-0.3,0.9 \\
+        --y v1 --y-range=-0.6,0.6 --grid 41 --t-end 100 -o basins.png --json
+
+writes the map (``basins.png``), a JSON summary beside it (``basins.json``)
+and keeps every run in a resumable sweep store (``basins.runs/`` unless
+``--store`` says otherwise): run the same command again and only unfinished
+grid points are computed. ``--workers N`` local processes, or ``--scheduler``
+a Dask address. Write a range that starts with a minus sign with ``=``
+(``--x-range=-0.3,0.9``), or argparse takes it for an option. The options
+are declared with the ``belt`` parser in :mod:`asperity2d.cli` (which owns
+``--preset``, ``--t-end``, ``-o`` and ``--json``) and used only after the
+word ``basins``; bad input raises ``SceneError`` (one line, exit status 2).
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from ..errors import SceneError
+
+PLOTS = (".png", ".svg", ".pdf")
+
+
+def _numbers(text: str, name: str, cast=float) -> list:
+    try:
+        return [cast(p) for p in str(text).split(",")]
+    except ValueError:
+        raise SceneError(f"`{name}` must be numbers separated by a comma, got {text!r}") from None
+
+
+def _chain(args) -> tuple[dict, str]:
+    if args.preset and args.basins_chain:
+        raise SceneError("give either `--preset` or `--chain-file`, not both")
+    if args.preset:
+        from ..belt import presets
+
+        return presets.preset(args.preset), args.preset
+    if args.basins_chain:
+        from ..belt.cli import load_chain
+
+        return load_chain(args.basins_chain), str(args.basins_chain)
+    raise SceneError("`belt basins` needs `--preset` or `--chain-file`")
+
+
+def run_basins(args) -> int:
+    """Run the parsed ``belt basins`` command: the map, its JSON summary, the store; return 0."""
+    import numpy as np
+
+    from .._io import atomic_write_text
+    from ..studies.scripting import _strict
+    from . import basins as b
+    from .plots import plot_basins
+
+    chain, source = _chain(args)
+    if args.t_end is not None:
+        chain["t_end"] = args.t_end
+    grid = _numbers(args.basins_grid, "grid", int)
+    nx, ny = (grid[0], grid[0]) if len(grid) == 1 else grid if len(grid) == 2 else (0, 0)
+    if nx < 1 or ny < 1:
+        raise SceneError(f"`grid` must be N or NX,NY with positive integers, got {args.basins_grid!r}")
+    axes = []
+    for text, name, count in ((args.basins_x_range, "x-range", nx), (args.basins_y_range, "y-range", ny)):
+        lo_hi = _numbers(text, name)
+        if len(lo_hi) != 2 or not lo_hi[0] < lo_hi[1]:
+            raise SceneError(f"`{name}` must be LO,HI with LO < HI, got {text!r}")
+        axes.append(np.linspace(*lo_hi, count) if count > 1 else np.array([0.5 * sum(lo_hi)]))
+    out = Path(args.output) if args.output else Path("basins.png")
+    if out.suffix.lower() not in PLOTS:
+        raise SceneError(f"`--output` must end in .png, .svg or .pdf for a basin map, got {str(out)!r}")
+    store = Path(args.basins_store) if args.basins_store else out.with_suffix(".runs")
+    result = b.chain_basins(chain, x=(args.basins_x, axes[0]), y=(args.basins_y, axes[1]), rtol=args.basins_rtol,
+                            store=store, workers=args.basins_workers, scheduler=args.basins_scheduler,
+                            progress=not args.json)
+    picture = plot_basins(result, out, title=f"{source}: basins over ({args.basins_x}, {args.basins_y})")
+    summary = {"source": source, **result.to_dict(), "store": str(store), "output": str(picture),
+               "summary": str(out.with_suffix(".json"))}
+    text = json.dumps(_strict(summary), sort_keys=True, allow_nan=False)
+    atomic_write_text(out.with_suffix(".json"), text + "\n")
+    if args.json:
+        print(text)
+    else:
+        counts = ", ".join(f"{k} {v}" for k, v in summary["counts"].items() if v)
+        print(f"{source}: {nx} x {ny} basin map over t_end = {summary['t_end_s']:g} s: {counts}; "
+              f"wrote {picture} and {summary['summary']} (runs in {store})")
+    return 0

@@ -1,0 +1,187 @@
+"""Issue 14's rough-surface studies: measures of rough scenes, shared by ``scenes/rough_*.py``.
+
+Top-level, picklable run functions (``fn(*, seed, **params) -> dict of numbers``,
+the signature :mod:`asperity2d.sweep` runs too), each building one scene with
+:func:`~asperity2d.make_scene` and measuring it:
+
+* :func:`rough_run`: random heights (or any ``make_scene`` arguments);
+* :func:`self_affine_run`: the lower surface made from a seeded self-affine
+  profile (:func:`~asperity2d.surface.self_affine_profile`) of given rms
+  height and Hurst exponent, the track level given above its mean line.
+
+Both return the critical constant force (:func:`~asperity2d.critical_force`),
+and from one spring-driven pass (on the fixed track every step recorded, so
+that a touch of a few steps is not missed): the mean drive force at the stick-to-slip transitions
+(:func:`~asperity2d.mean_stick_force`), the number of events, the fraction of
+lower asperities that touched the slider, the most contacts at once, the
+steepest flank among the asperities that touched, and the contact angle the
+breakaway forces imply (:func:`breakaway_angle`), to tell which flanks set them.
+The scripts map them over parameter sets with
+:func:`asperity2d.sweep.executors.map_calls` and summarise with :mod:`asperity2d.stats`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..analysis import mean_stick_force, stick_slip_events
+from ..builders import make_scene
+from ..critical import critical_force
+from ..errors import SceneError
+from ..scene import Scene, SpringDrive
+from ..simulate import simulate
+
+
+def flank_angles(scene: Scene) -> dict[str, np.ndarray]:
+    """Angles (degrees) of the flanks that face each other as the slider moves to +x: the
+    lower asperities' left flanks and the upper ones' right (front) flanks."""
+    lower, upper = scene.lower.shape_set(), scene.slider.shape_set()
+    return {"lower": np.degrees(np.arctan2(lower.heights, np.asarray(lower.left_runs))),
+            "upper": np.degrees(np.arctan2(upper.heights, np.asarray(upper.right_runs)))}
+
+
+def breakaway_angle(result, events) -> float:
+    """Mean contact angle (degrees) at the stick-to-slip transitions: atan(F / N) - atan(mu_s),
+    the angle of the flank a single contact at the friction limit would be on (the flank law
+    read backwards), with F the drive force at each breakaway and N the vertical contact force
+    averaged over the stick before it (quasi-static there; single samples carry impact spikes).
+    NaN without events."""
+    t = np.asarray(result.t)
+    normal, drive = np.asarray(result.normal_force), np.asarray(result.drive_force)
+    phi = math.atan(result.scene.contact.mu_static)
+    angles = []
+    for e in events:
+        k = min(int(np.searchsorted(t, e.t_slip)), len(t) - 1)
+        stick = (t >= e.t_stick) & (t <= e.t_slip)
+        n = float(np.mean(normal[stick])) if stick.any() else float(normal[k])
+        if n > 0:
+            angles.append(math.degrees(math.atan2(float(drive[k]), n) - phi))
+    return float(np.mean(angles)) if angles else math.nan
+
+
+def track_level(scene: Scene) -> float:
+    """Height (m) of the fixed track's deepest upper tip above the lower datum; NaN for a free slider."""
+    if scene.slider.track != "fixed":
+        return math.nan
+    return scene.lower.top - scene.slider.interference
+
+
+def measure(scene: Scene, *, critical: bool = True) -> dict:
+    """The critical force (N; optional) and one spring-driven pass's measures (module notes)."""
+    out = {"critical_force_N": critical_force(scene) if critical else math.nan}
+    out.update(pass_measures(scene)[0])
+    return out
+
+
+def pass_measures(scene: Scene):
+    """One spring-driven pass of ``scene`` (its drive, or the default spring): ``(measures, result)``."""
+    if not isinstance(scene.drive, SpringDrive):
+        scene = scene.replace(drive=SpringDrive())
+    fixed = scene.slider.track == "fixed"
+    result = simulate(scene, record_every=1 if fixed else 10)
+    events = stick_slip_events(result)
+    touched = result.lower_contact.any(axis=1)
+    angles = flank_angles(scene)
+    level = track_level(scene)
+    above = scene.lower.summits() > level  # all False on a free slider (level NaN)
+    lower_flank = float(angles["lower"][touched].max()) if touched.any() else math.nan
+    out = {
+        "mean_stick_force_N": mean_stick_force(result) if events else math.nan,
+        "events": float(len(events)),
+        "touched_fraction": float(touched.mean()),
+        "touched_count": float(touched.sum()),
+        "above_level_fraction": float(above.mean()) if fixed else math.nan,
+        "touched_matches_above_level": float(np.array_equal(touched, above)) if fixed else math.nan,
+        "max_contacts": float(np.max(result.contact_count)),
+        "breakaway_angle_deg": breakaway_angle(result, events),
+        "steepest_touched_flank_deg": lower_flank,
+        "steepest_upper_flank_deg": float(angles["upper"].max()),
+        # the steepest flank either surface brings into contact (the deepest upper tip, the
+        # tallest and steepest on a fixed base, always touches)
+        "steepest_contact_flank_deg": max(lower_flank, float(angles["upper"].max())),
+        "lower_count": float(scene.lower.count),
+        "tallest_height_m": float(scene.lower.heights().max()),
+        "passed": float(result.status == "passed"),
+        # the guard floor must never carry the slider (DESIGN: wide gaps); 1e-3 base of slack
+        "floor_touched": float(np.min(result.y) - scene.slider.depth
+                               <= scene.lower.floor + 1e-3 * scene.base),
+        # a lower asperity pushed to the bottom of its track (the load is too large for it)
+        "track_bottomed": float(np.min(result.lower_dy) <= -(1 - 1e-3) * scene.lower.travel_down),
+    }
+    return out, result
+
+
+def rough_run(*, seed: int = 0, critical: bool = True, **params) -> dict:
+    """:func:`measure` of ``make_scene(seed=seed, **params)`` (e.g. ``height_std=...``)."""
+    return measure(make_scene(seed=seed, **params), critical=critical)
+
+
+def fixed_track_interference(lower, separation: float, margin: float) -> tuple[float, bool]:
+    """Interference (m) that runs a fixed track's deepest tip ``separation`` above the lower
+    profile's mean line, or ``margin`` above its rigid valley floor where that is higher (a
+    rigid slider cannot pass below the valleys between summits: it would jam); and whether
+    the valley floor set it."""
+    floor = max((z for line in lower.substrate or () for _, z in line), default=-math.inf)
+    level = max(separation, floor + margin)
+    return lower.top - level, level > separation
+
+
+def self_affine_run(*, seed: int = 0, hurst: float, rms_height: float, length: float, points: int,
+                    shortest: float, longest: float, separation: float | None = None,
+                    critical: bool = True, **params) -> dict:
+    """:func:`measure` of a scene whose lower surface is a self-affine profile.
+
+    The profile (seeded with ``seed``): ``points`` samples over ``length`` (m),
+    rms height ``rms_height`` (m), Hurst exponent ``hurst``, power between the
+    wavelengths ``longest`` (with a roll-off plateau below that wavenumber) and
+    ``shortest`` (m). On a fixed track the deepest upper tip runs ``separation``
+    (m) above the profile's mean line, or 5 % of the rms height above its rigid
+    valley floor where that is higher (:func:`fixed_track_interference`;
+    ``level_raised`` = 1); returns ``valid`` = 0 and no measures when that
+    level is above every summit. ``params`` go to ``make_scene``.
+    """
+    from ..surface import rms_slope, self_affine_profile
+
+    profile = self_affine_profile(n=points, length=length, rms_height=rms_height, hurst=hurst,
+                                  q_min=2 * math.pi / longest, q_max=2 * math.pi / shortest,
+                                  rolloff=True, seed=seed)
+    extra = {}
+    if params.get("track", "fixed") == "fixed":
+        if separation is None:
+            raise SceneError("`separation` is required on the fixed track")
+        probe = make_scene(lower_surface=profile, track="free", seed=seed).lower
+        interference, raised = fixed_track_interference(probe, separation, 0.05 * rms_height)
+        if interference <= 0:
+            return {"valid": 0.0, "level_raised": float(raised)}
+        params = {**params, "interference": interference}
+        extra["level_raised"] = float(raised)
+    out = measure(make_scene(lower_surface=profile, seed=seed, **params), critical=critical)
+    out.update({"valid": 1.0, "rms_slope": rms_slope(profile), **extra})
+    return out
+
+
+def trend_claim(text: str, x, y, sign: int, *, setup: str | None = None, alpha: float = 0.05) -> dict:
+    """A claim record (:func:`asperity2d.studies.claims.claim`) that ``y`` rises (``sign`` = 1) or
+    falls (-1) with ``x``: holds if the Spearman correlation has that sign with p < ``alpha``."""
+    from .claims import UNTESTABLE, claim
+
+    rho, p = spearman(x, y)
+    n = int(np.sum(np.isfinite(np.asarray(x, float)) & np.isfinite(np.asarray(y, float))))
+    verdict = UNTESTABLE if not math.isfinite(p) else bool(np.sign(rho) == sign and p < alpha)
+    return claim(text, verdict, {"spearman_rho": rho, "p": p, "n": n},
+                 f"Spearman rank correlation over {n} runs, two-sided; holds if "
+                 f"{'positive' if sign > 0 else 'negative'} with p < {alpha:g}", setup=setup)
+
+
+def spearman(x, y) -> tuple[float, float]:
+    """Spearman rank correlation of the finite pairs and its two-sided p-value (SciPy)."""
+    from scipy.stats import spearmanr
+
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    keep = np.isfinite(x) & np.isfinite(y)
+    if keep.sum() < 3 or np.ptp(x[keep]) == 0 or np.ptp(y[keep]) == 0:
+        return math.nan, math.nan
+    res = spearmanr(x[keep], y[keep])
+    return float(res.statistic), float(res.pvalue)

@@ -1,0 +1,68 @@
+"""The rough-surface studies (scenes/rough_*.py) on --quick settings: they run, write what they
+promise, and the exact claims hold even on the smallest scenes. The quick settings are smoke
+tests (one seed, tiny scenes, a faster drive); their statistical claims are not asserted here.
+Cost: about 25 s of CPU for the four scripts (one process each, ``--workers 1``)."""
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from asperity2d.cli import _load_script
+
+SCENES = Path(__file__).resolve().parent.parent / "scenes"
+
+
+def run_script(name, tmp_path, capsys, *extra):
+    module = _load_script(SCENES / f"{name}.py")
+    assert module.main(["--quick", "--json", "-o", str(tmp_path), *extra]) == 0
+    summary = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
+    assert summary == json.loads((tmp_path / "summary.json").read_text())
+    for name in summary["outputs"]:
+        assert (tmp_path / name).stat().st_size > 0
+    return summary
+
+
+def test_height_spread_study(tmp_path, capsys):
+    summary = run_script("rough_height_spread", tmp_path, capsys, "--workers", "1")
+    for setup in ("free", "fixed"):
+        numbers = summary["setups"][setup]
+        assert set(numbers["per_spread"]) == {"0", "0.2"}
+        assert numbers["sanity"]["floor_touched_runs"] == 0 and numbers["sanity"]["track_bottomed_runs"] == 0
+        uniform = numbers["per_spread"]["0"]
+        assert uniform["critical_force_N"]["mean"] > 0 and uniform["touched_fraction"]["mean"] == 1.0
+    # the regular free slider breaks loose on its 45 degree flanks (flank law read backwards)
+    assert summary["setups"]["free"]["per_spread"]["0"]["breakaway_angle_deg"]["mean"] == pytest.approx(45, abs=1)
+    assert all(c["verdict"] in ("holds", "does not hold", "not testable with so few seeds")
+               for c in summary["claims"])
+
+
+def test_contact_fraction_study_touches_exactly_the_summits_above_the_track(tmp_path, capsys):
+    summary = run_script("rough_contact_fraction", tmp_path, capsys, "--workers", "1")
+    exact = summary["claims"][0]
+    assert exact["verdict"] == "holds" and exact["numbers"]["mismatched"] == 0
+    assert exact["numbers"]["realisations"] == 4
+    for dist in ("gaussian", "uniform"):
+        for row in summary["fraction"][dist].values():
+            assert 0.0 <= row["observed"] <= 1.0 and 0.0 < row["closed_form"] < 1.0
+
+
+def test_hurst_study(tmp_path, capsys):
+    summary = run_script("rough_hurst", tmp_path, capsys, "--workers", "1")
+    free = summary["setups"]["free"]
+    assert free["sanity"]["valid_runs"] == 2 and free["sanity"]["floor_touched_runs"] == 0
+    slopes = [free["per_hurst"][h]["rms_slope"]["mean"] for h in ("0.3", "0.9")]
+    assert slopes[0] > slopes[1]  # same rms, more short-wavelength power at small H
+    fixed = [c for c in summary["claims"] if c["claim"].startswith("fixed: the asperities touched")]
+    assert fixed and fixed[0]["verdict"] == "holds"
+
+
+def test_measured_profile_study(tmp_path, capsys):
+    summary = run_script("rough_measured", tmp_path, capsys)
+    assert summary["profile"]["synthetic"] is True and summary["profile"]["cropped"] is True
+    assert summary["asperities"]["count"] >= 5
+    assert summary["claims"][0]["verdict"] == "holds"  # fixed track: touched == summits above the track
+    for run in summary["runs"].values():
+        assert run["floor_touched"] == 0 and run["track_bottomed"] == 0
+        assert np.isfinite(run["critical_force_N"])

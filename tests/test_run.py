@@ -1,0 +1,95 @@
+"""The run loop (simulate.Run): forks, piecewise advancing, budgets, settling, divergence at scene scale."""
+
+import math
+
+import numpy as np
+import pytest
+
+import asperity2d as a
+from asperity2d.simulate import MAX_STEPS, Run, Stuck, default_dt
+
+SMALL = {"lower_count": 4, "upper_count": 2}
+
+
+def _arrays(result):
+    return np.concatenate([result.t, result.x, result.v, result.drive_force, result.friction_force])
+
+
+def test_forks_of_one_run_are_bit_identical_and_independent():
+    run = Run(a.make_scene(**SMALL))
+    run.advance(5e-8)
+    one, two = run.fork(), run.fork()
+    one.advance(1e-7)
+    two.advance(1e-7)
+    assert np.array_equal(_arrays(one.result()), _arrays(two.result()))
+    assert run.samples and run.time == pytest.approx(5e-8, rel=0.01)  # the original did not move on
+
+
+def test_advancing_in_pieces_records_what_one_advance_records():
+    """The engine steps the same steps either way: samples at the same steps hold the same values."""
+    whole = Run(a.make_scene(**SMALL))
+    whole.advance(1000 * whole.dt)
+    pieces = Run(a.make_scene(**SMALL))
+    for _ in range(4):
+        pieces.advance(250 * pieces.dt)  # whole multiples of record_every (10 steps)
+    w, p = whole.result(), pieces.result()
+    common = np.intersect1d(w.t, p.t)
+    assert len(common) == len(w.t)
+    iw, ip = np.searchsorted(w.t, common), np.searchsorted(p.t, common)
+    assert np.array_equal(w.x[iw], p.x[ip]) and np.array_equal(w.drive_force[iw], p.drive_force[ip])
+
+
+def test_a_stop_condition_instance_can_serve_several_runs():
+    scene = a.make_scene(drive="force", drive_force=1e-4, **SMALL)  # stops on the first flank
+    stuck = Stuck(speed=0.5, dwell=2e-9)
+    first = Run(scene)
+    first.advance(4e-7, stop=stuck)
+    second = Run(scene)
+    assert second.advance(4e-7, stop=stuck) == first.status == "stuck"
+    assert second.time == first.time  # the second run did not inherit the first one's clock
+
+
+def test_a_run_over_the_step_budget_is_refused_naming_what_makes_it_long():
+    scene = a.make_scene(**SMALL)
+    with pytest.raises(a.SceneError, match="`duration`.*`max_steps`|`max_steps`.*`duration`"):
+        a.simulate(scene, duration=1.0)
+    heavy = a.make_scene(slider_mass=2.88e-9, track="free", **SMALL)  # settling: 3e5 fast periods a slow one
+    with pytest.raises(a.SceneError, match="settl.*`slider_mass`"):
+        a.simulate(heavy, duration=1e-9, max_steps=100_000)
+    assert MAX_STEPS == 10_000_000
+
+
+def test_settling_stops_when_the_motion_has_decayed():
+    scene = a.make_scene(track="free", **SMALL)
+    run = Run(scene)
+    spent = run.settle()
+    assert 0 < spent < run.settle_cap()  # ended early, not at the 10-period cap
+    rows = run.engine.bodies_internal()
+    assert np.abs(rows[:, 2:]).max() == 0.0  # left at rest
+    _, y, _, _ = run.engine.slider_state()
+    assert y < a.make_scene(track="free", **SMALL).lower.profile.height * 2  # came down onto the tips
+
+
+def test_default_dt_resolves_the_drive_damper():
+    scene = a.make_scene(drive_damping=1e-3, **SMALL)
+    m_over_c = scene.slider.mass / 1e-3
+    assert default_dt(scene) == pytest.approx(0.2 * m_over_c)
+    result = a.simulate(scene, duration=1e-8)  # diverged at T/50 before
+    assert np.all(np.isfinite(result.v)) and np.abs(result.v).max() < 2 * scene.drive.velocity
+    with pytest.raises(a.SceneError, match="`drive_damping`"):
+        a.simulate(scene, duration=1e-8, dt=0.6 * m_over_c)
+
+
+@pytest.mark.parametrize("track", ["fixed", "free"])
+def test_a_wrong_run_is_caught_at_the_scene_scale(track):
+    """dt = 10 T is far past stable (T/6 blows up): the run must raise, not return km/s."""
+    scene = a.make_scene(track=track, **SMALL)
+    with pytest.raises(a.SimulationError, match="kinetic energy"):
+        a.simulate(scene, duration=1e-7, dt=10 * scene.shortest_period(), unsafe_dt=True, settle=False)
+
+
+def test_gravity_does_not_trip_the_divergence_guard():
+    """Found by the fuzzer: a strong gravity pours energy in; the guard counts its work."""
+    result = a.simulate(a.make_scene(gravity=4e14, **SMALL), duration=4e-9)
+    assert np.all(np.isfinite(result.v))
+    assert math.isfinite(result.meta["max_overlap_fraction"])
