@@ -64,7 +64,7 @@ def describe(values, *, level: float = 0.95) -> dict:
            "median": float(np.median(a)) if len(a) else math.nan,
            "ci_low": math.nan, "ci_high": math.nan}
     if len(a) > 1:
-        if np.ptp(a) == 0:  # no spread: the interval is the value itself
+        if np.ptp(a) <= SAME_RTOL * np.max(np.abs(a)):  # no spread beyond rounding: the value itself
             out["ci_low"] = out["ci_high"] = out["mean"]
         else:
             ci = stats.ttest_1samp(a, 0.0).confidence_interval(level)
