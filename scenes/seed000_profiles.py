@@ -159,6 +159,8 @@ def contact_books(rows: list[dict]) -> dict:
 def verdict_line(record: dict) -> str:
     """``[setup] claim: verdict (random x1.05, 8/10 seeds above, p = 0.004; regular x1.000)``."""
     n = record["numbers"]
+    if not n["n"]:  # not a seed-count problem: every run was left out
+        return f"[{record['setup']}] {record['claim']}: not testable, every run's slider fell through"
     return (f"[{record['setup']}] {record['claim']}: {record['verdict']} (random x{n['random_half_over_full']:.3f}, "
             f"{n['above']}/{n['n']} seeds above, Wilcoxon p = {n['p_wilcoxon']:.2g}; regular "
             f"x{n['regular_half_over_full']:.3f})")
