@@ -166,7 +166,7 @@ class Comparison:
         if np.all(ref == ref[0]):
             return {**stats.versus_reference(self._get(name), float(ref[0]), alternative=alternative),
                     "test": "one-sample Wilcoxon signed-rank against the reference value"}
-        out = stats.versus_reference(self._get(name) - ref, 0.0, alternative=alternative)
+        out = stats.versus_reference(stats.difference(self._get(name), ref), 0.0, alternative=alternative)
         mine, theirs = stats.describe(self._get(name)), stats.describe(ref)
         out.update(mean=mine["mean"], std=mine["std"], reference=theirs["mean"],
                    relative_difference=(mine["mean"] - theirs["mean"]) / theirs["mean"],

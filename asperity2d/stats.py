@@ -32,6 +32,24 @@ def finite(values) -> np.ndarray:
     return a[np.isfinite(a)]
 
 
+#: Values closer than this (relative) are the same number reached by a different rounding path
+#: (e.g. the fixed track's first breakaway, spacing-independent by construction, differs by
+#: <= 4e-15 between spacings): such differences count as zero, so rounding noise can neither
+#: make a test significant nor count as a seed below or above.
+SAME_RTOL = 1e-12
+
+
+def _same(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    return np.abs(x - y) <= SAME_RTOL * np.maximum(np.abs(x), np.abs(y))
+
+
+def difference(a, b) -> np.ndarray:
+    """``a - b`` elementwise, with differences at rounding level (:data:`SAME_RTOL`) set to 0:
+    the paired differences to test against zero."""
+    x, y = np.broadcast_arrays(np.asarray(a, dtype=float), np.asarray(b, dtype=float))
+    return np.where(_same(x, y), 0.0, x - y)
+
+
 def describe(values, *, level: float = 0.95) -> dict:
     """``n`` (finite values), ``missing`` (non-finite ones), ``mean``, ``std`` (ddof=1),
     ``median``, ``ci_low``/``ci_high`` (t interval of the mean at ``level``; NaN below 2 values)."""
@@ -46,7 +64,7 @@ def describe(values, *, level: float = 0.95) -> dict:
            "median": float(np.median(a)) if len(a) else math.nan,
            "ci_low": math.nan, "ci_high": math.nan}
     if len(a) > 1:
-        if np.ptp(a) == 0:  # no spread: the interval is the value itself
+        if np.ptp(a) <= SAME_RTOL * np.max(np.abs(a)):  # no spread beyond rounding: the value itself
             out["ci_low"] = out["ci_high"] = out["mean"]
         else:
             ci = stats.ttest_1samp(a, 0.0).confidence_interval(level)
@@ -67,8 +85,9 @@ def mann_whitney(a, b, *, alternative: str = "two-sided") -> float:
 
 def wilcoxon(a, b=None, *, reference: float | None = None, alternative: str = "two-sided") -> float:
     """p-value of the Wilcoxon signed-rank test: ``a`` against a ``reference`` value, or ``a``
-    paired with ``b`` (pairs with a non-finite member are dropped). 1.0 when every difference
-    is zero; NaN with no pairs."""
+    paired with ``b`` (pairs with a non-finite member are dropped). Differences within
+    :data:`SAME_RTOL` of the values count as zero; 1.0 when every difference is zero; NaN with
+    no pairs."""
     from scipy import stats
 
     check_choice("alternative", alternative, ALTERNATIVES)
@@ -78,7 +97,8 @@ def wilcoxon(a, b=None, *, reference: float | None = None, alternative: str = "t
     y = np.full_like(x, float(reference)) if b is None else np.asarray(b, dtype=float).ravel()
     if len(x) != len(y):
         raise SceneError(f"`a` and `b` must pair up, got {len(x)} and {len(y)} values")
-    d = (x - y)[np.isfinite(x) & np.isfinite(y)]
+    keep = np.isfinite(x) & np.isfinite(y)
+    d = np.where(_same(x[keep], y[keep]), 0.0, (x - y)[keep])
     if not len(d):
         return math.nan
     if not np.any(d):
@@ -94,10 +114,11 @@ def versus_reference(values, reference: float, *, alternative: str = "less", lev
     ``p_wilcoxon_two_sided``."""
     out = describe(values, level=level)
     a = finite(values)
+    same = _same(a, np.full_like(a, float(reference)))
     diff = out["mean"] - reference
     out.update(reference=float(reference), difference=diff,
                relative_difference=diff / reference if reference else math.nan,
-               below=int(np.sum(a < reference)), above=int(np.sum(a > reference)),
+               below=int(np.sum((a < reference) & ~same)), above=int(np.sum((a > reference) & ~same)),
                effect_size_d=diff / out["std"] if out["std"] and out["std"] > 0 else math.nan,
                p_wilcoxon=wilcoxon(a, reference=reference, alternative=alternative),
                p_wilcoxon_two_sided=wilcoxon(a, reference=reference))

@@ -95,6 +95,47 @@ def test_damping_numbers_are_consistent(outputs):
             assert row["force_N"] == pytest.approx(0.9 * row["critical_force_N"])
 
 
+def test_profiles_half_triangles_keep_their_tips_in_place_and_cannot_push(outputs):
+    """seed000_profiles: the half-triangle slider's vertical back face has a horizontal normal
+    facing back, so no contact of it pushes the slider on (regular, fixed track: the full
+    triangles' back flanks return > 0.1 % of the resisting work, the halves' < 1 % of that)."""
+    summary = json.loads((outputs["profiles"][2] / "summary.json").read_text())
+    books = summary["mechanism"]["fixed"]["mu_s > mu_k"]["contact_work"]
+    full, half = (books[p]["regular"]["pushing_share"]["mean"] for p in ("full", "half"))
+    assert full > 1e-3 and 0.0 <= half < 0.01 * full
+    for claim in summary["claims"]:
+        n = claim["numbers"]
+        assert claim["friction"] in ("mu_s > mu_k", "mu_s = mu_k") and claim["half"] in ("half", "half (full-base)")
+        assert n["n"] + n["missing"] == summary["seeds"]  # every seed used or counted as left out
+
+
+def test_drive_spring_pass_names_its_stick_forces(outputs):
+    summary = json.loads((outputs["drive"][2] / "summary.json").read_text())
+    for setup, n in summary["results"].items():
+        spring = n["spring"]
+        peaks = spring["stick_forces_N"]
+        assert spring["first_breakaway_N"] == peaks[0] and spring["peak_stick_force_N"] == max(peaks)
+        assert min(peaks) <= spring["mean_stick_force_N"] <= max(peaks), setup
+        assert n["below"]["start"] == n["above"]["start"] == "rest"
+        assert n["below"]["force_N"] < n["critical_force_from_rest_N"] < n["above"]["force_N"]
+
+
+@pytest.mark.slow
+def test_micro_spacing_reports_both_setups(tmp_path):
+    """scenes/micro_spacing.py --quick (2 seeds, ~40 s CPU): both set-ups, fixed first, one claim each."""
+    proc = subprocess.run([sys.executable, str(ROOT / "scenes" / "micro_spacing.py"), "--quick", "--json",
+                           "--no-gif", "--workers", "1", "-o", str(tmp_path)], capture_output=True, text=True,
+                          cwd=ROOT, timeout=900)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    summary = json.loads(proc.stdout.strip().splitlines()[-1])
+    assert list(summary["results"]) == ["fixed", "free"]
+    assert [c["setup"] for c in summary["claims"]] == ["fixed", "free"]
+    for setup, results in summary["results"].items():
+        drop = results["force_drop_mean_N"]
+        assert drop["regular"] > 0 and drop["random"]["n"] >= 1, setup
+    assert "static_kinetic_gap_over_load" in summary["results"]["free"]
+
+
 # -- the headline, in the default run (~20 s on 2 cores) ------------------------------
 
 HEADLINE_SEEDS = range(8)  # 8: the exact one-sided signed-rank p can reach 2**-8 < 0.01

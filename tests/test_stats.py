@@ -45,6 +45,19 @@ def test_wilcoxon_one_sample_and_paired():
         stats.wilcoxon([1.0], [1.0], reference=0.0)
 
 
+def test_rounding_level_differences_are_no_effect():
+    """A measure equal to its reference up to rounding (the fixed track's first breakaway
+    differs by <= 4e-15 between spacings) must not test significant nor count as below."""
+    ref = 6.332050719200081e-3
+    values = [ref * (1 - k * 2.2e-16) for k in range(1, 11)] + [ref * (1 + 1.1e-16)] * 3
+    assert stats.wilcoxon(values, reference=ref, alternative="less") == 1.0
+    v = stats.versus_reference(values, ref)
+    assert v["below"] == v["above"] == 0 and v["p_wilcoxon"] == 1.0
+    assert np.all(stats.difference(values, ref) == 0.0)  # paired differences: zero as well
+    # a real (1e-6) difference is still one
+    assert stats.wilcoxon([ref * (1 - 1e-6)] * 10, reference=ref, alternative="less") < 0.01
+
+
 def test_versus_reference_effect_numbers():
     v = stats.versus_reference([0.8, 0.9, 1.0, 0.7, math.nan], 1.0)
     assert v["n"] == 4 and v["missing"] == 1 and v["below"] == 3 and v["above"] == 0

@@ -89,6 +89,19 @@ class Arbiters:
         # processes; an exactly rounded sum keeps the result bit-identical.
         return (math.fsum(fx) * inv_dt, math.fsum(fy) * inv_dt, -math.fsum(ft) * inv_dt, len(fx), overlap)
 
+    def slider_forces(self, dt: float) -> list[tuple[int, float, float]]:
+        """``(lower index, fx, fy)``: each touching contact's force on the slider (impulse /
+        ``dt``, internal units; index -1: the floor), for per-contact work books."""
+        ints, floats, sid, index = self._ints, self._floats, self._slider_id, self._index
+        out = []
+        for k in range(len(ints) // 3):
+            if ints[3 * k + 2] == 0:
+                continue
+            sign = 1.0 if ints[3 * k] == sid else -1.0  # impulses are on body A
+            out.append((index.get(ints[3 * k] + ints[3 * k + 1] - sid, -1),
+                        sign * floats[6 * k] / dt, sign * floats[6 * k + 1] / dt))
+        return out
+
     def touched(self, n: int) -> np.ndarray:
         """Boolean mask of the ``n`` lower asperities touching the slider."""
         mask = np.zeros(n, dtype=bool)

@@ -11,15 +11,16 @@ run in worker processes and on Dask. Their claims are records of
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
 
 from ..analysis import event_statistics, stick_slip_events
 from ..builders import make_scene
-from ..critical import critical_force
+from ..critical import critical_force, settled_run
 from ..scene import ConstantForce
-from ..simulate import simulate
+from ..simulate import Run, default_duration, default_stops, simulate
 
 #: Scene size of the seed-000 studies (lower / upper asperities) and the quick (test) size.
 STUDY_SIZE = {"lower_count": 10, "upper_count": 3}
@@ -39,43 +40,112 @@ def critical_force_run(*, seed: int = 0, start: str = "rest", **params) -> dict:
     return {"critical_force_N": critical_force(scene, start=start)}
 
 
-def spring_pass_run(*, seed: int = 0, **params) -> dict:
+def pushed(scene, force: float, *, start: str = "rest"):
+    """A constant ``force`` (N) applied to ``scene`` from ``start`` (as
+    :func:`asperity2d.critical_force` begins each run: ``"rest"`` on the surface,
+    every tip against its flank; ``"run-up"`` from the builder's position).
+    Returns the :class:`~asperity2d.result.Result` (ended by the default stops)."""
+    pushed_scene = scene.replace(drive=ConstantForce(force=force))
+    run = settled_run(scene, start=start)
+    run.set_drive_force(force)
+    run.advance(default_duration(pushed_scene), stop=default_stops(pushed_scene))
+    return dataclasses.replace(run.result(), scene=pushed_scene)
+
+
+class ContactWork:
+    """Work done on the slider by its contacts, booked by what each contact does (J).
+
+    A step hook (``Engine.step_hooks``), from its construction on: after every
+    step, every contact's impulse on the slider times the slider's mean
+    velocity over the step (the work that changes its kinetic energy
+    exactly). ``pushing_J``: positive work of contacts pushing the slider on
+    towards +x while it moves that way -- a lower spring's restoring force
+    through a full triangle's back flank once a tip is past an apex (seed 000
+    figure 9); ``rebound_J``: positive work of contacts throwing it back
+    (towards -x, while it moves back: bounces off flanks); ``resisting_J``:
+    the work taken by contacts opposing its motion (tips climbing flanks,
+    friction), as a positive number. ``floor_J``: the floor guard's net work
+    (zero unless tips fall through the lower surface).
+    """
+
+    def __init__(self, engine):
+        self.engine = engine
+        self._v = engine.slider_state()[2]
+        self.pushing_J = self.rebound_J = self.resisting_J = self.floor_J = 0.0
+        engine.step_hooks.append(self)
+
+    def __call__(self) -> None:
+        e = self.engine
+        v = e.slider_state()[2]
+        v_mean, self._v = 0.5 * (v + self._v), v
+        impulse = e.dt * e.units.force  # internal force -> N, times the step (s)
+        for index, fx, _ in e.arbiters_internal().slider_forces(e.dt_internal):
+            work = fx * impulse * v_mean
+            if index < 0:
+                self.floor_J += work
+            elif work <= 0:
+                self.resisting_J -= work
+            elif fx > 0:
+                self.pushing_J += work
+            else:
+                self.rebound_J += work
+
+
+def spring_pass(scene, *, contact_work: bool = False):
+    """One spring-driven pass of ``scene`` (as :func:`asperity2d.simulate` with the default
+    stops); with ``contact_work`` also its :class:`ContactWork` books. Returns (result, books)."""
+    if not contact_work:
+        return simulate(scene), None
+    run = Run(scene)
+    if scene.slider.track == "free":
+        run.settle()
+    books = ContactWork(run.engine)
+    run.advance(default_duration(scene), stop=default_stops(scene))
+    return run.result(), books
+
+
+def spring_pass_run(*, seed: int = 0, contact_work: bool = False, **params) -> dict:
     """One full spring-driven pass of ``make_scene(seed=seed, drive="spring", **params)``.
 
-    Returns (N, m, J): ``first_breakaway_N`` (first stick-to-slip),
-    ``peak_stick_force_N`` (largest) and ``mean_stick_force_N`` (mean force at
-    the stick-to-slip transitions); from the first breakaway on,
-    ``mean_drive_force_N`` (time average) and ``keep_moving_force_N`` (the
-    displacement-weighted average, work / distance: the mean force needed to
-    keep the slider moving at the drive speed); the stick-slip statistics of
-    :func:`event_statistics` (``events``, ``force_drop_mean_N``,
-    ``force_drop_std_N``, ``regularity``); and the work of the net horizontal
-    contact force on the slider split by sign: ``front_flank_work_J`` (resisting,
-    tips climbing front flanks) and ``back_flank_work_J`` (pushing forward,
-    back flanks sliding down lower flanks as the lower springs recover).
+    Returns (N, m, J): ``first_breakaway_N`` (first stick-to-slip; on the
+    fixed track the front tip entering alone), ``peak_stick_force_N``
+    (largest) and ``mean_stick_force_N`` (mean force at the stick-to-slip
+    transitions); from the first breakaway on, ``mean_drive_force_N`` (time
+    average) and ``keep_moving_force_N`` (the displacement-weighted average,
+    work / distance: the mean force needed to keep the slider moving at the
+    drive speed); the stick-slip statistics of :func:`event_statistics`
+    (``events``, ``force_drop_mean_N``, ``force_drop_std_N``,
+    ``slip_distance_mean_m``, ``regularity``); ``travel_m`` (whole pass).
+    With ``contact_work``: the :class:`ContactWork` books of the whole pass,
+    ``contact_work_pushing_J``, ``contact_work_rebound_J``,
+    ``contact_work_resisting_J`` and ``floor_work_J``, and
+    ``pushing_force_mean_N`` (pushing work per metre of travel).
     """
-    result = simulate(make_scene(seed=seed, drive="spring", **params))
+    result, books = spring_pass(make_scene(seed=seed, drive="spring", **params), contact_work=contact_work)
     events = stick_slip_events(result)
     stats = event_statistics(events)
     t, x, f = result.t, result.x, result.drive_force
     start = int(np.searchsorted(t, events[0].t_slip)) if events else 0
     dx = np.diff(x[start:])
     force = 0.5 * (f[start:-1] + f[start + 1:])
-    resist = result.friction_force[start + 1:]
-    forward = np.clip(dx, 0.0, None)
     nan = math.nan
-    return {
+    travel = float(x[-1] - x[0])
+    out = {
         "first_breakaway_N": events[0].force_peak if events else nan,
         "peak_stick_force_N": max((e.force_peak for e in events), default=nan),
         "mean_stick_force_N": float(np.mean([e.force_peak for e in events])) if events else nan,
         "mean_drive_force_N": float(f[start:].mean()),
         "keep_moving_force_N": float(np.sum(force * dx) / np.sum(dx)) if np.sum(dx) > 0 else nan,
         "events": float(stats["count"]), "force_drop_mean_N": stats["force_drop_mean"],
-        "force_drop_std_N": stats["force_drop_std"], "regularity": stats["regularity"],
-        "front_flank_work_J": float(np.sum(np.clip(resist, 0.0, None) * forward)),
-        "back_flank_work_J": float(np.sum(np.clip(-resist, 0.0, None) * forward)),
+        "force_drop_std_N": stats["force_drop_std"], "slip_distance_mean_m": stats["slip_distance_mean"],
+        "regularity": stats["regularity"], "travel_m": travel,
         "passed": float(result.status == "passed"),
     }
+    if books is not None:
+        out.update(contact_work_pushing_J=books.pushing_J, contact_work_rebound_J=books.rebound_J,
+                   contact_work_resisting_J=books.resisting_J, floor_work_J=books.floor_J,
+                   pushing_force_mean_N=books.pushing_J / travel if travel > 0 else nan)
+    return out
 
 
 #: Energy channels :func:`damping_travel_run` reports for each run (J, see
