@@ -21,7 +21,7 @@ push (geometry) from the static/kinetic friction switch. Per run:
 
 Regular spacing gives one deterministic half/full ratio; random spacing (both
 surfaces) is paired by seed (same seed, same draws) and judged by a one-sided
-paired Wilcoxon test (half > full, holds if p < 0.01). The free slider's
+paired Wilcoxon test (half > full, holds if p < 0.01 and the change is at least 1 %). The free slider's
 half triangles can fall through the 0.75 µm gaps between lower asperities
 onto the floor guard (the floor does work on the slider): such runs are left
 out (counted as missing); the free slider is also compared with full-base
@@ -140,7 +140,7 @@ def claims_for(setup: str, friction: str, data: dict, comparisons: dict) -> list
                 f"{shape} need a larger {label.rsplit(' (', 1)[0]} than full triangles (figures 9-10), "
                 f"{friction}", verdict, numbers,
                 f"{numbers['test']}, half vs full over random seeds, one-sided (greater): "
-                f"p = {numbers['p_wilcoxon']:.3g}; holds if p < {ALPHA}; {numbers['missing']} seeds "
+                f"p = {numbers['p_wilcoxon']:.3g}; holds if p < {ALPHA} and the change is at least {claims.MIN_EFFECT:.0%}; {numbers['missing']} seeds "
                 f"missing (slider fell through). Regular spacing (deterministic): half / full = "
                 f"{numbers['regular_half_over_full']:.3f}", setup=setup)
                 | {"measure": name, "friction": friction, "half": half})
