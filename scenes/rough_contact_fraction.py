@@ -17,7 +17,13 @@ listed in ``left_out_unresolved``).
 Claims tested:
 
 * per realisation, exactly: the asperities touched are those whose summit is
-  above L (a rigid track sweeps a fixed height; nothing else reaches it);
+  above L (a rigid track sweeps a fixed height; nothing else reaches it), but
+  for summits above L by less than the slider's travel in the step a tip
+  crossed them: pymunk detects contacts at the steps only, and a slip at
+  3-4 km/s moves the slider 30-45 nm per step at the default dt, so a summit
+  a few nm above L can pass between two steps. Those are counted
+  (``summits_missed_within_one_step``) and the raw comparison is kept
+  (``realisations_differing_from_the_geometry``);
 * over realisations: the fraction touched is the fraction of summit heights
   above L, the closed form ``asperity2d.surface.fraction_above`` (Gaussian
   tail Q((L - mean) / std), a linear ramp for uniform heights), within three
@@ -68,6 +74,7 @@ def jobs_for(size: dict, distribution: str, levels, seeds) -> tuple[list, list[d
             if level >= top:
                 empty.append({**row, "touched_count": 0.0, "above_level_fraction": 0.0,
                               "touched_fraction": 0.0, "touched_matches_above_level": 1.0,
+                              "touched_matches_resolvable": 1.0, "missed_within_step": 0.0,
                               "simulated": False})
             elif top - level < MIN_LENGTH_RATIO * BASE:
                 # the tallest summit within 2 nm of the track: an interference the engine cannot
@@ -95,13 +102,19 @@ def analyse(rows: list[dict], size: dict, levels, n_seeds: int) -> tuple[dict, l
                                      "closed_form": p, "binomial_se": se,
                                      "z": (touched / total - p) / se, "asperities": total}
         worst[dist] = max(abs(v["z"]) for v in table[dist].values())
-    mismatched = [r for r in rows if r["touched_matches_above_level"] != 1.0]
+    mismatched = [r for r in rows if r["touched_matches_resolvable"] != 1.0]
     claims = [claim(
         "per realisation, the asperities touched over the pass are exactly those whose summit is "
-        "above the track's tip height", not mismatched,
+        "above the track's tip height, but for summits that rise less above it than the slider "
+        "moves in one step", not mismatched,
         {"realisations": len(rows), "simulated": sum(1 for r in rows if r.get("simulated", True)),
-         "mismatched": len(mismatched)},
-        "every run: the set of lower asperities touched at any recorded step == summits above L")]
+         "mismatched": len(mismatched),
+         "realisations_differing_from_the_geometry": sum(r["touched_matches_above_level"] != 1.0 for r in rows),
+         "summits_missed_within_one_step": sum(r["missed_within_step"] for r in rows),
+         "largest_step_m": max((r.get("max_step_travel_m", 0.0) for r in rows), default=0.0)},
+        "every run: the set of lower asperities touched at any recorded step == summits above L, "
+        "less those above L by less than the slider's travel in the step a tip crossed them "
+        "(contacts are detected at the steps only)")]
     for dist in DISTRIBUTIONS:
         claims.append(claim(
             f"{dist} heights: the fraction touched equals the closed-form fraction of summit heights "
@@ -149,7 +162,8 @@ def main(argv=None) -> int:
                "left_out_unresolved": left_out,
                "seeds": args.seeds, "levels_std": list(levels), "fraction": table, "claims": claims,
                "runs": [{k: r[k] for k in ("distribution", "seed", "level_std", "touched_count",
-                                          "above_level_fraction", "touched_matches_above_level")}
+                                          "above_level_fraction", "touched_matches_above_level",
+                                          "touched_matches_resolvable", "missed_within_step")}
                         for r in rows],
                "outputs": ["contact_fraction.png"]}
     lines = [f"{d} L = mean {float(k):+g} std: touched {v['observed']:.3f}, closed form {v['closed_form']:.3f} "
