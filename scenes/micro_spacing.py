@@ -113,7 +113,7 @@ def main(argv=None) -> int:
             "random spacing lowers the stick-slip amplitude (mean force drop per slip) at the micro "
             "scale (abstract: regularity enhances stick-slip, randomness reduces it)",
             claims.judge(amp, ALPHA), amp,
-            f"{amp['test']}, one-sided (lower): p = {amp['p_wilcoxon']:.3g}; holds if p < {ALPHA} and the change is at least {claims.MIN_EFFECT:.0%}",
+            f"{amp['test']}, one-sided (lower): p = {amp['p_wilcoxon']:.3g}; holds if p < {ALPHA} and the change is at least {100 * claims.MIN_EFFECT:g} %",
             setup=setup) | {"measure": "force_drop_mean_N"}
         summary["claims"].append(record)
         gap = results["static_kinetic_gap_N"]

@@ -36,7 +36,7 @@ def verdict(comparison, setup: str) -> dict:
     numbers = comparison.versus("random", "regular", alternative="less")
     return claims.claim(f"random spacing lowers the {measure_label(comparison.measure)}",
                         claims.judge(numbers, ALPHA), numbers,
-                        f"{numbers['test']}, one-sided (lower); holds if p < {ALPHA} and the change is at least {claims.MIN_EFFECT:.0%}", setup=setup)
+                        f"{numbers['test']}, one-sided (lower); holds if p < {ALPHA} and the change is at least {100 * claims.MIN_EFFECT:g} %", setup=setup)
 
 
 def main(argv=None) -> int:

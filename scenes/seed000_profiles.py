@@ -140,7 +140,7 @@ def claims_for(setup: str, friction: str, data: dict, comparisons: dict) -> list
                 f"{shape} need a larger {label.rsplit(' (', 1)[0]} than full triangles (figures 9-10), "
                 f"{friction}", verdict, numbers,
                 f"{numbers['test']}, half vs full over random seeds, one-sided (greater): "
-                f"p = {numbers['p_wilcoxon']:.3g}; holds if p < {ALPHA} and the change is at least {claims.MIN_EFFECT:.0%}; {numbers['missing']} seeds "
+                f"p = {numbers['p_wilcoxon']:.3g}; holds if p < {ALPHA} and the change is at least {100 * claims.MIN_EFFECT:g} %; {numbers['missing']} seeds "
                 f"missing (slider fell through). Regular spacing (deterministic): half / full = "
                 f"{numbers['regular_half_over_full']:.3f}", setup=setup)
                 | {"measure": name, "friction": friction, "half": half})

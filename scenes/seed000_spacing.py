@@ -76,7 +76,7 @@ def claims_for(setup: str, comparisons: dict[str, Comparison]) -> list[dict]:
             numbers = comparison.versus(variant, "regular", alternative="less")
             out.append(claims.claim(
                 f"random spacing ({variant}) lowers the {label}", claims.judge(numbers, ALPHA), numbers,
-                f"{numbers['test']}, one-sided (lower): p = {numbers['p_wilcoxon']:.3g}; holds if p < {ALPHA} and the change is at least {claims.MIN_EFFECT:.0%}",
+                f"{numbers['test']}, one-sided (lower): p = {numbers['p_wilcoxon']:.3g}; holds if p < {ALPHA} and the change is at least {100 * claims.MIN_EFFECT:g} %",
                 setup=setup) | {"measure": name, "variant": variant})
         both = comparison.versus("random", "random-upper", alternative="less")
         verdict = claims.judge(both, ALPHA)
@@ -85,7 +85,7 @@ def claims_for(setup: str, comparisons: dict[str, Comparison]) -> list[dict]:
         out.append(claims.claim(
             f"random on both surfaces needs the smallest {label} (figure 11)", verdict, both,
             f"paired Wilcoxon random/random - random-upper (same seeds), one-sided (lower): "
-            f"p = {both['p_wilcoxon']:.3g}, and below regular; holds if p < {ALPHA} and the change is at least {claims.MIN_EFFECT:.0%}",
+            f"p = {both['p_wilcoxon']:.3g}, and below regular; holds if p < {ALPHA} and the change is at least {100 * claims.MIN_EFFECT:g} %",
             setup=setup) | {"measure": name, "variant": "random vs random-upper"})
     return out
 

@@ -126,7 +126,7 @@ def main(argv=None) -> int:
         claims.claim("random spacing lowers the static/kinetic gap mu_s - mu_k of the stick-slip law "
                      "(abstract: randomness reduces stick-slip)", claims.judge(gap, ALPHA), gap,
                      f"one-sample Wilcoxon signed-rank of the random surfaces' gaps vs the regular value, "
-                     f"one-sided (lower): p = {gap['p_wilcoxon']:.3g}; holds if p < {ALPHA} and the change is at least {claims.MIN_EFFECT:.0%}", setup="free"),
+                     f"one-sided (lower): p = {gap['p_wilcoxon']:.3g}; holds if p < {ALPHA} and the change is at least {100 * claims.MIN_EFFECT:g} %", setup="free"),
         claims.claim("the static/kinetic law pooled over calibration seeds predicts the held-out seeds' "
                      "mean stick-slip period in the belt solver within 10 %",
                      summary["held_out_ratio"]["max_abs_error"] < 0.10, summary["held_out_ratio"],

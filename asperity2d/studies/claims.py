@@ -61,6 +61,8 @@ def effect(numbers: dict) -> str:
     p = numbers.get("p_wilcoxon")
     if p is not None and math.isfinite(p):
         parts.append(f"Wilcoxon p = {p:.2g}")
+    if rel is not None and math.isfinite(rel) and abs(rel) < MIN_EFFECT:
+        parts.append(f"a change under {100 * MIN_EFFECT:g} % is no effect")
     return ", ".join(parts)
 
 
