@@ -4,23 +4,12 @@ Cost: about 10 s in the default run (belt_basins and belt_spectra, --quick, in-p
 asperity_spectrum --quick (pymunk runs) is marked slow.
 """
 
-import json
 from pathlib import Path
 
 import pytest
 from scipy.io import wavfile
 
-from asperity2d.cli import _load_script
-
-SCENES = Path(__file__).resolve().parent.parent / "scenes"
-
-
-def run_script(name, tmp_path, capsys, *extra):
-    module = _load_script(SCENES / f"{name}.py")
-    assert module.main(["--quick", "--json", "-o", str(tmp_path), *extra]) == 0
-    summary = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
-    assert summary == json.loads((tmp_path / "summary.json").read_text())
-    return summary
+from scene_scripts import run_script
 
 
 def check_wav(path):

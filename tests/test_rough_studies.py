@@ -3,25 +3,11 @@ promise, and the exact claims hold even on the smallest scenes. The quick settin
 tests (one seed, tiny scenes, a faster drive); their statistical claims are not asserted here.
 Cost: about 25 s of CPU for the four scripts (one process each, ``--workers 1``)."""
 
-import json
-from pathlib import Path
-
 import numpy as np
 import pytest
 
 from asperity2d.cli import _load_script
-
-SCENES = Path(__file__).resolve().parent.parent / "scenes"
-
-
-def run_script(name, tmp_path, capsys, *extra):
-    module = _load_script(SCENES / f"{name}.py")
-    assert module.main(["--quick", "--json", "-o", str(tmp_path), *extra]) == 0
-    summary = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
-    assert summary == json.loads((tmp_path / "summary.json").read_text())
-    for name in summary["outputs"]:
-        assert (tmp_path / name).stat().st_size > 0
-    return summary
+from scene_scripts import SCENES, run_script
 
 
 def test_height_spread_study(tmp_path, capsys):
