@@ -12,10 +12,10 @@ Every public name is imported on first use (PEP 562), so ``import asperity2d``
 and the command line start without NumPy, pymunk, SciPy or matplotlib.
 """
 
-import importlib
 import sys
 import types
 
+from ._lazy import exports
 from .errors import SceneError, SimulationError
 
 #: Public name -> the module that defines it, imported when the name is first used.
@@ -39,19 +39,7 @@ _SUBPACKAGES = ("belt", "friction", "sweep", "tribometer", "fitting", "quasistat
                 "surface", "dynamics")
 
 
-def __getattr__(name):
-    """Resolve a public name or subpackage on first use, then keep it as a plain attribute."""
-    if name in _LAZY:
-        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
-        globals()[name] = value
-        return value
-    if name in _SUBPACKAGES:
-        return importlib.import_module(f".{name}", __name__)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__():
-    return sorted(set(globals()) | set(_LAZY) | set(_SUBPACKAGES))
+__getattr__, __dir__ = exports(__name__, globals(), _LAZY, _SUBPACKAGES)
 
 
 class _Package(types.ModuleType):

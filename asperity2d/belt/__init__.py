@@ -14,7 +14,7 @@ RunOptions in, RawRun out) -> back-ends ``linear`` (closed-form phases from
 ``METHODS`` table) -> ``result`` (BeltResult) -> ``regime``, ``plots``.
 """
 
-import importlib
+from .._lazy import exports
 
 #: Public names and the module each lives in, imported on first use: the command line's
 #: ``belt`` parser and its bad-input errors (``asperity2d.belt.cli``) run without NumPy.
@@ -25,15 +25,4 @@ _SUBMODULES = ("presets",)
 __all__ = ["simulate_chain", "BeltResult", "Event", "ChainSpec", "load", "METHODS", "presets"]
 
 
-def __getattr__(name):
-    if name in _LAZY:
-        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
-        globals()[name] = value
-        return value
-    if name in _SUBMODULES:
-        return importlib.import_module(f".{name}", __name__)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__():
-    return sorted(set(globals()) | set(_LAZY) | set(_SUBMODULES))
+__getattr__, __dir__ = exports(__name__, globals(), _LAZY, _SUBMODULES)
