@@ -194,3 +194,13 @@ def test_a_cycle_of_modes_at_one_instant_is_refused_at_once(monkeypatch):
     with pytest.raises(SimulationError, match="did not progress"):
         simulate_chain(**chain, rtol=1e-6)
     assert time.process_time() - start < 5.0  # ~0.05 s: 65 switches, not 1e6
+
+
+def test_a_preset_is_the_callers_own_copy():
+    # the basin-map regression above edits x0 / v0 in place, as a user would; the preset's table
+    # must not change (it did: the lists were shared, and the graze tests then ran another chain)
+    first = presets.preset("table2-3dof")
+    first["x0"][0] = 123.0
+    first["v0"].append(1.0)
+    again = presets.preset("table2-3dof")
+    assert again["x0"] == [0.05, 0.06, 0.07] and again["v0"] == [0.04, 0.03, 0.05]

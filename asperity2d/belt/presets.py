@@ -9,6 +9,8 @@ appendix code starts from rest instead: ``"table2-3dof-rest"``).
 
 from __future__ import annotations
 
+import copy
+
 from ..errors import SceneError
 
 IC_2DOF = {"x0": [0.05, 0.06], "v0": [0.04, 0.03]}  # eq 3.3 (m, m/s)
@@ -60,9 +62,11 @@ def describe(name: str) -> str:
 def preset(name: str, **overrides) -> dict:
     """Keyword arguments for ``simulate_chain`` for preset ``name``, updated by ``overrides``.
 
-    A ``friction`` law replaces the preset's ``mu_s`` / ``mu_k``.
+    A ``friction`` law replaces the preset's ``mu_s`` / ``mu_k``. The result is the caller's own:
+    its lists can be changed without changing the preset (they were shared with the table's
+    initial conditions, so one caller's edit reached every later run of the preset).
     """
-    kwargs = _lookup(name)[0]()
+    kwargs = copy.deepcopy(_lookup(name)[0]())
     unknown = set(overrides) - set(kwargs) - RUN_SETTINGS
     if unknown:
         raise SceneError(f"`{sorted(unknown)[0]}` is not a parameter of preset {name!r}")
