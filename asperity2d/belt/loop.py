@@ -61,8 +61,8 @@ def event_loop(spec, options, make_phase) -> RawRun:
         # instant, refused at once rather than after max_events switches
         zero_steps = zero_steps + 1 if tau_e <= 1e-12 * phase.step else 0
         if zero_steps > 64:
-            raise SimulationError(f"switching did not progress at t = {t1:.17g} s (65 switches in "
-                                  f"{1e-12 * phase.step:.1g} s); hint: check for a degenerate chain "
+            raise SimulationError(f"switching did not progress at t = {t1:.17g} s (65 switches in a row, "
+                                  f"each moving time less than {1e-12 * phase.step:.1g} s); hint: check for a degenerate chain "
                                   "(coincident switches of many masses, forces on the friction limit)", time=t1)
         if switches > options.max_events:
             raise SimulationError(f"more than `max_events` = {options.max_events:,} switches before t = {t1:.6g} s; "
