@@ -20,13 +20,16 @@ from .errors import SceneError
 MAX_COUNT = 100_000
 
 
-def show(value) -> str:
-    """A short, never-failing repr of ``value`` for error messages."""
+def show(value, limit: int = 60) -> str:
+    """``repr(value)`` shortened to ``limit`` characters for error messages; never raises (an
+    integer too long for ``repr``, a hostile ``__repr__``)."""
     try:
+        if isinstance(value, Integral) and not isinstance(value, bool) and abs(int(value)).bit_length() > 200:
+            return f"an integer of {abs(int(value)).bit_length()} bits"
         text = repr(value)
-    except Exception:  # a hostile __repr__
-        text = f"<{type(value).__name__}>"
-    return text if len(text) <= 60 else text[:57] + "..."
+    except Exception:  # noqa: BLE001 -- a message must never fail to format
+        text = f"<{type(value).__name__} object>"
+    return text if len(text) <= limit else text[: limit - 3] + "..."
 
 
 def is_real(value) -> bool:

@@ -31,6 +31,7 @@ from numbers import Real
 
 import numpy as np
 
+from ._validate import show
 from .errors import SceneError
 
 __all__ = ["Coulomb", "StaticKinetic", "CoulombViscous", "Stribeck", "Dahl", "LuGre", "FrictionLaw"]
@@ -43,25 +44,17 @@ def _check(name: str, value: float, *, positive: bool = False) -> None:
     package imports this module); formatting the message never raises.
     """
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (Real, Decimal)):
-        raise SceneError(f"`{name}` must be a real number, got {_show(value)}")
+        raise SceneError(f"`{name}` must be a real number, got {show(value)}")
     try:
         number = float(value)
     except (OverflowError, ValueError, TypeError):
         number = math.inf
     if not math.isfinite(number) or abs(number) > 1e100:
-        raise SceneError(f"`{name}` must be finite and at most 1e100, got {_show(value)}")
+        raise SceneError(f"`{name}` must be finite and at most 1e100, got {show(value)}")
     if positive and number <= 0:
-        raise SceneError(f"`{name}` must be > 0, got {_show(value)}")
+        raise SceneError(f"`{name}` must be > 0, got {show(value)}")
     if number < 0:
-        raise SceneError(f"`{name}` must be >= 0, got {_show(value)}")
-
-
-def _show(value) -> str:
-    try:
-        text = repr(value)
-    except Exception:  # noqa: BLE001 -- e.g. an int beyond Python's digit limit
-        text = f"<{type(value).__name__}>"
-    return text if len(text) <= 60 else text[:57] + "..."
+        raise SceneError(f"`{name}` must be >= 0, got {show(value)}")
 
 
 class FrictionLaw:
@@ -114,12 +107,12 @@ def law_from_dict(record: dict) -> FrictionLaw:
     """Inverse of ``FrictionLaw.to_dict``."""
     laws = {c.__name__: c for c in (Coulomb, StaticKinetic, CoulombViscous, Stribeck, Dahl, LuGre)}
     if not isinstance(record, dict):
-        raise SceneError(f"`friction` must be a table with a `law` entry, got {_show(record)}")
+        raise SceneError(f"`friction` must be a table with a `law` entry, got {show(record)}")
     record = dict(record)
     name = record.pop("law", None)
     cls = laws.get(name) if isinstance(name, str) else None
     if cls is None:
-        raise SceneError(f"`friction` law must be one of {', '.join(laws)}, got {_show(name)}")
+        raise SceneError(f"`friction` law must be one of {', '.join(laws)}, got {show(name)}")
     try:
         return cls(**record)
     except TypeError as exc:  # a missing or unknown parameter of the law
@@ -156,7 +149,7 @@ class StaticKinetic(FrictionLaw):
         _check("mu_s", self.mu_s)
         _check("mu_k", self.mu_k)
         if self.mu_k > self.mu_s:
-            raise SceneError(f"`mu_k` must be <= `mu_s` ({_show(self.mu_s)}), got {_show(self.mu_k)}")
+            raise SceneError(f"`mu_k` must be <= `mu_s` ({show(self.mu_s)}), got {show(self.mu_k)}")
 
     def curve(self, v):
         return self.mu_k * np.sign(v)
@@ -217,7 +210,7 @@ class Stribeck(FrictionLaw):
         _check("delta", self.delta, positive=True)
         _check("sigma2", self.sigma2)
         if self.mu_k > self.mu_s:
-            raise SceneError(f"`mu_k` must be <= `mu_s` ({_show(self.mu_s)}), got {_show(self.mu_k)}")
+            raise SceneError(f"`mu_k` must be <= `mu_s` ({show(self.mu_s)}), got {show(self.mu_k)}")
 
     def g(self, v):
         """Magnitude of the Coulomb-Stribeck part, mu_k..mu_s (dimensionless)."""
@@ -298,7 +291,7 @@ class LuGre(FrictionLaw):
         _check("mu_k", self.mu_k, positive=True)
         _check("v_s", self.v_s, positive=True)
         if self.mu_k > self.mu_s:
-            raise SceneError(f"`mu_k` must be <= `mu_s` ({_show(self.mu_s)}), got {_show(self.mu_k)}")
+            raise SceneError(f"`mu_k` must be <= `mu_s` ({show(self.mu_s)}), got {show(self.mu_k)}")
 
     def stribeck(self) -> Stribeck:
         return Stribeck(self.mu_s, self.mu_k, self.v_s, 2.0, self.sigma2)

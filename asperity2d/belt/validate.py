@@ -30,6 +30,7 @@ from numbers import Integral, Real
 
 import numpy as np
 
+from .._validate import show  # noqa: F401 -- one message formatter for the package (check.show)
 from ..errors import SceneError
 
 #: smallest and largest magnitude of any non-zero number given to a chain
@@ -40,17 +41,6 @@ SCALE_LIMIT = 1e150
 MAX_MASSES = 2000
 #: masses x output samples (each result holds ~8 such arrays of doubles)
 MAX_VALUES = 20_000_000
-
-
-def show(value, limit: int = 60) -> str:
-    """``repr(value)`` shortened to ``limit`` characters; never raises (huge ints, odd objects)."""
-    try:
-        if isinstance(value, Integral) and not isinstance(value, bool) and abs(int(value)).bit_length() > 200:
-            return f"an integer of {abs(int(value)).bit_length()} bits"
-        text = repr(value)
-    except Exception:  # noqa: BLE001 -- a message must never fail to format
-        text = f"<{type(value).__name__} object>"
-    return text if len(text) <= limit else text[: limit - 3] + "..."
 
 
 def _as_float(name: str, value, where: str = "") -> float:
