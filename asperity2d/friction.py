@@ -24,37 +24,22 @@ Stiffness-like parameters are per unit normal load: ``sigma0`` in 1/m,
 
 from __future__ import annotations
 
-import math
 from dataclasses import astuple, dataclass, fields
-from decimal import Decimal
-from numbers import Real
 
 import numpy as np
 
 from ._validate import show
+from .belt.validate import real
 from .errors import SceneError
 
 __all__ = ["Coulomb", "StaticKinetic", "CoulombViscous", "Stribeck", "Dahl", "LuGre", "FrictionLaw"]
 
 
-def _check(name: str, value: float, *, positive: bool = False) -> None:
-    """Raise SceneError unless ``value`` is a finite real number >= 0 (or > 0) of magnitude <= 1e100.
-
-    Same rules as :mod:`asperity2d.belt.validate` (which cannot be imported here: the belt
-    package imports this module); formatting the message never raises.
-    """
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (Real, Decimal)):
-        raise SceneError(f"`{name}` must be a real number, got {show(value)}")
-    try:
-        number = float(value)
-    except (OverflowError, ValueError, TypeError):
-        number = math.inf
-    if not math.isfinite(number) or abs(number) > 1e100:
-        raise SceneError(f"`{name}` must be finite and at most 1e100, got {show(value)}")
-    if positive and number <= 0:
-        raise SceneError(f"`{name}` must be > 0, got {show(value)}")
-    if number < 0:
-        raise SceneError(f"`{name}` must be >= 0, got {show(value)}")
+def _check(name: str, value, *, positive: bool = False) -> None:
+    """Raise SceneError unless ``value`` is a finite real number >= 0 (or > 0) within the chains'
+    magnitude window: the rules of :func:`asperity2d.belt.validate.real` (the belt package's
+    ``__init__`` resolves its names lazily, so importing its validator here makes no cycle)."""
+    real(name, value, positive=positive, nonneg=not positive)
 
 
 class FrictionLaw:
