@@ -7,7 +7,7 @@ the force read-out both use it, so the space is read once.
 Static > kinetic friction: pymunk has one coefficient per contact (the
 product of the two shapes' coefficients; the slider's shapes have 1). After
 every step each lower asperity's coefficient is set from the stick/slip state
-of its contact with the slider, kept in NumPy arrays. A stuck contact keeps
+of its contact with the slider, kept per lower asperity. A stuck contact keeps
 ``mu_static`` until it has slid ``slip_distance`` without pause (speed above
 ``stick_speed`` every step), so a micro-slip of a step or two under a sudden
 load does not make it kinetic; a sliding contact sticks again when its slip
@@ -42,10 +42,9 @@ class Arbiters:
 
     __slots__ = ("_ints", "_floats", "_slider_id", "_index")
 
-    def __init__(self, buf: batch.Buffer, layout):
-        # memoryview: cheaper than NumPy for a few dozen numbers
-        self._ints = memoryview(buf.int_buf()).cast("N").tolist()  # a, b, count per contact
-        self._floats = memoryview(buf.float_buf()).cast("d").tolist()  # jx jy nx ny d1 d2
+    def __init__(self, contacts: tuple[list[int], list[float]], layout):
+        # a, b, count and jx jy nx ny d1 d2 per contact (:meth:`.native.Native.read_arbiters`)
+        self._ints, self._floats = contacts
         self._slider_id, self._index = layout.slider_id, layout.lower_index
 
     def __len__(self) -> int:
@@ -109,13 +108,6 @@ class Arbiters:
         return mask
 
 
-def read_arbiters(space, buf: batch.Buffer, layout) -> Arbiters:
-    """One batch read of the space's contacts into :class:`Arbiters`."""
-    buf.clear()
-    batch.get_space_arbiters(space, ARBITER_FIELDS, buf)
-    return Arbiters(buf, layout)
-
-
 class StickSlip:
     """Per-contact static / kinetic friction (internal units).
 
@@ -176,20 +168,25 @@ class StickSlip:
 
         ``rows`` are the bodies' ``[x, y, vx, vy]`` after the step (internal units).
         """
-        pairs = arbiters.pairs()
+        # the contacts' slip speeds, read as in Arbiters.pairs (inlined: this runs every step)
+        ints, floats, sid, index = arbiters._ints, arbiters._floats, arbiters._slider_id, arbiters._index
         present = self._present
-        if not pairs and not present:
-            return
-        r = layout.slider_row
-        svx, svy = rows.item(r, 2), rows.item(r, 3)
-        row_of = layout.lower_row_of
         slips: dict[int, float] = {}
-        for i, nx, ny in pairs:
-            if i >= 0:
-                r = row_of[i]
-                slip = abs((svx - rows.item(r, 2)) * ny - (svy - rows.item(r, 3)) * nx)
-                if slip > slips.get(i, -1.0):  # a lower asperity may touch two tips
-                    slips[i] = slip
+        if ints:
+            r = layout.slider_row
+            svx, svy = rows.item(r, 2), rows.item(r, 3)
+            row_of = layout.lower_row_of
+            for k in range(0, len(ints), 3):
+                if not ints[k + 2]:
+                    continue
+                i = index.get(ints[k] + ints[k + 1] - sid, -1)
+                if i >= 0:
+                    r, nx, ny = row_of[i], floats[2 * k + 2], floats[2 * k + 3]
+                    slip = abs((svx - rows.item(r, 2)) * ny - (svy - rows.item(r, 3)) * nx)
+                    if slip > slips.get(i, -1.0):  # a lower asperity may touch two tips
+                        slips[i] = slip
+        if not slips and not present:
+            return
         stuck, slid, mu_now = self._stuck, self._slid, self._mu
         v_stick, mu_s, mu_k = self.stick_speed, self.mu_static, self.mu_kinetic
         for i in present:

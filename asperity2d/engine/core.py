@@ -24,7 +24,8 @@ from pymunk import batch
 
 from ..scene import Scene, SpringDrive
 from ..units import Units, check_scales
-from .contacts import StickSlip, read_arbiters
+from .contacts import ARBITER_FIELDS, Arbiters, StickSlip
+from .native import Native
 from .space import build
 
 PYMUNK_VERSION = pymunk.version
@@ -84,7 +85,7 @@ class Engine:
         self.max_solver_drift = 0.0  # largest drift off a track before projection (base units)
         self.step_hooks: list = []
         self.projection_hooks: list = []
-        self._body_buf, self._arb_buf = None, batch.Buffer()
+        self._native = None  # raw handles of the space (.native), made with the body buffer
         self._arbiters = None  # the last step's contacts, when read
         self._changes = 0  # counts what changes the space: forks of an unchanged engine share a snapshot
         self._snapshot = None
@@ -146,36 +147,35 @@ class Engine:
     def arbiters_internal(self):
         """The slider's contacts after the last step (:class:`~.contacts.Arbiters`, internal units)."""
         if self._arbiters is None:
-            self._arbiters = read_arbiters(self.layout.space, self._arb_buf, self.layout)
+            self._arbiters = Arbiters(self._native.read_arbiters(), self.layout)
         return self._arbiters
 
     # -- stepping -----------------------------------------------------------
     def step(self, n: int = 1) -> None:
         """Advance ``n`` steps, applying the drive and the load before each."""
         layout, d, dt, load = self.layout, self.drive, self.dt_internal, self.load_internal
-        space, body, switch = layout.space, layout.slider, self.switch
+        native, switch = self._native, self.switch
         hooks, before_projection = self.step_hooks, self.projection_hooks
         self._changes += 1
         for _ in range(n):
-            x, _, vx, _ = self._slider
             if d.spring:
                 # Symplectic Euler: pymunk moves bodies with the old velocity
                 # before it applies forces, so take the spring at the position
                 # the step will end at. (From the start position it would be
                 # forward Euler, which feeds energy into the slider's
                 # oscillation on the drive spring.)
+                x, _, vx, _ = self._slider
                 x_d = d.origin + d.v * (self.step_count + 1) * dt
-                body.force = (d.k * (x_d - (x + vx * dt)) + d.c * (d.v - vx), -load)
+                native.step(dt, d.k * (x_d - (x + vx * dt)) + d.c * (d.v - vx), -load)
             else:
-                body.force = (d.force, -load)
-            space.step(dt)
+                native.step(dt, d.force, -load)
             self.step_count += 1
             rows = self._read_bodies()
             for hook in before_projection:
                 hook(rows)
             self._project(rows)
             if switch.active:
-                self._arbiters = read_arbiters(space, self._arb_buf, layout)
+                self._arbiters = Arbiters(native.read_arbiters(), layout)
                 switch.update(self._arbiters, rows, layout)
             else:
                 self._arbiters = None
@@ -184,22 +184,23 @@ class Engine:
 
     def _read_bodies(self) -> np.ndarray:
         """Read every body into ``self._rows`` (a preallocated array pymunk writes into)."""
-        buf = self._body_buf
-        if buf is None:
+        native = self._native
+        if native is None:
             # Sized with room to spare: pymunk grows (reallocates) its array when a
             # write comes within two entries of the end, which must never happen to ours.
             n = 4 * self.layout.n_rows
             self._row_store = np.zeros(n + 8)
             self._rows = self._row_store[:n].reshape(-1, 4)
-            self._body_buf = buf = batch.Buffer()
+            buf = batch.Buffer()
             buf.set_float_buf(self._row_store)
+            self._native = native = Native(self.layout.space, self.layout.slider, buf, BODY_FIELDS,
+                                           batch.Buffer(), ARBITER_FIELDS)
             rows = self.layout.lower_rows
             if not isinstance(rows, slice):  # pymunk keeps bodies in insertion order
                 raise RuntimeError("the lower asperities are not contiguous in the batch rows")
             self._lower_x = self._rows[rows, 0]  # a view: it follows every read
             self._lower_off = np.empty(len(self.layout.lower_bodies))
-        buf.clear()
-        batch.get_space_bodies(self.layout.space, BODY_FIELDS, buf)
+        native.read_bodies()
         self._slider = self._rows[self.layout.slider_row].tolist()
         return self._rows
 
@@ -235,7 +236,7 @@ class Engine:
             if layout.fixed_slider:
                 rows[layout.slider_row, 1] = layout.slider_y_track
                 rows[layout.slider_row, 3] = 0.0
-            batch.set_space_bodies(layout.space, BODY_FIELDS, self._body_buf)
+            self._native.write_bodies()
             self._slider = rows[layout.slider_row].tolist()
 
     def settle(self, max_time: float, *, push: float = 0.0, damping_per_period: float = 0.5,
@@ -261,7 +262,7 @@ class Engine:
         used its share of ``max_time`` (s). ``on_steps(n)`` reports progress.
         """
         layout, d, dt = self.layout, self.drive, self.dt_internal
-        space, body = layout.space, layout.slider
+        space, body, native = layout.space, layout.slider, self._native
         self._changes += 1
         free = self.scene.slider.track == "free"
         lowering = layout.fixed_slider and layout.slider_y_track != layout.slider_y0
@@ -295,8 +296,7 @@ class Engine:
                     self._lower_track(min(1.0, (done + n) / period))
                 for _ in range(n):
                     fx = d.k * (d.origin - self._slider[0]) if d.spring else 0.0
-                    body.force = (fx + (push_i if phase == "push" else 0.0), -load)
-                    space.step(dt)
+                    native.step(dt, fx + (push_i if phase == "push" else 0.0), -load)
                     self._project(self._read_bodies())
                 done += n
                 calm = calm + 1 if float(np.abs(self._rows[:, 2:]).max()) < rest_speed else 0
@@ -311,7 +311,7 @@ class Engine:
         body.velocity = (0.0, 0.0)
         rows = self._read_bodies()
         if self.switch.active:  # contacts at rest start stuck, with mu_static
-            self._arbiters = read_arbiters(space, self._arb_buf, layout)
+            self._arbiters = Arbiters(self._native.read_arbiters(), layout)
             self.switch.update(self._arbiters, rows, layout)
         return spent * self.dt
 
@@ -338,7 +338,7 @@ class Engine:
         out.drive = object.__new__(Drive)
         out.drive.__dict__.update(self.drive.__dict__)
         out.step_hooks, out.projection_hooks = [], []
-        out._body_buf, out._arb_buf = None, batch.Buffer()
+        out._native = None
         out._arbiters = None
         out._read_bodies()
         return out
