@@ -102,7 +102,7 @@ def passes(base, force: float) -> bool:
     run = base.fork()
     run.set_drive_force(force)
     scene = base.scene.replace(drive=ConstantForce(force=force))
-    return run.advance(default_duration(scene), stop=default_stops(scene)) == "passed"
+    return run.advance(default_duration(scene), stop=default_stops(scene), record=False) == "passed"
 
 
 def critical_force_bracket(scene: Scene, *, start: str = "rest", rel_tol: float = 0.01,

@@ -292,21 +292,29 @@ class Run:
                 f"was given; use a smaller dt (now {self.dt:.3g} s, default T/50) or more iterations",
                 time=e.time)
 
-    def _sample(self) -> None:
-        """Record the engine's current state (internal units) and check it has not diverged."""
+    def _guard(self) -> tuple:
+        """Check the engine's current state has not diverged (kinetic energy, overlap) and
+        return ``(rows, sx, sy, svx, svy, drive_force, arbiters, forces)`` (internal units)."""
         e = self.engine
-        if e.step_count == self._last_sampled_step:
-            return
         rows = e.bodies_internal()
         sx, sy, svx, svy = rows[e.layout.slider_row].tolist()
         drive_force = e.drive_force_internal(sx, svx)
         self._check_energy(rows, drive_force)
         arbiters = e.arbiters_internal()
-        fx, fy, ft, count, overlap = arbiters.forces(e.dt_internal)
-        if overlap > MAX_OVERLAP:
+        forces = arbiters.forces(e.dt_internal)
+        if forces[4] > MAX_OVERLAP:
             raise SimulationError(
-                f"run diverged at t = {e.time:.6g} s: asperities overlap by {overlap:.2f} of a base; "
+                f"run diverged at t = {e.time:.6g} s: asperities overlap by {forces[4]:.2f} of a base; "
                 f"use a smaller dt (now {self.dt:.3g} s) or more iterations", time=e.time)
+        self.max_overlap = max(self.max_overlap, forces[4])
+        return rows, sx, sy, svx, svy, drive_force, arbiters, forces
+
+    def _sample(self) -> None:
+        """Record the engine's current state (internal units) and check it has not diverged."""
+        e = self.engine
+        if e.step_count == self._last_sampled_step:
+            return
+        rows, sx, sy, svx, svy, drive_force, arbiters, (fx, fy, ft, count, _) = self._guard()
         layout = e.layout
         lower = rows[layout.lower_rows]
         dx = lower[:, 0] - layout.lower_x0
@@ -314,7 +322,6 @@ class Run:
         if layout.fixed_slider:
             drift = max(drift, abs(sy - layout.slider_y_track))
         self.max_drift = max(self.max_drift, drift)
-        self.max_overlap = max(self.max_overlap, overlap)
         i = self._size
         if i == self._cols.shape[1]:
             self._cols = np.concatenate([self._cols, np.empty_like(self._cols)], axis=1)
@@ -328,11 +335,14 @@ class Run:
         self._last_sampled_step = e.step_count
 
     def _probe(self, probe: Probe) -> None:
-        u, c = self.engine.units, self._cols[:, self._size - 1]
-        probe.t = c[0] * self.dt
-        probe.x, probe.v, probe.y = c[1] * u.length, c[2] * u.velocity, c[3] * u.length
-        probe.drive_force = c[6] * u.force
-        probe.rear_apex_x = (c[1] + self.engine.layout.upper_apex[0]) * u.length
+        """What the stop conditions see, read from the engine's current state (SI)."""
+        e = self.engine
+        u = e.units
+        sx, sy, svx, _ = e.bodies_internal()[e.layout.slider_row].tolist()
+        probe.t = e.step_count * self.dt
+        probe.x, probe.v, probe.y = sx * u.length, svx * u.velocity, sy * u.length
+        probe.drive_force = e.drive_force_internal(sx, svx) * u.force
+        probe.rear_apex_x = (sx + e.layout.upper_apex[0]) * u.length
 
     # -- running ------------------------------------------------------------
     def settle(self, *, push: float = 0.0, max_time: float | None = None,
@@ -361,10 +371,16 @@ class Run:
         return spent
 
     def advance(self, duration: float, *, stop: Callable | Iterable[Callable] | None = None,
-                progress: bool | None = None, record_every: int | None = None) -> str:
+                progress: bool | None = None, record_every: int | None = None,
+                record: bool = True) -> str:
         """Step for ``duration`` (s), recording every ``record_every`` steps (default: the
         run's), until a stop condition holds. Returns (and sets) ``status``:
-        ``"duration"`` or the stop's name."""
+        ``"duration"`` or the stop's name.
+
+        ``record=False`` keeps nothing: every ``record_every`` steps the stop conditions
+        and the divergence guard still see the state, exactly as when recording (so the
+        run stops at the same step), but no sample is added to :meth:`result` (the
+        critical force's bisection runs, which only need their outcome)."""
         from tqdm.auto import tqdm
 
         check_finite("duration", duration)
@@ -382,7 +398,8 @@ class Run:
         n_steps = int(math.ceil(duration / self.dt - 1e-9))
         probe = Probe(base=self.scene.base,
                       last_apex_x=float(e.layout.lower_apex_x[-1]) * e.units.length)
-        self._sample()
+        sample = self._sample if record else self._guard
+        sample()
         if stops:
             self._probe(probe)
             probe.x_start = probe.x
@@ -395,7 +412,7 @@ class Run:
                 n = min(k, n_steps - done)
                 e.step(n)
                 done += n
-                self._sample()
+                sample()
                 bar.update(n)
                 if stops:
                     self._probe(probe)

@@ -39,6 +39,20 @@ def test_advancing_in_pieces_records_what_one_advance_records():
     assert np.array_equal(w.x[iw], p.x[ip]) and np.array_equal(w.drive_force[iw], p.drive_force[ip])
 
 
+@pytest.mark.parametrize("force, status", [(1e-4, "stuck"), (0.05, "passed")])
+def test_an_unrecorded_advance_stops_where_a_recorded_one_does(force, status):
+    """record=False keeps no samples, but its stops and guard see the same states at the same steps."""
+    from asperity2d.simulate import default_duration, default_stops
+
+    scene = a.make_scene(drive="force", drive_force=force, **SMALL)
+    recorded, bare = Run(scene), Run(scene)
+    assert recorded.advance(default_duration(scene), stop=default_stops(scene)) == status
+    assert bare.advance(default_duration(scene), stop=default_stops(scene), record=False) == status
+    assert bare.time == recorded.time and bare.samples == 0 < recorded.samples
+    assert bare.engine.slider_state() == recorded.engine.slider_state()
+    assert bare.max_overlap == recorded.max_overlap
+
+
 def test_a_stop_condition_instance_can_serve_several_runs():
     scene = a.make_scene(drive="force", drive_force=1e-4, **SMALL)  # stops on the first flank
     stuck = Stuck(speed=0.5, dwell=2e-9)

@@ -17,6 +17,7 @@ their names (``*_internal``).
 from __future__ import annotations
 
 import math
+from operator import sub
 
 import numpy as np
 import pymunk
@@ -31,6 +32,10 @@ from .space import build
 PYMUNK_VERSION = pymunk.version
 BODY_FIELDS = batch.BodyFields.POSITION | batch.BodyFields.VELOCITY
 TRACK_TOLERANCE = 1e-9  # track drift (base lengths) left to the groove joint alone
+#: Up to this many lower asperities the projection's drift check runs in plain Python (measured:
+#: 1.9 us against 3.3 us for NumPy's three calls at N = 16; NumPy wins from N ~ 40). Both compute
+#: the same IEEE differences and maximum, so the results are identical.
+SMALL_N = 32
 
 
 class Drive:
@@ -200,6 +205,9 @@ class Engine:
                 raise RuntimeError("the lower asperities are not contiguous in the batch rows")
             self._lower_x = self._rows[rows, 0]  # a view: it follows every read
             self._lower_off = np.empty(len(self.layout.lower_bodies))
+            # the same track positions as a list, for the small-N drift check in _project
+            self._lower_x0 = (self.layout.lower_x0.tolist()
+                              if len(self.layout.lower_bodies) <= SMALL_N else None)
         native.read_bodies()
         self._slider = self._rows[self.layout.slider_row].tolist()
         return self._rows
@@ -218,10 +226,13 @@ class Engine:
         layout = self.layout
         drift = 0.0
         if layout.tracked and len(layout.lower_bodies):
-            off = self._lower_off
-            np.subtract(self._lower_x, layout.lower_x0, out=off)
-            np.abs(off, out=off)
-            drift = float(np.maximum.reduce(off))
+            if self._lower_x0 is not None:  # a few asperities: plain Python beats three NumPy calls
+                drift = max(map(abs, map(sub, self._lower_x.tolist(), self._lower_x0)))
+            else:
+                off = self._lower_off
+                np.subtract(self._lower_x, layout.lower_x0, out=off)
+                np.abs(off, out=off)
+                drift = float(np.maximum.reduce(off))
         if layout.fixed_slider:
             drift = max(drift, abs(self._slider[1] - layout.slider_y_track))
         if drift > self.max_solver_drift:
