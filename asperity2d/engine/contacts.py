@@ -163,13 +163,15 @@ class StickSlip:
         out._present = dict.fromkeys(self._present).keys()
         return out
 
-    def update(self, arbiters: Arbiters, rows: np.ndarray, layout) -> None:
+    def update(self, contacts: tuple[list[int], list[float]], rows: np.ndarray, layout) -> None:
         """Set each lower asperity's coefficient from its contact's stick/slip state.
 
-        ``rows`` are the bodies' ``[x, y, vx, vy]`` after the step (internal units).
+        ``contacts`` is one read of the contacts (:meth:`.native.Native.read_arbiters`, what
+        :class:`Arbiters` holds); ``rows`` are the bodies' ``[x, y, vx, vy]`` after the step
+        (internal units).
         """
         # the contacts' slip speeds, read as in Arbiters.pairs (inlined: this runs every step)
-        ints, floats, sid, index = arbiters._ints, arbiters._floats, arbiters._slider_id, arbiters._index
+        (ints, floats), sid, index = contacts, layout.slider_id, layout.lower_index
         present = self._present
         slips: dict[int, float] = {}
         if ints:

@@ -91,7 +91,8 @@ class Engine:
         self.step_hooks: list = []
         self.projection_hooks: list = []
         self._native = None  # raw handles of the space (.native), made with the body buffer
-        self._arbiters = None  # the last step's contacts, when read
+        self._contacts = None  # the last step's contacts as read (Native.read_arbiters), if read
+        self._arbiters = None  # ... and as Arbiters, made when asked for
         self._changes = 0  # counts what changes the space: forks of an unchanged engine share a snapshot
         self._snapshot = None
         self._read_bodies()
@@ -152,7 +153,9 @@ class Engine:
     def arbiters_internal(self):
         """The slider's contacts after the last step (:class:`~.contacts.Arbiters`, internal units)."""
         if self._arbiters is None:
-            self._arbiters = Arbiters(self._native.read_arbiters(), self.layout)
+            if self._contacts is None:
+                self._contacts = self._native.read_arbiters()
+            self._arbiters = Arbiters(self._contacts, self.layout)
         return self._arbiters
 
     # -- stepping -----------------------------------------------------------
@@ -161,6 +164,7 @@ class Engine:
         layout, d, dt, load = self.layout, self.drive, self.dt_internal, self.load_internal
         native, switch = self._native, self.switch
         hooks, before_projection = self.step_hooks, self.projection_hooks
+        rows, slider_row = self._rows, layout.slider_row
         self._changes += 1
         for _ in range(n):
             if d.spring:
@@ -173,17 +177,18 @@ class Engine:
                 x_d = d.origin + d.v * (self.step_count + 1) * dt
                 native.step(dt, d.k * (x_d - (x + vx * dt)) + d.c * (d.v - vx), -load)
             else:
-                native.step(dt, d.force, -load)
+                native.step(dt, d.force, -load)  # the step reads every body into rows
             self.step_count += 1
-            rows = self._read_bodies()
+            self._slider = rows[slider_row].tolist()
             for hook in before_projection:
                 hook(rows)
             self._project(rows)
+            self._arbiters = None
             if switch.active:
-                self._arbiters = Arbiters(native.read_arbiters(), layout)
-                switch.update(self._arbiters, rows, layout)
+                self._contacts = contacts = native.read_arbiters()
+                switch.update(contacts, rows, layout)
             else:
-                self._arbiters = None
+                self._contacts = None
             for hook in hooks:
                 hook()
 
@@ -308,7 +313,8 @@ class Engine:
                 for _ in range(n):
                     fx = d.k * (d.origin - self._slider[0]) if d.spring else 0.0
                     native.step(dt, fx + (push_i if phase == "push" else 0.0), -load)
-                    self._project(self._read_bodies())
+                    self._slider = self._rows[layout.slider_row].tolist()
+                    self._project(self._rows)
                 done += n
                 calm = calm + 1 if float(np.abs(self._rows[:, 2:]).max()) < rest_speed else 0
                 if on_steps is not None:
@@ -321,9 +327,10 @@ class Engine:
             b.velocity = (0.0, 0.0)
         body.velocity = (0.0, 0.0)
         rows = self._read_bodies()
+        self._contacts = self._arbiters = None  # the contacts have changed since the last read
         if self.switch.active:  # contacts at rest start stuck, with mu_static
-            self._arbiters = Arbiters(self._native.read_arbiters(), layout)
-            self.switch.update(self._arbiters, rows, layout)
+            self._contacts = self._native.read_arbiters()
+            self.switch.update(self._contacts, rows, layout)
         return spent * self.dt
 
     def _lower_track(self, fraction: float) -> None:
@@ -350,6 +357,6 @@ class Engine:
         out.drive.__dict__.update(self.drive.__dict__)
         out.step_hooks, out.projection_hooks = [], []
         out._native = None
-        out._arbiters = None
+        out._contacts = out._arbiters = None
         out._read_bodies()
         return out

@@ -49,9 +49,12 @@ class Native:
         self._arbiters, self._arb_data = arbiters, _data(arbiters, arbiter_fields)
 
     def step(self, dt: float, fx: float, fy: float) -> None:
-        """Set the body's force to ``(fx, fy)`` and advance the space by ``dt``."""
+        """Set the body's force to ``(fx, fy)``, advance the space by ``dt`` and read every
+        body into the bodies buffer (as :meth:`read_bodies`)."""
         lib.cpBodySetForce(self._body, (fx, fy))
         lib.cpSpaceStep(self._space, dt)
+        self._bodies._float_arr.num = 0
+        lib.cpSpaceEachBody(self._space, _GET_BODY, self._body_data)
 
     def read_bodies(self) -> None:
         """Every body's fields into the bodies buffer (as ``batch.get_space_bodies``)."""
