@@ -5,6 +5,8 @@
 * :mod:`.space` — building the space (:func:`~.space.build` -> :class:`~.space.Layout`), and
 * :mod:`.contacts` — one batch read of the contacts per step, the stick/slip
   switch and the contact forces;
+* :mod:`.native` — the per-step calls into Chipmunk (step, force, batched
+  reads) without pymunk's per-call Python layer;
 * :mod:`.energy` — per-step energy accounting (:class:`~.energy.EnergyMeter`);
 * :mod:`.belt` — masses on a moving belt, for cross-checks of the exact solver.
 """
