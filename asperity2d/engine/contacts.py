@@ -52,11 +52,7 @@ class Arbiters:
 
     def pairs(self) -> list[tuple[int, float, float]]:
         """``(lower index, nx, ny)`` of every touching contact (index -1: the floor)."""
-        # Every arbiter is the slider against a lower asperity or the floor (shape
-        # filters), so a + b - slider is the other body's id.
-        ints, floats, sid, index = self._ints, self._floats, self._slider_id, self._index
-        return [(index.get(ints[k] + ints[k + 1] - sid, -1), floats[2 * k + 2], floats[2 * k + 3])
-                for k in range(0, len(ints), 3) if ints[k + 2]]
+        return pairs((self._ints, self._floats), self._slider_id, self._index)
 
     def forces(self, dt: float) -> tuple[float, float, float, int, float]:
         """``(fx, fy, f_tangential, count, max_overlap)`` on the slider (internal units).
@@ -106,6 +102,16 @@ class Arbiters:
         mask = np.zeros(n, dtype=bool)
         mask[[i for i, _, _ in self.pairs() if i >= 0]] = True
         return mask
+
+
+def pairs(contacts: tuple[list[int], list[float]], slider_id: int, index: dict) -> list[tuple[int, float, float]]:
+    """``(lower index, nx, ny)`` of every touching contact in one read of the contacts
+    (:meth:`.native.Native.read_arbiters`); index -1: the floor."""
+    # Every arbiter is the slider against a lower asperity or the floor (shape
+    # filters), so a + b - slider is the other body's id.
+    ints, floats = contacts
+    return [(index.get(ints[k] + ints[k + 1] - slider_id, -1), floats[2 * k + 2], floats[2 * k + 3])
+            for k in range(0, len(ints), 3) if ints[k + 2]]
 
 
 class StickSlip:
@@ -170,25 +176,20 @@ class StickSlip:
         :class:`Arbiters` holds); ``rows`` are the bodies' ``[x, y, vx, vy]`` after the step
         (internal units).
         """
-        # the contacts' slip speeds, read as in Arbiters.pairs (inlined: this runs every step)
-        (ints, floats), sid, index = contacts, layout.slider_id, layout.lower_index
+        touching = pairs(contacts, layout.slider_id, layout.lower_index)
         present = self._present
-        slips: dict[int, float] = {}
-        if ints:
-            r = layout.slider_row
-            svx, svy = rows.item(r, 2), rows.item(r, 3)
-            row_of = layout.lower_row_of
-            for k in range(0, len(ints), 3):
-                if not ints[k + 2]:
-                    continue
-                i = index.get(ints[k] + ints[k + 1] - sid, -1)
-                if i >= 0:
-                    r, nx, ny = row_of[i], floats[2 * k + 2], floats[2 * k + 3]
-                    slip = abs((svx - rows.item(r, 2)) * ny - (svy - rows.item(r, 3)) * nx)
-                    if slip > slips.get(i, -1.0):  # a lower asperity may touch two tips
-                        slips[i] = slip
-        if not slips and not present:
+        if not touching and not present:
             return
+        r = layout.slider_row
+        svx, svy = rows.item(r, 2), rows.item(r, 3)
+        row_of = layout.lower_row_of
+        slips: dict[int, float] = {}
+        for i, nx, ny in touching:
+            if i >= 0:
+                r = row_of[i]
+                slip = abs((svx - rows.item(r, 2)) * ny - (svy - rows.item(r, 3)) * nx)
+                if slip > slips.get(i, -1.0):  # a lower asperity may touch two tips
+                    slips[i] = slip
         stuck, slid, mu_now = self._stuck, self._slid, self._mu
         v_stick, mu_s, mu_k = self.stick_speed, self.mu_static, self.mu_kinetic
         for i in present:

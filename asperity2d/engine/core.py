@@ -209,10 +209,11 @@ class Engine:
             if not isinstance(rows, slice):  # pymunk keeps bodies in insertion order
                 raise RuntimeError("the lower asperities are not contiguous in the batch rows")
             self._lower_x = self._rows[rows, 0]  # a view: it follows every read
-            self._lower_off = np.empty(len(self.layout.lower_bodies))
-            # the same track positions as a list, for the small-N drift check in _project
-            self._lower_x0 = (self.layout.lower_x0.tolist()
-                              if len(self.layout.lower_bodies) <= SMALL_N else None)
+            # the drift check in _project: track positions as a list for a few asperities,
+            # else a scratch array for NumPy
+            small = len(self.layout.lower_bodies) <= SMALL_N
+            self._lower_x0 = self.layout.lower_x0.tolist() if small else None
+            self._lower_off = None if small else np.empty(len(self.layout.lower_bodies))
         native.read_bodies()
         self._slider = self._rows[self.layout.slider_row].tolist()
         return self._rows
