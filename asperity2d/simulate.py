@@ -255,21 +255,26 @@ class Run:
         put in since (internal units; also catches NaN and inf)."""
         e = self.engine
         layout, d = e.layout, e.drive
-        kinetic = 0.5 * float(np.dot(layout.masses, np.einsum("ij,ij->i", rows[:, 2:], rows[:, 2:])))
-        sx, sy = rows.item(layout.slider_row, 0), rows.item(layout.slider_row, 1)
-        if self._energy is None:
+        b = self._energy
+        if b is None:
+            v = rows[:, 2:]  # views of the engine's body rows, which it rewrites in place
+            kinetic = 0.5 * float(np.dot(layout.masses, np.einsum("ij,ij->i", v, v)))
+            sx, sy = rows.item(layout.slider_row, 0), rows.item(layout.slider_row, 1)
             k = np.asarray(self.scene.lower.stiffness) / e.units.stiffness
             potential = 0.5 * float(np.dot(k, rows[layout.lower_rows, 1] ** 2))
             if d.spring:
                 potential += 0.5 * d.k * (d.position(e.step_count, e.dt_internal) - sx) ** 2
             floor = 1e-3 * 0.5 * float(k.min()) * layout.lower_height ** 2
             self._energy = {"held": kinetic + potential + floor, "input": 0.0, "x": sx, "y": sy,
-                            "f": abs(drive_force), "step": e.step_count, "heights": rows[:, 1].copy()}
+                            "f": abs(drive_force), "step": e.step_count, "heights": rows[:, 1].copy(),
+                            "v": v, "rows": rows, "g": -layout.space.gravity.y}
             return
-        b = self._energy
+        v = b["v"] if rows is b["rows"] else rows[:, 2:]
+        kinetic = 0.5 * float(np.dot(layout.masses, np.einsum("ij,ij->i", v, v)))
+        r = layout.slider_row
+        sx, sy, svx, svy = rows.item(r, 0), rows.item(r, 1), rows.item(r, 2), rows.item(r, 3)
         steps = e.step_count - b["step"]
-        svx, svy = rows.item(layout.slider_row, 2), rows.item(layout.slider_row, 3)
-        g = -layout.space.gravity.y
+        g = b["g"]
         if d.spring:  # the far end's power |F| |v| over the samples' interval, F at its larger end
             b["input"] += max(b["f"], abs(drive_force)) * abs(d.v) * steps * e.dt_internal
         else:
@@ -281,8 +286,10 @@ class Run:
         b["x"], b["y"], b["f"], b["step"] = sx, sy, abs(drive_force), e.step_count
         # pymunk moves a body with its old velocity, then updates the velocity: kinetic energy is
         # ahead of the displacement that paid for it by one step, so allow one step of that work
+        # (gravity's share only with gravity: without, a NaN or inf velocity already makes the
+        # kinetic energy fail the test below)
         ahead = e.dt_internal * ((0.0 if d.spring else abs(d.force * svx)) + e.load_internal * abs(svy)
-                                 + g * float(np.dot(layout.masses, np.abs(rows[:, 3]))))
+                                 + (g * float(np.dot(layout.masses, np.abs(rows[:, 3]))) if g else 0.0))
         limit = ENERGY_FACTOR * (b["held"] + b["input"] + ahead)
         if not kinetic <= limit:  # also true for NaN
             u = e.units
@@ -292,30 +299,37 @@ class Run:
                 f"was given; use a smaller dt (now {self.dt:.3g} s, default T/50) or more iterations",
                 time=e.time)
 
-    def _guard(self) -> tuple:
-        """Check the engine's current state has not diverged (kinetic energy, overlap) and
-        return ``(rows, sx, sy, svx, svy, drive_force, arbiters, forces)`` (internal units)."""
-        e = self.engine
-        rows = e.bodies_internal()
-        sx, sy, svx, svy = rows[e.layout.slider_row].tolist()
-        drive_force = e.drive_force_internal(sx, svx)
+    def _guard(self, rows: np.ndarray, drive_force: float, overlap: float) -> None:
+        """Raise SimulationError if the run has diverged: kinetic energy (:meth:`_check_energy`)
+        or asperities overlapping by ``overlap`` (base lengths) over ``MAX_OVERLAP``."""
         self._check_energy(rows, drive_force)
-        arbiters = e.arbiters_internal()
-        forces = arbiters.forces(e.dt_internal)
-        if forces[4] > MAX_OVERLAP:
+        if overlap > MAX_OVERLAP:
+            e = self.engine
             raise SimulationError(
-                f"run diverged at t = {e.time:.6g} s: asperities overlap by {forces[4]:.2f} of a base; "
+                f"run diverged at t = {e.time:.6g} s: asperities overlap by {overlap:.2f} of a base; "
                 f"use a smaller dt (now {self.dt:.3g} s) or more iterations", time=e.time)
-        self.max_overlap = max(self.max_overlap, forces[4])
-        return rows, sx, sy, svx, svy, drive_force, arbiters, forces
+        if overlap > self.max_overlap:
+            self.max_overlap = overlap
+
+    def _check(self) -> None:
+        """The divergence guard alone on the engine's current state (a run that keeps no record)."""
+        e = self.engine
+        rows, r = e.bodies_internal(), e.layout.slider_row
+        self._guard(rows, e.drive_force_internal(rows.item(r, 0), rows.item(r, 2)),
+                    e.arbiters_internal().max_overlap())
 
     def _sample(self) -> None:
         """Record the engine's current state (internal units) and check it has not diverged."""
         e = self.engine
         if e.step_count == self._last_sampled_step:
             return
-        rows, sx, sy, svx, svy, drive_force, arbiters, (fx, fy, ft, count, _) = self._guard()
+        rows = e.bodies_internal()
         layout = e.layout
+        sx, sy, svx, svy = rows[layout.slider_row].tolist()
+        drive_force = e.drive_force_internal(sx, svx)
+        arbiters = e.arbiters_internal()
+        fx, fy, ft, count, overlap = arbiters.forces(e.dt_internal)
+        self._guard(rows, drive_force, overlap)
         lower = rows[layout.lower_rows]
         dx = lower[:, 0] - layout.lower_x0
         drift = float(np.abs(dx).max()) if len(dx) and layout.tracked else 0.0
@@ -398,7 +412,7 @@ class Run:
         n_steps = int(math.ceil(duration / self.dt - 1e-9))
         probe = Probe(base=self.scene.base,
                       last_apex_x=float(e.layout.lower_apex_x[-1]) * e.units.length)
-        sample = self._sample if record else self._guard
+        sample = self._sample if record else self._check
         sample()
         if stops:
             self._probe(probe)

@@ -79,3 +79,16 @@ def test_native_refuses_a_body_pymunk_would_refuse():
     space.add(body)
     with pytest.raises(RuntimeError, match="mass"):
         Native(space, body, batch.Buffer(), BODY_FIELDS, batch.Buffer(), ARBITER_FIELDS)
+
+
+def test_the_friction_setter_sets_what_the_shape_reports():
+    """friction_setter makes pymunk's own cpShapeSetFriction call: the shapes read it back."""
+    from asperity2d.engine.native import friction_setter
+
+    scene = a.make_scene(lower_count=4, upper_count=1, drive="force")
+    shapes = Engine(scene, default_dt(scene)).layout.lower_shapes
+    before = [s.friction for s in shapes]
+    assert 0.625 not in before
+    set_friction = friction_setter(shapes)
+    set_friction(2, 0.625)
+    assert [s.friction for s in shapes] == before[:2] + [0.625] + before[3:]

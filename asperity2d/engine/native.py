@@ -1,7 +1,8 @@
 """The per-step calls into Chipmunk, without pymunk's per-call Python layer (part of the adapter).
 
 A run makes four calls into the physics engine every step: set the slider's
-force, ``cpSpaceStep``, read every body and read every contact. Through
+force, ``cpSpaceStep``, read every body and read every contact (and sets the
+friction coefficient of the shapes whose stick/slip state changed). Through
 pymunk's public API each call also pays for its Python bookkeeping:
 ``Space.step`` checks for bodies added since the last step and for objects
 queued for removal or post-step callbacks (the adapter adds and removes
@@ -75,6 +76,18 @@ class Native:
         ints.num = floats.num = 0
         lib.cpSpaceEachCachedArbiter(self._space, _GET_ARBITER, self._arb_data)
         return ffi.unpack(ints.arr, ints.num), ffi.unpack(floats.arr, floats.num)
+
+
+def friction_setter(shapes):
+    """A function ``set(i, mu)`` that sets ``shapes[i]``'s friction coefficient, the same
+    ``cpShapeSetFriction`` call as ``shapes[i].friction = mu`` without its Python layer."""
+    handles = [shape._shape for shape in shapes]
+    set_friction = lib.cpShapeSetFriction
+
+    def set(i: int, mu: float) -> None:
+        set_friction(handles[i], mu)
+
+    return set
 
 
 def _data(buf: batch.Buffer, fields):
