@@ -255,10 +255,10 @@ class Run:
         put in since (internal units; also catches NaN and inf)."""
         e = self.engine
         layout, d = e.layout, e.drive
+        v = rows[:, 2:]
+        kinetic = 0.5 * float(np.dot(layout.masses, np.einsum("ij,ij->i", v, v)))
         b = self._energy
         if b is None:
-            v = rows[:, 2:]  # views of the engine's body rows, which it rewrites in place
-            kinetic = 0.5 * float(np.dot(layout.masses, np.einsum("ij,ij->i", v, v)))
             sx, sy = rows.item(layout.slider_row, 0), rows.item(layout.slider_row, 1)
             k = np.asarray(self.scene.lower.stiffness) / e.units.stiffness
             potential = 0.5 * float(np.dot(k, rows[layout.lower_rows, 1] ** 2))
@@ -267,10 +267,8 @@ class Run:
             floor = 1e-3 * 0.5 * float(k.min()) * layout.lower_height ** 2
             self._energy = {"held": kinetic + potential + floor, "input": 0.0, "x": sx, "y": sy,
                             "f": abs(drive_force), "step": e.step_count, "heights": rows[:, 1].copy(),
-                            "v": v, "rows": rows, "g": -layout.space.gravity.y}
+                            "g": -layout.space.gravity.y}
             return
-        v = b["v"] if rows is b["rows"] else rows[:, 2:]
-        kinetic = 0.5 * float(np.dot(layout.masses, np.einsum("ij,ij->i", v, v)))
         r = layout.slider_row
         sx, sy, svx, svy = rows.item(r, 0), rows.item(r, 1), rows.item(r, 2), rows.item(r, 3)
         steps = e.step_count - b["step"]

@@ -53,6 +53,21 @@ def test_an_unrecorded_advance_stops_where_a_recorded_one_does(force, status):
     assert bare.max_overlap == recorded.max_overlap
 
 
+def test_an_unrecorded_advance_catches_a_divergence_at_the_step_a_recorded_one_does():
+    """The guard of a run that keeps no record (the bisection's) is the recorded run's guard:
+    a step too coarse to be stable (T/2, forced) diverges, and both raise at the same time."""
+    scene = a.make_scene(**SMALL)
+    dt = scene.shortest_period() / 2
+    errors = []
+    for record in (True, False):
+        run = Run(scene, dt=dt, unsafe_dt=True)
+        with pytest.raises(a.SimulationError, match="smaller dt") as info:
+            run.advance(2e-7, record=record)
+        errors.append(info.value)
+    assert 0 < errors[0].time == errors[1].time < 2e-7
+    assert str(errors[0]) == str(errors[1])
+
+
 def test_a_stop_condition_instance_can_serve_several_runs():
     scene = a.make_scene(drive="force", drive_force=1e-4, **SMALL)  # stops on the first flank
     stuck = Stuck(speed=0.5, dwell=2e-9)
