@@ -23,7 +23,7 @@ as soon as the slider is stuck or has passed the last lower apex. Three starts:
 A free slider starts on the surface and first comes down under its load
 (every start; ``"entry"`` is then the same as ``"rest"``).
 The scene is settled once and every bisection run is a fork of that settled
-run (:meth:`asperity2d.simulate.Run.fork`), so forks are bit-identical to each
+run (:meth:`asperity2d.run.Run.fork`), so forks are bit-identical to each
 other and settling is not repeated.
 """
 
@@ -35,7 +35,7 @@ from dataclasses import dataclass
 from ._validate import check_choice, check_int, check_positive
 from .errors import SceneError
 from .scene import ConstantForce, Scene
-from .simulate import MAX_STEPS, Run, default_duration, default_stops
+from .run import MAX_STEPS, Run, default_duration, default_stops
 
 STARTS = ("rest", "entry", "run-up")
 #: The settling push of ``start="rest"``, as a fraction of the flank-law estimate.
@@ -84,7 +84,7 @@ def flank_estimate(scene: Scene) -> float:
 
 def settled_run(scene: Scene, *, start: str = "rest", dt: float | None = None, iterations: int = 20,
                 max_steps: int | None = None):
-    """A :class:`~asperity2d.simulate.Run` of ``scene`` with its drive replaced by a zero
+    """A :class:`~asperity2d.run.Run` of ``scene`` with its drive replaced by a zero
     constant force, settled for ``start`` (see the module doc): fork it and set the force."""
     check_choice("start", start, STARTS)
     run = Run(scene.replace(drive=ConstantForce(force=0.0)), dt=dt, iterations=iterations,

@@ -29,7 +29,7 @@ TRACKS = ("free", "fixed")
 #: surface was constrained to move on a horizontal track") with its tips a
 #: quarter of the asperity height into the lower surface, pulled through a
 #: spring. The drive speed is the quasi-static limit at this scale (see
-#: :mod:`asperity2d.quasistatic`).
+#: :mod:`asperity2d.experiments.quasistatic`).
 SEED_000 = {
     "base": 1e-6,  # m, Table 1
     "flank_angle": 45.0,  # degrees

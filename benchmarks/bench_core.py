@@ -11,7 +11,7 @@ surface, and step the same number of steps:
 
 * ``bare``: that hand-written loop on a copy of the space (the same physics
   minus our stick/slip switch and track projection);
-* ``run``: :meth:`asperity2d.simulate.Run.advance` recording every 10th step
+* ``run``: :meth:`asperity2d.run.Run.advance` recording every 10th step
   (what :func:`asperity2d.simulate` does).
 
 CPU time (``time.process_time``), interleaved repeats, medians; the ratio
@@ -28,8 +28,8 @@ import statistics
 import time
 
 import asperity2d as a
-from asperity2d.quasistatic import accelerated
-from asperity2d.simulate import Run
+from asperity2d.experiments.quasistatic import accelerated
+from asperity2d.run import Run
 
 TARGETS = {10: 2.0, 100: 1.5, 1000: 1.5, "steel": 2.0}
 

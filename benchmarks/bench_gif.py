@@ -1,13 +1,13 @@
 """Animated GIF, drawing and encoding: Pillow + imageio against a well-built matplotlib loop.
 
 Both sides draw the very same pixel-space shapes
-(:func:`asperity2d.render.animate.frame_shapes` of one real run), the same
+(:func:`asperity2d.renderers.animate.frame_shapes` of one real run), the same
 number of frames at the same size, and both encode a GIF with the same
 imageio writer (its Pillow plugin):
 
 * **Pillow** (what ``render(result, "run.gif")`` does): ``ImageDraw`` on
-  palette images (:func:`~asperity2d.render.animate.draw_frame`), then
-  :func:`~asperity2d.render.animate.encode` (palette frames as drawn).
+  palette images (:func:`~asperity2d.renderers.animate.draw_frame`), then
+  :func:`~asperity2d.renderers.animate.encode` (palette frames as drawn).
 * **matplotlib**, done as a user who cares about speed would: the figure and
   its artists are built once (a ``PolyCollection`` per surface, a
   ``LineCollection`` for the tracks, rectangles, a line and texts, with
@@ -46,7 +46,7 @@ sys.path.insert(0, str(HERE.parent))
 
 import asperity2d as a  # noqa: E402
 from asperity2d._io import atomic_write_text  # noqa: E402
-from asperity2d.render import animate  # noqa: E402
+from asperity2d.renderers import animate  # noqa: E402
 
 FPS = 20.0
 TARGET = 20.0

@@ -20,8 +20,8 @@ import statistics
 import time
 from pathlib import Path
 
-from asperity2d import quasistatic as qs
-from asperity2d.simulate import Run
+from asperity2d.experiments import quasistatic as qs
+from asperity2d.run import Run
 
 
 def _scene(**overrides):

@@ -40,14 +40,14 @@ import json, sys, time
 import asperity2d as a
 setup, what, seeds, new = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4] == "new"
 size = {"lower_count": 16, "upper_count": 4, "track": setup}
-import asperity2d.compare, asperity2d.critical, asperity2d.simulate  # imports outside the clock (lazy now)
+import asperity2d.experiments.compare, asperity2d.critical, asperity2d.run  # imports outside the clock (lazy now)
 # Warm-up outside the clock, the same call on both sides: a critical force of a 3/1 scene (first-use
 # imports such as tqdm.auto and first calls into pymunk are paid here, as timeit's warm-up would).
 tiny = a.make_scene(drive="force", lower_count=3, upper_count=1, track=setup)
 a.critical_force(tiny, start="run-up") if new else a.critical_force(tiny)
 runs = []  # (internal force, steps) of each run of the new code, for the zero-overhead bound
 if new and what == "critical":
-    from asperity2d.simulate import Run
+    from asperity2d.run import Run
     _advance = Run.advance
     def counted(self, duration, **kw):
         n0 = self.engine.step_count

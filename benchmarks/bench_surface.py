@@ -41,7 +41,7 @@ import numpy as np
 
 from asperity2d import make_scene
 from asperity2d.engine.space import build
-from asperity2d.simulate import default_dt
+from asperity2d.run import default_dt
 from asperity2d.surface import find_asperities, read_profile, self_affine_profile
 from asperity2d.units import Units, check_scales
 

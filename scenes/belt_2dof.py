@@ -5,7 +5,7 @@ Run: ``python scenes/belt_2dof.py [--quick] [--out DIR]``; writes plots and ``be
 
 import numpy as np
 
-from asperity2d.studies import seed001 as S
+from asperity2d.studies import mdof_belt as S
 
 
 def study(quick):

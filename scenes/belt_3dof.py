@@ -3,7 +3,7 @@
 Run: ``python scenes/belt_3dof.py [--quick] [--out DIR]``; writes plots and ``belt_3dof.json``.
 """
 
-from asperity2d.studies import seed001 as S
+from asperity2d.studies import mdof_belt as S
 
 
 def study(quick):

@@ -28,9 +28,9 @@ from asperity2d.belt import presets, simulate_chain
 from asperity2d.dynamics import chain_lyapunov, floquet, flow_map
 from asperity2d.dynamics.basins import (LABELS, RUN_CPU_LIMIT, chain_basins, classify_chain, cpu_limit,
                                         with_initial)
-from asperity2d.dynamics.plots import plot_basins
-from asperity2d.render.sound import write_wav
-from asperity2d.studies import scripting
+from asperity2d.renderers.dynamics import plot_basins
+from asperity2d.renderers.sound import write_wav
+from asperity2d.cli import scripting
 
 X_RANGE = (-0.3, 0.9)  # m: around mass 1's equilibrium under kinetic friction, 0.294 m
 V_RANGE = (-0.6, 0.6)  # m/s

@@ -6,7 +6,7 @@ The per-table scripts ``belt_stiffness.py`` ... call this with ``--only``.
 
 import numpy as np
 
-from asperity2d.studies import seed001 as S
+from asperity2d.studies import mdof_belt as S
 from asperity2d.studies.claims import claim
 
 DEC = lambda v: bool(np.all(np.diff(v) < 0))  # noqa: E731

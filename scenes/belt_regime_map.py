@@ -13,7 +13,7 @@ import numpy as np
 from asperity2d._io import atomic_write_text
 from asperity2d.belt.presets import preset
 from asperity2d.belt.regime import regime_map
-from asperity2d.studies.seed001 import renders
+from asperity2d.studies.mdof_belt import renders
 from asperity2d.friction import Stribeck
 
 
@@ -35,7 +35,7 @@ def main(argv=None) -> int:
                                  "boundary": "steady sliding linearly unstable where c < -N mu'(v_belt)"},
                "table2_3dof": tmap.to_dict()}
     if not args.quick:
-        from asperity2d.belt.plots import plot_regime_map
+        from asperity2d.renderers.belt import plot_regime_map
 
         summary["plots"] = [str(plot_regime_map(smap, args.out / "regime_stribeck.png")),
                             str(plot_regime_map(tmap, args.out / "regime_table2.png"))]

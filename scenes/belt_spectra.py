@@ -23,13 +23,13 @@ steady window (0.005 Hz bins at 400 s) separates them.
 
 import numpy as np
 
-from asperity2d.studies import scripting
+from asperity2d.cli import scripting
 from asperity2d.belt import presets, simulate_chain
 from asperity2d.dynamics import signal, spectrum
 from asperity2d.dynamics.basins import LABELS, classify_chain
-from asperity2d.dynamics.plots import plot_spectra
-from asperity2d.render.plots import figure, save
-from asperity2d.render.sound import write_wav
+from asperity2d.renderers.dynamics import plot_spectra
+from asperity2d.renderers.plots import figure, save
+from asperity2d.renderers.sound import write_wav
 
 SPEEDS = (0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 1.0)
 QUICK_SPEEDS = (0.1, 0.7)

@@ -11,7 +11,7 @@ figure 10 analogue), a GIF of the run that passes, and summary.json.
 from __future__ import annotations
 
 import asperity2d as a
-from asperity2d.studies import scripting
+from asperity2d.cli import scripting
 from asperity2d.critical import critical_force_bracket
 
 
@@ -30,8 +30,8 @@ def main(argv=None) -> int:
     for label, factor in (("below", 0.95), ("above", 1.05)):
         force = factor * bracket.value
         runs[label] = a.simulate(scene.replace(drive=a.ConstantForce(force=force)))
-    from asperity2d.render import render
-    from asperity2d.render.plots import plot_positions
+    from asperity2d.renderers import render
+    from asperity2d.renderers.plots import plot_positions
 
     plot_positions([runs["below"], runs["above"]],
                    [f"0.95 x critical ({runs['below'].status})", f"1.05 x critical ({runs['above'].status})"],

@@ -25,8 +25,8 @@ from __future__ import annotations
 import numpy as np
 
 import asperity2d as a
-from asperity2d.studies import scripting
-from asperity2d.quasistatic import SEED_DRIVE_VELOCITY, plot_position_velocity
+from asperity2d.cli import scripting
+from asperity2d.experiments.quasistatic import SEED_DRIVE_VELOCITY, plot_position_velocity
 
 K = 37_200.0  # N/m, seed 000 Table 1 (all springs)
 MASS = 2.88e-16  # kg, seed 000 Table 1 (all peaks and the slider)

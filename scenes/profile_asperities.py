@@ -29,7 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
-from asperity2d.studies import scripting
+from asperity2d.cli import scripting
 from asperity2d._io import atomic_write_text
 from asperity2d import surface
 

@@ -23,9 +23,9 @@ from __future__ import annotations
 import math
 
 import asperity2d as a
-from asperity2d.studies import scripting
-from asperity2d.compare import measure_label
-from asperity2d.render.plots import plot_comparison
+from asperity2d.cli import scripting
+from asperity2d.experiments.compare import measure_label
+from asperity2d.renderers.plots import plot_comparison
 from asperity2d.studies import claims
 
 MEASURES = ("critical", "peak-stick")

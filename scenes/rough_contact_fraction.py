@@ -43,7 +43,7 @@ import math
 import numpy as np
 
 from asperity2d import make_scene
-from asperity2d.studies import scripting
+from asperity2d.cli import scripting
 from asperity2d.studies.claims import claim, verdict_line
 from asperity2d.studies.rough import rough_run
 from asperity2d.sweep.executors import map_calls
@@ -125,7 +125,7 @@ def analyse(rows: list[dict], size: dict, levels, n_seeds: int) -> tuple[dict, l
 
 
 def plot(table: dict, path) -> None:
-    from asperity2d.render.plots import figure, save
+    from asperity2d.renderers.plots import figure, save
 
     fig, (ax,) = figure(1, width=6.5, height=3.6)
     grid = np.linspace(MEAN - 2.2 * STD, MEAN + 2.2 * STD, 200)

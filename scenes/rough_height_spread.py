@@ -44,7 +44,7 @@ import numpy as np
 
 from asperity2d import stats
 from asperity2d.scene import SEED_000, kinetic_default
-from asperity2d.studies import scripting
+from asperity2d.cli import scripting
 from asperity2d.studies.claims import HOLDS, UNTESTABLE, claim, judge, verdict_line
 from asperity2d.studies.rough import rough_run, spearman, trend_claim
 from asperity2d.sweep.executors import map_calls
@@ -136,7 +136,7 @@ def analyse(setup: str, rows: list[dict], spreads) -> tuple[dict, list[dict]]:
 
 
 def plot(results: dict, path) -> None:
-    from asperity2d.render.plots import figure, save
+    from asperity2d.renderers.plots import figure, save
 
     fig, axes = figure(2, width=9.0, height=3.0, sharex=True)
     for ax, q, label in ((axes[0], "critical_force_N", "critical force (mN)"),

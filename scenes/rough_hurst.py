@@ -40,7 +40,7 @@ import numpy as np
 
 from asperity2d import stats
 from asperity2d.scene import SEED_000, kinetic_default
-from asperity2d.studies import scripting
+from asperity2d.cli import scripting
 from asperity2d.studies.claims import UNTESTABLE, claim, verdict_line
 from asperity2d.studies.rough import self_affine_run, spearman, trend_claim
 from asperity2d.sweep.executors import map_calls
@@ -101,7 +101,7 @@ def analyse(setup: str, rows: list[dict], hursts, load: float) -> tuple[dict, li
 
 
 def plot(results: dict, path) -> None:
-    from asperity2d.render.plots import figure, save
+    from asperity2d.renderers.plots import figure, save
 
     fig, axes = figure(3, width=8.0, height=2.6, sharex=True)
     for ax, q, label, scale in ((axes[0], "critical_force_N", "critical force (mN)", 1e3),

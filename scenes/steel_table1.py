@@ -17,7 +17,7 @@ to overlap 4 % of a base. At 1 mN per tip overlap stays ~1 %.
 
 Real time costs ~1.8e7 steps per µm, so the drive is sped up. Whether that
 changes the result is measured on a ladder of speed-ups (x4000, x2000, x1000,
-x500: :func:`asperity2d.quasistatic.convergence_ladder`) for the stick force,
+x500: :func:`asperity2d.experiments.quasistatic.convergence_ladder`) for the stick force,
 first breakaway, force drop, slip distance and -- set by the slip's dynamics
 -- slip duration and energy dissipated per cycle; ``converged`` in the JSON
 means every quantity is within ``--tolerance`` of the slowest rung at the
@@ -33,8 +33,8 @@ from __future__ import annotations
 import math
 
 import asperity2d as a
-from asperity2d import quasistatic as qs
-from asperity2d.studies import scripting
+from asperity2d.experiments import quasistatic as qs
+from asperity2d.cli import scripting
 
 TABLE1 = dict(base=1e-6, mass=2.88e-16, stiffness=37_200.0, flank_angle=45.0)
 FACTOR = 2000.0

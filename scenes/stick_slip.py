@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 
 import asperity2d as a
-from asperity2d.studies import scripting
+from asperity2d.cli import scripting
 
 
 def build_scene(quick: bool = False, **overrides):
@@ -35,7 +35,7 @@ def main(argv=None) -> int:
     result.save(out / "run.npz")
     from asperity2d.analysis import (breakaway_force, event_statistics, mean_stick_force,
                                      peak_stick_force, stick_slip_events)
-    from asperity2d.render import render
+    from asperity2d.renderers import render
 
     events = stick_slip_events(result)
     render(result, out / "timeseries.png", events=events)

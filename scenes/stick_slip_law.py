@@ -28,9 +28,9 @@ from __future__ import annotations
 import numpy as np
 
 import asperity2d as a
-from asperity2d import fitting as ft
-from asperity2d.studies import scripting
-from asperity2d import tribometer as tb
+from asperity2d.friction import fits as ft
+from asperity2d.cli import scripting
+from asperity2d.experiments import tribometer as tb
 from asperity2d import stats
 from asperity2d.studies import claims
 from asperity2d.sweep.executors import map_calls
@@ -64,7 +64,7 @@ def _describe(result, law) -> dict:
 
 
 def _plot(table, path):
-    from asperity2d.render.plots import figure, save
+    from asperity2d.renderers.plots import figure, save
 
     fig, (ax_gap, ax_period) = figure(2, height=2.6, sharex=False)
     regular = table["regular"][0]

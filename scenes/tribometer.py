@@ -16,14 +16,14 @@ from __future__ import annotations
 import numpy as np
 
 import asperity2d as a
-from asperity2d import fitting as ft
-from asperity2d.studies import scripting
-from asperity2d import tribometer as tb
+from asperity2d.friction import fits as ft
+from asperity2d.cli import scripting
+from asperity2d.experiments import tribometer as tb
 from asperity2d.errors import SimulationError
 
 
 def _plots(curve, loops, fits, path):
-    from asperity2d.render.plots import figure, save
+    from asperity2d.renderers.plots import figure, save
 
     fig, (ax_v, ax_x) = figure(2, height=3.0, sharex=False)
     ok = ft.steady_mask(curve)
@@ -87,7 +87,7 @@ def _stick_slip_periods(stribeck, *, quick: bool) -> tuple:
 
 def _period_plot(periods, path):
     """Stick-slip period in pitches against drive stiffness: asperities vs belt solver."""
-    from asperity2d.render.plots import figure, save
+    from asperity2d.renderers.plots import figure, save
 
     fig, (ax,) = figure(1, height=3.0)
     line = periods["belt_curve"]
@@ -115,9 +115,9 @@ def _macroscopic_chain(law, out) -> dict:
     import json
 
     from asperity2d._io import atomic_write_text
-    from asperity2d.belt import cli as belt_cli
+    from asperity2d.cli import belt as belt_cli
     from asperity2d.belt import presets, simulate_chain
-    from asperity2d.belt.plots import plot_chain
+    from asperity2d.renderers.belt import plot_chain
 
     chain = {k: v for k, v in presets.preset("table2-3dof-rest", t_end=120.0).items() if k not in ("mu_s", "mu_k")}
     lines = ["# seed 001 Table 2 chain (from rest) with friction measured on the asperities"]

@@ -3,7 +3,7 @@
 import json
 from pathlib import Path
 
-from asperity2d.cli import _load_script
+from asperity2d.cli.main import _load_script
 
 SCENES = Path(__file__).resolve().parent.parent / "scenes"
 

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from asperity2d.belt import simulate_chain
-from asperity2d.engine.belt import simulate_chain_rigid
+from belt_pymunk import simulate_chain_rigid
 
 
 def _long(intervals, t_max, min_length):

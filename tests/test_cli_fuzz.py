@@ -32,9 +32,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from asperity2d import SceneError
-from asperity2d._commands import scene_from_toml
-from asperity2d.belt.cli import ALLOWED as CHAIN_KEYS
-from asperity2d.belt.cli import load_chain
+from asperity2d.cli.asperity import scene_from_toml
+from asperity2d.cli.belt import ALLOWED as CHAIN_KEYS
+from asperity2d.cli.belt import load_chain
 from asperity2d.cli import main
 
 FAST = settings(max_examples=40, deadline=None, derandomize=True,

@@ -35,7 +35,7 @@ def make_files(root: Path) -> dict[str, str]:
     """Write every hostile (and a few valid) input under ``root``; return name -> path."""
     import asperity2d as a
     from asperity2d import _io
-    from asperity2d.compare import Comparison
+    from asperity2d.experiments.compare import Comparison
     from asperity2d.sweep import ResultStore, Study
 
     root.mkdir(parents=True, exist_ok=True)
@@ -90,11 +90,11 @@ def make_files(root: Path) -> dict[str, str]:
     Comparison(values={"regular": (1.0, 2.0)}, seeds=(0, 1)).save(root / "comparison.json")
     f["comparison.json"] = str(root / "comparison.json")
     put("comparison_bad.json", '{"format": "asperity2d.comparison/1", "values": 5}')
-    put("study.toml", 'name = "hostile"\nrun = "asperity2d.studies.seed000:critical_force_run"\nseeds = 1\n'
+    put("study.toml", 'name = "hostile"\nrun = "asperity2d.studies.ooten:critical_force_run"\nseeds = 1\n'
                       '[grid]\nspacing = ["regular"]\n')
     put("study.txt", "name = 1\n")
     store = ResultStore(root / "store")
-    store.begin_session(Study.from_dict({"name": "hostile", "run": "asperity2d.studies.seed000:critical_force_run",
+    store.begin_session(Study.from_dict({"name": "hostile", "run": "asperity2d.studies.ooten:critical_force_run",
                                          "seeds": 1, "grid": {"spacing": ["regular"]}}), executor="test")
     f["store"] = str(root / "store")
     f["missing"] = str(root / "missing")

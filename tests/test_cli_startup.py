@@ -46,16 +46,16 @@ def test_nothing_heavy_is_loaded_before_first_use(code):
 
 
 def test_public_names_resolve_on_first_use_and_are_the_real_objects():
-    code = ("import asperity2d as a, asperity2d.simulate, asperity2d.compare, asperity2d.render.plots\n"
-            "from asperity2d.simulate import simulate\nfrom asperity2d.compare import compare\n"
-            "from asperity2d.render import render\n"
+    code = ("import asperity2d as a, asperity2d.run, asperity2d.experiments.compare, asperity2d.renderers.plots\n"
+            "from asperity2d.run import simulate\nfrom asperity2d.experiments.compare import compare\n"
+            "from asperity2d.renderers import render\n"
             "assert a.simulate is simulate and a.compare is compare and a.render is render\n"
             "assert a.make_scene.__module__ == 'asperity2d.builders'\n"
             "ns = {}\nexec('from asperity2d import *', ns)\n"
             "assert set(a.__all__) <= set(ns) and set(a.__all__) <= set(dir(a))\n"
             "assert {'belt', 'sweep', 'friction'} <= set(dir(a))")
-    # the function wins over its module even when the module was imported first; the
-    # asserts run in the child, whose exit status _loaded checks
+    # no module shares a public function's name, so importing the modules first changes
+    # nothing; the asserts run in the child, whose exit status _loaded checks
     assert "pymunk" in _loaded(code)  # and resolving `simulate` did load the engine
 
 
@@ -70,7 +70,7 @@ def test_render_help_names_every_renderer(capsys):
     # the help text is written by hand (importing the renderers would load matplotlib and
     # imageio at parse time), so this keeps it from drifting when a renderer is added
     from asperity2d.cli import main
-    from asperity2d.render import RENDERERS
+    from asperity2d.renderers import RENDERERS
 
     assert main(["render", "--help"]) == 0
     text = capsys.readouterr().out

@@ -5,7 +5,7 @@ import math
 import pytest
 
 import asperity2d as a
-from asperity2d.compare import Comparison, compare
+from asperity2d.experiments.compare import Comparison, compare
 
 
 def last_lower_centre(scene):
@@ -121,7 +121,7 @@ def test_bad_files_and_shapes(tmp_path):
 
 
 def test_the_command_line_offers_exactly_the_standard_measures():
-    from asperity2d.cli import COMPARE_MEASURES
-    from asperity2d.compare import MEASURES
+    from asperity2d.cli.main import COMPARE_MEASURES
+    from asperity2d.experiments.compare import MEASURES
 
     assert COMPARE_MEASURES == tuple(MEASURES)

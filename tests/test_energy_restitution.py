@@ -15,7 +15,7 @@ import pytest
 
 import asperity2d as a
 from asperity2d.engine.energy import EnergyMeter
-from asperity2d.simulate import Run, Travelled
+from asperity2d.run import Run, Travelled
 
 
 def impact(restitution: float) -> dict:

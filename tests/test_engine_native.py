@@ -15,7 +15,7 @@ from asperity2d.engine import Engine
 from asperity2d.engine.contacts import ARBITER_FIELDS
 from asperity2d.engine.core import BODY_FIELDS
 from asperity2d.engine.native import Native
-from asperity2d.simulate import default_dt
+from asperity2d.run import default_dt
 
 
 def _public_read(space):

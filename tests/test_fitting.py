@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
-from asperity2d import fitting as ft
+from asperity2d.friction import fits as ft
 from asperity2d.friction import CoulombViscous, Stribeck
-from asperity2d.tribometer import ReversalLoops, SteadyCurve
+from asperity2d.experiments.tribometer import ReversalLoops, SteadyCurve
 
 V = np.array([-300, -100, -30, -10, -3, -1, 1, 3, 10, 30, 100, 300.0])
 
@@ -69,7 +69,7 @@ def test_belt_period_of_a_static_kinetic_law_matches_the_closed_form():
 
 def _driven(stiffness, lower_count, velocity=10.0):
     import asperity2d as a
-    from asperity2d import tribometer as tb
+    from asperity2d.experiments import tribometer as tb
 
     scene = tb.make_tribometer_scene(drive_stiffness=stiffness, drive_velocity=velocity, lower_count=lower_count)
     return scene, a.simulate(scene)
@@ -128,7 +128,7 @@ def test_stick_slip_law_in_the_belt_solver_predicts_the_asperity_period(calibrat
 def test_stick_slip_cycles_needs_cycles():
     import asperity2d as a
     from asperity2d.errors import SceneError
-    from asperity2d import tribometer as tb
+    from asperity2d.experiments import tribometer as tb
 
     scene = tb.make_tribometer_scene(drive_stiffness=1000.0, drive_velocity=10.0, lower_count=4)
     with pytest.raises(SceneError, match="stick-slip cycles"):
@@ -146,7 +146,7 @@ def test_pooled_law_of_random_surfaces_predicts_a_held_out_seed(calibration_run)
     slips are longer (a larger static/kinetic gap), it is off by > 15 %.
     """
     import asperity2d as a
-    from asperity2d import tribometer as tb
+    from asperity2d.experiments import tribometer as tb
 
     def run(seed):
         return a.simulate(tb.make_tribometer_scene(drive_stiffness=1000.0, drive_velocity=10.0,

@@ -9,11 +9,11 @@ from PIL import Image, ImageFont, ImageSequence
 
 import asperity2d as a
 from asperity2d.analysis import synthetic_stick_slip
-from asperity2d.compare import Comparison
-from asperity2d.render import render
-from asperity2d.render.animate import (Layout, draw_frame, frame_indices, frame_shapes,
+from asperity2d.experiments.compare import Comparison
+from asperity2d.renderers import render
+from asperity2d.renderers.animate import (Layout, draw_frame, frame_indices, frame_shapes,
                                        render_animation)
-from asperity2d.render.plots import plot_comparison, plot_force_displacement, plot_run
+from asperity2d.renderers.plots import plot_comparison, plot_force_displacement, plot_run
 
 MAGIC = {".gif": b"GIF89a", ".png": b"\x89PNG", ".pdf": b"%PDF"}
 

@@ -67,7 +67,7 @@ def test_critical_force_of_a_profile_scene_is_bracketed(profile_file):
 
 
 def test_compare_and_a_sweep_with_random_heights_and_a_profile(profile_file, tmp_path):
-    from asperity2d.sweep.cli import main as sweep_main
+    from asperity2d.cli.sweep import main as sweep_main
 
     comparison = a.compare(a.critical_force,
                            {"rough": {"upper_height_std": 0.08e-6}, "smooth": {}},
@@ -78,7 +78,7 @@ def test_compare_and_a_sweep_with_random_heights_and_a_profile(profile_file, tmp
     assert np.all(np.isfinite(rough)) and smooth[0] == smooth[1]  # no randomness without a std
     assert rough[0] != rough[1]
     study = tmp_path / "study.toml"
-    study.write_text(f'name = "rough"\nrun = "asperity2d.studies.seed000:critical_force_run"\nseeds = 1\n'
+    study.write_text(f'name = "rough"\nrun = "asperity2d.studies.ooten:critical_force_run"\nseeds = 1\n'
                      f'quantities = ["critical_force_N"]\n[grid]\nupper_height_std = [0.0, 0.08e-6]\n'
                      f'[fixed]\nlower_surface = "{profile_file}"\nsurface_detrend = false\n'
                      f'upper_count = 2\ntrack = "free"\n')

@@ -6,7 +6,7 @@ Cost: about 25 s of CPU for the four scripts (one process each, ``--workers 1``)
 import numpy as np
 import pytest
 
-from asperity2d.cli import _load_script
+from asperity2d.cli.main import _load_script
 from scene_scripts import SCENES, run_script
 
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import asperity2d as a
-from asperity2d.simulate import MAX_STEPS, Run, Stuck, default_dt
+from asperity2d.run import MAX_STEPS, Run, Stuck, default_dt
 
 SMALL = {"lower_count": 4, "upper_count": 2}
 
@@ -42,7 +42,7 @@ def test_advancing_in_pieces_records_what_one_advance_records():
 @pytest.mark.parametrize("force, status", [(1e-4, "stuck"), (0.05, "passed")])
 def test_an_unrecorded_advance_stops_where_a_recorded_one_does(force, status):
     """record=False keeps no samples, but its stops and guard see the same states at the same steps."""
-    from asperity2d.simulate import default_duration, default_stops
+    from asperity2d.run import default_duration, default_stops
 
     scene = a.make_scene(drive="force", drive_force=force, **SMALL)
     recorded, bare = Run(scene), Run(scene)

@@ -6,7 +6,7 @@ from pathlib import Path
 import pytest
 from PIL import Image
 
-from asperity2d.cli import _load_script, main
+from asperity2d.cli.main import _load_script, main
 
 SCENES = Path(__file__).resolve().parent.parent / "scenes"
 

@@ -11,8 +11,8 @@ import asperity2d as a
 from asperity2d import SceneError
 from asperity2d.belt import presets, simulate_chain
 from asperity2d.cli import main
-from asperity2d.render import render
-from asperity2d.render.sound import write_wav
+from asperity2d.renderers import render
+from asperity2d.renderers.sound import write_wav
 
 T = np.linspace(0.0, 20.0, 40001)  # 20 s at 2 kHz
 

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import asperity2d as a
-from asperity2d import quasistatic as qs
+from asperity2d.experiments import quasistatic as qs
 
 ROOT = Path(__file__).resolve().parent.parent
 

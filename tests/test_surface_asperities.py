@@ -221,7 +221,7 @@ def test_plots_are_written_atomically(tmp_path):
 
 
 def test_profile_script_reads_the_shipped_profile_and_writes_its_outputs(tmp_path, capsys):
-    from asperity2d.cli import _load_script
+    from asperity2d.cli.main import _load_script
 
     module = _load_script(SCENES / "profile_asperities.py")
     assert module.main(["--quick", "--json", "-o", str(tmp_path)]) == 0

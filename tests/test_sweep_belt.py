@@ -6,7 +6,7 @@ from asperity2d.sweep import ResultStore, Study, run_study
 
 
 def test_belt_chain_study_runs_through_the_sweep(tmp_path):
-    study = Study(name="belt", run="asperity2d.studies.seed001:belt_chain_run",
+    study = Study(name="belt", run="asperity2d.studies.mdof_belt:belt_chain_run",
                   grid={"v_belt": [0.1, 0.7]}, seeds=range(2),
                   fixed={"preset_name": "table2-3dof", "ic_spread": 0.02})
     summary = run_study(study, store=tmp_path / "store", workers=1, progress=False)

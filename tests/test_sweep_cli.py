@@ -8,9 +8,9 @@ import pytest
 from scipy import stats
 
 from asperity2d.sweep import ResultStore
-from asperity2d.cli import build_parser
+from asperity2d.cli.main import build_parser
 from asperity2d.cli import main as cli_main
-from asperity2d.sweep.cli import main
+from asperity2d.cli.sweep import main
 
 STUDY_TOML = """\
 name = "cli"
@@ -104,7 +104,7 @@ def test_bad_input_one_line_exit_2(store_dir, tmp_path, capsys, argv, needle):
 
 def test_the_top_level_cli_runs_sweep_and_the_stand_alone_entry_is_the_same(store_dir, capsys):
     args = build_parser().parse_args(["sweep", "status", str(store_dir), "--json"])
-    assert args.handler == "asperity2d.sweep.cli:run"
+    assert args.handler == "asperity2d.cli.sweep:run"
     assert cli_main(["sweep", "status", str(store_dir), "--json"]) == 0
     top = json.loads(capsys.readouterr().out)
     assert main(["status", str(store_dir), "--json"]) == 0  # python -m asperity2d.sweep

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from asperity2d import tribometer as tb
+from asperity2d.experiments import tribometer as tb
 
 
 @pytest.fixture(scope="module")

@@ -17,7 +17,7 @@ RunOptions in, RawRun out) -> back-ends ``linear`` (closed-form phases from
 from .._lazy import exports
 
 #: Public names and the module each lives in, imported on first use: the command line's
-#: ``belt`` parser and its bad-input errors (``asperity2d.belt.cli``) run without NumPy.
+#: ``belt`` parser and its bad-input errors (``asperity2d.cli.belt``) run without NumPy.
 _LAZY = {"Event": "backend", "BeltResult": "result", "load": "result", "METHODS": "solver",
          "simulate_chain": "solver", "ChainSpec": "spec"}
 _SUBMODULES = ("presets",)

@@ -15,7 +15,7 @@ import numpy as np
 
 from .._io import atomic_write, load_npz, save_npz
 from ..errors import SceneError
-from ..friction import law_from_dict
+from ..friction.laws import law_from_dict
 from .backend import Event, RawRun
 from .spec import ChainSpec, link_extension, link_force
 

@@ -22,7 +22,7 @@ from typing import Callable
 import numpy as np
 
 from ..errors import SceneError, SimulationError
-from ..friction import Coulomb, FrictionLaw, StaticKinetic
+from ..friction.laws import Coulomb, FrictionLaw, StaticKinetic
 from . import validate as check
 
 

@@ -74,7 +74,7 @@ def classify_asperity(result, *, rtol: float = 0.05, max_multiplicity: int = 12)
 def asperity_basin_run(*, scene: str, drive_preload: float, duration: float | None = None, rtol: float = 0.05,
                        seed: int = 0) -> dict:
     """Sweep run function: ``scene`` is the JSON of make_scene keyword arguments; ``seed`` its spacing seed."""
-    from .. import make_scene, simulate
+    from .. import make_scene, run as simulate
 
     kwargs = json.loads(scene)
     return classify_asperity(simulate(make_scene(**kwargs, seed=seed, drive_preload=drive_preload), duration),

@@ -153,7 +153,7 @@ def _encode_chain(chain: dict) -> str:
 
 
 def _decode_chain(text: str) -> dict:
-    from ..friction import law_from_dict
+    from ..friction.laws import law_from_dict
 
     data = json.loads(text)
     if isinstance(data.get("friction"), dict):

@@ -8,7 +8,6 @@
 * :mod:`.native` — the per-step calls into Chipmunk (step, force, batched
   reads) without pymunk's per-call Python layer;
 * :mod:`.energy` — per-step energy accounting (:class:`~.energy.EnergyMeter`);
-* :mod:`.belt` — masses on a moving belt, for cross-checks of the exact solver.
 """
 
 from .core import PYMUNK_VERSION, Engine

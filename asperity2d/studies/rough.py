@@ -31,7 +31,7 @@ from ..builders import make_scene
 from ..critical import critical_force
 from ..errors import SceneError
 from ..scene import Scene, SpringDrive
-from ..simulate import simulate
+from ..run import simulate
 
 
 def flank_angles(scene: Scene) -> dict[str, np.ndarray]:

@@ -21,7 +21,7 @@ instrument files through the optional SurfaceTopography), :mod:`.stats`,
 
 from .asperities import Asperities, find_asperities, pyramid_mass, table1_stiffness
 from .heights import fraction_above, random_heights
-from .plot import plot_asperities, plot_spectrum
+from ..renderers.surface import plot_asperities, plot_spectrum
 from .profile import SurfaceProfile, gaussian_profile, self_affine_profile
 from .read import read_profile
 from .stats import HurstFit, PowerSpectrum, fit_hurst, power_spectrum, rms_height, rms_slope

@@ -14,7 +14,7 @@ parameter values (their JSON differs).
 A study can be written as TOML::
 
     name = "spacing"
-    run = "asperity2d.studies.seed000:critical_force_run"
+    run = "asperity2d.studies.ooten:critical_force_run"
     seeds = 20                      # range(20); or a list [0, 1, 5]; or {start = 0, stop = 20}
     quantities = ["critical_force"] # optional: names every run must return
 

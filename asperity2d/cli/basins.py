@@ -39,7 +39,7 @@ def _chain(args) -> tuple[dict, str]:
 
         return presets.preset(args.preset), args.preset
     if args.basins_chain:
-        from ..belt.cli import load_chain
+        from .belt import load_chain
 
         return load_chain(args.basins_chain), str(args.basins_chain)
     raise SceneError("`belt basins` needs `--preset` or `--chain-file`")
@@ -50,9 +50,9 @@ def run_basins(args) -> int:
     import numpy as np
 
     from .._io import atomic_write_text
-    from ..studies.scripting import _strict
-    from . import basins as b
-    from .plots import plot_basins
+    from .scripting import _strict
+    from ..dynamics import basins as b
+    from ..renderers.dynamics import plot_basins
 
     chain, source = _chain(args)
     if args.t_end is not None:

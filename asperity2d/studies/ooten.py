@@ -1,6 +1,6 @@
 """Seed 000's studies: the two slider set-ups, scene sizes and the sweep run functions.
 
-The ``scenes/seed000_*`` scripts compare scene variants over seeds with
+The ``scenes/ooten_*`` scripts compare scene variants over seeds with
 :func:`asperity2d.compare` (its standard measures: critical force from rest
 and with a run-up, first breakaway, peak and mean stick force over a pass)
 and these sweep run functions, ``run(*, seed, **params) -> dict[str, float]``
@@ -20,7 +20,7 @@ from ..analysis import event_statistics, stick_slip_events
 from ..builders import make_scene
 from ..critical import critical_force, settled_run
 from ..scene import ConstantForce
-from ..simulate import Run, default_duration, default_stops, simulate
+from ..run import Run, default_duration, default_stops, simulate
 
 #: Scene size of the seed-000 studies (lower / upper asperities) and the quick (test) size.
 STUDY_SIZE = {"lower_count": 10, "upper_count": 3}
@@ -171,7 +171,7 @@ def damping_travel_run(*, seed: int = 0, factor: float = 0.9, **params) -> dict:
     over one path.
     """
     from ..engine.energy import EnergyMeter
-    from ..simulate import Run, Travelled, default_duration, default_stops
+    from ..run import Run, Travelled, default_duration, default_stops
 
     params = {k: v for k, v in params.items() if k != "damping"}
     damped = make_scene(seed=seed, drive="force", **params)

@@ -24,13 +24,13 @@ def _fmt(x) -> str:
 
 
 def _store(path):
-    from .store import ResultStore
+    from ..sweep.store import ResultStore
 
     return ResultStore(_io.input_path("store", path, directory=True))
 
 
 def _cmd_run(args) -> int:
-    from .runner import run_study
+    from ..sweep.runner import run_study
 
     study = _io.input_path("study", args.study)
     store = _io.output_dir("--store", args.store)
@@ -64,8 +64,8 @@ def _cmd_status(args) -> int:
 
 
 def _cmd_report(args) -> int:
-    from .report import plot_summary, summarize
-    from .study import variant_label
+    from ..sweep.report import plot_summary, summarize
+    from ..sweep.study import variant_label
 
     store = _store(args.store)
     output = _io.output_path("--output", args.output or store.path / "summary.png",
@@ -125,6 +125,6 @@ def run(args) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     """Stand-alone entry point (``python -m asperity2d.sweep ...``): ``asperity2d sweep ...``."""
-    from ..cli import main as cli_main
+    from .main import main as cli_main
 
     return cli_main(["sweep", *(sys.argv[1:] if argv is None else argv)])

@@ -1,4 +1,4 @@
-"""The seed-000 study scripts (scenes/seed000_*.py) and the user's headline claim.
+"""The Ooten study scripts (scenes/ooten_*.py) and the user's headline claim.
 
 Default run: the headline -- on seed 000's own set-up (the default scene:
 fixed-height track) random spacing lowers the critical force from rest and
@@ -27,7 +27,7 @@ from PIL import Image
 import asperity2d as a
 from asperity2d.critical import critical_force_bracket, passes, settled_run
 from asperity2d.studies import claims
-from asperity2d.studies import seed000 as studies
+from asperity2d.studies import ooten as studies
 
 ROOT = Path(__file__).resolve().parent.parent
 SCRIPTS = ("profiles", "spacing", "damping", "drive", "stickslip")
@@ -36,7 +36,7 @@ SEEDS_SLOW = range(20)
 
 
 def _command(name: str, out: Path) -> list[str]:
-    script = str(ROOT / "scenes" / f"seed000_{name}.py")
+    script = str(ROOT / "scenes" / f"ooten_{name}.py")
     args = ["--quick", "--frames", str(FRAMES[name])]
     if name == "drive":  # through the command line: `asperity2d run SCRIPT -o DIR ARGS`
         return [sys.executable, "-m", "asperity2d", "run", script, "-o", str(out), *args]
@@ -46,7 +46,7 @@ def _command(name: str, out: Path) -> list[str]:
 @pytest.fixture(scope="module")
 def outputs(tmp_path_factory):
     """Run every script with --quick, two at a time; {name: (returncode, stderr, out dir)}."""
-    root = tmp_path_factory.mktemp("seed000")
+    root = tmp_path_factory.mktemp("ooten")
 
     def run(name):
         out = root / name
@@ -96,7 +96,7 @@ def test_damping_numbers_are_consistent(outputs):
 
 
 def test_profiles_half_triangles_keep_their_tips_in_place_and_cannot_push(outputs):
-    """seed000_profiles: the half-triangle slider's vertical back face has a horizontal normal
+    """ooten_profiles: the half-triangle slider's vertical back face has a horizontal normal
     facing back, so no contact of it pushes the slider on (regular, fixed track: the full
     triangles' back flanks return > 0.1 % of the resisting work, the halves' < 1 % of that)."""
     summary = json.loads((outputs["profiles"][2] / "summary.json").read_text())

@@ -28,9 +28,9 @@ from dataclasses import astuple, dataclass, fields
 
 import numpy as np
 
-from ._validate import show
-from .belt.validate import real
-from .errors import SceneError
+from .._validate import show
+from ..belt.validate import real
+from ..errors import SceneError
 
 __all__ = ["Coulomb", "StaticKinetic", "CoulombViscous", "Stribeck", "Dahl", "LuGre", "FrictionLaw"]
 

@@ -31,16 +31,16 @@ from typing import Callable, Iterable
 
 import numpy as np
 
-from . import analysis, stats
-from ._io import FileError, atomic_write_text, read_text
-from ._validate import check_int, show
-from .builders import make_scene
-from .critical import critical_force
-from .errors import SceneError, SimulationError
-from .scene import Scene, SpringDrive
-from .simulate import simulate
-from .sweep.executors import make_executor
-from .sweep.progress import Progress
+from .. import analysis, stats
+from .._io import FileError, atomic_write_text, read_text
+from .._validate import check_int, show
+from ..builders import make_scene
+from ..critical import critical_force
+from ..errors import SceneError, SimulationError
+from ..scene import Scene, SpringDrive
+from ..run import simulate
+from ..sweep.executors import make_executor
+from ..sweep.progress import Progress
 
 FORMAT = "asperity2d.comparison/1"
 

@@ -13,9 +13,9 @@ import json
 import math
 from pathlib import Path
 
-from . import _io
-from .cli import PLOT_SUFFIXES, _load_script
-from .errors import SceneError
+from .. import _io
+from .main import PLOT_SUFFIXES, _load_script
+from ..errors import SceneError
 
 #: Keys of a TOML scene's ``[run]`` table.
 RUN_KEYS = ("duration",)
@@ -51,8 +51,8 @@ def scene_from_toml(path, *, arg: str = "scene"):
                              "make_scene argument under [scene] (or all at top level)")
     else:
         params = data
-    from .builders import make_scene
-    from .surface.source import resolve_paths  # profile files named relative to the TOML file
+    from ..builders import make_scene
+    from ..surface.source import resolve_paths  # profile files named relative to the TOML file
 
     return make_scene(**resolve_paths(params, Path(path).parent)), run
 
@@ -68,7 +68,7 @@ def _emit(args, summary: dict, lines: list[str]) -> None:
 def _checked_duration(scene, duration: float, arg: str) -> float:
     """``duration`` if it fits simulate's step budget at the scene's default dt (named as ``arg``;
     simulate checks settling too)."""
-    from .simulate import MAX_STEPS, default_dt
+    from ..run import MAX_STEPS, default_dt
 
     dt = default_dt(scene)
     if duration > MAX_STEPS * dt:
@@ -93,14 +93,14 @@ def run(args) -> int:
         duration = _checked_duration(scene, float(settings["duration"]), "duration")
     else:
         duration = None
-    from .simulate import simulate
+    from ..run import simulate
 
     result = simulate(scene, duration)
     if save:
         with _io.argument("--save"), _io.writing("--save", save):
             result.save(save)
     if output:
-        from .render import render as render_result
+        from ..renderers import render as render_result
 
         with _io.argument("--output"), _io.writing("--output", output):
             render_result(result, output)
@@ -128,13 +128,13 @@ def _run_script(path: Path, args) -> int:
 
 
 def _render_suffixes() -> tuple[str, ...]:
-    from .render import RENDERERS
+    from ..renderers import RENDERERS
 
     return tuple(RENDERERS)
 
 
 def _load_result(arg: str, path):
-    from .result import load
+    from ..result import load
 
     with _io.argument(arg):
         return load(path)
@@ -142,7 +142,7 @@ def _load_result(arg: str, path):
 
 def analyze(args) -> int:
     """``asperity2d analyze RESULT``: events and breakaway force of a saved run."""
-    from .analysis import breakaway_force, event_statistics, stick_slip_events
+    from ..analysis import breakaway_force, event_statistics, stick_slip_events
 
     result = _load_result("result", args.result)
     summary = result.summary()
@@ -157,7 +157,7 @@ def analyze(args) -> int:
 
 def render(args) -> int:
     """``asperity2d render RESULT -o FILE``: render a saved run again."""
-    from .render import render as render_result
+    from ..renderers import render as render_result
 
     output = _io.output_path("--output", args.output, suffixes=_render_suffixes())
     result = _load_result("result", args.result)
@@ -173,7 +173,7 @@ def critical(args) -> int:
     if path.suffix != ".toml":
         raise SceneError(f"`scene` must be a .toml scene file, got {str(path)!r}")
     scene, _ = scene_from_toml(path)
-    from .critical import critical_force_bracket
+    from ..critical import critical_force_bracket
 
     bracket = critical_force_bracket(scene, rel_tol=args.rel_tol)
     summary = {"critical_force_N": bracket.value, "stops_N": bracket.stops,
@@ -202,8 +202,8 @@ def compare(args) -> int:
     """``asperity2d compare``: a measure of each spacing over seeds, with statistics."""
     save = args.save and _io.output_path("--save", args.save, suffixes=(".json",))
     output = args.output and _io.output_path("--output", args.output, suffixes=PLOT_SUFFIXES)
-    from .compare import Comparison, measure_label
-    from .compare import compare as run_compare
+    from ..experiments.compare import Comparison, measure_label
+    from ..experiments.compare import compare as run_compare
 
     if args.load:
         with _io.argument("--load"):
@@ -218,7 +218,7 @@ def compare(args) -> int:
         with _io.argument("--save"), _io.writing("--save", save):
             comparison.save(save)
     if output:
-        from .render.plots import plot_comparison
+        from ..renderers.plots import plot_comparison
 
         with _io.argument("--output"), _io.writing("--output", output):
             plot_comparison(comparison, output)
@@ -232,7 +232,7 @@ def compare(args) -> int:
              for name, s in stats.items()]
     lines += [f"Mann-Whitney U {pair}: p = {p:.3g}" for pair, p in summary.get("mann_whitney_p", {}).items()]
     if "regular" in names:  # each other spacing against regular, in words
-        from .studies import claims
+        from ..studies import claims
 
         summary["claims"] = []
         for other in (n for n in names if n != "regular"):

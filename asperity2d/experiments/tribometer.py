@@ -31,9 +31,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._validate import check_int, check_positive
-from .errors import SceneError
-from .scene import Scene
+from .._validate import check_int, check_positive
+from ..errors import SceneError
+from ..scene import Scene
 
 #: Scene parameters of the tribometer (make_scene overrides): Table 1 steel,
 #: two upper tips at 1 mN each, a stiff drive.
@@ -79,7 +79,7 @@ class Protocol:
 
 def make_tribometer_scene(**overrides) -> Scene:
     """The tribometer's scene: :data:`TRIBOMETER_SCENE` updated with ``overrides``."""
-    from .builders import make_scene
+    from ..builders import make_scene
 
     return make_scene(spacing=overrides.pop("spacing", "regular"), seed=overrides.pop("seed", 0),
                       drive="spring", **{**TRIBOMETER_SCENE, **overrides})
@@ -87,7 +87,7 @@ def make_tribometer_scene(**overrides) -> Scene:
 
 def _run(scene: Scene, velocity: float):
     """A settled run of ``scene`` with its drive at ``velocity`` (m/s)."""
-    from .simulate import Run
+    from ..run import Run
 
     run = Run(scene.replace(drive=dataclasses.replace(scene.drive, velocity=velocity)))
     run.settle()
@@ -218,7 +218,7 @@ def energy_window(scene: Scene, *, velocity: float, pitches: int = 2, transient_
     dissipated + stored change) only by the slider's momentum change and
     the drive spring's stretch change over the window.
     """
-    from .engine.energy import EnergyMeter
+    from ..engine.energy import EnergyMeter
 
     pitch = scene.lower.spacing.mean_pitch
     run = _run(scene, velocity)

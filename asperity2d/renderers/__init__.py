@@ -24,9 +24,9 @@ RENDERERS = {".gif": "animation", ".mp4": "animation", ".png": "plot", ".svg": "
 def render(result, path: str | os.PathLike, **options) -> Path:
     """Render ``result`` to ``path``, choosing the renderer by extension.
 
-    ``options`` go to :func:`~asperity2d.render.animate.render_animation` (``.gif``, ``.mp4``),
-    :func:`~asperity2d.render.plots.plot_run` (``.png``, ``.svg``, ``.pdf``)
-    or :func:`~asperity2d.render.sound.write_wav` (``.wav``).
+    ``options`` go to :func:`~asperity2d.renderers.animate.render_animation` (``.gif``, ``.mp4``),
+    :func:`~asperity2d.renderers.plots.plot_run` (``.png``, ``.svg``, ``.pdf``)
+    or :func:`~asperity2d.renderers.sound.write_wav` (``.wav``).
 
     Raises
     ------

@@ -23,7 +23,7 @@ decide the travel. A slider that neither passes
 nor comes to rest (it rattles in a valley: elastic impacts return it) is
 counted where the time limit finds it; ``reach`` is the farthest it got.
 
-    python scenes/seed000_damping.py [--seeds 20] [--workers 2]
+    python scenes/ooten_damping.py [--seeds 20] [--workers 2]
 """
 
 from __future__ import annotations
@@ -34,9 +34,9 @@ import numpy as np
 
 import asperity2d as a
 from asperity2d import stats
-from asperity2d.render.plots import plot_positions
-from asperity2d.studies import scripting
-from asperity2d.studies import seed000 as studies
+from asperity2d.renderers.plots import plot_positions
+from asperity2d.cli import scripting
+from asperity2d.studies import ooten as studies
 from asperity2d.studies.claims import claim
 from asperity2d.sweep.executors import map_calls
 

@@ -12,10 +12,10 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import SceneError
-from ..render.plots import figure, save
-from .asperities import Asperities
-from .profile import SurfaceProfile
-from .stats import HurstFit, PowerSpectrum
+from .plots import figure, save
+from ..surface.asperities import Asperities
+from ..surface.profile import SurfaceProfile
+from ..surface.stats import HurstFit, PowerSpectrum
 
 UM = 1e6  # metres -> micrometres
 

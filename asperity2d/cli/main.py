@@ -21,7 +21,7 @@ import math
 import sys
 import warnings
 
-from .errors import SceneError, SimulationError
+from ..errors import SceneError, SimulationError
 
 PROG = "asperity2d"
 PLOT_SUFFIXES = (".png", ".svg", ".pdf")
@@ -73,7 +73,7 @@ class _Version(argparse.Action):
         super().__init__(option_strings, dest=dest, default=default, nargs=0, help=help)
 
     def __call__(self, parser, namespace, values, option_string=None):
-        from ._version import __version__
+        from .._version import __version__
 
         print(f"{PROG} {__version__}")
         parser.exit(0)
@@ -83,7 +83,7 @@ def _json_flag(p) -> None:
     p.add_argument("--json", action="store_true", help="print one JSON object")
 
 
-#: The names of asperity2d.compare.MEASURES (kept here so --help imports nothing; a test checks
+#: The names of asperity2d.experiments.compare.MEASURES (kept here so --help imports nothing; a test checks
 #: they agree).
 COMPARE_MEASURES = ("critical", "critical-run-up", "first-breakaway", "peak-stick", "mean-stick")
 
@@ -107,25 +107,25 @@ def build_parser() -> Parser:
     p.add_argument("--save", help="save the Result (.npz) (TOML scenes)")
     p.add_argument("--duration", type=positive_float, help="simulated time in s (TOML scenes)")
     _json_flag(p)
-    p.set_defaults(handler="asperity2d._commands:run", print_run_help=p.print_help)
+    p.set_defaults(handler="asperity2d.cli.asperity:run", print_run_help=p.print_help)
 
     p = sub.add_parser("analyze", help="stick-slip events and breakaway force of a saved result")
     p.add_argument("result", help="a result saved with --save / Result.save (.npz)")
     _json_flag(p)
-    p.set_defaults(handler="asperity2d._commands:analyze")
+    p.set_defaults(handler="asperity2d.cli.asperity:analyze")
 
     p = sub.add_parser("render", help="render a saved result; the extension picks the renderer")
     p.add_argument("result", help="a result saved with --save / Result.save (.npz)")
     p.add_argument("-o", "--output", required=True,
                    help=".gif, .mp4 (needs the video extra), .png, .svg, .pdf or .wav (the slider's sound)")
     _json_flag(p)
-    p.set_defaults(handler="asperity2d._commands:render")
+    p.set_defaults(handler="asperity2d.cli.asperity:render")
 
     p = sub.add_parser("critical", help="critical constant drive force of a TOML scene")
     p.add_argument("scene", help="TOML scene file")
     p.add_argument("--rel-tol", type=positive_float, default=0.01, help="bracket width (default 0.01)")
     _json_flag(p)
-    p.set_defaults(handler="asperity2d._commands:critical")
+    p.set_defaults(handler="asperity2d.cli.asperity:critical")
 
     p = sub.add_parser("compare", help="compare spacings over seeds (critical force, stick forces)")
     p.add_argument("--measure", choices=COMPARE_MEASURES, default="critical",
@@ -142,11 +142,11 @@ def build_parser() -> Parser:
     p.add_argument("--load", help="re-use a saved comparison instead of running")
     p.add_argument("-o", "--output", help="comparison plot (.png, .svg, .pdf)")
     _json_flag(p)
-    p.set_defaults(handler="asperity2d._commands:compare")
+    p.set_defaults(handler="asperity2d.cli.asperity:compare")
 
     p = sub.add_parser("belt", help="masses on a moving belt (exact stick/slip)",
                        description="Run a chain from a TOML file or a named preset (see "
-                                   "asperity2d.belt.cli for the chain file's keys).")
+                                   "asperity2d.cli.belt for the chain file's keys).")
     p.add_argument("chain", nargs="?", help="TOML chain file")
     p.add_argument("--preset", help="named preset from the thesis tables (see --list-presets)")
     p.add_argument("--list-presets", action="store_true", help="print the preset names and exit")
@@ -154,7 +154,7 @@ def build_parser() -> Parser:
     p.add_argument("--t-end", type=positive_float, help="override the duration (s)")
     p.add_argument("-o", "--output", help="plot (.png/.svg/.pdf), result (.npz) or table (.csv)")
     _json_flag(p)
-    p.set_defaults(handler="asperity2d.belt.cli:run")
+    p.set_defaults(handler="asperity2d.cli.belt:run")
     _add_belt_basins(p)
 
     _add_sweep(sub)
@@ -162,7 +162,7 @@ def build_parser() -> Parser:
 
 
 def _add_belt_basins(p) -> None:
-    """``asperity2d belt basins ...`` options (used after the word ``basins``; see asperity2d.dynamics.cli)."""
+    """``asperity2d belt basins ...`` options (used after the word ``basins``; see asperity2d.cli.basins)."""
     g = p.add_argument_group("basins: asperity2d belt basins (--preset|--chain-file) [options]")
     g.add_argument("--x", dest="basins_x", default="x1", help="first coordinate: x1..xn (m) or v1..vn (m/s)")
     g.add_argument("--y", dest="basins_y", default="v1", help="second coordinate (default v1)")
@@ -210,7 +210,7 @@ def _add_sweep(subparsers) -> None:
     p.add_argument("store", help="results directory")
     p.add_argument("-o", "--output", required=True, help="output file: .csv or .npy")
     _json_flag(p)
-    parser.set_defaults(handler="asperity2d.sweep.cli:run")
+    parser.set_defaults(handler="asperity2d.cli.sweep:run")
 
 
 def _load_script(path):
@@ -220,7 +220,7 @@ def _load_script(path):
     import importlib.util
     from pathlib import Path
 
-    from ._io import FileError, read_bytes
+    from .._io import FileError, read_bytes
 
     path = Path(path)
     data = read_bytes("scene", path)

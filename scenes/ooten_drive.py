@@ -18,7 +18,7 @@ period -- what stick-slip under a constant force would need. Momentary stops
 (bounces off a flank) are counted separately. Writes the
 positions plot (seed figure 10 style), the spring run's time series and a GIF.
 
-    python scenes/seed000_drive.py
+    python scenes/ooten_drive.py
 """
 
 from __future__ import annotations
@@ -27,11 +27,11 @@ import math
 
 import asperity2d as a
 from asperity2d.critical import critical_force_bracket
-from asperity2d.render.plots import plot_positions
-from asperity2d.studies import scripting
+from asperity2d.renderers.plots import plot_positions
+from asperity2d.cli import scripting
 from asperity2d.studies import claims as claims_module
 from asperity2d.studies.claims import claim
-from asperity2d.studies import seed000 as studies
+from asperity2d.studies import ooten as studies
 
 FACTORS = {"below": 0.95, "above": 1.05}
 

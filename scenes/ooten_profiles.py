@@ -16,7 +16,7 @@ push (geometry) from the static/kinetic friction switch. Per run:
 * from one spring-driven pass: the first breakaway, the peak and mean stick
   force, the force to keep the slider moving (work / distance from the first
   breakaway on, N), and the contact work books
-  (:class:`asperity2d.studies.seed000.ContactWork`): the work of contacts
+  (:class:`asperity2d.studies.ooten.ContactWork`): the work of contacts
   pushing the slider on (J) against the work of those resisting it.
 
 Regular spacing gives one deterministic half/full ratio; random spacing (both
@@ -29,7 +29,7 @@ half triangles (``half_shape="full-base"``: the full base and flank angle,
 twice the height), which cannot fall through. ``--quick`` runs the first
 friction pair only.
 
-    python scenes/seed000_profiles.py [--seeds 10] [--workers 2]
+    python scenes/ooten_profiles.py [--seeds 10] [--workers 2]
 """
 
 from __future__ import annotations
@@ -40,11 +40,12 @@ import numpy as np
 
 import asperity2d as a
 from asperity2d import stats
-from asperity2d.compare import Comparison, measure_label
+from asperity2d.experiments.compare import Comparison, measure_label
 from asperity2d.critical import critical_force
-from asperity2d.render.plots import plot_comparison, plot_positions
-from asperity2d.studies import claims, scripting
-from asperity2d.studies import seed000 as studies
+from asperity2d.renderers.plots import plot_comparison, plot_positions
+from asperity2d.cli import scripting
+from asperity2d.studies import claims
+from asperity2d.studies import ooten as studies
 from asperity2d.sweep.executors import map_calls
 
 ALPHA = 0.01

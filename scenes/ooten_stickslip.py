@@ -4,7 +4,7 @@ Spring-driven passes over regular/regular and random/random surfaces at three
 drive-spring stiffnesses spanning a decade (default 1 176, 3 720 and
 11 760 N/m: the package default x 10^-0.5, 1, 10^0.5), for both set-ups
 (seed 000's fixed-height track first, then the free slider under load). Per
-run (:func:`asperity2d.studies.seed000.spring_pass_run`): the number of
+run (:func:`asperity2d.studies.ooten.spring_pass_run`): the number of
 stick-slip events, the stick-slip amplitude -- the mean force drop per slip
 (N) -- the spread of the drops (std, N) and the regularity of the events
 (coefficient of variation of the intervals between slips; 0 = periodic).
@@ -17,7 +17,7 @@ slip carried the slider across) has no force drop and counts as missing.
 Whether the verdict changes with the drive stiffness is reported as
 ``drive_dependent``.
 
-    python scenes/seed000_stickslip.py [--seeds 10] [--workers 2]
+    python scenes/ooten_stickslip.py [--seeds 10] [--workers 2]
 """
 
 from __future__ import annotations
@@ -28,9 +28,9 @@ import numpy as np
 
 import asperity2d as a
 from asperity2d import stats
-from asperity2d.studies import scripting
+from asperity2d.cli import scripting
 from asperity2d.studies import claims
-from asperity2d.studies import seed000 as studies
+from asperity2d.studies import ooten as studies
 from asperity2d.sweep.executors import map_calls
 
 STIFFNESSES = (1_176.0, 3_720.0, 11_760.0)  # N/m

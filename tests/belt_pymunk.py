@@ -1,4 +1,4 @@
-"""Masses on a moving belt built in pymunk (part of the adapter).
+"""Masses on a moving belt built in pymunk (a test oracle: tests may import pymunk directly).
 
 An independent check of the exact event-driven solver in
 :mod:`asperity2d.belt`: the same chain as rigid bodies. Each mass is a box
@@ -18,9 +18,9 @@ from dataclasses import dataclass
 import numpy as np
 import pymunk
 
-from ..belt import validate as check
-from ..belt.spec import ChainSpec
-from ..errors import SceneError
+from asperity2d.belt import validate as check
+from asperity2d.belt.spec import ChainSpec
+from asperity2d.errors import SceneError
 
 _SPACING = 1.0  # m between rest positions (geometry only: springs are linear in x)
 _BOX = (0.2, 0.1)  # m, width and height of each mass

@@ -3,7 +3,7 @@
     asperity2d belt --preset table2-3dof --json
     asperity2d belt chain.toml -o run.png          # plot chosen by extension (.png/.svg/.pdf)
     asperity2d belt --preset table3-k20 -o run.npz # or save the result (.npz) / export (.csv)
-    asperity2d belt basins --preset table2-3dof -o basins.png   # initial-condition basins (asperity2d.dynamics.cli)
+    asperity2d belt basins --preset table2-3dof -o basins.png   # initial-condition basins (asperity2d.cli.basins)
 
 A chain file holds the keyword arguments of ``simulate_chain`` at top level:
 ``masses``, ``springs``, ``dampers``, ``v_belt``, ``x0``, ``v0``, ``t_end`` and
@@ -49,7 +49,7 @@ def load_chain(path) -> dict:
             raise SceneError(f"`{key}` in {str(path)!r} must be of type "
                              f"{' or '.join(t.__name__ for t in types)}, got {data[key]!r}")
     if "friction" in data:
-        from ..friction import law_from_dict
+        from ..friction.laws import law_from_dict
 
         if not isinstance(data["friction"], dict):
             raise SceneError(f"`friction` in {str(path)!r} must be a [friction] table with a `law`, "
@@ -64,7 +64,7 @@ def load_chain(path) -> dict:
 def run(args) -> int:
     """Run the parsed ``belt`` command; bad input raises ``SceneError`` (one line, exit 2)."""
     if args.chain == "basins":
-        from ..dynamics.cli import run_basins
+        from .basins import run_basins
 
         return run_basins(args)
     if (args.chain is None) == (args.preset is None) and not args.list_presets:
@@ -72,7 +72,7 @@ def run(args) -> int:
     out = args.output and _io.output_path("--output", args.output, suffixes=OUTPUTS)
     # the user's file is read (and refused) before the solver and NumPy are imported
     kwargs = None if args.preset or args.list_presets else load_chain(args.chain)
-    from . import presets
+    from ..belt import presets
 
     if args.list_presets:
         for name in presets.names():
@@ -83,8 +83,8 @@ def run(args) -> int:
         kwargs["method"] = args.method
     if args.t_end is not None:
         kwargs["t_end"] = args.t_end
-    from .regime import classify
-    from .solver import simulate_chain
+    from ..belt.regime import classify
+    from ..belt.solver import simulate_chain
 
     result = simulate_chain(**kwargs)
     written = None
@@ -118,6 +118,6 @@ def _write(result, out: Path, *, title: str) -> Path:
         return result.save(out)
     if suffix == ".csv":
         return result.export(out)
-    from .plots import plot_chain
+    from ..renderers.belt import plot_chain
 
     return plot_chain(result, out, title=title)

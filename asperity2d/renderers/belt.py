@@ -11,8 +11,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..render.plots import save
-from .regime import REGIMES
+from .plots import save
+from ..belt.regime import REGIMES
 
 
 def save_figure(fig, path) -> Path:

@@ -21,7 +21,7 @@ from .._io import atomic_write_text, output_dir, writing
 
 def parser(description: str) -> argparse.ArgumentParser:
     """The common arguments of a scene script; ``p.error(message)`` reports a bad value."""
-    from ..cli import Parser
+    from .main import Parser
 
     p = Parser(description=description)
     p.add_argument("--quick", action="store_true", help="small, fast settings (tests, smoke runs)")

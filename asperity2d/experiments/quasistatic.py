@@ -30,9 +30,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import check_positive
-from .errors import SceneError
-from .scene import Scene, SpringDrive
+from .._validate import check_positive
+from ..errors import SceneError
+from ..scene import Scene, SpringDrive
 
 #: Seed 000's drive speed (m/s), the reference of the acceleration factor.
 SEED_DRIVE_VELOCITY = 5e-3
@@ -95,7 +95,7 @@ def stick_slip_measures(result) -> dict:
     which runs off the end of the surface, never counts. ``events`` counts
     the cycles.
     """
-    from .analysis import stick_slip_events
+    from ..analysis import stick_slip_events
 
     events = stick_slip_events(result)
     out = dict.fromkeys(QUANTITIES, math.nan) | {"events": 0}
@@ -129,7 +129,7 @@ def run_measures(scene: Scene, **simulate_options) -> tuple[dict, object]:
     """Simulate ``scene`` and return (measures + diagnostics, result)."""
     import time
 
-    from .simulate import simulate
+    from ..run import simulate
 
     clock = time.process_time()
     result = simulate(scene, **simulate_options)
@@ -256,7 +256,7 @@ def real_time_rate(scene: Scene, *, steps: int = 20_000, velocity: float = SEED_
     """
     import time
 
-    from .simulate import Run
+    from ..run import Run
 
     scene = accelerated(scene, factor=1.0, reference_velocity=velocity)
     run = Run(scene)
@@ -279,7 +279,7 @@ def plot_position_velocity(result, path, *, title: str = "", dpi: int = 120):
     The velocity panel shows the collision spikes where the slider hits a
     lower flank. Matplotlib is imported lazily.
     """
-    from .render.plots import figure, save
+    from ..renderers.plots import figure, save
 
     fig, (ax_x, ax_v) = figure(2, height=2.4)
     t = np.asarray(result.t) * 1e6

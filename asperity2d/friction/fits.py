@@ -38,8 +38,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import least_squares
 
-from .errors import SceneError
-from .friction import CoulombViscous, Dahl, FrictionLaw, LuGre, StaticKinetic, Stribeck
+from ..errors import SceneError
+from .laws import CoulombViscous, Dahl, FrictionLaw, LuGre, StaticKinetic, Stribeck
 
 
 @dataclass(frozen=True)
@@ -193,7 +193,7 @@ def stick_slip_cycles(result, *, skip: int = 1) -> dict:
     ``restick_N`` (drive force when that cycle's stick began), the periods
     (s, breakaway to breakaway), their mean ``period_s``, and ``normal_load_N``.
     """
-    from .analysis import stick_slip_events
+    from ..analysis import stick_slip_events
 
     events = [e for e in stick_slip_events(result) if e.complete][skip:]
     if len(events) < 2:
@@ -249,7 +249,7 @@ def belt_period(law: FrictionLaw, *, mass: float, stiffness: float, velocity: fl
     with ``friction=law`` (its exact event-driven solver for piecewise-
     constant laws, an ODE with the same stick logic otherwise).
     """
-    from .belt import simulate_chain
+    from ..belt import simulate_chain
 
     f_s = law.static_coefficient * normal_load
     t_est = 2.0 * f_s / (stiffness * velocity) + 2 * math.pi * math.sqrt(mass / stiffness)

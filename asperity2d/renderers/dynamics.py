@@ -1,7 +1,7 @@
 """Figures of the dynamics tools: spectra, basin maps, Poincaré sections (matplotlib, lazily).
 
 Each function writes one file (``.png``, ``.svg``, ``.pdf``) atomically and
-returns its path, like :mod:`asperity2d.render.plots`.
+returns its path, like :mod:`asperity2d.renderers.plots`.
 """
 
 from __future__ import annotations
@@ -12,8 +12,8 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import SceneError
-from ..render.plots import figure, save
-from .basins import LABELS
+from .plots import figure, save
+from ..dynamics.basins import LABELS
 
 #: class colours of a basin map: rest, pure slip, stick-slip period 1, 2, >=3, irregular; failed runs grey
 _CLASS_COLORS = ("#4c72b0", "#8fbc8f", "#dd8452", "#c44e52", "#8172b3", "#222222")

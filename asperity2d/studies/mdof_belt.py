@@ -116,7 +116,7 @@ def cli(study, name: str, argv=None) -> int:
     summary["solver"] = "asperity2d.belt exact event-driven (closed-form phases, brentq switches)"
     summary["verdict_rule"] = f"numbers read off the thesis' figures hold within {REL_TOL:.0%}; trends as stated"
     if not args.quick:
-        from ..belt.plots import plot_chain
+        from ..renderers.belt import plot_chain
 
         for label, result in results.items():
             path = plot_chain(result, args.out / f"{name}_{label}.png", title=f"{name}: {label}")

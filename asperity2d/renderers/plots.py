@@ -140,14 +140,14 @@ def plot_comparison(comparison, path: str | os.PathLike, *, reference: float | N
                     label: str | None = None, unit: str = "mN", dpi: int = 120) -> Path:
     """Strip and box plot of each variant's values, with the mean and its 95 % CI.
 
-    ``comparison`` is a :class:`~asperity2d.compare.Comparison` of SI values
+    ``comparison`` is a :class:`~asperity2d.experiments.compare.Comparison` of SI values
     (forces in N), shown in ``unit`` (a key of :data:`UNITS`; ``""`` for a
     dimensionless quantity); ``reference`` (SI) draws a horizontal line (e.g.
     the flank-law force); ``label`` names the y axis (default: the measure's
     plain-language name and the unit).
     """
     from .. import stats
-    from ..compare import measure_label
+    from ..experiments.compare import measure_label
 
     names = list(comparison.values)
     if not names:

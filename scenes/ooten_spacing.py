@@ -24,17 +24,17 @@ smallest" with a paired Wilcoxon test of random/random against random-upper
 set-ups are run: seed 000's fixed-height track (default) and the free slider
 under a normal load.
 
-    python scenes/seed000_spacing.py [--seeds 20] [--workers 2]
+    python scenes/ooten_spacing.py [--seeds 20] [--workers 2]
 """
 
 from __future__ import annotations
 
 import asperity2d as a
-from asperity2d.studies import scripting
-from asperity2d.compare import Comparison, measure_label
-from asperity2d.render.plots import plot_comparison
+from asperity2d.cli import scripting
+from asperity2d.experiments.compare import Comparison, measure_label
+from asperity2d.renderers.plots import plot_comparison
 from asperity2d.studies import claims
-from asperity2d.studies import seed000 as studies
+from asperity2d.studies import ooten as studies
 from asperity2d.sweep.executors import map_calls
 
 VARIANTS = {"regular": {"spacing": "regular"}, "random-upper": {"spacing": "random-upper"},

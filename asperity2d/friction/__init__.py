@@ -1,0 +1,13 @@
+"""Friction laws and their fits.
+
+* :mod:`.laws` -- the laws a belt chain (or any model) can use: Coulomb, static/kinetic,
+  Coulomb + viscous, Stribeck, and the state-variable Dahl and LuGre laws;
+* :mod:`.fits` -- fitting those laws to the virtual tribometer's data and to stick-slip
+  cycles of asperity runs (SciPy least squares).
+"""
+
+from .laws import (Coulomb, CoulombViscous, Dahl, FrictionLaw, LuGre, StaticKinetic, Stribeck,
+                   law_from_dict)
+
+__all__ = ["FrictionLaw", "Coulomb", "StaticKinetic", "CoulombViscous", "Stribeck", "Dahl", "LuGre",
+           "law_from_dict"]
