@@ -1,23 +1,36 @@
-"""Parameter checks that raise :class:`SceneError` naming the parameter.
+"""Parameter checks that raise :class:`SceneError` naming the parameter: the package's one set of
+rules and messages (scenes, runs, belt chains, friction laws and the command line's argument types).
 
-Every check converts before it compares, so nothing downstream sees a string,
-a bool, a complex number, an int too large for a float or a NaN; values come
-back as plain ``float`` / ``int`` (JSON- and pymunk-safe). Formatting an
-error message never raises: values are shown through :func:`show`.
+The rules:
+
+* a number is real -- ``int``, ``float``, ``Fraction``, ``Decimal``, NumPy reals -- never
+  ``bool``, ``str`` or ``complex``; a sequence is a list, tuple or 1-D array of such numbers;
+* it is finite after conversion to ``float`` (``10**400`` and ``1e400`` are refused, not
+  overflowed); values come back as plain ``float`` / ``int`` (JSON- and pymunk-safe);
+* where a model forms products of its parameters (the belt chains: k·x·x, m·v·v, mu·m·g,
+  k/m), :func:`check_real` also holds every quantity to the magnitude window: at most
+  :data:`HUGE`, and one that must be positive at least :data:`TINY`, so that a product of
+  three such numbers, or a quotient by a positive one, cannot overflow a double.
+
+Messages name the parameter in backticks, as the user wrote it: "`mass` must be > 0, got -1.0".
+Formatting a value for a message never raises (:func:`show`). NumPy is not imported here (the
+command line's argument types use these checks before anything heavy is loaded).
 """
 
 from __future__ import annotations
 
 import math
+import sys
+from decimal import Decimal
 from numbers import Integral, Real
 from typing import Iterable
-
-import numpy as np
 
 from .errors import SceneError
 
 #: Largest count of asperities (per surface) or of anything else counted.
 MAX_COUNT = 100_000
+#: The magnitude window of :func:`check_real`: smallest and largest magnitude of a non-zero number.
+TINY, HUGE = 1e-100, 1e100
 
 
 def show(value, limit: int = 60) -> str:
@@ -32,21 +45,29 @@ def show(value, limit: int = 60) -> str:
     return text if len(text) <= limit else text[: limit - 3] + "..."
 
 
+def _is_bool(value) -> bool:
+    if isinstance(value, bool):
+        return True
+    np = sys.modules.get("numpy")  # a NumPy bool exists only once NumPy is loaded
+    return np is not None and isinstance(value, np.bool_)
+
+
 def is_real(value) -> bool:
-    """True for real numbers (int, float, Fraction, NumPy scalars), False for bool and the rest."""
-    return isinstance(value, Real) and not isinstance(value, (bool, np.bool_))
+    """True for real numbers (int, float, Fraction, Decimal, NumPy scalars), False for bool and
+    the rest."""
+    return isinstance(value, (Real, Decimal)) and not _is_bool(value)
 
 
-def check_finite(name: str, value) -> float:
-    """``value`` as a finite float."""
+def check_finite(name: str, value, *, where: str = "") -> float:
+    """``value`` as a finite float (``where``, e.g. " at index 3", follows the name)."""
     if not is_real(value):
-        raise SceneError(f"`{name}` must be a real number, got {show(value)}")
+        raise SceneError(f"`{name}` must be a real number{where}, got {show(value)}")
     try:
         out = float(value)
     except (OverflowError, TypeError, ValueError):
-        raise SceneError(f"`{name}` is too large to be a finite number, got {show(value)}") from None
+        out = math.inf
     if not math.isfinite(out):
-        raise SceneError(f"`{name}` must be a finite number, got {show(value)}")
+        raise SceneError(f"`{name}` must be a finite number{where}, got {show(value)}")
     return out
 
 
@@ -72,13 +93,71 @@ def check_range(name: str, value, low: float, high: float, *, unit: str = "") ->
     return out
 
 
+def _window(name: str, out: float, raw, where: str, positive: bool, nonneg: bool) -> float:
+    if positive and out <= 0:
+        raise SceneError(f"`{name}` must be > 0{where}, got {show(raw)}")
+    if nonneg and out < 0:
+        raise SceneError(f"`{name}` must be >= 0{where}, got {show(raw)}")
+    if abs(out) > HUGE:
+        raise SceneError(f"`{name}` must be of magnitude at most {HUGE:g}{where}, got {show(raw)}")
+    if positive and out < TINY:
+        raise SceneError(f"`{name}` must be at least {TINY:g}{where}, got {show(raw)}")
+    return out
+
+
+def check_real(name: str, value, *, positive: bool = False, nonneg: bool = False) -> float:
+    """A finite float within the magnitude window (``positive``: > 0; ``nonneg``: >= 0)."""
+    return _window(name, check_finite(name, value), value, "", positive, nonneg)
+
+
+def check_vector(name: str, value, length: int | None = None, *, positive: bool = False,
+                 nonneg: bool = False) -> tuple[float, ...]:
+    """A non-empty 1-D sequence of real numbers, each checked as :func:`check_real`, as a tuple
+    of floats (``length`` entries if given)."""
+    np = sys.modules.get("numpy")
+    if np is not None and isinstance(value, np.ndarray):
+        if value.ndim != 1 or value.dtype.kind not in "iuf":
+            raise SceneError(f"`{name}` must be a 1-D sequence of real numbers, got an array of "
+                             f"shape {value.shape} and dtype {value.dtype}")
+        items = value.tolist()
+    elif isinstance(value, (list, tuple)):
+        items = list(value)
+    else:
+        raise SceneError(f"`{name}` must be a list of numbers, got {show(value)}")
+    if not items:
+        raise SceneError(f"`{name}` must not be empty")
+    if length is not None and len(items) != length:
+        raise SceneError(f"`{name}` must have {length} entries, got {len(items)}")
+    if set(map(type, items)) <= {float, int}:  # fast path for long plain lists (sample times)
+        import numpy as np
+
+        arr = np.array(items, dtype=float) if all(abs(v) <= HUGE for v in items) else None
+        if arr is not None and _plain_ok(arr, positive, nonneg):
+            return tuple(arr.tolist())
+    return tuple(_window(name, check_finite(name, v, where=f" at index {i}"), v, f" at index {i}",
+                         positive, nonneg) for i, v in enumerate(items))
+
+
+def _plain_ok(arr, positive: bool, nonneg: bool) -> bool:
+    """True when every entry passes :func:`_window` (else the slow path names the culprit)."""
+    import numpy as np
+
+    ok = np.isfinite(arr).all() and (np.abs(arr) <= HUGE).all()
+    if positive:
+        ok = ok and (arr >= TINY).all()
+    if nonneg:
+        ok = ok and (arr >= 0).all()
+    return bool(ok)
+
+
 def check_int(name: str, value, *, minimum: int | None = None, maximum: int | None = MAX_COUNT) -> int:
-    if not isinstance(value, Integral) or isinstance(value, (bool, np.bool_)):
+    """An ``int`` (not bool) within [minimum, maximum] (None: unbounded on that side)."""
+    if not isinstance(value, Integral) or _is_bool(value):
         raise SceneError(f"`{name}` must be an integer, got {show(value)}")
     if minimum is not None and value < minimum:
         raise SceneError(f"`{name}` must be >= {minimum}, got {show(value)}")
     if maximum is not None and value > maximum:
-        raise SceneError(f"`{name}` must be <= {maximum}, got {show(value)}")
+        raise SceneError(f"`{name}` must be <= {maximum:,}, got {show(value)}")
     return int(value)
 
 
@@ -95,11 +174,20 @@ def check_text(name: str, value) -> str:
     return value
 
 
+def check_flag(name: str, value) -> bool:
+    """``True`` or ``False`` (a NumPy bool too), as ``bool``."""
+    if not _is_bool(value):
+        raise SceneError(f"`{name}` must be True or False, got {show(value)}")
+    return bool(value)
+
+
 def per_item(name: str, value, count: int, *, allow_zero: bool) -> tuple[float, ...]:
     """A scalar or a length-``count`` sequence of finite numbers, as a tuple of floats.
 
     Values must be > 0, or >= 0 when ``allow_zero``.
     """
+    import numpy as np
+
     check = check_nonnegative if allow_zero else check_positive
     if is_real(value):
         return (check(name, value),) * count

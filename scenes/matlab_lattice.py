@@ -26,7 +26,8 @@ import numpy as np
 
 import asperity2d as a
 from asperity2d.cli import scripting
-from asperity2d.experiments.quasistatic import SEED_DRIVE_VELOCITY, plot_position_velocity
+from asperity2d.experiments.quasistatic import SEED_DRIVE_VELOCITY
+from asperity2d.renderers.plots import plot_position_velocity
 
 K = 37_200.0  # N/m, seed 000 Table 1 (all springs)
 MASS = 2.88e-16  # kg, seed 000 Table 1 (all peaks and the slider)

@@ -32,6 +32,7 @@ import numpy as np
 from asperity2d.cli import scripting
 from asperity2d._io import atomic_write_text
 from asperity2d import surface
+from asperity2d.renderers import surface as surface_plots
 
 DATA = Path(__file__).resolve().parent / "data" / "measured_style_profile.csv"
 MIN_PROMINENCE = 20e-9  # m: ten times the 2 nm rms noise of the shipped trace
@@ -65,10 +66,10 @@ def main(argv=None) -> int:
                             q_max=2 * math.pi / SHORTEST_FIT_WAVELENGTH)
     asperities = surface.find_asperities(profile, min_prominence=args.min_prominence,
                                          min_width=args.min_width, modulus=MODULUS, density=DENSITY)
-    surface.plot_asperities(profile, asperities, out / "profile_asperities.png")
+    surface_plots.plot_asperities(profile, asperities, out / "profile_asperities.png")
     x0 = float(profile.x[0])
-    surface.plot_asperities(profile, asperities, out / "profile_zoom.png", x_range=(x0, x0 + 10e-6))
-    surface.plot_spectrum(spectrum, out / "spectrum.png", fit=fit)
+    surface_plots.plot_asperities(profile, asperities, out / "profile_zoom.png", x_range=(x0, x0 + 10e-6))
+    surface_plots.plot_spectrum(spectrum, out / "spectrum.png", fit=fit)
     atomic_write_text(out / "asperities.json", json.dumps(asperities.as_dict()) + "\n")
     a = asperities
     summary = {

@@ -35,6 +35,7 @@ import numpy as np
 
 import asperity2d as a
 from asperity2d import surface
+from asperity2d.renderers import surface as surface_plots
 from asperity2d.cli import scripting
 from asperity2d import stats
 from asperity2d.studies.claims import claim, verdict_line
@@ -92,7 +93,7 @@ def main(argv=None) -> int:
     runs = {"fixed": {"critical_force_N": a.critical_force(fixed), **fixed_pass},
             "free": measure(free), "free_regular_median": measure(regular)}
     touched = pass_result.lower_contact.any(axis=1)
-    surface.plot_asperities(levelled, record, out / "profile_touched.png", highlight=touched,
+    surface_plots.plot_asperities(levelled, record, out / "profile_touched.png", highlight=touched,
                             level=probe.lower.top - fixed.slider.interference)
     a.render(pass_result, out / "fixed_run.png")
     outputs = ["profile_touched.png", "fixed_run.png"]

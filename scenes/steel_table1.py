@@ -35,6 +35,7 @@ import math
 import asperity2d as a
 from asperity2d.experiments import quasistatic as qs
 from asperity2d.cli import scripting
+from asperity2d.renderers.plots import plot_position_velocity
 
 TABLE1 = dict(base=1e-6, mass=2.88e-16, stiffness=37_200.0, flank_angle=45.0)
 FACTOR = 2000.0
@@ -90,7 +91,7 @@ def main(argv=None) -> int:
                                        tolerance=args.tolerance, on_rung=keep)
         result = shown["result"]
         result.save(out / f"run_{setup}.npz")
-        qs.plot_position_velocity(result, out / f"figure17_{setup}.png",
+        plot_position_velocity(result, out / f"figure17_{setup}.png",
                                   title=f"Table 1 steel, {setup} set-up, drive {result.scene.drive.velocity:g} "
                                         f"m/s (x{production:g})")
         summary["outputs"] += [f"run_{setup}.npz", f"figure17_{setup}.png"]

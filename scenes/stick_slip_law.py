@@ -28,6 +28,7 @@ from __future__ import annotations
 import numpy as np
 
 import asperity2d as a
+from asperity2d.belt.period import belt_period
 from asperity2d.friction import fits as ft
 from asperity2d.cli import scripting
 from asperity2d.experiments import tribometer as tb
@@ -53,7 +54,7 @@ def _describe(result, law) -> dict:
     scene = result.scene
     own = ft.fit_stick_slip(result)
     cycles = ft.stick_slip_cycles(result)
-    belt = ft.belt_period(law, mass=scene.slider.mass, stiffness=STIFFNESS, velocity=VELOCITY,
+    belt = belt_period(law, mass=scene.slider.mass, stiffness=STIFFNESS, velocity=VELOCITY,
                           normal_load=scene.slider.normal_load)["period_s"]
     pitch = scene.lower.spacing.mean_pitch
     return {"mu_s": own.law.mu_s, "mu_k": own.law.mu_k, "gap": own.law.mu_s - own.law.mu_k,

@@ -16,6 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 import asperity2d as a
+from asperity2d.belt.period import belt_period
 from asperity2d.friction import fits as ft
 from asperity2d.cli import scripting
 from asperity2d.experiments import tribometer as tb
@@ -62,9 +63,9 @@ def _stick_slip_periods(stribeck, *, quick: bool) -> tuple:
         cycles = ft.stick_slip_cycles(result)
         common = dict(mass=scene.slider.mass, stiffness=stiffness, velocity=velocity,
                       normal_load=scene.slider.normal_load)
-        belt = ft.belt_period(law, **common)["period_s"]
+        belt = belt_period(law, **common)["period_s"]
         try:  # the contrast only: a steady-sliding law the belt solver cannot run is reported, not fatal
-            steady = ft.belt_period(stribeck, **common)["period_s"]
+            steady = belt_period(stribeck, **common)["period_s"]
         except SimulationError:
             steady = float("nan")
         pitch = scene.lower.spacing.mean_pitch
@@ -79,7 +80,7 @@ def _stick_slip_periods(stribeck, *, quick: bool) -> tuple:
     velocity = STICK_SLIP_RUNS[0][1]
     grid = np.geomspace(400.0, 5000.0, 24)
     pitch = base.lower.spacing.mean_pitch
-    line = [ft.belt_period(law, mass=base.slider.mass, stiffness=float(k), velocity=velocity,
+    line = [belt_period(law, mass=base.slider.mass, stiffness=float(k), velocity=velocity,
                            normal_load=base.slider.normal_load)["period_s"] * velocity / pitch for k in grid]
     return law, {"calibration": calibration, "runs": runs,
                  "belt_curve": {"velocity_m_per_s": velocity, "stiffness_N_per_m": grid.tolist(), "pitches": line}}

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 import pymunk
 
-from asperity2d.belt import validate as check
+from asperity2d._validate import check_int, check_real
 from asperity2d.belt.spec import ChainSpec
 from asperity2d.errors import SceneError
 
@@ -68,17 +68,17 @@ def simulate_chain_rigid(masses, springs, dampers, *, mu_s: float, mu_k: float |
     m, k, c, n = spec.masses, spec.springs, spec.dampers, spec.n
     x0, v0, v_belt, g = np.array(spec.x0), np.array(spec.v0), spec.v_belt, spec.g
     mu_s, mu_k = spec.law.static_coefficient, spec.law.kinetic_coefficient
-    record_every = check.integer("record_every", record_every, minimum=1)
-    iterations = check.integer("iterations", iterations, minimum=1, maximum=10_000)
-    slip_distance = check.real("slip_distance", slip_distance, positive=True)
+    record_every = check_int("record_every", record_every, minimum=1, maximum=None)
+    iterations = check_int("iterations", iterations, minimum=1, maximum=10_000)
+    slip_distance = check_real("slip_distance", slip_distance, positive=True)
     rows = np.array(k[:-1]) + np.array(k[1:]) + np.abs(k[:-1]) + np.abs(k[1:])
     omega = math.sqrt(max(float(np.max(rows / np.array(m))), 1e-12))
-    dt = (2 * math.pi / omega) / 400 if dt is None else check.real("dt", dt, positive=True)
+    dt = (2 * math.pi / omega) / 400 if dt is None else check_real("dt", dt, positive=True)
     steps = int(math.ceil(spec.t_end / dt - 1e-9))
     if steps > MAX_STEPS:
         raise SceneError(f"`t_end` / `dt` = {steps:,} steps, over the budget of {MAX_STEPS:,}; shorten `t_end` "
                          "or raise `dt`")
-    v_stick = 1e-3 * max(abs(v_belt), 1e-3) if stick_speed is None else check.real("stick_speed", stick_speed,
+    v_stick = 1e-3 * max(abs(v_belt), 1e-3) if stick_speed is None else check_real("stick_speed", stick_speed,
                                                                                      positive=True)
 
     space = pymunk.Space(threaded=False)

@@ -3,6 +3,7 @@
 import numpy as np
 import pytest
 
+from asperity2d.belt.period import belt_period
 from asperity2d.friction import fits as ft
 from asperity2d.friction import CoulombViscous, Stribeck
 from asperity2d.experiments.tribometer import ReversalLoops, SteadyCurve
@@ -58,7 +59,7 @@ def test_belt_period_of_a_static_kinetic_law_matches_the_closed_form():
     from asperity2d.friction import StaticKinetic
 
     m, k, v, n = 2.88e-15, 3720.0, 10.0, 2e-3
-    out = ft.belt_period(StaticKinetic(1.9, 0.4), mass=m, stiffness=k, velocity=v, normal_load=n)
+    out = belt_period(StaticKinetic(1.9, 0.4), mass=m, stiffness=k, velocity=v, normal_load=n)
     # stick: the spring force climbs 2 (Fs - Fk) at k V; slip: the harmonic arc back to V
     w = np.sqrt(k / m)
     a = (1.9 - 0.4) * n / k
@@ -120,7 +121,7 @@ def test_stick_slip_law_in_the_belt_solver_predicts_the_asperity_period(calibrat
     if lower_count is not None:
         scene, result = _driven(stiffness, lower_count)
     asperity = ft.stick_slip_cycles(result)["period_s"]
-    belt = ft.belt_period(law, mass=scene.slider.mass, stiffness=stiffness, velocity=10.0,
+    belt = belt_period(law, mass=scene.slider.mass, stiffness=stiffness, velocity=10.0,
                           normal_load=scene.slider.normal_load)
     assert belt["period_s"] == pytest.approx(asperity, rel=0.05)
 
@@ -159,7 +160,7 @@ def test_pooled_law_of_random_surfaces_predicts_a_held_out_seed(calibration_run)
     measured = ft.stick_slip_cycles(held_out)["period_s"]
 
     def predicted(law):
-        return ft.belt_period(law, mass=scene.slider.mass, stiffness=1000.0, velocity=10.0,
+        return belt_period(law, mass=scene.slider.mass, stiffness=1000.0, velocity=10.0,
                               normal_load=scene.slider.normal_load)["period_s"]
 
     assert predicted(pooled.law) == pytest.approx(measured, rel=0.10)

@@ -51,9 +51,9 @@ def test_matlab_lattice_script_reproduces_the_seed_contact_cases(tmp_path, capsy
     import json
     from pathlib import Path
 
-    from asperity2d.cli.main import _load_script
+    from asperity2d.cli.args import load_script
 
-    script = _load_script(Path(__file__).resolve().parent.parent / "scenes" / "matlab_lattice.py")
+    script = load_script(Path(__file__).resolve().parent.parent / "scenes" / "matlab_lattice.py")
     assert script.main(["--json", "--frames", "5", "-o", str(tmp_path)]) == 0
     summary = json.loads(capsys.readouterr().out)
     # seed 000 Table 2: cases 1-7 for three peaks, here from the contacts themselves

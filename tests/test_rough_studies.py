@@ -6,7 +6,7 @@ Cost: about 25 s of CPU for the four scripts (one process each, ``--workers 1``)
 import numpy as np
 import pytest
 
-from asperity2d.cli.main import _load_script
+from asperity2d.cli.args import load_script
 from scene_scripts import SCENES, run_script
 
 
@@ -62,7 +62,7 @@ def test_a_summit_passed_between_two_steps_is_named_not_hidden():
     from asperity2d import make_scene
     from asperity2d.studies.rough import rough_run
 
-    module = _load_script(SCENES / "rough_contact_fraction.py")
+    module = load_script(SCENES / "rough_contact_fraction.py")
     kw = module.scene_kw(module.SIZE, "uniform")
     top = make_scene(seed=5, **kw).lower.top
     run = rough_run(seed=5, critical=False, interference=top - (module.MEAN - 1.5 * module.STD), **kw)

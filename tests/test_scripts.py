@@ -6,7 +6,7 @@ from pathlib import Path
 import pytest
 from PIL import Image
 
-from asperity2d.cli.main import _load_script, main
+from asperity2d.cli.args import load_script, main
 
 SCENES = Path(__file__).resolve().parent.parent / "scenes"
 
@@ -17,7 +17,7 @@ SCENES = Path(__file__).resolve().parent.parent / "scenes"
     ("quickstart", ["--seeds", "2", "--workers", "1"]),
 ])
 def test_script_writes_gif_with_requested_frames_and_summary(name, extra, tmp_path, capsys):
-    module = _load_script(SCENES / f"{name}.py")
+    module = load_script(SCENES / f"{name}.py")
     assert module.main(["--quick", "--json", "--frames", "7", "-o", str(tmp_path), *extra]) == 0
     summary = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
     assert summary == json.loads((tmp_path / "summary.json").read_text())
@@ -57,7 +57,7 @@ def test_toml_scene_runs_saves_and_reanalyses(tmp_path, capsys):
 
 def test_tribometer_script_hands_the_stick_slip_law_to_a_belt_chain(tmp_path, capsys):
     """scenes/tribometer.py --quick: held-out period within 5 %, and its chain file runs via the CLI."""
-    module = _load_script(SCENES / "tribometer.py")
+    module = load_script(SCENES / "tribometer.py")
     assert module.main(["--quick", "--json", "-o", str(tmp_path)]) == 0
     summary = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
     runs = summary["stick_slip"]["runs"]
@@ -73,7 +73,7 @@ def test_tribometer_script_hands_the_stick_slip_law_to_a_belt_chain(tmp_path, ca
 @pytest.mark.slow
 def test_stick_slip_law_script_transfers_the_pooled_law_to_held_out_seeds(tmp_path, capsys):
     """scenes/stick_slip_law.py --quick (4 random seeds): held-out periods within 10 %."""
-    module = _load_script(SCENES / "stick_slip_law.py")
+    module = load_script(SCENES / "stick_slip_law.py")
     assert module.main(["--quick", "--json", "--no-gif", "--workers", "1", "-o", str(tmp_path)]) == 0
     summary = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
     assert summary["held_out_ratio"]["max_abs_error"] < 0.10

@@ -9,8 +9,9 @@ import numpy as np
 import pytest
 
 from asperity2d import SceneError
+from asperity2d.renderers.surface import plot_asperities, plot_spectrum
 from asperity2d.surface import (Asperities, SurfaceProfile, find_asperities, fraction_above,
-                                plot_asperities, plot_spectrum, power_spectrum, fit_hurst,
+                                power_spectrum, fit_hurst,
                                 pyramid_mass, random_heights, self_affine_profile,
                                 table1_stiffness)
 
@@ -221,9 +222,9 @@ def test_plots_are_written_atomically(tmp_path):
 
 
 def test_profile_script_reads_the_shipped_profile_and_writes_its_outputs(tmp_path, capsys):
-    from asperity2d.cli.main import _load_script
+    from asperity2d.cli.args import load_script
 
-    module = _load_script(SCENES / "profile_asperities.py")
+    module = load_script(SCENES / "profile_asperities.py")
     assert module.main(["--quick", "--json", "-o", str(tmp_path)]) == 0
     summary = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
     assert summary == json.loads((tmp_path / "summary.json").read_text())

@@ -4,7 +4,8 @@
 thesis' parameter tables; ``regime`` classifies runs (steady sliding,
 stick-slip, quasi-harmonic); ``load`` reads a saved result.
 
-Modules, in data-flow order: ``validate`` (parameter rules and budgets) ->
+Modules, in data-flow order: ``limits`` (derived scales and budgets; the parameter rules are
+:mod:`asperity2d._validate`'s) ->
 ``spec`` (ChainSpec and its scales) -> ``backend`` (the back-end contract:
 RunOptions in, RawRun out) -> back-ends ``linear`` (closed-form phases from
 ``modal``), ``hybrid`` (integrated phases, state-variable laws), ``sign``

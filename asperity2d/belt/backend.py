@@ -19,7 +19,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import SceneError, SimulationError
-from . import validate as check
+from .._validate import check_choice, check_flag, check_int, check_real, check_vector, show
+from . import limits
 
 INTEGRATORS = ("LSODA", "Radau", "BDF", "DOP853", "RK45")
 
@@ -61,30 +62,30 @@ class RunOptions:
     @classmethod
     def build(cls, spec, *, n_samples, t_eval, include_events, rtol, atol, integrator, max_events, max_steps):
         """Check every setting against ``spec`` (names the parameter the user wrote)."""
-        max_steps = check.integer("max_steps", max_steps, minimum=1)
+        max_steps = check_int("max_steps", max_steps, minimum=1, maximum=None)
         samples = _sample_times(spec, n_samples, t_eval)
-        check.budget(spec, samples.size, max_steps)
-        rtol = check.real("rtol", rtol, positive=True)
+        limits.budget(spec, samples.size, max_steps)
+        rtol = check_real("rtol", rtol, positive=True)
         if not 1e-13 <= rtol <= 0.1:
-            raise SceneError(f"`rtol` must be within [1e-13, 0.1], got {check.show(rtol)}")
+            raise SceneError(f"`rtol` must be within [1e-13, 0.1], got {show(rtol)}")
         return cls(
             samples=samples,
-            include_events=check.flag("include_events", include_events),
+            include_events=check_flag("include_events", include_events),
             rtol=rtol,
-            atol=None if atol is None else check.real("atol", atol, positive=True),
-            integrator=check.choice("integrator", integrator, INTEGRATORS),
-            max_events=check.integer("max_events", max_events, minimum=1),
+            atol=None if atol is None else check_real("atol", atol, positive=True),
+            integrator=check_choice("integrator", integrator, INTEGRATORS),
+            max_events=check_int("max_events", max_events, minimum=1, maximum=None),
             max_steps=max_steps,
         )
 
 
 def _sample_times(spec, n_samples, t_eval) -> np.ndarray:
     if t_eval is not None:
-        t = np.array(check.vector("t_eval", t_eval, nonneg=True))
+        t = np.array(check_vector("t_eval", t_eval, nonneg=True))
         if np.any(np.diff(t) <= 0) or t[-1] > spec.t_end:
             raise SceneError(f"`t_eval` must increase strictly within [0, t_end={spec.t_end!r}]")
         return t
-    n = check.integer("n_samples", n_samples, minimum=2, maximum=check.MAX_VALUES)
+    n = check_int("n_samples", n_samples, minimum=2, maximum=limits.MAX_VALUES)
     return np.linspace(0.0, spec.t_end, n)
 
 

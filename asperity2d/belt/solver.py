@@ -1,6 +1,6 @@
 """``simulate_chain``: masses on a moving belt with exact stick/slip switching.
 
-The driver validates every parameter (:mod:`.spec`, :mod:`.validate`,
+The driver validates every parameter (:mod:`.spec`, :mod:`asperity2d._validate`, :mod:`.limits`,
 :class:`~.backend.RunOptions`), picks the back-end from ``METHODS`` -- the
 first entry of the method whose predicate accepts the chain -- and turns the
 back-end's :class:`~.backend.RawRun` into a :class:`~.result.BeltResult`.
@@ -18,7 +18,7 @@ from .linear import run_closed_form
 from .result import BeltResult, assemble
 from .sign import run_sign
 from .spec import ChainSpec
-from .validate import choice
+from .._validate import check_choice
 
 
 @dataclass(frozen=True)
@@ -87,7 +87,7 @@ def simulate_chain(
     right-hand-side evaluations. Bad input raises ``SceneError`` naming the
     parameter; a run that fails or exceeds a budget raises ``SimulationError``.
     """
-    method = choice("method", method, tuple(METHODS))
+    method = check_choice("method", method, tuple(METHODS))
     spec = ChainSpec(masses, springs, dampers, mu_s, mu_k, v_belt, x0, v0, t_end, g, normal_load, friction)
     options = RunOptions.build(spec, n_samples=n_samples, t_eval=t_eval, include_events=include_events,
                                rtol=rtol, atol=atol, integrator=integrator, max_events=max_events,

@@ -23,7 +23,8 @@ import numpy as np
 
 from ..errors import SceneError, SimulationError
 from ..friction.laws import Coulomb, FrictionLaw, StaticKinetic
-from . import validate as check
+from .._validate import check_real, check_vector, show
+from . import limits
 
 
 @dataclass(frozen=True)
@@ -51,40 +52,40 @@ class ChainSpec:
 
     def __post_init__(self):
         s = object.__setattr__
-        s(self, "masses", check.vector("masses", self.masses, positive=True))
+        s(self, "masses", check_vector("masses", self.masses, positive=True))
         n = len(self.masses)
-        s(self, "springs", check.vector("springs", self.springs, n + 1, nonneg=True))
-        s(self, "dampers", check.vector("dampers", self.dampers, n + 1, nonneg=True))
-        s(self, "x0", check.vector("x0", self.x0, n))
-        s(self, "v0", check.vector("v0", self.v0, n))
-        s(self, "t_end", check.real("t_end", self.t_end, positive=True))
-        s(self, "g", check.real("g", self.g, nonneg=True))
+        s(self, "springs", check_vector("springs", self.springs, n + 1, nonneg=True))
+        s(self, "dampers", check_vector("dampers", self.dampers, n + 1, nonneg=True))
+        s(self, "x0", check_vector("x0", self.x0, n))
+        s(self, "v0", check_vector("v0", self.v0, n))
+        s(self, "t_end", check_real("t_end", self.t_end, positive=True))
+        s(self, "g", check_real("g", self.g, nonneg=True))
         if self.normal_load is not None:
-            s(self, "normal_load", check.vector("normal_load", self.normal_load, n, nonneg=True))
+            s(self, "normal_load", check_vector("normal_load", self.normal_load, n, nonneg=True))
         if callable(self.v_belt):
             try:
                 probe = self.v_belt(0.0)
             except Exception as exc:  # noqa: BLE001 -- the user's callable; report, do not crash
-                raise SceneError(f"`v_belt` raised {type(exc).__name__} at t = 0: {check.show(exc, 120)}") from None
-            check.real("v_belt", probe)
+                raise SceneError(f"`v_belt` raised {type(exc).__name__} at t = 0: {show(exc, 120)}") from None
+            check_real("v_belt", probe)
         else:
-            s(self, "v_belt", check.real("v_belt", self.v_belt))
+            s(self, "v_belt", check_real("v_belt", self.v_belt))
         s(self, "law", self._law())
-        check.scales(self)
+        limits.scales(self)
 
     def _law(self) -> FrictionLaw:
         if self.friction is not None:
             if not isinstance(self.friction, FrictionLaw):
-                raise SceneError(f"`friction` must be a law from asperity2d.friction, got {check.show(self.friction)}")
+                raise SceneError(f"`friction` must be a law from asperity2d.friction, got {show(self.friction)}")
             if self.mu_s is not None or self.mu_k is not None:
                 raise SceneError("give either `mu_s` / `mu_k` or `friction`, not both")
             for name, value in zip(self.friction.param_names, self.friction.params):
-                check.real(f"friction.{name}", float(value))
+                check_real(f"friction.{name}", float(value))
             return self.friction
         if self.mu_s is None:
             raise SceneError("`mu_s` is required unless `friction` is given")
-        mu_s = check.real("mu_s", self.mu_s, nonneg=True)
-        mu_k = mu_s if self.mu_k is None else check.real("mu_k", self.mu_k, nonneg=True)
+        mu_s = check_real("mu_s", self.mu_s, nonneg=True)
+        mu_k = mu_s if self.mu_k is None else check_real("mu_k", self.mu_k, nonneg=True)
         if mu_k > mu_s:
             raise SceneError(f"`mu_s` must be >= `mu_k` ({mu_k!r}), got {mu_s!r}")
         object.__setattr__(self, "mu_s", mu_s)
@@ -218,7 +219,7 @@ class ChainSpec:
         except (TypeError, ValueError, OverflowError):
             out = math.nan
         if not math.isfinite(out):
-            raise SimulationError(f"`v_belt`({float(t):.6g}) returned {check.show(value)}, not a finite number",
+            raise SimulationError(f"`v_belt`({float(t):.6g}) returned {show(value)}, not a finite number",
                                   time=float(t))
         return out
 

@@ -4,7 +4,7 @@ Each handler checks every file argument before any work (so a bad ``--save``
 is refused before a long run, not after it), calls the library and prints a
 summary (text, or one JSON object with ``--json``). Errors are ``SceneError``
 naming the argument as the user typed it; :func:`asperity2d.cli.main` prints
-them as one line and exits with status 2. The parser is in :mod:`asperity2d.cli`.
+them as one line and exits with status 2. The parser is in :mod:`asperity2d.cli.main`.
 """
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ import math
 from pathlib import Path
 
 from .. import _io
-from .main import PLOT_SUFFIXES, _load_script
+from .args import PLOT_SUFFIXES, load_script
 from ..errors import SceneError
 
 #: Keys of a TOML scene's ``[run]`` table.
@@ -115,7 +115,7 @@ def _run_script(path: Path, args) -> int:
     for option, value in (("--save", args.save), ("--duration", args.duration)):
         if value is not None:
             raise SceneError(f"`{option}` applies to TOML scenes; a script takes its own arguments")
-    module = _load_script(path)
+    module = load_script(path)
     if not callable(getattr(module, "main", None)):
         raise SceneError(f"`scene` script {str(path)!r} has no main(argv) function")
     argv = list(args.script_args) + (["--json"] if args.json else [])

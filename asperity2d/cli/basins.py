@@ -9,9 +9,9 @@ and keeps every run in a resumable sweep store (``basins.runs/`` unless
 grid points are computed. ``--workers N`` local processes, or ``--scheduler``
 a Dask address. Write a range that starts with a minus sign with ``=``
 (``--x-range=-0.3,0.9``), or argparse takes it for an option. The options
-are declared with the ``belt`` parser in :mod:`asperity2d.cli` (which owns
-``--preset``, ``--t-end``, ``-o`` and ``--json``) and used only after the
-word ``basins``; bad input raises ``SceneError`` (one line, exit status 2).
+are the ``basins`` subcommand's of the ``belt`` parser (:mod:`asperity2d.cli.main`; ``--preset``,
+``--t-end`` and ``--json`` shared with ``belt``); bad input raises ``SceneError`` (one
+line, exit status 2).
 """
 
 from __future__ import annotations
@@ -32,20 +32,20 @@ def _numbers(text: str, name: str, cast=float) -> list:
 
 
 def _chain(args) -> tuple[dict, str]:
-    if args.preset and args.basins_chain:
+    if args.preset and args.chain_file:
         raise SceneError("give either `--preset` or `--chain-file`, not both")
     if args.preset:
         from ..belt import presets
 
         return presets.preset(args.preset), args.preset
-    if args.basins_chain:
+    if args.chain_file:
         from .belt import load_chain
 
-        return load_chain(args.basins_chain), str(args.basins_chain)
+        return load_chain(args.chain_file), str(args.chain_file)
     raise SceneError("`belt basins` needs `--preset` or `--chain-file`")
 
 
-def run_basins(args) -> int:
+def run(args) -> int:
     """Run the parsed ``belt basins`` command: the map, its JSON summary, the store; return 0."""
     import numpy as np
 
@@ -57,12 +57,12 @@ def run_basins(args) -> int:
     chain, source = _chain(args)
     if args.t_end is not None:
         chain["t_end"] = args.t_end
-    grid = _numbers(args.basins_grid, "grid", int)
+    grid = _numbers(args.grid, "grid", int)
     nx, ny = (grid[0], grid[0]) if len(grid) == 1 else grid if len(grid) == 2 else (0, 0)
     if nx < 1 or ny < 1:
-        raise SceneError(f"`grid` must be N or NX,NY with positive integers, got {args.basins_grid!r}")
+        raise SceneError(f"`grid` must be N or NX,NY with positive integers, got {args.grid!r}")
     axes = []
-    for text, name, count in ((args.basins_x_range, "x-range", nx), (args.basins_y_range, "y-range", ny)):
+    for text, name, count in ((args.x_range, "x-range", nx), (args.y_range, "y-range", ny)):
         lo_hi = _numbers(text, name)
         if len(lo_hi) != 2 or not lo_hi[0] < lo_hi[1]:
             raise SceneError(f"`{name}` must be LO,HI with LO < HI, got {text!r}")
@@ -70,11 +70,11 @@ def run_basins(args) -> int:
     out = Path(args.output) if args.output else Path("basins.png")
     if out.suffix.lower() not in PLOTS:
         raise SceneError(f"`--output` must end in .png, .svg or .pdf for a basin map, got {str(out)!r}")
-    store = Path(args.basins_store) if args.basins_store else out.with_suffix(".runs")
-    result = b.chain_basins(chain, x=(args.basins_x, axes[0]), y=(args.basins_y, axes[1]), rtol=args.basins_rtol,
-                            store=store, workers=args.basins_workers, scheduler=args.basins_scheduler,
+    store = Path(args.store) if args.store else out.with_suffix(".runs")
+    result = b.chain_basins(chain, x=(args.x, axes[0]), y=(args.y, axes[1]), rtol=args.rtol,
+                            store=store, workers=args.workers, scheduler=args.scheduler,
                             progress=not args.json)
-    picture = plot_basins(result, out, title=f"{source}: basins over ({args.basins_x}, {args.basins_y})")
+    picture = plot_basins(result, out, title=f"{source}: basins over ({args.x}, {args.y})")
     summary = {"source": source, **result.to_dict(), "store": str(store), "output": str(picture),
                "summary": str(out.with_suffix(".json"))}
     text = json.dumps(_strict(summary), sort_keys=True, allow_nan=False)

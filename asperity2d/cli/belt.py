@@ -10,7 +10,7 @@ A chain file holds the keyword arguments of ``simulate_chain`` at top level:
 ``mu_s`` are required (``mu_s`` unless a ``[friction]`` table gives the law,
 e.g. ``law = "Stribeck"`` plus its parameters); ``mu_k``, ``g``,
 ``normal_load``, ``method``, ``n_samples``, ``rtol``, ``atol`` and
-``integrator`` are optional. The parser is built in :mod:`asperity2d.cli`;
+``integrator`` are optional. The parser is built in :mod:`asperity2d.cli.main`;
 this module only runs the parsed command. Thin: parse, call, print.
 """
 
@@ -63,10 +63,6 @@ def load_chain(path) -> dict:
 
 def run(args) -> int:
     """Run the parsed ``belt`` command; bad input raises ``SceneError`` (one line, exit 2)."""
-    if args.chain == "basins":
-        from .basins import run_basins
-
-        return run_basins(args)
     if (args.chain is None) == (args.preset is None) and not args.list_presets:
         raise SceneError("give either a `chain` TOML file or `--preset`")
     out = args.output and _io.output_path("--output", args.output, suffixes=OUTPUTS)

@@ -8,62 +8,24 @@ not UTF-8, not TOML or damaged -- prints one line on stderr
 before anything is computed where it can be checked up front. A user's own
 scene script that raises shows its own traceback: the bug is in that script.
 
-Start-up stays light: the parser of every subcommand is built here without
-importing any implementation; a subcommand's handler (and NumPy, pymunk,
-SciPy, matplotlib) is imported only when that subcommand runs.
+Start-up stays light: the handler modules are imported here, but each imports
+its implementation (and NumPy, pymunk, SciPy, matplotlib) only when its
+subcommand runs. Each subcommand's parser names its handler function
+(``set_defaults(handler=...)``); ``belt basins`` is a subcommand of ``belt``.
 """
 
 from __future__ import annotations
 
 import argparse
-import importlib
-import math
 import sys
 import warnings
 
 from ..errors import SceneError, SimulationError
+from . import asperity, basins, belt, sweep
+from .args import PLOT_SUFFIXES, PROG, Parser, Subcommands, fail, positive_float, positive_int
 
-PROG = "asperity2d"
-PLOT_SUFFIXES = (".png", ".svg", ".pdf")
-
-
-class Parser(argparse.ArgumentParser):
-    """The one argument parser of asperity2d's commands and scene scripts.
-
-    A usage error is one line on stderr, ``asperity2d: error: ...``, and exit
-    status 2 (no usage dump); subparsers inherit this.
-    """
-
-    def error(self, message):
-        self.exit(2, f"{PROG}: error: {message}\n")
-
-
-def fail(message) -> int:
-    """Print the one error line; return exit status 2."""
-    print(f"{PROG}: error: {message}", file=sys.stderr)
-    return 2
-
-
-def positive_float(text: str) -> float:
-    """An argparse type: a finite number > 0 (the message is prefixed with the option's name)."""
-    try:
-        value = float(text)
-    except ValueError:
-        value = math.nan
-    if not (math.isfinite(value) and value > 0):
-        raise argparse.ArgumentTypeError(f"must be a finite number > 0, got {text!r}")
-    return value
-
-
-def positive_int(text: str) -> int:
-    """An argparse type: an integer >= 1."""
-    try:
-        value = int(text)
-    except ValueError:
-        value = 0
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"must be an integer >= 1, got {text!r}")
-    return value
+__all__ = ["main", "build_parser", "Parser", "PROG", "PLOT_SUFFIXES", "fail", "positive_float",
+           "positive_int"]
 
 
 class _Version(argparse.Action):
@@ -89,7 +51,7 @@ COMPARE_MEASURES = ("critical", "critical-run-up", "first-breakaway", "peak-stic
 
 
 def build_parser() -> Parser:
-    """The whole command line; each subcommand names its handler as ``"module:function"``."""
+    """The whole command line; each subcommand names its handler function."""
     parser = Parser(prog=PROG, description="Friction at the asperity scale in 2D (pymunk), and "
                                            "masses on a moving belt with exact stick/slip.")
     parser.add_argument("--version", action=_Version, help="print the version and exit")
@@ -107,25 +69,25 @@ def build_parser() -> Parser:
     p.add_argument("--save", help="save the Result (.npz) (TOML scenes)")
     p.add_argument("--duration", type=positive_float, help="simulated time in s (TOML scenes)")
     _json_flag(p)
-    p.set_defaults(handler="asperity2d.cli.asperity:run", print_run_help=p.print_help)
+    p.set_defaults(handler=asperity.run, print_run_help=p.print_help)
 
     p = sub.add_parser("analyze", help="stick-slip events and breakaway force of a saved result")
     p.add_argument("result", help="a result saved with --save / Result.save (.npz)")
     _json_flag(p)
-    p.set_defaults(handler="asperity2d.cli.asperity:analyze")
+    p.set_defaults(handler=asperity.analyze)
 
     p = sub.add_parser("render", help="render a saved result; the extension picks the renderer")
     p.add_argument("result", help="a result saved with --save / Result.save (.npz)")
     p.add_argument("-o", "--output", required=True,
                    help=".gif, .mp4 (needs the video extra), .png, .svg, .pdf or .wav (the slider's sound)")
     _json_flag(p)
-    p.set_defaults(handler="asperity2d.cli.asperity:render")
+    p.set_defaults(handler=asperity.render)
 
     p = sub.add_parser("critical", help="critical constant drive force of a TOML scene")
     p.add_argument("scene", help="TOML scene file")
     p.add_argument("--rel-tol", type=positive_float, default=0.01, help="bracket width (default 0.01)")
     _json_flag(p)
-    p.set_defaults(handler="asperity2d.cli.asperity:critical")
+    p.set_defaults(handler=asperity.critical)
 
     p = sub.add_parser("compare", help="compare spacings over seeds (critical force, stick forces)")
     p.add_argument("--measure", choices=COMPARE_MEASURES, default="critical",
@@ -142,40 +104,63 @@ def build_parser() -> Parser:
     p.add_argument("--load", help="re-use a saved comparison instead of running")
     p.add_argument("-o", "--output", help="comparison plot (.png, .svg, .pdf)")
     _json_flag(p)
-    p.set_defaults(handler="asperity2d.cli.asperity:compare")
+    p.set_defaults(handler=asperity.compare)
 
-    p = sub.add_parser("belt", help="masses on a moving belt (exact stick/slip)",
-                       description="Run a chain from a TOML file or a named preset (see "
-                                   "asperity2d.cli.belt for the chain file's keys).")
-    p.add_argument("chain", nargs="?", help="TOML chain file")
-    p.add_argument("--preset", help="named preset from the thesis tables (see --list-presets)")
-    p.add_argument("--list-presets", action="store_true", help="print the preset names and exit")
-    p.add_argument("--method", choices=("exact", "sign"), help="override the solver")
-    p.add_argument("--t-end", type=positive_float, help="override the duration (s)")
-    p.add_argument("-o", "--output", help="plot (.png/.svg/.pdf), result (.npz) or table (.csv)")
-    _json_flag(p)
-    p.set_defaults(handler="asperity2d.cli.belt:run")
-    _add_belt_basins(p)
-
+    _add_belt(sub)
     _add_sweep(sub)
     return parser
 
 
-def _add_belt_basins(p) -> None:
-    """``asperity2d belt basins ...`` options (used after the word ``basins``; see asperity2d.cli.basins)."""
-    g = p.add_argument_group("basins: asperity2d belt basins (--preset|--chain-file) [options]")
-    g.add_argument("--x", dest="basins_x", default="x1", help="first coordinate: x1..xn (m) or v1..vn (m/s)")
-    g.add_argument("--y", dest="basins_y", default="v1", help="second coordinate (default v1)")
-    g.add_argument("--x-range", dest="basins_x_range", default="-0.5,0.5",
+def _belt_common() -> Parser:
+    """The options ``belt`` (a chain run) and ``belt basins`` share."""
+    common = Parser(add_help=False)
+    common.add_argument("--preset", help="named preset from the thesis tables (see --list-presets)")
+    common.add_argument("--t-end", type=positive_float, help="override the duration (s)")
+    _json_flag(common)
+    return common
+
+
+def _add_belt(subparsers) -> None:
+    """``asperity2d belt [run] CHAIN|--preset NAME ...`` and ``asperity2d belt basins ...``."""
+    common = _belt_common()
+    description = ("Run a chain from a TOML file or a named preset (see asperity2d.cli.belt for the "
+                   "chain file's keys); `belt basins` maps the initial-condition basins of a chain.")
+    parser = subparsers.add_parser("belt", help="masses on a moving belt (exact stick/slip)",
+                                   description=description, parents=[common])
+    _belt_run_options(parser, chain=False)
+    sub = parser.add_subparsers(dest="belt_command", metavar="{run,basins}", action=Subcommands,
+                                default_command="run")
+    parser.set_defaults(handler=belt.run, belt_command="run", chain=None)  # `belt --preset NAME`
+
+    p = sub.add_parser("run", help="run a chain (the default: `belt CHAIN` is `belt run CHAIN`)",
+                       description=description, parents=[common])
+    _belt_run_options(p)
+    p.set_defaults(handler=belt.run)
+
+    p = sub.add_parser("basins", help="initial-condition basin map of a chain (resumable)",
+                       description="An initial-condition basin map of a chain: the map, a JSON summary "
+                                   "beside it and a resumable sweep store.", parents=[common])
+    p.add_argument("-o", "--output", help="basin map (.png, .svg, .pdf; default basins.png)")
+    p.add_argument("--chain-file", help="TOML chain file (instead of --preset)")
+    p.add_argument("--x", default="x1", help="first coordinate: x1..xn (m) or v1..vn (m/s)")
+    p.add_argument("--y", default="v1", help="second coordinate (default v1)")
+    p.add_argument("--x-range", default="-0.5,0.5",
                    help="LO,HI of the first coordinate (write --x-range=-0.5,0.5 when LO < 0)")
-    g.add_argument("--y-range", dest="basins_y_range", default="-0.5,0.5", help="LO,HI of the second")
-    g.add_argument("--grid", dest="basins_grid", default="41", help="points per axis: N or NX,NY")
-    g.add_argument("--chain-file", dest="basins_chain", help="TOML chain file (instead of --preset)")
-    g.add_argument("--store", dest="basins_store", help="sweep store directory (default: <output>.runs)")
-    g.add_argument("--workers", dest="basins_workers", type=positive_int, help="local worker processes")
-    g.add_argument("--scheduler", dest="basins_scheduler", help="Dask scheduler address, or 'local'")
-    g.add_argument("--rtol", dest="basins_rtol", type=positive_float, default=1e-6,
-                   help="relative tolerance of the limit-cycle test")
+    p.add_argument("--y-range", default="-0.5,0.5", help="LO,HI of the second")
+    p.add_argument("--grid", default="41", help="points per axis: N or NX,NY")
+    p.add_argument("--store", help="sweep store directory (default: <output>.runs)")
+    p.add_argument("--workers", type=positive_int, help="local worker processes")
+    p.add_argument("--scheduler", help="Dask scheduler address, or 'local'")
+    p.add_argument("--rtol", type=positive_float, default=1e-6, help="relative tolerance of the limit-cycle test")
+    p.set_defaults(handler=basins.run)
+
+
+def _belt_run_options(p, *, chain: bool = True) -> None:
+    if chain:  # `belt chain.toml` reaches the run subcommand (Subcommands' default)
+        p.add_argument("chain", nargs="?", help="TOML chain file")
+    p.add_argument("--list-presets", action="store_true", help="print the preset names and exit")
+    p.add_argument("--method", choices=("exact", "sign"), help="override the solver")
+    p.add_argument("-o", "--output", help="plot (.png/.svg/.pdf), result (.npz) or table (.csv)")
 
 
 def _add_sweep(subparsers) -> None:
@@ -210,32 +195,7 @@ def _add_sweep(subparsers) -> None:
     p.add_argument("store", help="results directory")
     p.add_argument("-o", "--output", required=True, help="output file: .csv or .npy")
     _json_flag(p)
-    parser.set_defaults(handler="asperity2d.cli.sweep:run")
-
-
-def _load_script(path):
-    """Import a scene script as a module (registered in ``sys.modules``, so worker processes
-    can pickle its functions). The file must be a readable Python text file; what the
-    script itself raises is the script's own error and propagates unchanged."""
-    import importlib.util
-    from pathlib import Path
-
-    from .._io import FileError, read_bytes
-
-    path = Path(path)
-    data = read_bytes("scene", path)
-    if b"\0" in data:
-        raise FileError("scene", path, "is not a Python script", "it contains NUL bytes")
-    try:
-        importlib.util.decode_source(data)  # UTF-8 unless a coding line says otherwise
-    except (UnicodeDecodeError, SyntaxError, LookupError) as exc:
-        raise FileError("scene", path, "is not UTF-8 text (and declares no other encoding)",
-                        str(exc)) from None
-    spec = importlib.util.spec_from_file_location(f"_asperity2d_scene_{path.stem}", path)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module
-    spec.loader.exec_module(module)
-    return module
+    parser.set_defaults(handler=sweep.run)
 
 
 def _exit_status(exc: SystemExit) -> int:
@@ -268,8 +228,7 @@ def main(argv: list[str] | None = None) -> int:
     except SystemExit as exc:  # --help, --version, or a usage error already printed
         return _exit_status(exc)
     args.script_args = extra
-    module, _, name = args.handler.partition(":")
-    handler = getattr(importlib.import_module(module), name)
+    handler = args.handler
     with warnings.catch_warnings():
         warnings.showwarning = _one_line_warning
         try:

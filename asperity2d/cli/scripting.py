@@ -17,12 +17,11 @@ import os
 from pathlib import Path
 
 from .._io import atomic_write_text, output_dir, writing
+from .args import Parser
 
 
 def parser(description: str) -> argparse.ArgumentParser:
     """The common arguments of a scene script; ``p.error(message)`` reports a bad value."""
-    from .main import Parser
-
     p = Parser(description=description)
     p.add_argument("--quick", action="store_true", help="small, fast settings (tests, smoke runs)")
     p.add_argument("--json", action="store_true", help="print one JSON summary object")

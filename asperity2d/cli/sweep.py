@@ -122,9 +122,3 @@ def run(args) -> int:
         print("asperity2d: interrupted; finished runs are saved, run again to resume", file=sys.stderr)
         return 130
 
-
-def main(argv: list[str] | None = None) -> int:
-    """Stand-alone entry point (``python -m asperity2d.sweep ...``): ``asperity2d sweep ...``."""
-    from .main import main as cli_main
-
-    return cli_main(["sweep", *(sys.argv[1:] if argv is None else argv)])

@@ -74,7 +74,8 @@ def classify_asperity(result, *, rtol: float = 0.05, max_multiplicity: int = 12)
 def asperity_basin_run(*, scene: str, drive_preload: float, duration: float | None = None, rtol: float = 0.05,
                        seed: int = 0) -> dict:
     """Sweep run function: ``scene`` is the JSON of make_scene keyword arguments; ``seed`` its spacing seed."""
-    from .. import make_scene, run as simulate
+    from ..builders import make_scene
+    from ..run import simulate
 
     kwargs = json.loads(scene)
     return classify_asperity(simulate(make_scene(**kwargs, seed=seed, drive_preload=drive_preload), duration),
@@ -92,7 +93,7 @@ def asperity_basins(scene: dict, preloads, *, seeds=(0,), duration: float | None
     ``drive_preload``, its y axis ``seed``; ``store`` / ``workers`` /
     ``scheduler`` as in :func:`asperity2d.dynamics.basins.chain_basins`.
     """
-    from .. import make_scene
+    from ..builders import make_scene
     from ..sweep import Study
 
     scene = dict(scene)

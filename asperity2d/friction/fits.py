@@ -25,7 +25,7 @@ residual (RMS residual / RMS of the data).
   force / load, and mu_k is the level about which a Coulomb oscillator's
   slip is symmetric, mu_s - (breakaway - re-stick force) / (2 load).
 
-:func:`belt_period` runs a fitted law in the exact belt solver
+:func:`asperity2d.belt.period.belt_period` runs a fitted law in the exact belt solver
 (:func:`asperity2d.belt.simulate_chain`) for the mass, drive spring, load and
 speed of a spring-driven asperity scene and returns the stick-slip period.
 """
@@ -239,30 +239,3 @@ def fit_stick_slip(result, *, skip: int = 1) -> Fit:
     scale = float(np.sqrt(np.mean(np.concatenate([peak, half_drop]) ** 2)))
     return Fit(StaticKinetic(mu_s, min(max(mu_k, 0.0), mu_s)), rms, rms / scale, len(peak))
 
-
-def belt_period(law: FrictionLaw, *, mass: float, stiffness: float, velocity: float,
-                normal_load: float, cycles: int = 6) -> dict:
-    """Stick-slip period (s) of one mass on a spring (N/m) over a belt at ``velocity`` (m/s).
-
-    The belt frame of a spring-driven slider: the relative velocity is the
-    same, so the periods are equal. Uses ``asperity2d.belt.simulate_chain``
-    with ``friction=law`` (its exact event-driven solver for piecewise-
-    constant laws, an ODE with the same stick logic otherwise).
-    """
-    from ..belt import simulate_chain
-
-    f_s = law.static_coefficient * normal_load
-    t_est = 2.0 * f_s / (stiffness * velocity) + 2 * math.pi * math.sqrt(mass / stiffness)
-    t_end = (cycles + 2) * t_est
-    res = simulate_chain([mass], [stiffness, 0.0], [0.0, 0.0], friction=law, normal_load=[normal_load],
-                         v_belt=velocity, x0=[0.0], v0=[velocity], t_end=t_end, n_samples=4001)
-    # a stick interval still open at t_end was not ended by a breakaway; the
-    # first starts from rest
-    intervals = [(a, b) for a, b in res.stick_intervals[0] if b < t_end * (1 - 1e-9)]
-    if len(intervals) < 3:
-        return {"period_s": math.nan, "cycles": max(len(intervals) - 1, 0), "force_drop_N": math.nan}
-    ends = np.array([b for _, b in intervals[1:]])
-    sticks = np.array([b - a for a, b in intervals[1:]])
-    # stuck, the mass moves with the belt: the spring force rises k V per second
-    return {"period_s": float(np.mean(np.diff(ends))), "cycles": int(len(ends) - 1),
-            "force_drop_N": float(stiffness * velocity * np.mean(sticks))}

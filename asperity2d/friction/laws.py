@@ -28,8 +28,7 @@ from dataclasses import astuple, dataclass, fields
 
 import numpy as np
 
-from .._validate import show
-from ..belt.validate import real
+from .._validate import check_real, show
 from ..errors import SceneError
 
 __all__ = ["Coulomb", "StaticKinetic", "CoulombViscous", "Stribeck", "Dahl", "LuGre", "FrictionLaw"]
@@ -37,9 +36,9 @@ __all__ = ["Coulomb", "StaticKinetic", "CoulombViscous", "Stribeck", "Dahl", "Lu
 
 def _check(name: str, value, *, positive: bool = False) -> None:
     """Raise SceneError unless ``value`` is a finite real number >= 0 (or > 0) within the chains'
-    magnitude window: the rules of :func:`asperity2d.belt.validate.real` (the belt package's
+    magnitude window: the rules of :func:`asperity2d._validate.check_real` (the belt package's
     ``__init__`` resolves its names lazily, so importing its validator here makes no cycle)."""
-    real(name, value, positive=positive, nonneg=not positive)
+    check_real(name, value, positive=positive, nonneg=not positive)
 
 
 class FrictionLaw:

@@ -192,3 +192,25 @@ def plot_positions(results, labels, path: str | os.PathLike, *, dpi: int = 120) 
     ax.set_ylabel("slider travel (µm)")
     ax.legend(loc="best", fontsize="small")
     return save(fig, path, dpi)
+
+
+def plot_position_velocity(result, path, *, title: str = "", dpi: int = 120):
+    """Seed 000 figure 17 analogue: slider position (µm) and velocity (m/s) against time (µs).
+
+    The velocity panel shows the collision spikes where the slider hits a
+    lower flank.
+    """
+    fig, (ax_x, ax_v) = figure(2, height=2.4)
+    t = np.asarray(result.t) * 1e6
+    ax_x.plot(t, (np.asarray(result.x) - result.x[0]) * 1e6, lw=1.0, label="slider")
+    if np.isfinite(result.drive_x).any():
+        ax_x.plot(t, (np.asarray(result.drive_x) - result.x[0]) * 1e6, lw=0.8, ls="--",
+                  label="drive spring end")
+    ax_x.set_ylabel("position (µm)")
+    ax_x.legend(loc="upper left", fontsize=8)
+    ax_v.plot(t, result.v, lw=0.8, color="C3")
+    ax_v.set_ylabel("velocity (m/s)")
+    ax_v.set_xlabel("time (µs)")
+    if title:
+        ax_x.set_title(title, fontsize=9)
+    return save(fig, path, dpi)

@@ -6,7 +6,7 @@ Data flow (all SI)::
         rms_height, rms_slope, power_spectrum -> PowerSpectrum, fit_hurst -> HurstFit
         find_asperities -> Asperities (one frozen record per surface: centres, heights,
                                        flank runs, base levels, stiffness, mass)
-        plot_asperities, plot_spectrum
+        (pictures of them: asperity2d.renderers.surface.plot_asperities, plot_spectrum)
     random_heights, fraction_above          (random summit heights for a scene)
     make_scene(lower_surface=..., upper_surface=..., height_std=...)
         -> source.surface_asperities -> source.surface_spec: the scene's per-asperity
@@ -15,13 +15,12 @@ Data flow (all SI)::
 Modules: :mod:`.profile` (record and generators), :mod:`.read` (text traces;
 instrument files through the optional SurfaceTopography), :mod:`.stats`,
 :mod:`.asperities` (the summit-to-triangle rule), :mod:`.heights`,
-:mod:`.source` (a profile, arrays or file as a scene surface),
-:mod:`.plot` (matplotlib, imported inside the plotting functions).
+:mod:`.source` (a profile, arrays or file as a scene surface). The plots are
+:mod:`asperity2d.renderers.surface`'s (renderers sit above the model).
 """
 
 from .asperities import Asperities, find_asperities, pyramid_mass, table1_stiffness
 from .heights import fraction_above, random_heights
-from ..renderers.surface import plot_asperities, plot_spectrum
 from .profile import SurfaceProfile, gaussian_profile, self_affine_profile
 from .read import read_profile
 from .stats import HurstFit, PowerSpectrum, fit_hurst, power_spectrum, rms_height, rms_slope
@@ -31,5 +30,4 @@ __all__ = [
     "SurfaceProfile", "self_affine_profile", "gaussian_profile", "read_profile", "rms_height",
     "rms_slope", "PowerSpectrum", "power_spectrum", "HurstFit", "fit_hurst", "Asperities",
     "find_asperities", "table1_stiffness", "pyramid_mass", "random_heights", "fraction_above",
-    "plot_asperities", "plot_spectrum",
 ]

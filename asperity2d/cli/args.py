@@ -1,0 +1,117 @@
+"""What every command-line module shares: the parser class, the argument types, loading a script.
+
+The lowest module of :mod:`asperity2d.cli`: the parser (:mod:`.main`), the handlers
+(:mod:`.asperity`, :mod:`.belt`, :mod:`.basins`, :mod:`.sweep`) and the scene scripts'
+plumbing (:mod:`.scripting`) import it; it imports none of them. Light: no NumPy, no pymunk.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from .._validate import check_int, check_positive
+from ..errors import SceneError
+
+PROG = "asperity2d"
+PLOT_SUFFIXES = (".png", ".svg", ".pdf")
+
+
+class Parser(argparse.ArgumentParser):
+    """The one argument parser of asperity2d's commands and scene scripts.
+
+    A usage error is one line on stderr, ``asperity2d: error: ...``, and exit
+    status 2 (no usage dump); subparsers inherit this.
+    """
+
+    def error(self, message):
+        self.exit(2, f"{PROG}: error: {message}\n")
+
+    def _check_value(self, action, value):
+        # a family of subcommands with a default one (see Subcommands) takes any first word
+        if isinstance(action, Subcommands) and action.default_command is not None:
+            return
+        super()._check_value(action, value)
+
+
+class Subcommands(argparse._SubParsersAction):
+    """Subcommands where a first word that names none of them goes to ``default_command``.
+
+    ``asperity2d belt chain.toml`` is ``asperity2d belt run chain.toml``; ``asperity2d belt
+    basins ...`` is the ``basins`` subcommand, with its own parser and help. Created by
+    ``parser.add_subparsers(action=Subcommands, default_command="run")``.
+    """
+
+    def __init__(self, *args, default_command: str | None = None, **kwargs):
+        super().__init__(*args, **kwargs)
+        self.default_command = default_command
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        if self.default_command is not None and values and values[0] not in self._name_parser_map:
+            values = [self.default_command, *values]
+        name, rest = values[0], values[1:]
+        setattr(namespace, self.dest, name)
+        sub = self._name_parser_map[name]
+        # Parsed into the parent's namespace (argparse's own action parses into a fresh one and
+        # copies it over, so an option given before the first word -- `belt -o x.png chain.toml`
+        # -- would be reset to the subcommand's default); the subcommand's set_defaults
+        # (its handler) do replace the parent's.
+        for key, value in sub._defaults.items():
+            setattr(namespace, key, value)
+        _, extras = sub.parse_known_args(rest, namespace)
+        if extras:
+            vars(namespace).setdefault(argparse._UNRECOGNIZED_ARGS_ATTR, []).extend(extras)
+
+
+def fail(message) -> int:
+    """Print the one error line; return exit status 2."""
+    print(f"{PROG}: error: {message}", file=sys.stderr)
+    return 2
+
+
+def _checked(check, convert, text: str):
+    """``check("value", convert(text))`` as an argparse type: the package's own rule and message
+    (:mod:`asperity2d._validate`), argparse prefixing the option's name."""
+    try:
+        value = convert(text)
+    except ValueError:
+        value = text  # the check names it: "must be a real number, got 'x'"
+    try:
+        return check("value", value)
+    except SceneError as exc:
+        raise argparse.ArgumentTypeError(str(exc).removeprefix("`value` ")) from None
+
+
+def positive_float(text: str) -> float:
+    """An argparse type: a finite number > 0 (:func:`asperity2d._validate.check_positive`)."""
+    return _checked(check_positive, float, text)
+
+
+def positive_int(text: str) -> int:
+    """An argparse type: an integer >= 1 (:func:`asperity2d._validate.check_int`)."""
+    return _checked(lambda name, value: check_int(name, value, minimum=1, maximum=None), int, text)
+
+
+def load_script(path):
+    """Import a scene script as a module (registered in ``sys.modules``, so worker processes
+    can pickle its functions). The file must be a readable Python text file; what the
+    script itself raises is the script's own error and propagates unchanged."""
+    import importlib.util
+    from pathlib import Path
+
+    from .._io import FileError, read_bytes
+
+    path = Path(path)
+    data = read_bytes("scene", path)
+    if b"\0" in data:
+        raise FileError("scene", path, "is not a Python script", "it contains NUL bytes")
+    try:
+        importlib.util.decode_source(data)  # UTF-8 unless a coding line says otherwise
+    except (UnicodeDecodeError, SyntaxError, LookupError) as exc:
+        raise FileError("scene", path, "is not UTF-8 text (and declares no other encoding)",
+                        str(exc)) from None
+    spec = importlib.util.spec_from_file_location(f"_asperity2d_scene_{path.stem}", path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module
+    spec.loader.exec_module(module)
+    return module

@@ -1,0 +1,66 @@
+"""The import contract (pyproject.toml, ``[tool.importlinter]``): every import points down the
+package's layers, lazy function-level imports included, and no sibling modules form a cycle.
+
+Run here so that the README's test command enforces it (by hand: ``lint-imports``). import-linter
+reads the imports from the source (grimp), so it also sees imports inside functions.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def test_imports_point_down_the_layers_and_form_no_cycle(capsys):
+    from importlinter.cli import lint_imports
+
+    status = lint_imports(config_filename=str(ROOT / "pyproject.toml"), no_cache=True)
+    report = capsys.readouterr().out
+    assert status == 0, report
+    assert "2 kept, 0 broken" in report, report
+
+
+def test_the_contract_catches_an_upward_import(tmp_path, monkeypatch, capsys):
+    # the check can fail: a copy of the package with one lazy upward import (the model's
+    # scene module importing the command line inside a function) breaks the layers contract
+    import shutil
+
+    from importlinter.cli import lint_imports
+
+    shutil.copytree(ROOT / "asperity2d", tmp_path / "asperity2d",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    scene = tmp_path / "asperity2d" / "scene.py"
+    scene.write_text(scene.read_text() + "\n\ndef _upward():\n    from .cli import main  # noqa\n")
+    shutil.copy(ROOT / "pyproject.toml", tmp_path / "pyproject.toml")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    monkeypatch.chdir(tmp_path)
+    for name in [m for m in list(__import__("sys").modules) if m == "asperity2d" or m.startswith("asperity2d.")]:
+        monkeypatch.delitem(__import__("sys").modules, name)
+    status = lint_imports(config_filename=str(tmp_path / "pyproject.toml"), no_cache=True)
+    report = capsys.readouterr().out
+    assert status == 1
+    assert "asperity2d.scene -> asperity2d.cli.main" in report
+
+
+@pytest.mark.parametrize("argv, handler, command", [
+    (["belt", "chain.toml"], "asperity2d.cli.belt.run", "run"),
+    (["belt", "-o", "x.png", "chain.toml"], "asperity2d.cli.belt.run", "run"),
+    (["belt", "--preset", "table2-3dof"], "asperity2d.cli.belt.run", "run"),
+    (["belt", "run", "chain.toml"], "asperity2d.cli.belt.run", "run"),
+    (["belt", "basins", "--preset", "table2-3dof", "--grid", "3"], "asperity2d.cli.basins.run", "basins"),
+])
+def test_belt_basins_is_a_subcommand_of_the_parser(argv, handler, command):
+    from asperity2d.cli.main import build_parser
+
+    args = build_parser().parse_args(argv)
+    assert f"{args.handler.__module__}.{args.handler.__name__}" == handler
+    assert args.belt_command == command
+    if "chain.toml" in argv:
+        assert args.chain == "chain.toml"
+    if "-o" in argv:  # an option before the chain file is kept, not reset by the subcommand
+        assert args.output == "x.png"
+    if command == "basins":
+        assert args.grid == "3" and args.preset == "table2-3dof"
