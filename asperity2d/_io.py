@@ -11,9 +11,12 @@ argument to what the user typed (:func:`argument`), e.g. ``--save``.
 from __future__ import annotations
 
 import contextlib
+import math
 import os
 import stat
 import tempfile
+from decimal import Decimal
+from numbers import Real
 from pathlib import Path
 from typing import IO, Callable, Iterator
 
@@ -187,6 +190,7 @@ def save_npz(path: str | os.PathLike, arrays: dict, meta: dict) -> Path:
 
     path = output_path("path", path, suffixes=(".npz",))
     payload = {name: np.asarray(value) for name, value in arrays.items()}
+    # metadata keeps NaN as NaN (Python's JSON extension) so a saved run loads back unchanged
     payload["metadata"] = np.array(json.dumps(meta, sort_keys=True))
 
     def write(fh):
@@ -238,3 +242,48 @@ def load_npz(path: str | os.PathLike, names, *, kind: str,
         if key not in meta:
             raise FileError("path", path, f"is not {kind}", f"its metadata has no {key!r}")
     return arrays, meta
+
+
+# -- strict JSON: the one emitter of --json output, summary files and saved metadata ----------
+def plain(value):
+    """``value`` as plain JSON data: dicts (keys as strings), lists, str, int, float, bool, None.
+
+    NumPy scalars and arrays become Python numbers and (nested) lists, tuples lists, paths
+    strings; a non-finite float (NaN, an infinity: an undefined statistic, a missing value)
+    becomes ``None``; other real numbers (``Fraction``, ``Decimal``) floats, and any other
+    object its ``str``. Floats keep full precision (``json`` writes their shortest repr).
+    """
+    if isinstance(value, dict):
+        return {str(k): plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [plain(v) for v in value]
+    if value is None or isinstance(value, (str, bool, int)):
+        return value
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    if hasattr(value, "tolist"):  # NumPy scalars and arrays (a NumPy bool becomes a bool)
+        return plain(value.tolist())
+    if isinstance(value, os.PathLike):
+        return os.fspath(value)
+    if isinstance(value, (Real, Decimal)):
+        return plain(float(value))
+    return str(value)
+
+
+def to_json(value, *, indent: int | None = None) -> str:
+    """Strict JSON text of ``value`` (through :func:`plain`: NaN and infinities as ``null``,
+    NumPy plain), keys sorted. Every ``--json`` output and every summary file (``summary.json``,
+    a study's claims, a basin map's summary, a saved comparison) is written by this function."""
+    import json
+
+    return json.dumps(plain(value), indent=indent, sort_keys=True, allow_nan=False)
+
+
+def print_json(value) -> None:
+    """Print ``value`` as one line of strict JSON (a command's ``--json`` output)."""
+    print(to_json(value))
+
+
+def write_json(path: str | os.PathLike, value, *, indent: int = 2) -> Path:
+    """Write ``value`` as strict JSON (:func:`to_json`) to ``path``, atomically."""
+    return atomic_write_text(path, to_json(value, indent=indent) + "\n")

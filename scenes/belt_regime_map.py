@@ -5,12 +5,11 @@ The Stribeck map carries the linear stability boundary c + N·mu'(v) = 0.
 """
 
 import argparse
-import json
 from pathlib import Path
 
 import numpy as np
 
-from asperity2d._io import atomic_write_text
+from asperity2d._io import write_json
 from asperity2d.belt.presets import preset
 from asperity2d.belt.regime import regime_map
 from asperity2d.studies.mdof_belt import renders
@@ -39,7 +38,7 @@ def main(argv=None) -> int:
 
         summary["plots"] = [str(plot_regime_map(smap, args.out / "regime_stribeck.png")),
                             str(plot_regime_map(tmap, args.out / "regime_table2.png"))]
-    atomic_write_text(args.out / "regime_map.json", json.dumps(summary, indent=2) + "\n")
+    write_json(args.out / "regime_map.json", summary)
     for name, m in (("stribeck 1-DOF", smap), ("table 2 3-DOF", tmap)):
         print(name, m.to_dict()["counts"])
     return 0

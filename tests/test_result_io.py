@@ -60,3 +60,28 @@ def test_loading_garbage_is_a_scene_error(tmp_path):
         a.load(bad)
     with pytest.raises(a.SceneError, match="`path`"):
         a.load(tmp_path / "missing.npz")
+
+
+def test_the_one_json_emitter_is_strict_plain_and_exact(tmp_path):
+    # NaN and infinities -> null (strict JSON: json.loads with no NaN extension reads it back),
+    # NumPy scalars and arrays -> plain numbers and lists, floats at full precision
+    import json
+    import math
+
+    import numpy as np
+
+    from asperity2d._io import to_json, write_json
+
+    value = {"nan": math.nan, "inf": np.float64(np.inf), "arr": np.array([[1.0, np.nan], [0.1, 2]]),
+             "i": np.int64(3), "b": np.bool_(True), "t": (1, 2), "x": 0.1 + 0.2, "p": tmp_path}
+    text = to_json(value)
+    assert "NaN" not in text and "Infinity" not in text
+
+    def strict(constant):
+        raise AssertionError(f"non-strict constant {constant}")
+
+    back = json.loads(text, parse_constant=strict)
+    assert back == {"nan": None, "inf": None, "arr": [[1.0, None], [0.1, 2.0]], "i": 3, "b": True,
+                    "t": [1, 2], "x": 0.30000000000000004, "p": str(tmp_path)}
+    path = write_json(tmp_path / "s.json", value)
+    assert json.loads(path.read_text(), parse_constant=strict) == back

@@ -9,7 +9,6 @@ them as one line and exits with status 2. The parser is in :mod:`asperity2d.cli.
 
 from __future__ import annotations
 
-import json
 import math
 from pathlib import Path
 
@@ -62,7 +61,10 @@ def _kind(value) -> str:
 
 
 def _emit(args, summary: dict, lines: list[str]) -> None:
-    print(json.dumps(summary, default=float) if args.json else "\n".join(lines))
+    if args.json:
+        _io.print_json(summary)
+    else:
+        print("\n".join(lines))
 
 
 def _checked_duration(scene, duration: float, arg: str) -> float:

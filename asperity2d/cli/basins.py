@@ -16,7 +16,6 @@ line, exit status 2).
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 from ..errors import SceneError
@@ -49,8 +48,7 @@ def run(args) -> int:
     """Run the parsed ``belt basins`` command: the map, its JSON summary, the store; return 0."""
     import numpy as np
 
-    from .._io import atomic_write_text
-    from .scripting import _strict
+    from .._io import print_json, write_json
     from ..dynamics import basins as b
     from ..renderers.dynamics import plot_basins
 
@@ -77,10 +75,9 @@ def run(args) -> int:
     picture = plot_basins(result, out, title=f"{source}: basins over ({args.x}, {args.y})")
     summary = {"source": source, **result.to_dict(), "store": str(store), "output": str(picture),
                "summary": str(out.with_suffix(".json"))}
-    text = json.dumps(_strict(summary), sort_keys=True, allow_nan=False)
-    atomic_write_text(out.with_suffix(".json"), text + "\n")
+    write_json(out.with_suffix(".json"), summary, indent=None)
     if args.json:
-        print(text)
+        print_json(summary)
     else:
         counts = ", ".join(f"{k} {v}" for k, v in summary["counts"].items() if v)
         print(f"{source}: {nx} x {ny} basin map over t_end = {summary['t_end_s']:g} s: {counts}; "

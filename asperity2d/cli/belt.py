@@ -16,7 +16,6 @@ this module only runs the parsed command. Thin: parse, call, print.
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 from .. import _io
@@ -101,7 +100,7 @@ def run(args) -> int:
         "output": str(written) if written else None,
     }
     if args.json:
-        print(json.dumps(summary))
+        _io.print_json(summary)
     else:
         print(f"{summary['source']}: {result!r}, regime {summary['regime']}, "
               f"energy balance error {summary['energy_balance_error']:.2e}" + (f", wrote {written}" if written else ""))

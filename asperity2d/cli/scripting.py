@@ -11,12 +11,10 @@ is one line on stderr and exit status 2, whether the script runs as
 from __future__ import annotations
 
 import argparse
-import json
-import math
 import os
 from pathlib import Path
 
-from .._io import atomic_write_text, output_dir, writing
+from .._io import output_dir, print_json, write_json, writing
 from .args import Parser
 
 
@@ -67,33 +65,12 @@ def out_dir(args, script_file: str) -> Path:
 def finish(args, summary: dict, directory: Path, lines: list[str]) -> int:
     """Write ``summary.json`` atomically and print the summary (JSON or text).
 
-    Undefined statistics (NaN, infinities) are written as ``null``: strict JSON.
+    Strict JSON (:func:`asperity2d._io.to_json`): undefined statistics (NaN, infinities) are
+    ``null``, NumPy values plain.
     """
-    summary = _strict(summary)
-    text = json.dumps(summary, indent=2, sort_keys=True, default=_plain, allow_nan=False)
-    atomic_write_text(directory / "summary.json", text + "\n")
+    write_json(directory / "summary.json", summary)
     if args.json:
-        print(json.dumps(summary, sort_keys=True, default=_plain, allow_nan=False))
+        print_json(summary)
     else:
         print("\n".join(lines + [f"outputs in {directory}"]))
     return 0
-
-
-def _strict(value):
-    """``value`` with every non-finite float (NumPy included) replaced by None."""
-    if isinstance(value, dict):
-        return {k: _strict(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_strict(v) for v in value]
-    if hasattr(value, "tolist") and not isinstance(value, (str, bytes)):
-        return _strict(value.tolist())
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
-
-
-def _plain(value):
-    try:
-        return float(value)
-    except (TypeError, ValueError):
-        return str(value)

@@ -12,7 +12,6 @@ input raises ``SceneError`` naming the argument (one line on stderr, exit 2).
 
 from __future__ import annotations
 
-import json
 import math
 import sys
 
@@ -43,7 +42,7 @@ def _cmd_run(args) -> int:
             raise
         raise _io.FileError("--store", store, "could not be written", exc.strerror) from None
     if args.json:
-        print(json.dumps(summary.to_dict()))
+        _io.print_json(summary.to_dict())
     else:
         print(f"{summary.study}: {summary.done} done, {summary.failed} failed, "
               f"{summary.pending} pending of {summary.total} (ran {summary.ran} in "
@@ -56,7 +55,7 @@ def _cmd_status(args) -> int:
     study = store.study()
     status = store.status(study)
     if args.json:
-        print(json.dumps({"study": study.name, **status.to_dict()}))
+        _io.print_json({"study": study.name, **status.to_dict()})
     else:
         print(f"{study.name}: {status.total} runs: {status.done} done, {status.failed} failed, "
               f"{status.pending} pending ({status.corrupt} corrupt), {status.orphaned} orphaned")
@@ -76,7 +75,7 @@ def _cmd_report(args) -> int:
         with _io.argument("--output"), _io.writing("--output", output):
             figure = plot_summary(summary, output)
     if args.json:
-        print(json.dumps({**summary.to_dict(), "figure": str(figure) if figure else None}))
+        _io.print_json({**summary.to_dict(), "figure": str(figure) if figure else None})
         return 0
     level = f"{summary.confidence:.0%}"
     print(f"{summary.study}: mean, std and {level} CI per variant")
@@ -105,7 +104,7 @@ def _cmd_export(args) -> int:
         else:
             _io.atomic_write(output, lambda fh: np.save(fh, table, allow_pickle=False))
     if args.json:
-        print(json.dumps({"output": str(output), "runs": int(len(table))}))
+        _io.print_json({"output": str(output), "runs": int(len(table))})
     else:
         print(f"wrote {output} ({len(table)} runs)")
     return 0

@@ -32,7 +32,7 @@ from typing import Callable, Iterable
 import numpy as np
 
 from .. import analysis, stats
-from .._io import FileError, atomic_write_text, read_text
+from .._io import FileError, read_text, write_json
 from .._validate import check_int, show
 from ..builders import make_scene
 from ..critical import critical_force
@@ -175,20 +175,18 @@ class Comparison:
 
     # -- persistence -------------------------------------------------------
     def to_dict(self) -> dict:
-        def plain(v):
-            return None if not math.isfinite(v) else v
-
         return {"format": FORMAT, "measure": self.measure, "seeds": list(self.seeds),
                 "base": self.base, "variants": self.variants,
-                "values": {k: [plain(float(v)) for v in vals] for k, vals in self.values.items()}}
+                "values": {k: [float(v) for v in vals] for k, vals in self.values.items()}}
 
     def save(self, path: str | os.PathLike) -> Path:
-        """Write the comparison as JSON (NaN as null), atomically; return the path."""
-        try:
-            text = json.dumps(self.to_dict(), indent=1, allow_nan=False)
+        """Write the comparison as strict JSON (NaN as null, :func:`asperity2d._io.write_json`),
+        atomically; return the path."""
+        try:  # the scene arguments must come back as they went in (no object turned into text)
+            json.dumps({"base": self.base, "variants": self.variants})
         except (TypeError, ValueError) as exc:
             raise SceneError(f"`variants` / `base` must hold JSON values to be saved ({exc})") from None
-        return atomic_write_text(path, text + "\n")
+        return write_json(path, self.to_dict(), indent=1)
 
     @classmethod
     def load(cls, path: str | os.PathLike) -> "Comparison":

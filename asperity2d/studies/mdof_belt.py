@@ -10,13 +10,12 @@ computed one, judged by a criterion fixed before looking at the numbers
 from __future__ import annotations
 
 import argparse
-import json
 import os
 from pathlib import Path
 
 import numpy as np
 
-from .._io import atomic_write_text
+from .._io import write_json
 from ..belt import presets, regime, simulate_chain
 from ..belt.presets import preset
 from ..belt.regime import classify
@@ -121,22 +120,12 @@ def cli(study, name: str, argv=None) -> int:
         for label, result in results.items():
             path = plot_chain(result, args.out / f"{name}_{label}.png", title=f"{name}: {label}")
             summary.setdefault("plots", []).append(str(path))
-    atomic_write_text(args.out / f"{name}.json", json.dumps(summary, indent=2, default=_json_default) + "\n")
+    write_json(args.out / f"{name}.json", summary)
     for c in summary.get("claims", []):
         print(f"[{c['verdict']:>13}] {c['claim']}: thesis {c['numbers']['thesis']}, "
               f"computed {c['numbers']['computed']}")
     print(f"wrote {args.out / (name + '.json')}")
     return 0
-
-
-def _json_default(obj):
-    if isinstance(obj, (np.integer,)):
-        return int(obj)
-    if isinstance(obj, (np.floating,)):
-        return float(obj)
-    if isinstance(obj, np.ndarray):
-        return obj.tolist()
-    return str(obj)
 
 
 def belt_chain_run(*, seed: int = 0, preset_name: str = "table2-3dof", ic_spread: float = 0.0,
