@@ -3,7 +3,7 @@
 Public names (see README):
 
 * :func:`make_scene`, :class:`Scene` and its parts — scene specification (SI);
-* :func:`simulate` -> :class:`Result`, :func:`load`;
+* :func:`simulate` -> :class:`Result`, :func:`load` (an asperity or a belt result);
 * :func:`critical_force`, :func:`breakaway_force`, :func:`stick_slip_events`;
 * :mod:`asperity2d.belt` — masses on a moving belt with exact stick/slip;
 * :class:`SceneError`, :class:`SimulationError`.
@@ -21,7 +21,7 @@ _LAZY = {
     "ConstantForce": "scene", "Contact": "scene", "LowerSurface": "scene", "Scene": "scene",
     "Slider": "scene", "SpringDrive": "scene",
     "make_scene": "builders",
-    "Result": "result", "load": "result",
+    "Result": "result", "load": "saved",
     "Passed": "run", "Stuck": "run", "Travelled": "run", "simulate": "run", "Run": "run",
     "CriticalForce": "critical", "critical_force": "critical", "critical_force_bracket": "critical",
     "Event": "analysis", "breakaway_force": "analysis", "event_statistics": "analysis",

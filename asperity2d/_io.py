@@ -181,8 +181,13 @@ def atomic_write_text(path: str | os.PathLike, text: str) -> Path:
 
 
 # -- .npz: arrays plus JSON metadata -------------------------------------------
-def save_npz(path: str | os.PathLike, arrays: dict, meta: dict) -> Path:
-    """Write ``arrays`` plus a JSON ``metadata`` entry as one compressed ``.npz``, atomically."""
+def save_npz(path: str | os.PathLike, arrays: dict, meta: dict, *, format: str | None = None) -> Path:
+    """Write ``arrays`` plus a JSON ``metadata`` entry as one compressed ``.npz``, atomically.
+
+    ``format`` (e.g. ``"asperity2d.result/2"``) is stored as the metadata's ``format`` tag, which
+    :func:`check_format` reads back."""
+    if format is not None:
+        meta = {**meta, "format": format}
     import io
     import json
 
@@ -287,3 +292,19 @@ def print_json(value) -> None:
 def write_json(path: str | os.PathLike, value, *, indent: int = 2) -> Path:
     """Write ``value`` as strict JSON (:func:`to_json`) to ``path``, atomically."""
     return atomic_write_text(path, to_json(value, indent=indent) + "\n")
+
+
+def check_format(path, meta: dict, tag: str, *, kind: str, untagged: bool = True) -> int:
+    """Check (and remove) the ``format`` tag of a file's metadata; return its version.
+
+    ``tag`` is ``"name/version"``, the one this release writes. A file without a tag is
+    version 1 (the previous release's files) when ``untagged`` (its layout is then checked by
+    the reader); any other tag -- another kind of file, a newer version -- raises
+    :class:`FileError` naming ``path`` and the tag found.
+    """
+    found = meta.pop("format", None)
+    if found is None and untagged:
+        return 1
+    if found != tag:
+        raise FileError("path", path, f"is not {kind}", f"its format is {found!r}, expected {tag!r}")
+    return int(tag.rpartition("/")[2])

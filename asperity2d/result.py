@@ -4,6 +4,12 @@ A :class:`Result` is plain NumPy arrays in SI units on a small object that can
 save and load itself (one ``.npz`` file holding the arrays and a JSON metadata
 record: the scene, the run settings, package and pymunk versions), so a run is
 simulated once and then re-analysed or re-rendered any number of times.
+
+The result protocol, shared with :class:`asperity2d.belt.BeltResult`: ``kind``,
+``status``, ``message``, ``success``, ``summary()``, ``save(path)`` writing a
+format tag (:data:`FORMAT`) and a ``load`` that refuses a malformed or foreign
+file with one :class:`~asperity2d._io.FileError`. :func:`asperity2d.load` reads
+either kind by its tag.
 """
 
 from __future__ import annotations
@@ -16,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from ._io import FileError, atomic_write, load_npz, save_npz
+from ._io import FileError, atomic_write, check_format, load_npz, save_npz
 from .errors import SceneError
 from .scene import Scene
 
@@ -36,6 +42,11 @@ SERIES = (
 )
 #: Per-asperity arrays, shape (N_lower, T).
 LOWER_SERIES = ("lower_dx", "lower_dy", "lower_contact")
+#: The format tag of a saved asperity run (version 1: the previous release's untagged files).
+FORMAT = "asperity2d.result/2"
+#: Statuses of a run that did not do what was asked (``success`` is False): with
+#: ``duration=None`` no stop condition (passed, stuck) held before the time limit.
+UNSUCCESSFUL = ("time limit",)
 
 
 @dataclass(eq=False)
@@ -92,15 +103,27 @@ class Result:
     scene: Any
     meta: dict = field(default_factory=dict)
 
-    # -- convenience -------------------------------------------------------
+    #: What kind of result this is (the renderers and ``asperity2d analyze`` dispatch on it).
+    kind = "asperity"
+
+    # -- the result protocol -----------------------------------------------
     @property
     def status(self) -> str:
-        """Why the run ended: ``"duration"``, a stop condition's name, ..."""
+        """Why the run ended: ``"duration"``, a stop condition's name (``"passed"``,
+        ``"stuck"``, ``"travelled"``, ...) or ``"time limit"``."""
         return self.meta.get("status", "")
 
     @property
     def message(self) -> str:
+        """The reason in words, e.g. "stop condition 'passed' met at t = 1.2e-07 s"."""
         return self.meta.get("message", "")
+
+    @property
+    def success(self) -> bool:
+        """True unless the run ended without doing what was asked (:data:`UNSUCCESSFUL`: the
+        time limit of ``duration=None`` reached before any stop condition). A run that
+        diverged raises :class:`~asperity2d.SimulationError` and has no result."""
+        return bool(self.status) and self.status not in UNSUCCESSFUL
 
     @property
     def dt(self) -> float:
@@ -119,8 +142,11 @@ class Result:
     def summary(self) -> dict:
         """A few headline numbers of the run (SI), JSON-ready."""
         return {
+            "kind": self.kind,
             "scene": self.scene.name,
             "status": self.status,
+            "success": self.success,
+            "message": self.message,
             "duration_s": float(self.t[-1]) if len(self.t) else 0.0,
             "samples": int(len(self.t)),
             "distance_m": float(self.x[-1] - self.x[0]) if len(self.x) else 0.0,
@@ -136,10 +162,12 @@ class Result:
         """Write the result to ``path`` (``.npz``) atomically and return the path.
 
         The file holds every array plus a ``metadata`` entry: a JSON record of
-        the scene, the run settings and the package / pymunk versions.
+        the scene, the run settings and the package / pymunk versions, tagged
+        :data:`FORMAT`.
         """
         meta = {**self.meta, "scene": self.scene.to_dict()}
-        return save_npz(path, {name: getattr(self, name) for name in SERIES + LOWER_SERIES}, meta)
+        return save_npz(path, {name: getattr(self, name) for name in SERIES + LOWER_SERIES}, meta,
+                        format=FORMAT)
 
     def export(self, path: str | os.PathLike) -> Path:
         """Export the slider time series as ``.csv`` or MATLAB ``.mat`` (by extension)."""
@@ -167,14 +195,17 @@ class Result:
 
 
 def load(path: str | os.PathLike) -> Result:
-    """Read a :class:`Result` written by :meth:`Result.save`.
+    """Read a :class:`Result` written by :meth:`Result.save` (this release's :data:`FORMAT`, or
+    the previous release's untagged file).
 
-    A file that is not one (missing, empty, foreign, truncated, damaged, or
-    with arrays or a scene record that do not fit together) raises a
-    ``SceneError`` naming ``path``.
+    A file that is not one (missing, empty, foreign -- a belt result included --, truncated,
+    damaged, or with arrays or a scene record that do not fit together) raises one
+    :class:`~asperity2d._io.FileError` (a ``SceneError``) naming ``path``.
+    :func:`asperity2d.load` reads either kind of result.
     """
     kind = "an asperity2d result file"
     arrays, meta = load_npz(path, SERIES + LOWER_SERIES, kind=kind, meta_keys=("scene",))
+    check_format(path, meta, FORMAT, kind=kind)
     samples = len(arrays["t"]) if arrays["t"].ndim == 1 else -1
     for name in SERIES + LOWER_SERIES:
         shape = arrays[name].shape

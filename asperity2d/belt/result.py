@@ -1,8 +1,11 @@
 """BeltResult: the time series of one belt-chain run, with save / load / CSV export.
 
-Mirrors :class:`asperity2d.result.Result`: plain SI NumPy arrays on a small
-object, saved as one ``.npz`` (arrays plus a JSON ``metadata`` entry holding
-the chain, the events, the exact stick intervals and the run settings).
+Mirrors :class:`asperity2d.result.Result` (the same result protocol: ``kind``,
+``status``, ``message``, ``success``, ``summary()``, a format-tagged ``save`` and
+a ``load`` that refuses a malformed or foreign file with one ``FileError``):
+plain SI NumPy arrays on a small object, saved as one ``.npz`` (arrays plus a
+JSON ``metadata`` entry holding the chain, the events, the exact stick
+intervals and the run settings).
 """
 
 from __future__ import annotations
@@ -13,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .._io import atomic_write, load_npz, save_npz
+from .._io import FileError, atomic_write, check_format, load_npz, save_npz
 from ..errors import SceneError
 from ..friction.laws import law_from_dict
 from .backend import Event, RawRun
@@ -23,6 +26,8 @@ from .spec import ChainSpec, link_extension, link_force
 MASS_SERIES = ("x", "v", "state", "friction_force", "spring_force", "damper_force")
 #: Scalar series (T,), all in J.
 ENERGY_SERIES = ("belt_work", "friction_dissipation", "damper_dissipation", "kinetic_energy", "spring_energy")
+#: The format tag of a saved belt run (version 1: the previous release's untagged files).
+FORMAT = "asperity2d.belt-result/2"
 
 
 @dataclass(eq=False)
@@ -61,9 +66,44 @@ class BeltResult:
     chain: ChainSpec | None
     meta: dict = field(default_factory=dict)
 
+    #: What kind of result this is (the renderers and ``asperity2d analyze`` dispatch on it).
+    kind = "belt"
+
     @property
     def n(self) -> int:
         return self.x.shape[0]
+
+    # -- the result protocol -----------------------------------------------
+    @property
+    def status(self) -> str:
+        """Why the run ended: ``"t_end"`` (a run over its budget raises instead)."""
+        return self.meta.get("status", "t_end")
+
+    @property
+    def message(self) -> str:
+        """The reason in words."""
+        return self.meta.get("message", f"reached t_end = {self.t[-1]:.6g} s" if self.t.size else "")
+
+    @property
+    def success(self) -> bool:
+        """True: a chain run either reaches ``t_end`` or raises (budgets, a bad belt speed)."""
+        return self.status == "t_end"
+
+    def summary(self) -> dict:
+        """Headline numbers (SI), JSON-ready: the protocol's fields, the run's size and energy
+        books, and per mass its stick/slip record (``sticks``: stick intervals; ``stuck_s`` and
+        ``stuck_fraction``: time spent stuck; ``slip_starts``: stick-to-slip transitions)."""
+        duration = float(self.t[-1] - self.t[0]) if self.t.size else 0.0
+        masses = []
+        for i, intervals in enumerate(self.stick_intervals):
+            stuck = float(sum(b - a for a, b in intervals))
+            masses.append({"mass": i + 1, "sticks": len(intervals), "stuck_s": stuck,
+                           "stuck_fraction": stuck / duration if duration > 0 else 0.0,
+                           "slip_starts": sum(1 for a, b in intervals if b < self.t[-1])})
+        return {"kind": self.kind, "status": self.status, "success": self.success, "message": self.message,
+                "n": self.n, "duration_s": duration, "samples": int(self.t.size), "events": len(self.events),
+                "method": self.meta.get("method"), "energy_balance_error": self.energy_balance_error(),
+                "masses": masses}
 
     @property
     def stored_energy(self) -> np.ndarray:
@@ -90,13 +130,13 @@ class BeltResult:
 
     # -- persistence -------------------------------------------------------
     def save(self, path: str | os.PathLike) -> Path:
-        """Write the result to ``path`` (``.npz``) atomically and return the path."""
+        """Write the result to ``path`` (``.npz``, tagged :data:`FORMAT`) atomically and return the path."""
         meta = dict(self.meta)
         meta["chain"] = self.chain.to_dict() if self.chain is not None else meta.get("chain")
         meta["events"] = [asdict(e) for e in self.events]
         meta["stick_intervals"] = [[list(iv) for iv in per] for per in self.stick_intervals]
         names = ("t",) + MASS_SERIES + ENERGY_SERIES
-        return save_npz(path, {name: getattr(self, name) for name in names}, meta)
+        return save_npz(path, {name: getattr(self, name) for name in names}, meta, format=FORMAT)
 
     def export(self, path: str | os.PathLike) -> Path:
         """Write a ``.csv`` table: t, then x_i, v_i, state_i, friction_i, spring_i per mass, then energies."""
@@ -129,6 +169,8 @@ def assemble(spec: ChainSpec, raw: RawRun, meta: dict) -> BeltResult:
         state[frictionless] = np.sign(v[frictionless] - V[None, :])
     meta = dict(meta)
     meta["chain"] = spec.to_dict()
+    meta.setdefault("status", "t_end")
+    meta.setdefault("message", f"reached t_end = {float(raw.t[-1]):.6g} s")
     return BeltResult(
         t=raw.t, x=x, v=v, state=state,
         friction_force=raw.friction_force,
@@ -143,14 +185,36 @@ def assemble(spec: ChainSpec, raw: RawRun, meta: dict) -> BeltResult:
 
 
 def load(path: str | os.PathLike) -> BeltResult:
-    """Read a :class:`BeltResult` written by :meth:`BeltResult.save`."""
-    arrays, meta = load_npz(path, ("t",) + MASS_SERIES + ENERGY_SERIES, kind="a belt result file")
-    events = [Event(**e) for e in meta.pop("events")]
-    intervals = [[tuple(iv) for iv in per] for per in meta.pop("stick_intervals")]
-    c = meta["chain"]
-    chain = None
-    if not isinstance(c["v_belt"], str):
-        law = law_from_dict(c["friction"])
-        chain = ChainSpec(c["masses"], c["springs"], c["dampers"], None, None, c["v_belt"],
-                          c["x0"], c["v0"], c["t_end"], c["g"], c["normal_load"], law)
+    """Read a :class:`BeltResult` written by :meth:`BeltResult.save` (this release's
+    :data:`FORMAT`, or the previous release's untagged file).
+
+    A file that is not one (missing, empty, foreign -- an asperity result included --,
+    truncated, damaged, arrays that do not fit together, metadata that is not a chain's)
+    raises one :class:`~asperity2d._io.FileError` naming ``path``; never a KeyError.
+    """
+    kind = "a belt result file"
+    arrays, meta = load_npz(path, ("t",) + MASS_SERIES + ENERGY_SERIES, kind=kind,
+                            meta_keys=("chain", "events", "stick_intervals"))
+    check_format(path, meta, FORMAT, kind=kind)
+    t = arrays["t"]
+    n = arrays["x"].shape[0] if arrays["x"].ndim == 2 else -1
+    for name, array in arrays.items():
+        want = (t.size,) if name in ("t",) + ENERGY_SERIES else (n, t.size)
+        if t.ndim != 1 or array.shape != want or array.dtype.kind not in "biuf":
+            raise FileError("path", path, f"is not {kind}", f"array {name!r} has shape {array.shape}, "
+                            f"dtype {array.dtype}, for {t.size} samples of {n} masses")
+    try:
+        events = [Event(**e) for e in meta.pop("events")]
+        intervals = [[(float(a), float(b)) for a, b in per] for per in meta.pop("stick_intervals")]
+        if len(intervals) != n:
+            raise ValueError(f"{len(intervals)} lists of stick intervals for {n} masses")
+        c = meta["chain"]
+        chain = None
+        if not isinstance(c["v_belt"], str):  # a callable belt speed is saved by name only
+            law = law_from_dict(c["friction"])
+            chain = ChainSpec(c["masses"], c["springs"], c["dampers"], None, None, c["v_belt"],
+                              c["x0"], c["v0"], c["t_end"], c["g"], c["normal_load"], law)
+    except Exception as exc:  # noqa: BLE001 - any malformed record; the file is not ours to trust
+        raise FileError("path", path, f"is not {kind}",
+                        f"its metadata is invalid: {type(exc).__name__}: {exc}") from None
     return BeltResult(**arrays, stick_intervals=intervals, events=events, chain=chain, meta=meta)

@@ -136,18 +136,29 @@ def _render_suffixes() -> tuple[str, ...]:
 
 
 def _load_result(arg: str, path):
-    from ..result import load
+    from ..saved import load
 
     with _io.argument(arg):
         return load(path)
 
 
 def analyze(args) -> int:
-    """``asperity2d analyze RESULT``: events and breakaway force of a saved run."""
-    from ..analysis import breakaway_force, event_statistics, stick_slip_events
-
+    """``asperity2d analyze RESULT``: what a saved run did, by its kind: an asperity run's
+    stick-slip events and breakaway force; a belt chain's per-mass stick/slip record and regime."""
     result = _load_result("result", args.result)
     summary = result.summary()
+    if result.kind == "belt":
+        from ..belt.regime import classify
+
+        summary["regime"] = classify(result)
+        lines = [f"{k}: {v}" for k, v in summary.items() if k != "masses"]
+        lines += [f"mass {m['mass']}: {m['sticks']} sticks, stuck {m['stuck_s']:.6g} s "
+                  f"({m['stuck_fraction']:.1%}), {m['slip_starts']} stick-to-slip transitions"
+                  for m in summary["masses"]]
+        _emit(args, summary, lines)
+        return 0
+    from ..analysis import breakaway_force, event_statistics, stick_slip_events
+
     summary["events"] = event_statistics(stick_slip_events(result))
     try:
         summary["breakaway_force_N"] = breakaway_force(result)
@@ -158,11 +169,15 @@ def analyze(args) -> int:
 
 
 def render(args) -> int:
-    """``asperity2d render RESULT -o FILE``: render a saved run again."""
+    """``asperity2d render RESULT -o FILE``: render a saved run (either kind) again."""
     from ..renderers import render as render_result
+    from ..renderers import suffixes
 
     output = _io.output_path("--output", args.output, suffixes=_render_suffixes())
     result = _load_result("result", args.result)
+    if output.suffix.lower() not in suffixes(result.kind):
+        raise SceneError(f"`--output` must end in one of {', '.join(suffixes(result.kind))} for a "
+                         f"{result.kind} result, got {str(output)!r}")
     with _io.argument("--output"), _io.writing("--output", output):
         out = render_result(result, output)
     _emit(args, {"output": str(out)}, [f"wrote {out}"])

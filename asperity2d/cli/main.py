@@ -71,15 +71,17 @@ def build_parser() -> Parser:
     _json_flag(p)
     p.set_defaults(handler=asperity.run, print_run_help=p.print_help)
 
-    p = sub.add_parser("analyze", help="stick-slip events and breakaway force of a saved result")
-    p.add_argument("result", help="a result saved with --save / Result.save (.npz)")
+    p = sub.add_parser("analyze", help="stick-slip events and breakaway force of a saved result "
+                                       "(a belt chain's: stick/slip per mass)")
+    p.add_argument("result", help="a result saved with --save / Result.save / BeltResult.save (.npz)")
     _json_flag(p)
     p.set_defaults(handler=asperity.analyze)
 
     p = sub.add_parser("render", help="render a saved result; the extension picks the renderer")
-    p.add_argument("result", help="a result saved with --save / Result.save (.npz)")
+    p.add_argument("result", help="a result saved with --save / Result.save / BeltResult.save (.npz)")
     p.add_argument("-o", "--output", required=True,
-                   help=".gif, .mp4 (needs the video extra), .png, .svg, .pdf or .wav (the slider's sound)")
+                   help=".gif, .mp4 (needs the video extra), .png, .svg, .pdf or .wav (the slider's sound); "
+                        "a belt chain: .png, .svg, .pdf")
     _json_flag(p)
     p.set_defaults(handler=asperity.render)
 

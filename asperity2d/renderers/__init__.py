@@ -1,12 +1,17 @@
-"""Renderers chosen by the output file's extension (like pyinstrument's renderers).
+"""Renderers chosen by the result's kind and the output file's extension (like pyinstrument's).
 
 ``render(result, "run.gif")`` writes an animated GIF, ``"run.mp4"`` a video
 (:mod:`.animate`: Pillow frames, imageio encoding; MP4 needs the ``video``
 extra); ``.png`` / ``.svg`` / ``.pdf`` write the time-series plot
 (:mod:`.plots`, matplotlib, imported only when used); ``.wav`` writes the
-sound of the run and its spectrogram (:mod:`.sound`). ``result`` may be a
-:class:`~asperity2d.result.Result` or the path of one saved with
-``Result.save``, so a run is rendered again without re-simulating.
+sound of the run and its spectrogram (:mod:`.sound`). A belt chain
+(:class:`~asperity2d.belt.BeltResult`) renders to ``.png`` / ``.svg`` / ``.pdf``
+(:func:`.belt.plot_chain`). ``result`` may be a result or the path of one
+saved with ``save`` (either kind, :func:`asperity2d.load`), so a run is
+rendered again without re-simulating.
+
+Which renderer draws what is one table, :data:`DRAWERS`: (result kind, renderer) -> the
+function; a renderer for another kind of result is one more entry.
 """
 
 from __future__ import annotations
@@ -21,37 +26,71 @@ RENDERERS = {".gif": "animation", ".mp4": "animation", ".png": "plot", ".svg": "
              ".pdf": "plot", ".wav": "sound"}
 
 
-def render(result, path: str | os.PathLike, **options) -> Path:
-    """Render ``result`` to ``path``, choosing the renderer by extension.
+def _animation(result, path, **options):
+    from .animate import render_animation
 
-    ``options`` go to :func:`~asperity2d.renderers.animate.render_animation` (``.gif``, ``.mp4``),
-    :func:`~asperity2d.renderers.plots.plot_run` (``.png``, ``.svg``, ``.pdf``)
-    or :func:`~asperity2d.renderers.sound.write_wav` (``.wav``).
+    return render_animation(result, path, **options)
 
-    Raises
-    ------
-    SceneError
-        Unknown extension (named `path`), or bad options.
-    """
-    path = Path(path)
-    kind = RENDERERS.get(path.suffix.lower())
-    if kind is None:
-        raise SceneError(f"`path` must end in one of {', '.join(RENDERERS)}, got {str(path)!r}")
-    if isinstance(result, (str, os.PathLike)):
-        from ..result import load
 
-        result = load(result)
-    if kind == "sound":
-        from .sound import write_wav
-
-        return write_wav(result, path, **options).path
-    if kind == "animation":
-        from .animate import render_animation
-
-        return render_animation(result, path, **options)
+def _plot(result, path, **options):
     from .plots import plot_run
 
     return plot_run(result, path, **options)
 
 
-__all__ = ["render", "RENDERERS"]
+def _sound(result, path, **options):
+    from .sound import write_wav
+
+    return write_wav(result, path, **options).path
+
+
+def _chain_plot(result, path, **options):
+    from .belt import plot_chain
+
+    return plot_chain(result, path, **options)
+
+
+#: (result kind, renderer) -> function(result, path, **options) -> path written.
+DRAWERS = {("asperity", "animation"): _animation, ("asperity", "plot"): _plot,
+           ("asperity", "sound"): _sound, ("belt", "plot"): _chain_plot}
+
+
+def suffixes(kind: str) -> tuple[str, ...]:
+    """The output extensions a result of ``kind`` (``"asperity"``, ``"belt"``) renders to."""
+    return tuple(ext for ext, renderer in RENDERERS.items() if (kind, renderer) in DRAWERS)
+
+
+def render(result, path: str | os.PathLike, **options) -> Path:
+    """Render ``result`` (a result of either kind, or the path of a saved one) to ``path``,
+    choosing the renderer by the result's kind and the path's extension.
+
+    ``options`` go to :func:`~asperity2d.renderers.animate.render_animation` (``.gif``, ``.mp4``),
+    :func:`~asperity2d.renderers.plots.plot_run` (``.png``, ``.svg``, ``.pdf``)
+    or :func:`~asperity2d.renderers.sound.write_wav` (``.wav``); for a belt chain to
+    :func:`~asperity2d.renderers.belt.plot_chain`.
+
+    Raises
+    ------
+    SceneError
+        Unknown extension, or one this kind of result has no renderer for (named `path`), or
+        bad options.
+    """
+    path = Path(path)
+    renderer = RENDERERS.get(path.suffix.lower())
+    if renderer is None:
+        raise SceneError(f"`path` must end in one of {', '.join(RENDERERS)}, got {str(path)!r}")
+    if isinstance(result, (str, os.PathLike)):
+        from ..saved import load
+
+        result = load(result)
+    kind = getattr(result, "kind", None)
+    draw = DRAWERS.get((kind, renderer))
+    if draw is None:
+        if kind not in {k for k, _ in DRAWERS}:
+            raise SceneError(f"`result` must be a Result or a BeltResult, got {type(result).__name__}")
+        raise SceneError(f"`path` must end in one of {', '.join(suffixes(kind))} for a {kind} result, "
+                         f"got {str(path)!r}")
+    return draw(result, path, **options)
+
+
+__all__ = ["render", "RENDERERS", "DRAWERS", "suffixes"]

@@ -1,0 +1,51 @@
+"""Saved results of either kind, read by their format tag: :func:`load` (``asperity2d.load``).
+
+An asperity run (:class:`asperity2d.result.Result`, ``"asperity2d.result/2"``) and a belt chain
+(:class:`asperity2d.belt.BeltResult`, ``"asperity2d.belt-result/2"``) share one result protocol
+and one file layout: an ``.npz`` of arrays plus a JSON ``metadata`` entry carrying the tag. The
+previous release wrote no tag; its files are told apart by their metadata (a ``scene`` record or
+a ``chain`` record) and still load.
+"""
+
+from __future__ import annotations
+
+import os
+
+from ._io import FileError, load_npz
+
+#: Format tag -> kind of result; the untagged files of the previous release by their record.
+KINDS = {"asperity2d.result/2": "asperity", "asperity2d.belt-result/2": "belt"}
+_UNTAGGED = {"scene": "asperity", "chain": "belt"}
+
+
+def kind_of(path: str | os.PathLike) -> str:
+    """``"asperity"`` or ``"belt"``: the kind of result saved at ``path`` (only its metadata is
+    read). A file that is neither raises :class:`~asperity2d._io.FileError` naming ``path``."""
+    what = "an asperity2d result file (asperity run or belt chain)"
+    _, meta = load_npz(path, (), kind=what)
+    tag = meta.get("format")
+    if tag is None:
+        kind = next((k for record, k in _UNTAGGED.items() if record in meta), None)
+        if kind is None:
+            raise FileError("path", path, f"is not {what}", "it has no format tag and no scene or chain record")
+        return kind
+    if tag not in KINDS:
+        raise FileError("path", path, f"is not {what}", f"its format is {tag!r}, expected one of "
+                        f"{', '.join(map(repr, KINDS))}")
+    return KINDS[tag]
+
+
+def load(path: str | os.PathLike):
+    """Read a result saved with ``save``: a :class:`~asperity2d.result.Result` or a
+    :class:`~asperity2d.belt.BeltResult`, chosen by the file's format tag.
+
+    A file that is neither (missing, empty, foreign, damaged, malformed) raises one
+    :class:`~asperity2d._io.FileError` (a ``SceneError``) naming ``path``.
+    """
+    if kind_of(path) == "belt":
+        from .belt.result import load as load_belt
+
+        return load_belt(path)
+    from .result import load as load_asperity
+
+    return load_asperity(path)
