@@ -164,6 +164,6 @@ def test_a_belt_result_has_no_gif_yet_and_says_so(tmp_path, capsys, belt_result)
     saved = str(belt_result.save(tmp_path / "r.npz"))
     assert main(["render", saved, "-o", str(tmp_path / "r.gif")]) == 2
     err = capsys.readouterr().err
-    assert "`--output` must end in one of .png, .svg, .pdf for a belt result" in err
-    with pytest.raises(a.SceneError, match="`path` must end in one of .png, .svg, .pdf for a belt result"):
-        a.render(belt_result, tmp_path / "r.wav")
+    assert "`--output` must end in one of .png, .svg, .pdf, .wav for a belt result" in err
+    with pytest.raises(a.SceneError, match="`path` must end in one of .png, .svg, .pdf, .wav for a belt result"):
+        a.render(belt_result, tmp_path / "r.mp4")

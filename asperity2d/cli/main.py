@@ -81,7 +81,7 @@ def build_parser() -> Parser:
     p.add_argument("result", help="a result saved with --save / Result.save / BeltResult.save (.npz)")
     p.add_argument("-o", "--output", required=True,
                    help=".gif, .mp4 (needs the video extra), .png, .svg, .pdf or .wav (the slider's sound); "
-                        "a belt chain: .png, .svg, .pdf")
+                        "a belt chain: .png, .svg, .pdf, .wav")
     _json_flag(p)
     p.set_defaults(handler=asperity.render)
 

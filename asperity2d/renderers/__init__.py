@@ -6,7 +6,7 @@ extra); ``.png`` / ``.svg`` / ``.pdf`` write the time-series plot
 (:mod:`.plots`, matplotlib, imported only when used); ``.wav`` writes the
 sound of the run and its spectrogram (:mod:`.sound`). A belt chain
 (:class:`~asperity2d.belt.BeltResult`) renders to ``.png`` / ``.svg`` / ``.pdf``
-(:func:`.belt.plot_chain`). ``result`` may be a result or the path of one
+(:func:`.belt.plot_chain`) and ``.wav``. ``result`` may be a result or the path of one
 saved with ``save`` (either kind, :func:`asperity2d.load`), so a run is
 rendered again without re-simulating.
 
@@ -52,7 +52,7 @@ def _chain_plot(result, path, **options):
 
 #: (result kind, renderer) -> function(result, path, **options) -> path written.
 DRAWERS = {("asperity", "animation"): _animation, ("asperity", "plot"): _plot,
-           ("asperity", "sound"): _sound, ("belt", "plot"): _chain_plot}
+           ("asperity", "sound"): _sound, ("belt", "plot"): _chain_plot, ("belt", "sound"): _sound}
 
 
 def suffixes(kind: str) -> tuple[str, ...]:
@@ -67,7 +67,7 @@ def render(result, path: str | os.PathLike, **options) -> Path:
     ``options`` go to :func:`~asperity2d.renderers.animate.render_animation` (``.gif``, ``.mp4``),
     :func:`~asperity2d.renderers.plots.plot_run` (``.png``, ``.svg``, ``.pdf``)
     or :func:`~asperity2d.renderers.sound.write_wav` (``.wav``); for a belt chain to
-    :func:`~asperity2d.renderers.belt.plot_chain`.
+    :func:`~asperity2d.renderers.belt.plot_chain` (``.wav``: ``write_wav``, as for an asperity run).
 
     Raises
     ------
