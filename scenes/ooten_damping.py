@@ -119,18 +119,11 @@ def mechanism_line(setup: str, numbers: dict) -> str:
 def plot_shares(summary: dict, path) -> None:
     """Stacked bars: where the drive work went over the damped slider's path, per set-up and
     reading (pooled shares, %; "stored" includes the kinetic energy the slider still has)."""
-    import io
-
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-
-    from asperity2d._io import atomic_write
+    from asperity2d.renderers.plots import figure, save
 
     names = ("friction_work", "normal_work", "damper_work", "stop_work", "stored_energy_change", "numerical")
     legend = ("friction", "impacts (normal)", "dampers", "travel stops", "stored (change)", "numerical")
-    fig = Figure(figsize=(7.5, 3.6), layout="constrained")
-    FigureCanvasAgg(fig)
-    ax = fig.subplots()
+    fig, (ax,) = figure(1, width=7.5, height=3.6, sharex=False)
     ticks = []
     for i, (setup, numbers) in enumerate(summary["results"].items()):
         for j, label in enumerate(LABELS):
@@ -146,13 +139,7 @@ def plot_shares(summary: dict, path) -> None:
     ax.set_title("over the damped slider's path (to where it stopped)", fontsize="small")
     ax.axhline(0.0, color="k", lw=0.5)
     ax.legend(fontsize="x-small", ncol=3, loc="upper center", bbox_to_anchor=(0.5, -0.22))
-
-    def write(fh):
-        buf = io.BytesIO()
-        fig.savefig(buf, format="png", dpi=120)
-        fh.write(buf.getvalue())
-
-    atomic_write(path, write)
+    save(fig, path, 120)
 
 
 def main(argv=None) -> int:

@@ -41,12 +41,10 @@ AMPLITUDE = "stick-slip amplitude (mean force drop per slip)"
 
 def plot_amplitudes(results: dict, path) -> None:
     """Mean force drop against drive stiffness, regular (line) and random (mean, 95 % CI)."""
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
+    from asperity2d.renderers.plots import figure, save
 
-    fig = Figure(figsize=(7.0, 3.2), layout="constrained")
-    FigureCanvasAgg(fig)
-    axes = fig.subplots(1, len(results), squeeze=False)[0]
+    fig, axes = figure(1, len(results), width=7.0, height=3.2, sharex=False)
+    axes = axes[0]
     for ax, (setup, per_k) in zip(axes, results.items()):
         ks = [float(k) for k in per_k]
         reg = [per_k[k]["regular"]["force_drop_mean_N"] * 1e3 for k in per_k]
@@ -60,7 +58,7 @@ def plot_amplitudes(results: dict, path) -> None:
         ax.set_ylabel("mean force drop per slip (mN)")
         ax.set_title(f"{setup} slider", fontsize=9)
         ax.legend(fontsize=8)
-    fig.savefig(path, dpi=110)
+    save(fig, path, 110)
 
 
 def main(argv=None) -> int:

@@ -64,3 +64,22 @@ def test_belt_basins_is_a_subcommand_of_the_parser(argv, handler, command):
         assert args.output == "x.png"
     if command == "basins":
         assert args.grid == "3" and args.preset == "table2-3dof"
+
+
+def test_matplotlib_is_drawn_only_in_the_renderers_and_never_through_pyplot():
+    # one plotting home: every figure is a matplotlib.figure.Figure made by renderers.plots.figure
+    # (pyplot's global state -- current figure, interactive back ends -- is never touched)
+    import re
+
+    package = ROOT / "asperity2d"
+    pyplot, outside = [], []
+    for path in sorted(package.rglob("*.py")):
+        text = path.read_text(encoding="utf-8")
+        code = "\n".join(line for line in text.splitlines() if not line.lstrip().startswith("#"))
+        if re.search(r"^\s*(from|import)\s+matplotlib\.pyplot|^\s*from\s+matplotlib\s+import\s.*pyplot",
+                     code, re.M):
+            pyplot.append(path.relative_to(ROOT))
+        if re.search(r"^\s*(from|import)\s+matplotlib", code, re.M) and "renderers" not in path.parts:
+            outside.append(path.relative_to(ROOT))
+    assert not pyplot, f"pyplot used in {pyplot}"
+    assert not outside, f"matplotlib imported outside asperity2d/renderers: {outside}"

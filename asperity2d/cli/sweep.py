@@ -63,7 +63,8 @@ def _cmd_status(args) -> int:
 
 
 def _cmd_report(args) -> int:
-    from ..sweep.report import plot_summary, summarize
+    from ..renderers.sweep import plot_summary
+    from ..sweep.report import summarize
     from ..sweep.study import variant_label
 
     store = _store(args.store)

@@ -1,4 +1,4 @@
-"""Plots of belt-chain results (matplotlib imported lazily, files written atomically).
+"""Plots of belt-chain results (matplotlib imported lazily, no pyplot, files written atomically).
 
 ``plot_chain``: per mass, displacement and velocity against time with the
 stick intervals shaded, plus the phase portrait (v against x). The file
@@ -11,31 +11,19 @@ from pathlib import Path
 
 import numpy as np
 
-from .plots import save
+from .plots import figure, save
 from ..belt.regime import REGIMES
 
 
 def save_figure(fig, path) -> Path:
-    """Save a pyplot ``fig`` to ``path`` atomically (the extension picks the format) and close it."""
-    import matplotlib.pyplot as plt
-
-    try:
-        return save(fig, path, dpi=110, bbox_inches="tight")
-    finally:
-        plt.close(fig)
+    """Save ``fig`` to ``path`` atomically (the extension picks the format)."""
+    return save(fig, path, dpi=110, bbox_inches="tight")
 
 
 def plot_chain(result, path=None, *, title: str = ""):
     """Displacement (m), velocity (m/s) and phase portrait per mass; returns the figure or the saved path."""
-    import matplotlib
-
-    if path is not None:
-        matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
-
     n = result.n
-    fig, axes = plt.subplots(n, 3, figsize=(13, 2.6 * n), squeeze=False,
-                             gridspec_kw={"width_ratios": [2, 2, 1.2]})
+    fig, axes = figure(n, 3, width=13.0, height=2.6, sharex=False, width_ratios=[2, 2, 1.2])
     V = result.chain.belt_velocity(result.t) if result.chain is not None else None
     for i in range(n):
         ax_x, ax_v, ax_p = axes[i]
@@ -58,22 +46,16 @@ def plot_chain(result, path=None, *, title: str = ""):
     axes[0, 2].set_title("phase portrait")
     if title:
         fig.suptitle(title)
-    fig.tight_layout()
     return save_figure(fig, path) if path is not None else fig
 
 
 def plot_regime_map(regime_map, path=None):
     """Colour map of the regime classes over the grid; Stribeck stability boundary if present."""
-    import matplotlib
-
-    if path is not None:
-        matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
     from matplotlib.colors import ListedColormap
 
     rm = regime_map
     codes = np.vectorize(REGIMES.index)(np.asarray(rm.labels))
-    fig, ax = plt.subplots(figsize=(6.5, 4.8))
+    fig, (ax,) = figure(1, width=6.5, height=4.8, sharex=False)
     cmap = ListedColormap(["tab:green", "tab:red", "tab:blue", "tab:gray"][: len(REGIMES)])
     mesh = ax.pcolormesh(rm.x_values, rm.y_values, codes.T, cmap=cmap, vmin=-0.5, vmax=len(REGIMES) - 0.5,
                          shading="nearest")

@@ -20,16 +20,20 @@ from ..errors import SceneError
 FORMATS = (".png", ".svg", ".pdf")
 
 
-def figure(rows: int, *, width: float = 7.0, height: float = 2.2, sharex: bool = True):
-    """A (figure, axes) pair on the Agg canvas, without pyplot's global state: ``rows``
-    stacked axes of ``width`` x ``height`` inches each. Every plot in the package starts here."""
+def figure(rows: int = 1, cols: int = 1, *, width: float = 7.0, height: float = 2.2, sharex: bool = True,
+           width_ratios=None):
+    """A (figure, axes) pair on the Agg canvas, without pyplot's global state: ``rows`` x
+    ``cols`` axes, the figure ``width`` inches wide and ``height`` inches per row. ``axes`` is
+    the 1-D array of the rows' axes when ``cols`` is 1, else the ``rows`` x ``cols`` array.
+    Every figure of the package (and of the scene scripts) starts here; :func:`save` writes it."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=(width, height * rows), layout="constrained")
     FigureCanvasAgg(fig)
-    axes = fig.subplots(rows, 1, sharex=sharex, squeeze=False)[:, 0]
-    return fig, axes
+    axes = fig.subplots(rows, cols, sharex=sharex, squeeze=False,
+                        gridspec_kw=None if width_ratios is None else {"width_ratios": width_ratios})
+    return fig, (axes[:, 0] if cols == 1 else axes)
 
 
 def save(fig, path: str | os.PathLike, dpi: int, *, bbox_inches: str | None = None) -> Path:

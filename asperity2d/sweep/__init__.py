@@ -4,12 +4,12 @@ A :class:`Study` names a run function by dotted path ``"module:function"``,
 a grid of parameters and a list of seeds. :func:`run_study` executes the runs
 that are not finished yet (locally in processes, or on a Dask cluster) and
 writes each one atomically to a resumable :class:`ResultStore`;
-:func:`summarize` and :func:`plot_summary` turn the store into statistics per
-grid point and a figure.
+:func:`summarize` turns the store into statistics per grid point
+(:func:`asperity2d.renderers.sweep.plot_summary` draws them).
 """
 
 from .executors import DaskExecutor, LocalExecutor, execute_run, make_executor
-from .report import Summary, VariantStats, VariantTest, plot_summary, summarize
+from .report import Summary, VariantStats, VariantTest, summarize
 from .runner import SweepSummary, run_study
 from .record import CorruptRunWarning, RunRecord
 from .store import ResultStore, StoreStatus
@@ -31,7 +31,6 @@ __all__ = [
     "execute_run",
     "load_study",
     "make_executor",
-    "plot_summary",
     "run_key",
     "run_study",
     "summarize",

@@ -20,7 +20,6 @@ from typing import Any
 import numpy as np
 
 from .. import stats
-from .._io import atomic_write
 from ..errors import SceneError
 from .store import ResultStore, quantity_names
 from .study import variant_label
@@ -137,61 +136,3 @@ def summarize(store: str | Path | ResultStore, *, confidence: float = 0.95) -> S
                                                stats.mann_whitney(a, b)))
     return Summary(study.name, confidence, names, tuple(by_variant), tuple(counts),
                    tuple(all_stats), tuple(comparisons))
-
-
-def plot_summary(summary: Summary, path: str | Path) -> Path:
-    """Write a figure of mean and confidence band per variant, one panel per quantity.
-
-    When a single numeric grid parameter varies, variants are placed at its
-    values and joined by a line; otherwise they are categories on the x axis.
-    The format follows the extension of ``path`` (``.png``, ``.pdf``, ``.svg``).
-    """
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-
-    path = Path(path)
-    fmt = path.suffix.lower().lstrip(".")
-    if fmt not in {"png", "pdf", "svg"}:
-        raise SceneError(f"`path` must end in .png, .pdf or .svg, got {str(path)!r}")
-    if not summary.quantities:
-        raise SceneError("`summary` has no quantities to plot (no run has finished)")
-    varying = [k for k, _ in summary.variants[0]
-               if len({dict(v)[k] for v in summary.variants}) > 1] if summary.variants[0] else []
-    numeric = len(varying) == 1 and all(
-        isinstance(dict(v)[varying[0]], (int, float)) and not isinstance(dict(v)[varying[0]], bool)
-        for v in summary.variants)
-    if numeric:
-        xs = np.array([float(dict(v)[varying[0]]) for v in summary.variants])
-    else:
-        xs = np.arange(len(summary.variants), dtype=float)
-    labels = [variant_label((k, val) for k, val in v if k in varying) for v in summary.variants]
-
-    nq = len(summary.quantities)
-    fig = Figure(figsize=(max(5.0, 1.2 * len(xs) + 2.5), 2.6 * nq + 0.6), layout="constrained")
-    FigureCanvasAgg(fig)
-    axes = fig.subplots(nq, 1, sharex=True, squeeze=False)[:, 0]
-    for ax, q in zip(axes, summary.quantities):
-        st = [summary.stat(v, q) for v in summary.variants]
-        mean = np.array([s.mean for s in st])
-        lo = np.array([s.ci_low for s in st])
-        hi = np.array([s.ci_high for s in st])
-        if numeric:
-            order = np.argsort(xs)
-            ax.fill_between(xs[order], lo[order], hi[order], alpha=0.3,
-                            label=f"{summary.confidence:.0%} CI")
-            ax.plot(xs[order], mean[order], "o-", label="mean")
-        else:
-            for i, (x, a, b) in enumerate(zip(xs, lo, hi)):
-                ax.fill_between([x - 0.3, x + 0.3], [a, a], [b, b], alpha=0.3, color="C0",
-                                label=f"{summary.confidence:.0%} CI" if i == 0 else None)
-            ax.plot(xs, mean, "o", color="C0", label="mean")
-        ax.set_ylabel(q)
-        ax.grid(alpha=0.3)
-    axes[0].set_title(f"{summary.study}: mean and {summary.confidence:.0%} CI per variant")
-    axes[0].legend(loc="best", fontsize="small")
-    if numeric:
-        axes[-1].set_xlabel(varying[0])
-    else:
-        axes[-1].set_xticks(xs, [f"{lab}\n(n={d})" for lab, (d, _) in zip(labels, summary.counts)],
-                            rotation=20 if len(xs) > 4 else 0, fontsize="small")
-    return atomic_write(path, lambda fh: fig.savefig(fh, format=fmt, dpi=110))
