@@ -35,7 +35,7 @@ from asperity2d.experiments.quasistatic import SEED_DRIVE_VELOCITY
 from asperity2d.renderers.plots import plot_comparison
 from asperity2d.cli import scripting
 from asperity2d.studies import claims
-from asperity2d.sweep.executors import map_calls
+from asperity2d.sweep.engine import map_calls
 
 TABLE1 = dict(base=1e-6, mass=2.88e-16, stiffness=37_200.0, flank_angle=45.0)
 FACTOR = 2000.0

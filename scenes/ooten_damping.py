@@ -38,7 +38,7 @@ from asperity2d.renderers.plots import plot_positions
 from asperity2d.cli import scripting
 from asperity2d.studies import ooten as studies
 from asperity2d.studies.claims import claim
-from asperity2d.sweep.executors import map_calls
+from asperity2d.sweep.engine import map_calls
 
 FACTOR = 0.9
 ALPHA = 0.01

@@ -46,7 +46,7 @@ from asperity2d.renderers.plots import plot_comparison, plot_positions
 from asperity2d.cli import scripting
 from asperity2d.studies import claims
 from asperity2d.studies import ooten as studies
-from asperity2d.sweep.executors import map_calls
+from asperity2d.sweep.engine import map_calls
 
 ALPHA = 0.01
 FRICTIONS = {"mu_s > mu_k": {"mu_static": 0.3, "mu_kinetic": 0.2},

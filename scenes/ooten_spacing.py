@@ -35,7 +35,7 @@ from asperity2d.experiments.compare import Comparison, measure_label
 from asperity2d.renderers.plots import plot_comparison
 from asperity2d.studies import claims
 from asperity2d.studies import ooten as studies
-from asperity2d.sweep.executors import map_calls
+from asperity2d.sweep.engine import map_calls
 
 VARIANTS = {"regular": {"spacing": "regular"}, "random-upper": {"spacing": "random-upper"},
             "random": {"spacing": "random"}}

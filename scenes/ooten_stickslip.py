@@ -31,7 +31,7 @@ from asperity2d import stats
 from asperity2d.cli import scripting
 from asperity2d.studies import claims
 from asperity2d.studies import ooten as studies
-from asperity2d.sweep.executors import map_calls
+from asperity2d.sweep.engine import map_calls
 
 STIFFNESSES = (1_176.0, 3_720.0, 11_760.0)  # N/m
 ALPHA = 0.01

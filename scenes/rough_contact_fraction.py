@@ -46,7 +46,7 @@ from asperity2d import make_scene
 from asperity2d.cli import scripting
 from asperity2d.studies.claims import claim, verdict_line
 from asperity2d.studies.rough import rough_run
-from asperity2d.sweep.executors import map_calls
+from asperity2d.sweep.engine import map_calls
 from asperity2d.surface import fraction_above
 from asperity2d.units import MIN_LENGTH_RATIO
 

@@ -47,7 +47,7 @@ from asperity2d.scene import SEED_000, kinetic_default
 from asperity2d.cli import scripting
 from asperity2d.studies.claims import HOLDS, UNTESTABLE, claim, judge, verdict_line
 from asperity2d.studies.rough import rough_run, spearman, trend_claim
-from asperity2d.sweep.executors import map_calls
+from asperity2d.sweep.engine import map_calls
 
 SPREADS = (0.0, 0.05, 0.1, 0.15, 0.2)  # sigma / base
 QUICK_SPREADS = (0.0, 0.2)

@@ -43,7 +43,7 @@ from asperity2d.scene import SEED_000, kinetic_default
 from asperity2d.cli import scripting
 from asperity2d.studies.claims import UNTESTABLE, claim, verdict_line
 from asperity2d.studies.rough import self_affine_run, spearman, trend_claim
-from asperity2d.sweep.executors import map_calls
+from asperity2d.sweep.engine import map_calls
 
 HURSTS, QUICK_HURSTS = (0.3, 0.5, 0.7, 0.9), (0.3, 0.9)
 RMS = 0.15e-6  # m

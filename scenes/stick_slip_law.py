@@ -34,7 +34,7 @@ from asperity2d.cli import scripting
 from asperity2d.experiments import tribometer as tb
 from asperity2d import stats
 from asperity2d.studies import claims
-from asperity2d.sweep.executors import map_calls
+from asperity2d.sweep.engine import map_calls
 
 STIFFNESS = 1000.0  # N/m, drive spring
 VELOCITY = 10.0  # m/s, drive speed (quasi-static: see scenes/tribometer.py)

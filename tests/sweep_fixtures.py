@@ -50,3 +50,28 @@ def subprocess_env() -> dict[str, str]:
     tests = Path(__file__).resolve().parent
     parts = [str(root), str(tests)] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]
     return {**os.environ, "PYTHONPATH": os.pathsep.join(parts)}
+
+
+def engine_call(x: int) -> int:
+    """x², except: 3 raises ValueError, 5 kills its worker process (never call 5 in-process)."""
+    import os
+
+    if x == 3:
+        raise ValueError("three is refused")
+    if x == 5:
+        os._exit(7)
+    return x * x
+
+
+class Unpicklable(Exception):
+    """An exception that cannot travel back from a worker (it holds a lock)."""
+
+    def __init__(self):
+        import threading
+
+        super().__init__("holds a lock")
+        self.lock = threading.Lock()
+
+
+def unpicklable_failure(x: int) -> int:
+    raise Unpicklable()

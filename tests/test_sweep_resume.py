@@ -27,7 +27,7 @@ delay = 0.1
 
 
 def _sweep_cmd(*args):
-    return [sys.executable, "-m", "asperity2d.sweep", *args]
+    return [sys.executable, "-m", "asperity2d", "sweep", *args]
 
 
 @pytest.mark.skipif(not hasattr(os, "killpg"), reason="needs POSIX process groups")

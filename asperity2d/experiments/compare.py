@@ -11,9 +11,10 @@ triangles, damped against undamped) as a study::
 Each scene is ``make_scene(**base, **variant, seed=seed)``; ``measure(scene)``
 returns a float (NaN is allowed and ignored by the statistics). ``measure`` is
 a callable or the name of one of :data:`MEASURES`. The runs go through the
-sweep executors (:mod:`asperity2d.sweep.executors`: in-process, a local
-process pool, or a Dask cluster), so ``compare`` is the in-memory front end of
-the same machinery as :func:`asperity2d.sweep.run_study`. A variant whose
+ensemble engine (:func:`asperity2d.sweep.engine.run_calls`: in-process, a
+local process pool, or a Dask cluster, one failure contract), like
+:func:`asperity2d.sweep.run_study`; a run that raises raises here, with a note
+naming its variant and seed. A variant whose
 scene does not depend on the seed (regular spacing) is measured once and
 reported for every seed. Results are stored in (variant, seed) order; they
 do not depend on the executor.
@@ -36,10 +37,10 @@ from .._io import FileError, read_text, write_json
 from .._validate import check_int, show
 from ..builders import make_scene
 from ..critical import critical_force
-from ..errors import SceneError, SimulationError
+from ..errors import SceneError
 from ..scene import Scene, SpringDrive
 from ..run import simulate
-from ..sweep.executors import make_executor
+from ..sweep.engine import run_calls
 from ..sweep.progress import Progress
 
 FORMAT = "asperity2d.comparison/1"
@@ -105,12 +106,9 @@ def measure_label(name: str) -> str:
 
 
 def _evaluate(measure: Callable, scene: Scene, where: str) -> float:
-    """Measure one scene (module level, so worker processes can run it)."""
-    try:
-        return float(measure(scene))
-    except Exception as exc:
-        exc.add_note(f"while measuring {where}")
-        raise
+    """Measure one scene (module level, so worker processes can run it); ``where`` names it
+    in the note of a failure."""
+    return float(measure(scene))
 
 
 # -- the result -----------------------------------------------------------------------------------
@@ -268,13 +266,12 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
             slots[name, j] = len(jobs)
             jobs.append((measure, scene, f"variant {name!r} with seed {seed}"))
     results: list = [None] * len(jobs)
-    with make_executor(workers=workers, scheduler=scheduler) as executor, \
-            Progress(total=len(jobs), enabled=progress, label="compare") as bar:
-        for index, value in executor.map_unordered(_evaluate, jobs):
-            if isinstance(value, dict):  # Dask reports a run that raised as a failed outcome
-                raise SimulationError(f"{value.get('error')} (while measuring {jobs[index][2]})")
-            results[index] = value
-            bar.update("done" if math.isfinite(value) else "failed")
+    with Progress(total=len(jobs), enabled=progress, label="compare") as bar:
+        for outcome in run_calls(_evaluate, jobs, workers=workers, scheduler=scheduler):
+            if not outcome.ok:  # the run's own exception, on every executor (the engine's contract)
+                outcome.raise_failure(jobs[outcome.index][2])
+            results[outcome.index] = outcome.value
+            bar.update("done" if math.isfinite(outcome.value) else "failed")
     values = {name: tuple(results[slots[name, j]] for j in range(len(seeds))) for name in variants}
     return Comparison(values=values, seeds=seeds, variants={k: dict(v or {}) for k, v in variants.items()},
                       base=base, measure=getattr(measure, "__name__", type(measure).__name__))

@@ -17,7 +17,7 @@ lower asperities that touched the slider, the most contacts at once, the
 steepest flank among the asperities that touched, and the contact angle the
 breakaway forces imply (:func:`breakaway_angle`), to tell which flanks set them.
 The scripts map them over parameter sets with
-:func:`asperity2d.sweep.executors.map_calls` and summarise with :mod:`asperity2d.stats`.
+:func:`asperity2d.sweep.engine.map_calls` and summarise with :mod:`asperity2d.stats`.
 """
 
 from __future__ import annotations

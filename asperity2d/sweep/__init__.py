@@ -1,13 +1,15 @@
 """Sweeps and ensembles: run a function over a parameter grid and seeds, at scale.
 
-A :class:`Study` names a run function by dotted path ``"module:function"``,
-a grid of parameters and a list of seeds. :func:`run_study` executes the runs
-that are not finished yet (locally in processes, or on a Dask cluster) and
+Every ensemble runs on one engine (:mod:`.engine`: :func:`run_calls`, :func:`map_calls`,
+one failure contract on every executor). A :class:`Study` names a run function by dotted
+path ``"module:function"``, a grid of parameters and a list of seeds. :func:`run_study`
+executes the runs that are not finished yet (locally in processes, or on a Dask cluster) and
 writes each one atomically to a resumable :class:`ResultStore`;
 :func:`summarize` turns the store into statistics per grid point
 (:func:`asperity2d.renderers.sweep.plot_summary` draws them).
 """
 
+from .engine import CallFailed, Outcome, decide_workers, map_calls, run_calls
 from .executors import DaskExecutor, LocalExecutor, execute_run, make_executor
 from .report import Summary, VariantStats, VariantTest, summarize
 from .runner import SweepSummary, run_study
@@ -16,7 +18,12 @@ from .store import ResultStore, StoreStatus
 from .study import RunSpec, Study, load_study, run_key
 
 __all__ = [
+    "CallFailed",
     "CorruptRunWarning",
+    "Outcome",
+    "decide_workers",
+    "map_calls",
+    "run_calls",
     "DaskExecutor",
     "LocalExecutor",
     "ResultStore",

@@ -1,14 +1,18 @@
-"""Where runs execute: in-process, a local process pool, or a Dask cluster.
+"""Where calls execute: in-process, a local process pool, or a Dask cluster (the transport of
+:mod:`asperity2d.sweep.engine`, which holds the failure contract).
 
 Every executor has one method, :meth:`map_unordered`, which submits
-``fn(*args)`` for each argument tuple and yields ``(index, result)`` as runs
-complete, in completion order. The caller (the parent process) writes each
-result as it arrives, so nothing waits on anything but the runs themselves.
+``fn(*args)`` for each argument tuple and yields ``(index, result)`` as calls
+complete, in completion order. ``fn`` is always the engine's
+:func:`~.engine.guarded`, which never raises, so a result is always its
+outcome tuple; a call whose worker died is reported as the same tuple
+(:func:`died`) by both executors. The caller (the parent process)
+handles each result as it arrives, so nothing waits on anything but the calls.
 
-``fn`` here is always :func:`execute_run`: it imports the study's run function
-by its dotted path inside the worker, calls it, and turns any exception into a
-"failed" outcome, so one bad run never stops a study. Runs are deterministic
-given their seed, so the executor never changes the numbers.
+:func:`execute_run` is what a study's run executes in the worker: it imports
+the study's run function by its dotted path, calls it and checks what it
+returned. Runs are deterministic given their seed, so the executor never
+changes the numbers.
 """
 
 from __future__ import annotations
@@ -17,8 +21,8 @@ import concurrent.futures as cf
 import importlib
 import multiprocessing
 import os
+import math
 import sys
-import time
 import traceback
 import uuid
 from functools import lru_cache
@@ -41,39 +45,30 @@ def resolve_run(path: str) -> Callable[..., Mapping[str, float]]:
     return fn
 
 
-def execute_run(
-    run: str, params: Mapping[str, Any], seed: int, quantities: Sequence[str] | None
-) -> dict[str, Any]:
-    """Call the run function once and return its outcome as a plain dict.
+def execute_run(run: str, params: Mapping[str, Any], seed: int, quantities: Sequence[str] | None
+                ) -> dict[str, float]:
+    """Call a study's run function once (``run`` a dotted path) and return its quantities
+    (name -> float); raise if it raises, returns something else than a mapping of numbers, or
+    lacks one of ``quantities`` (the engine records the failure)."""
+    raw = resolve_run(run)(**params, seed=seed)
+    if not isinstance(raw, Mapping):
+        raise TypeError(f"run function must return a mapping, got {type(raw).__name__}")
+    values = {str(name): float(value) for name, value in raw.items()}
+    missing = [q for q in (quantities or ()) if q not in values]
+    if missing:
+        raise KeyError(f"run function did not return quantities {missing}")
+    return values
 
-    The outcome has ``status`` ("done" or "failed"), ``quantities`` (name ->
-    float, done runs), ``error`` and ``traceback`` (text, failed runs) and
-    ``wall_time`` (s, time spent in the run function).
-    """
-    start = time.perf_counter()
-    try:
-        raw = resolve_run(run)(**params, seed=seed)
-        if not isinstance(raw, Mapping):
-            raise TypeError(f"run function must return a mapping, got {type(raw).__name__}")
-        values = {str(name): float(value) for name, value in raw.items()}
-        missing = [q for q in (quantities or ()) if q not in values]
-        if missing:
-            raise KeyError(f"run function did not return quantities {missing}")
-    except Exception as exc:  # a failed run is data, not a crash of the study
-        return {
-            "status": "failed",
-            "quantities": {},
-            "error": f"{type(exc).__name__}: {exc}",
-            "traceback": traceback.format_exc(),
-            "wall_time": time.perf_counter() - start,
-        }
-    return {
-        "status": "done",
-        "quantities": values,
-        "error": None,
-        "traceback": None,
-        "wall_time": time.perf_counter() - start,
-    }
+
+def died(exc: BaseException) -> tuple:
+    """The outcome tuple of :func:`asperity2d.sweep.engine.guarded` for a call whose worker
+    died with ``exc`` (both executors report a death this way)."""
+    hint = ""
+    if type(exc).__name__ == "BrokenProcessPool":
+        hint = (" (a script that runs an ensemble with workers > 1 needs an "
+                "`if __name__ == '__main__':` guard)")
+    return ("failed", None, f"worker died: {type(exc).__name__}: {exc}{hint}",
+            "".join(traceback.format_exception(exc)), math.nan, None)
 
 
 def _check_workers(workers: int | None) -> int:
@@ -93,6 +88,12 @@ def _check_main_importable() -> None:
             f"`workers` > 1 needs a main script that worker processes can import, got {path!r} "
             "(run from a file with an `if __name__ == '__main__':` guard, or use workers=1)"
         )
+
+
+#: A local pool that breaks this many times in a row, no call finishing in between, is given up:
+#: every call left fails with the error (a script without an ``if __name__ == "__main__":``
+#: guard, a worker that cannot start).
+MAX_BREAKS = 3
 
 
 class LocalExecutor:
@@ -122,39 +123,60 @@ class LocalExecutor:
             for index, args in enumerate(jobs):
                 yield index, fn(*args)
             return
-        if self._pool is None:
-            _check_main_importable()
-            # spawn: workers start clean (no inherited threads, RNGs or engine state)
-            self._pool = cf.ProcessPoolExecutor(
-                max_workers=self.workers, mp_context=multiprocessing.get_context("spawn")
-            )
+        _check_main_importable()
         # keep a bounded window in flight so huge studies do not queue everything at once
         window = 2 * self.workers
         pending = iter(enumerate(jobs))
-        in_flight: dict[cf.Future, int] = {}
+        in_flight: dict[cf.Future, tuple[int, tuple]] = {}
+        # A worker that dies takes the whole pool, and every call in it, down with it, without
+        # saying which call killed it. The calls lost that way are run again one at a time in a
+        # new pool: an innocent one finishes, the culprit breaks the pool alone and fails.
+        suspects: list[tuple[int, tuple]] = []
+        breaks = 0  # pools broken in a row with no call finished in between
 
         def fill() -> None:
-            while len(in_flight) < window:
-                nxt = next(pending, None)
+            while len(in_flight) < (1 if suspects else window):
+                nxt = suspects.pop(0) if suspects else next(pending, None)
                 if nxt is None:
                     return
-                in_flight[self._pool.submit(fn, *nxt[1])] = nxt[0]
+                in_flight[self._start().submit(fn, *nxt[1])] = nxt
 
         fill()
         while in_flight:
             done, _ = cf.wait(in_flight, return_when=cf.FIRST_COMPLETED)
+            lost, cause = [], None
             for future in done:
-                index = in_flight.pop(future)
+                call = in_flight.pop(future)
                 try:
                     result = future.result()
-                except cf.process.BrokenProcessPool as exc:
-                    raise RuntimeError(
-                        f"a sweep worker process died ({exc}); finished runs are saved, "
-                        "run the study again to resume. (A script that starts a sweep "
-                        "with workers > 1 needs an `if __name__ == '__main__':` guard.)"
-                    ) from None
-                yield index, result
+                except (cf.process.BrokenProcessPool, cf.CancelledError) as exc:
+                    lost.append(call)
+                    cause = exc
+                    continue
+                breaks = 0
+                yield call[0], result
+            if cause is not None:
+                lost += in_flight.values()
+                in_flight.clear()
+                self.close()
+                breaks += 1
+                if breaks >= MAX_BREAKS:  # the pool itself cannot run: every call left fails
+                    for index, _ in [*lost, *suspects, *pending]:
+                        yield index, died(cause)
+                    return
+                if len(lost) == 1:  # alone in its pool: this call killed its worker
+                    yield lost[0][0], died(cause)
+                else:
+                    suspects.extend(sorted(lost, key=lambda c: c[0]))
             fill()
+
+    def _start(self) -> cf.ProcessPoolExecutor:
+        if self._pool is None:
+            # spawn: workers start clean (no inherited threads, RNGs or engine state)
+            self._pool = cf.ProcessPoolExecutor(
+                max_workers=self.workers, mp_context=multiprocessing.get_context("spawn")
+            )
+        return self._pool
 
     def close(self) -> None:
         if self._pool is not None:
@@ -218,9 +240,15 @@ class DaskExecutor:
         return f"dask ({self.scheduler})"
 
     def map_unordered(self, fn: Callable, jobs: Sequence[tuple]) -> Iterator[tuple[int, Any]]:
-        """Yield ``(index, fn(*jobs[index]))`` as each run completes on the cluster."""
+        """Yield ``(index, fn(*jobs[index]))`` as each run completes on the cluster.
+
+        A task whose worker died (``KilledWorker``, after the scheduler's own retries) may be
+        only a neighbour of the culprit, queued on the same worker: such calls are run again
+        one at a time at the end, so only the call that kills its worker alone fails.
+        """
         distributed = _import_distributed()
         token = uuid.uuid4().hex[:8]
+        suspects: list[int] = []
         futures = {}
         for index, args in enumerate(jobs):
             future = self._client.submit(fn, *args, key=f"asperity2d-run-{token}-{index}", pure=False)
@@ -232,14 +260,20 @@ class DaskExecutor:
                 index = futures[future.key][1]
                 try:
                     result = future.result()
-                except Exception as exc:  # the worker died running it (KilledWorker, ...)
-                    result = {
-                        "status": "failed",
-                        "quantities": {},
-                        "error": f"{type(exc).__name__}: {exc}",
-                        "traceback": "".join(traceback.format_exception(exc)),
-                        "wall_time": float("nan"),
-                    }
+                except Exception:  # the worker died running it, or beside the one that did
+                    suspects.append(index)
+                    future.release()
+                    continue
+                future.release()
+                yield index, result
+            for index in suspects:  # alone on the cluster now
+                future = self._client.submit(fn, *jobs[index], key=f"asperity2d-rerun-{token}-{index}",
+                                             pure=False)
+                futures[future.key] = (future, index)
+                try:
+                    result = future.result()
+                except Exception as exc:  # noqa: BLE001 - it kills its worker by itself
+                    result = died(exc)
                 future.release()
                 yield index, result
         finally:  # stopped early (error, Ctrl-C): do not leave runs queued on the cluster
@@ -283,25 +317,6 @@ def make_executor(
     if scheduler is None:
         return LocalExecutor(workers=workers)
     return DaskExecutor(scheduler=scheduler, workers=workers)
-
-
-def _call(fn: Callable, kwargs: Mapping[str, Any]) -> Any:
-    return fn(**kwargs)
-
-
-def map_calls(fn: Callable, kwargs_list: Sequence[Mapping[str, Any]], *, workers: int | None = 1,
-              scheduler: str | None = None) -> list:
-    """``[fn(**kw) for kw in kwargs_list]`` on an executor (in-process, local processes or
-    Dask), returned in order. ``fn`` must be a module-level function to run in worker
-    processes; an exception in a run is raised here."""
-    jobs = [(fn, dict(kw)) for kw in kwargs_list]
-    out: list = [None] * len(jobs)
-    with make_executor(workers=workers, scheduler=scheduler) as executor:
-        for index, value in executor.map_unordered(_call, jobs):
-            if isinstance(executor, DaskExecutor) and isinstance(value, dict) and value.get("status") == "failed":
-                raise RuntimeError(f"{value.get('error')} (call {index} of {fn.__name__})")
-            out[index] = value
-    return out
 
 
 def jobs_for(run: str, specs: Iterable, quantities: Sequence[str] | None) -> list[tuple]:

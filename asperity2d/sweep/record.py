@@ -61,18 +61,19 @@ class RunRecord:
             raise SceneError(f"`status` must be one of {STATUSES}, got {self.status!r}")
 
     @classmethod
-    def from_outcome(cls, spec: RunSpec, run: str, outcome: Mapping[str, Any]) -> "RunRecord":
-        """Record for ``spec`` from an :func:`~.executors.execute_run` outcome."""
+    def from_outcome(cls, spec: RunSpec, run: str, outcome) -> "RunRecord":
+        """Record for ``spec`` from the engine's :class:`~.engine.Outcome` of
+        :func:`~.executors.execute_run` (its value: the quantities of a done run)."""
         return cls(
             key=spec.key,
             run=run,
             params=dict(spec.params),
             seed=spec.seed,
-            status=outcome["status"],
-            quantities=dict(outcome["quantities"]),
-            error=outcome["error"],
-            traceback=outcome["traceback"],
-            wall_time=float(outcome["wall_time"]),
+            status=outcome.status,
+            quantities=dict(outcome.value) if outcome.ok else {},
+            error=outcome.error,
+            traceback=outcome.traceback,
+            wall_time=float(outcome.wall_time),
             finished=now(),
         )
 

@@ -2,10 +2,11 @@
 
 :func:`run_study` is the one entry point. It expands the study, reads which
 runs are already finished (valid run files), sends only the others to the
-executor, and writes each run's file as soon as its result arrives. A study
+executor (through the ensemble engine, :mod:`.engine`, and its failure
+contract), and writes each run's file as soon as its result arrives. A study
 that is interrupted (Ctrl-C, SIGKILL, a lost node) resumes where it stopped
-when it is run again; a run that raises is recorded as failed and the study
-goes on.
+when it is run again; a run that raises, or whose worker dies, is recorded as
+failed and the study goes on.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ from dataclasses import dataclass
 from typing import Iterator
 
 from ..errors import SceneError
+from .engine import decide_workers, run_calls
 from .executors import (DaskExecutor, LocalExecutor, check_executor_args, execute_run, jobs_for,
                         make_executor, resolve_run)
 from .progress import Progress
@@ -127,8 +129,11 @@ def run_study(
         failed = len(finished) - done
         executed: list[str] = []
         owned = executor is None
-        if owned:
-            executor = make_executor(workers=workers, scheduler=scheduler) if todo else None
+        if owned and todo:
+            n = workers if scheduler is not None else decide_workers(workers, len(todo))
+            executor = make_executor(workers=n, scheduler=scheduler)
+        elif owned:
+            executor = None
         description = executor.description if executor else "none"
         bar = None
         try:
@@ -137,8 +142,8 @@ def run_study(
                            enabled=progress)
             if todo:
                 jobs = jobs_for(study.run, todo, study.quantities)
-                for index, outcome in executor.map_unordered(execute_run, jobs):
-                    record = RunRecord.from_outcome(todo[index], study.run, outcome)
+                for outcome in run_calls(execute_run, jobs, executor=executor):
+                    record = RunRecord.from_outcome(todo[outcome.index], study.run, outcome)
                     store.write_run(record)
                     executed.append(record.key)
                     bar.update(record.status)

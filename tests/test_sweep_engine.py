@@ -1,0 +1,81 @@
+"""The ensemble engine's one failure contract (asperity2d.sweep.engine), on every executor:
+in-process, a local process pool and a Dask LocalCluster give the same outcomes for the same
+calls -- a call that raises is a failed outcome carrying its own exception, a call whose
+worker dies is a failed outcome naming the death, the other calls finish -- and map_calls
+raises the failed call's own exception with a note naming it."""
+
+from __future__ import annotations
+
+import pytest
+
+import sweep_fixtures
+from asperity2d.errors import SceneError
+from asperity2d.sweep.engine import CallFailed, decide_workers, map_calls, run_calls
+
+
+def _outcomes(**where):
+    calls = [(x,) for x in range(7)]
+    if where.get("workers") == 1 and "scheduler" not in where:
+        calls = [c for c in calls if c != (5,)]  # a dying call would kill this very process
+    got = {o.index: o for o in run_calls(sweep_fixtures.engine_call, calls, **where)}
+    assert sorted(got) == list(range(len(calls)))  # exactly one outcome per call
+    return {calls[i][0]: o for i, o in got.items()}
+
+
+def _check(outcomes, *, dies: bool):
+    for x, o in outcomes.items():
+        if x == 3:
+            assert o.status == "failed" and not o.ok and o.value is None
+            assert o.error == "ValueError: three is refused" and "engine_call" in o.traceback
+            assert isinstance(o.exception, ValueError)
+        elif x == 5:
+            assert dies and o.status == "failed" and o.error.startswith("worker died: ")
+            assert o.exception is None
+        else:
+            assert o.ok and o.value == x * x and o.error is None and o.wall_time >= 0
+
+
+def test_in_process():
+    _check(_outcomes(workers=1), dies=False)
+
+
+def test_local_pool_restarts_after_a_worker_dies():
+    outcomes = _outcomes(workers=2)
+    _check(outcomes, dies=True)
+    assert outcomes[5].error.startswith("worker died: BrokenProcessPool")
+
+
+def test_dask_local_cluster(monkeypatch):
+    distributed = pytest.importorskip("distributed")
+    import dask
+
+    monkeypatch.setenv("PYTHONPATH", sweep_fixtures.subprocess_env()["PYTHONPATH"])
+    # Dask retries a task whose worker died (the nanny restarts the dead one) up to
+    # `allowed-failures` times, then fails it with KilledWorker, and so fails the calls queued on
+    # the same worker with it; the executor re-runs those one at a time, so only the culprit
+    # fails. No retries by Dask itself keep the test short.
+    with dask.config.set({"distributed.scheduler.allowed-failures": 0}), \
+            distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                     dashboard_address=None) as cluster:
+        outcomes = _outcomes(scheduler=cluster.scheduler_address)
+    _check(outcomes, dies=True)
+    assert "KilledWorker" in outcomes[5].error
+
+
+@pytest.mark.parametrize("workers", [1, 2])
+def test_map_calls_raises_the_calls_own_exception_naming_the_call(workers):
+    assert map_calls(sweep_fixtures.engine_call, [{"x": 2}, {"x": 4}], workers=workers) == [4, 16]
+    with pytest.raises(ValueError, match="three is refused") as info:
+        map_calls(sweep_fixtures.engine_call, [{"x": 1}, {"x": 3}], workers=workers)
+    assert "while running call 1 of engine_call" in info.value.__notes__
+    with pytest.raises(CallFailed, match="Unpicklable: holds a lock"):
+        map_calls(sweep_fixtures.unpicklable_failure, [{"x": 1}], workers=workers)
+
+
+def test_worker_count_is_decided_in_one_place():
+    assert decide_workers(4, 2) == 2 and decide_workers(1, 10) == 1
+    assert 1 <= decide_workers(None, 3) <= 3
+    for bad in (0, -1, 1.5, True):
+        with pytest.raises(SceneError, match="`workers`"):
+            decide_workers(bad, 3)
+    assert list(run_calls(sweep_fixtures.engine_call, [], workers=2)) == []
