@@ -20,8 +20,9 @@ import numpy as np
 from ._validate import check_finite, check_int, check_positive
 from ._version import __version__
 from .engine import PYMUNK_VERSION, Engine
-from .engine.energy import EnergyMeter
-from .errors import SceneError, SimulationError
+from .engine.energy import ContactWork, EnergyMeter
+from .engine.recorder import Recorder
+from .errors import SceneError
 from .result import Result
 from .scene import ConstantForce, Scene, SpringDrive
 
@@ -36,12 +37,6 @@ DAMPER_DT_FRACTION = 0.2
 COARSEST_DAMPER_DT_FRACTION = 0.5
 #: Default step budget of one run (settling included): about 5 minutes at N = 16.
 MAX_STEPS = 10_000_000
-#: Divergence: deepest overlap (asperity bases); kinetic energy above this
-#: multiple of the energy the scene held at t = 0 plus all the drive has put in.
-MAX_OVERLAP = 0.5
-ENERGY_FACTOR = 10.0
-_COLUMNS = ("t", "x", "v", "y", "vy", "drive_x", "drive_force", "normal_force", "friction_force",
-            "tangential_force", "contact_count")
 
 
 @dataclass
@@ -50,7 +45,12 @@ class Probe:
 
     ``rear_apex_x`` is the x of the slider's rearmost tip and ``last_apex_x``
     that of the lower surface's last apex, so ``rear_apex_x > last_apex_x``
-    means the slider has passed the whole surface.
+    means the slider has passed the whole surface. ``x_start`` is where the
+    slider was when the run (the current :meth:`Run.advance`) started.
+    ``energy`` is a function returning the energy books so far (the report of
+    :class:`~asperity2d.engine.energy.EnergyMeter`, J) when the run is metered
+    (``simulate(..., energy=True)``, :meth:`Run.meter_energy`), else None.
+    Observers (``simulate(..., observers=[...])``) see the same object.
     """
 
     t: float = 0.0
@@ -62,6 +62,7 @@ class Probe:
     rear_apex_x: float = 0.0
     last_apex_x: float = 0.0
     base: float = 1.0
+    energy: Callable[[], dict] | None = None
 
 
 class Passed:
@@ -212,6 +213,7 @@ class Run:
         self.engine = Engine(scene, dt, iterations=self.iterations, engaged=engaged)
         self.settle_time = 0.0
         self.status, self.message = "duration", "nothing run yet"
+        self._meter = None
         self._reset_record()
 
     # -- budget ---------------------------------------------------------------
@@ -240,121 +242,18 @@ class Run:
 
     # -- the record ---------------------------------------------------------
     def _reset_record(self) -> None:
-        n = self.scene.lower.count
-        self._cols = np.empty((len(_COLUMNS), 64))
-        self._lower = np.empty((3, n, 64))
-        self._size = 0
-        self._last_sampled_step = -1
-        self.max_overlap = 0.0
-        self.max_drift = 0.0
-        self._energy = None  # the divergence guard's books, opened at the first sample
+        # the engine's recorder keeps the samples and the divergence guard (internal units)
+        self._record = Recorder(self.engine)
 
-    def _check_energy(self, rows: np.ndarray, drive_force: float) -> None:
-        """Raise SimulationError if the bodies hold far more kinetic energy than the scene
-        had at the first sample plus every joule the drive, the load and gravity could have
-        put in since (internal units; also catches NaN and inf)."""
-        e = self.engine
-        layout, d = e.layout, e.drive
-        v = rows[:, 2:]
-        kinetic = 0.5 * float(np.dot(layout.masses, np.einsum("ij,ij->i", v, v)))
-        b = self._energy
-        if b is None:
-            sx, sy = rows.item(layout.slider_row, 0), rows.item(layout.slider_row, 1)
-            k = np.asarray(self.scene.lower.stiffness) / e.units.stiffness
-            potential = 0.5 * float(np.dot(k, rows[layout.lower_rows, 1] ** 2))
-            if d.spring:
-                potential += 0.5 * d.k * (d.position(e.step_count, e.dt_internal) - sx) ** 2
-            floor = 1e-3 * 0.5 * float(k.min()) * layout.lower_height ** 2
-            self._energy = {"held": kinetic + potential + floor, "input": 0.0, "x": sx, "y": sy,
-                            "f": abs(drive_force), "step": e.step_count, "heights": rows[:, 1].copy(),
-                            "g": -layout.space.gravity.y}
-            return
-        r = layout.slider_row
-        sx, sy, svx, svy = rows.item(r, 0), rows.item(r, 1), rows.item(r, 2), rows.item(r, 3)
-        steps = e.step_count - b["step"]
-        g = b["g"]
-        if d.spring:  # the far end's power |F| |v| over the samples' interval, F at its larger end
-            b["input"] += max(b["f"], abs(drive_force)) * abs(d.v) * steps * e.dt_internal
-        else:
-            b["input"] += abs(d.force) * abs(sx - b["x"])
-        b["input"] += e.load_internal * abs(sy - b["y"])
-        if g:  # gravity's work on every body
-            b["input"] += g * float(np.dot(layout.masses, np.abs(rows[:, 1] - b["heights"])))
-            b["heights"] = rows[:, 1].copy()
-        b["x"], b["y"], b["f"], b["step"] = sx, sy, abs(drive_force), e.step_count
-        # pymunk moves a body with its old velocity, then updates the velocity: kinetic energy is
-        # ahead of the displacement that paid for it by one step, so allow one step of that work
-        # (gravity's share only with gravity: without, a NaN or inf velocity already makes the
-        # kinetic energy fail the test below)
-        ahead = e.dt_internal * ((0.0 if d.spring else abs(d.force * svx)) + e.load_internal * abs(svy)
-                                 + (g * float(np.dot(layout.masses, np.abs(rows[:, 3]))) if g else 0.0))
-        limit = ENERGY_FACTOR * (b["held"] + b["input"] + ahead)
-        if not kinetic <= limit:  # also true for NaN
-            u = e.units
-            raise SimulationError(
-                f"run diverged at t = {e.time:.6g} s: kinetic energy {kinetic * u.energy:.3g} J is over "
-                f"{ENERGY_FACTOR:g} x the {limit / ENERGY_FACTOR * u.energy:.3g} J the scene held and "
-                f"was given; use a smaller dt (now {self.dt:.3g} s, default T/50) or more iterations",
-                time=e.time)
+    @property
+    def max_overlap(self) -> float:
+        """Deepest overlap seen at the samples (asperity bases)."""
+        return self._record.max_overlap
 
-    def _guard(self, rows: np.ndarray, drive_force: float, overlap: float) -> None:
-        """Raise SimulationError if the run has diverged: kinetic energy (:meth:`_check_energy`)
-        or asperities overlapping by ``overlap`` (base lengths) over ``MAX_OVERLAP``."""
-        self._check_energy(rows, drive_force)
-        if overlap > MAX_OVERLAP:
-            e = self.engine
-            raise SimulationError(
-                f"run diverged at t = {e.time:.6g} s: asperities overlap by {overlap:.2f} of a base; "
-                f"use a smaller dt (now {self.dt:.3g} s) or more iterations", time=e.time)
-        if overlap > self.max_overlap:
-            self.max_overlap = overlap
-
-    def _check(self) -> None:
-        """The divergence guard alone on the engine's current state (a run that keeps no record)."""
-        e = self.engine
-        rows, r = e.bodies_internal(), e.layout.slider_row
-        self._guard(rows, e.drive_force_internal(rows.item(r, 0), rows.item(r, 2)),
-                    e.arbiters_internal().max_overlap())
-
-    def _sample(self) -> None:
-        """Record the engine's current state (internal units) and check it has not diverged."""
-        e = self.engine
-        if e.step_count == self._last_sampled_step:
-            return
-        rows = e.bodies_internal()
-        layout = e.layout
-        sx, sy, svx, svy = rows[layout.slider_row].tolist()
-        drive_force = e.drive_force_internal(sx, svx)
-        arbiters = e.arbiters_internal()
-        fx, fy, ft, count, overlap = arbiters.forces(e.dt_internal)
-        self._guard(rows, drive_force, overlap)
-        lower = rows[layout.lower_rows]
-        dx = lower[:, 0] - layout.lower_x0
-        drift = float(np.abs(dx).max()) if len(dx) and layout.tracked else 0.0
-        if layout.fixed_slider:
-            drift = max(drift, abs(sy - layout.slider_y_track))
-        self.max_drift = max(self.max_drift, drift)
-        i = self._size
-        if i == self._cols.shape[1]:
-            self._cols = np.concatenate([self._cols, np.empty_like(self._cols)], axis=1)
-            self._lower = np.concatenate([self._lower, np.empty_like(self._lower)], axis=2)
-        drive_x = e.drive.position(e.step_count, e.dt_internal) if e.drive.spring else math.nan
-        self._cols[:, i] = (e.step_count, sx, svx, sy, svy, drive_x, drive_force, fy, -fx, ft, count)
-        self._lower[0, :, i] = dx
-        self._lower[1, :, i] = lower[:, 1]
-        self._lower[2, :, i] = arbiters.touched(len(dx))
-        self._size = i + 1
-        self._last_sampled_step = e.step_count
-
-    def _probe(self, probe: Probe) -> None:
-        """What the stop conditions see, read from the engine's current state (SI)."""
-        e = self.engine
-        u = e.units
-        sx, sy, svx, _ = e.bodies_internal()[e.layout.slider_row].tolist()
-        probe.t = e.step_count * self.dt
-        probe.x, probe.v, probe.y = sx * u.length, svx * u.velocity, sy * u.length
-        probe.drive_force = e.drive_force_internal(sx, svx) * u.force
-        probe.rear_apex_x = (sx + e.layout.upper_apex[0]) * u.length
+    @property
+    def max_drift(self) -> float:
+        """Largest drift off a track seen at the samples (asperity bases)."""
+        return self._record.max_drift
 
     # -- running ------------------------------------------------------------
     def settle(self, *, push: float = 0.0, max_time: float | None = None,
@@ -384,10 +283,14 @@ class Run:
 
     def advance(self, duration: float, *, stop: Callable | Iterable[Callable] | None = None,
                 progress: bool | None = None, record_every: int | None = None,
-                record: bool = True) -> str:
+                record: bool = True, observers: Iterable[Callable] = ()) -> str:
         """Step for ``duration`` (s), recording every ``record_every`` steps (default: the
         run's), until a stop condition holds. Returns (and sets) ``status``:
         ``"duration"`` or the stop's name.
+
+        ``observers`` are called as ``observer(probe)`` at every sample, the first
+        included, with the SI view of the state (:class:`Probe`), before the stop
+        conditions are asked; they watch and must not change the run.
 
         ``record=False`` keeps nothing: every ``record_every`` steps the stop conditions
         and the divergence guard still see the state, exactly as when recording (so the
@@ -405,16 +308,20 @@ class Run:
                 raise SceneError(f"`stop` entries must be callables, got {s!r}")
             if hasattr(s, "reset"):
                 s.reset()
-        e = self.engine
+        observers = _callables("observers", observers)
+        e, rec = self.engine, self._record
         self.check_budget(duration=duration)
         n_steps = int(math.ceil(duration / self.dt - 1e-9))
-        probe = Probe(base=self.scene.base,
-                      last_apex_x=float(e.layout.lower_apex_x[-1]) * e.units.length)
-        sample = self._sample if record else self._check
+        probe = Probe(base=self.scene.base, last_apex_x=rec.last_apex_x(),
+                      energy=None if self._meter is None else self._meter.report)
+        sample = rec.sample if record else rec.check
         sample()
-        if stops:
-            self._probe(probe)
+        look = bool(stops or observers)  # the SI view is read only when someone looks
+        if look:
+            rec.probe(probe)
             probe.x_start = probe.x
+            for observe in observers:
+                observe(probe)
         self.status, self.message = "duration", "reached the requested duration"
         disable = (None if n_steps > 200_000 else True) if progress is None else not progress
         bar = tqdm(total=n_steps, unit="step", disable=disable, leave=False, mininterval=0.5)
@@ -426,8 +333,10 @@ class Run:
                 done += n
                 sample()
                 bar.update(n)
-                if stops:
-                    self._probe(probe)
+                if look:
+                    rec.probe(probe)
+                    for observe in observers:
+                        observe(probe)
                     hit = next((s for s in stops if s(probe)), None)
                     if hit is not None:
                         self.status = getattr(hit, "name", type(hit).__name__)
@@ -439,12 +348,33 @@ class Run:
 
     def fork(self) -> "Run":
         """An independent run from the current state, with an empty record (and its own
-        divergence books)."""
+        divergence books; not metered)."""
         out = object.__new__(Run)
         out.__dict__.update(self.__dict__)
         out.engine = self.engine.copy()
+        out._meter = None
         out._reset_record()
         return out
+
+    def meter_energy(self) -> EnergyMeter:
+        """Start metering every step's energy flows from now on; return the meter
+        (``meter.report()``: the books in J, SI; ``meter.detach()`` stops it). A metered step
+        costs about 7 plain steps."""
+        self._meter = EnergyMeter(self.engine)
+        return self._meter
+
+    def meter_contact_work(self) -> ContactWork:
+        """Start booking the work of the slider's contacts from now on (pushing it on,
+        throwing it back, resisting it; the floor's); return the books (``.report()``, J)."""
+        return ContactWork(self.engine)
+
+    def slider_state(self) -> tuple[float, float, float, float]:
+        """Slider ``(x, y, vx, vy)`` now (m, m, m/s, m/s)."""
+        return self.engine.slider_state()
+
+    def drive_position(self) -> float:
+        """Far end of the drive spring now (m); NaN for a constant force."""
+        return self.engine.drive_position()
 
     def set_drive_velocity(self, velocity: float) -> None:
         """Change the spring drive's far-end speed (m/s, any sign); its position is continuous."""
@@ -462,35 +392,36 @@ class Run:
     @property
     def samples(self) -> int:
         """Number of samples recorded so far."""
-        return self._size
+        return self._record.size
 
     def result(self, *, start: int = 0) -> Result:
         """The samples recorded so far (from sample ``start`` on) as a :class:`Result` (SI)."""
-        e, m = self.engine, self._size
-        u = e.units
-        c = self._cols[:, start:m]
-        scale = {"t": self.dt, "x": u.length, "v": u.velocity, "y": u.length, "vy": u.velocity,
-                 "drive_x": u.length, "drive_force": u.force, "normal_force": u.force,
-                 "friction_force": u.force, "tangential_force": u.force, "contact_count": 1.0}
-        arrays = {name: c[j] * scale[name] for j, name in enumerate(_COLUMNS)}
+        e = self.engine
         meta = {
             "settle_time": self.settle_time, "iterations": self.iterations, "dt": self.dt,
             "record_every": self.record_every, "status": self.status, "message": self.message,
             "steps": e.step_count, "max_overlap_fraction": self.max_overlap,
             "max_track_drift_fraction": self.max_drift,
             "max_solver_drift_fraction": e.max_solver_drift,  # removed by projection each step
-            "units": u.as_dict(), "asperity2d_version": __version__,
+            "units": e.units.as_dict(), "asperity2d_version": __version__,
             "pymunk_version": PYMUNK_VERSION, "numpy_version": np.__version__,
         }
-        return Result(**arrays, lower_dx=self._lower[0, :, start:m] * u.length,
-                      lower_dy=self._lower[1, :, start:m] * u.length,
-                      lower_contact=self._lower[2, :, start:m] > 0, scene=self.scene, meta=meta)
+        return Result(**self._record.arrays(start), scene=self.scene, meta=meta)
+
+
+def _callables(name: str, items) -> list:
+    items = [items] if callable(items) else list(items or ())
+    for item in items:
+        if not callable(item):
+            raise SceneError(f"`{name}` entries must be callables, got {item!r}")
+    return items
 
 
 def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = None,
              record_every: int = 10, stop: Callable | Iterable[Callable] | None = None,
              settle: bool | None = None, iterations: int = 20, unsafe_dt: bool = False,
-             progress: bool | None = None, energy: bool = False, max_steps: int = MAX_STEPS) -> Result:
+             progress: bool | None = None, energy: bool = False, max_steps: int = MAX_STEPS,
+             observers: Iterable[Callable] = (), contact_work: bool = False) -> Result:
     """Run ``scene`` with a fixed step and return its :class:`Result`.
 
     Parameters
@@ -520,8 +451,19 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
         Meter every step's energy flows from the settled state on
         (:class:`asperity2d.engine.energy.EnergyMeter`) and store its report
         in ``result.meta["energy"]`` (a metered step costs about 7 plain steps).
+    contact_work : bool
+        Book the work of the slider's contacts by what each does, from the settled
+        state on (:class:`asperity2d.engine.energy.ContactWork`), in
+        ``result.meta["contact_work"]`` (J).
     max_steps : int
         Step budget (settling included), checked before anything runs.
+    observers : list of callables
+        ``observer(probe)`` called at every sample (the settled state included),
+        with the SI view of the state (:class:`Probe`: time, slider position and
+        velocity, drive force, the start position; ``probe.energy()`` the energy
+        books so far when ``energy=True``), before the stop conditions. For
+        studies that watch a run as it goes (e.g. the books when the slider
+        first got somewhere); an observer watches, it must not change the run.
 
     Raises
     ------
@@ -546,13 +488,14 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
     run.check_budget(settle=run.settle_cap() if settle else 0.0, duration=duration)
     if settle:
         run.settle(progress=progress)
-    meter = None
-    if energy:
-        meter = EnergyMeter(run.engine)
-    run.advance(duration, stop=stops, progress=progress)
+    meter = run.meter_energy() if energy else None
+    books = run.meter_contact_work() if contact_work else None
+    run.advance(duration, stop=stops, progress=progress, observers=_callables("observers", observers))
     if stops and run.status == "duration":
         run.status, run.message = "time limit", "reached the time limit before any stop condition"
     result = run.result()
     if meter is not None:
         result.meta["energy"] = meter.report()
+    if books is not None:
+        result.meta["contact_work"] = books.report()
     return result

@@ -16,7 +16,7 @@ push (geometry) from the static/kinetic friction switch. Per run:
 * from one spring-driven pass: the first breakaway, the peak and mean stick
   force, the force to keep the slider moving (work / distance from the first
   breakaway on, N), and the contact work books
-  (:class:`asperity2d.studies.ooten.ContactWork`): the work of contacts
+  (:class:`asperity2d.engine.energy.ContactWork`): the work of contacts
   pushing the slider on (J) against the work of those resisting it.
 
 Regular spacing gives one deterministic half/full ratio; random spacing (both

@@ -138,3 +138,24 @@ def test_a_scene_wider_than_a_million_bases_keeps_its_slider_and_floor():
     t = result.t - result.t[0]
     expected = scene.drive.force * t * (t - (t[1] - t[0])) / (2 * scene.slider.mass)
     assert np.allclose(result.x - result.x[0], expected, rtol=1e-6, atol=1e-14)
+
+
+def test_observers_see_every_sample_in_si_and_do_not_change_the_run():
+    # an observer is called at every sample (the settled state included) with the SI view the
+    # stop conditions see; the run it watches is bit-identical to one nobody watches
+    scene = a.make_scene(lower_count=4, upper_count=2)
+    duration = 400 * scene.shortest_period() / 50
+    seen = []
+    watched = a.simulate(scene, duration, energy=True,
+                         observers=[lambda p: seen.append((p.t, p.x, p.v, p.drive_force, p.energy()))])
+    plain = a.simulate(scene, duration, energy=True)
+    for name in ("t", "x", "v", "drive_force", "friction_force", "lower_dy"):
+        assert np.array_equal(getattr(watched, name), getattr(plain, name))
+    assert len(seen) == len(plain.t)
+    t, x, v, f, books = map(list, zip(*seen))
+    assert t == plain.t.tolist() and x == plain.x.tolist() and v == plain.v.tolist()
+    assert f == plain.drive_force.tolist()
+    assert books[-1] == watched.meta["energy"]  # the books so far: at the last sample, all of them
+    assert books[0]["drive_work_J"] == 0.0 < books[-1]["drive_work_J"]
+    with pytest.raises(a.SceneError, match="`observers`"):
+        a.simulate(scene, duration, observers=[1])

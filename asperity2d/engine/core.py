@@ -26,7 +26,7 @@ from pymunk import batch
 from ..scene import Scene, SpringDrive
 from ..units import Units, check_scales
 from .contacts import ARBITER_FIELDS, Arbiters, StickSlip
-from .native import Native
+from .native import stepper
 from .space import build
 
 PYMUNK_VERSION = pymunk.version
@@ -207,8 +207,8 @@ class Engine:
             self._rows = self._row_store[:n].reshape(-1, 4)
             buf = batch.Buffer()
             buf.set_float_buf(self._row_store)
-            self._native = native = Native(self.layout.space, self.layout.slider, buf, BODY_FIELDS,
-                                           batch.Buffer(), ARBITER_FIELDS)
+            self._native = native = stepper(self.layout.space, self.layout.slider, buf, BODY_FIELDS,
+                                            batch.Buffer(), ARBITER_FIELDS)
             rows = self.layout.lower_rows
             if not isinstance(rows, slice):  # pymunk keeps bodies in insertion order
                 raise RuntimeError("the lower asperities are not contiguous in the batch rows")

@@ -326,3 +326,48 @@ class EnergyMeter:
         out["unmatched_impulse_fraction"] = (t["unmatched_impulse"] / t["remainder_impulse"]
                                              if t["remainder_impulse"] > 0 else 0.0)
         return out
+
+
+class ContactWork:
+    """Work done on the slider by its contacts, booked by what each contact does (J).
+
+    A step hook (``Engine.step_hooks``), from its construction on (``simulate(...,
+    contact_work=True)``, :meth:`asperity2d.run.Run.meter_contact_work`): after every
+    step, every contact's impulse on the slider times the slider's mean
+    velocity over the step (the work that changes its kinetic energy
+    exactly). ``pushing_J``: positive work of contacts pushing the slider on
+    towards +x while it moves that way -- a lower spring's restoring force
+    through a full triangle's back flank once a tip is past an apex (seed 000
+    figure 9); ``rebound_J``: positive work of contacts throwing it back
+    (towards -x, while it moves back: bounces off flanks); ``resisting_J``:
+    the work taken by contacts opposing its motion (tips climbing flanks,
+    friction), as a positive number. ``floor_J``: the floor guard's net work
+    (zero unless tips fall through the lower surface).
+    """
+
+    def __init__(self, engine):
+        self.engine = engine
+        self._v = engine.slider_state()[2]
+        self.pushing_J = self.rebound_J = self.resisting_J = self.floor_J = 0.0
+        engine.step_hooks.append(self)
+
+    def __call__(self) -> None:
+        e = self.engine
+        v = e.slider_state()[2]
+        v_mean, self._v = 0.5 * (v + self._v), v
+        impulse = e.dt * e.units.force  # internal force -> N, times the step (s)
+        for index, fx, _ in e.arbiters_internal().slider_forces(e.dt_internal):
+            work = fx * impulse * v_mean
+            if index < 0:
+                self.floor_J += work
+            elif work <= 0:
+                self.resisting_J -= work
+            elif fx > 0:
+                self.pushing_J += work
+            else:
+                self.rebound_J += work
+
+    def report(self) -> dict:
+        """The books (J), JSON-ready."""
+        return {"pushing_J": self.pushing_J, "rebound_J": self.rebound_J, "resisting_J": self.resisting_J,
+                "floor_J": self.floor_J}

@@ -14,15 +14,28 @@ makes the same C calls directly: the numbers are bit-identical (the same C
 functions on the same data; ``tests/test_engine_native.py`` checks it
 against pymunk's public API).
 
-It relies on pymunk 7's internals (``Space._space``, ``Body._body``,
-``Buffer._float_arr`` / ``_int_arr`` and the batch iterator functions of
-``pymunk._chipmunk``); ``pyproject.toml`` pins ``pymunk>=7.1,<8``.
+It relies on pymunk's internals (``Space._space``, ``Body._body``,
+``Shape._shape``, ``Buffer._float_arr`` / ``_int_arr`` and the batch iterator
+functions of ``pymunk._chipmunk``), which pymunk may change in any release. So
+the fast path is chosen by a capability check when this module is imported
+(:data:`NATIVE`): the attributes exist, and a small probe scene stepped through
+them and through pymunk's public API agrees to the bit. Otherwise -- or with the
+environment variable ``ASPERITY2D_PYMUNK_NATIVE=0`` -- the engine makes the same
+calls through the public API (:class:`Public`: ``Space.step``, ``Body.force``,
+``pymunk.batch``, ``Shape.friction``), bit-identical and ~5 us a step slower;
+:data:`NATIVE_REASON` says why. :func:`stepper` and :func:`friction_setter` give
+whichever applies.
 """
 
 from __future__ import annotations
 
+import os
+
+import numpy as np
 from pymunk import batch
-from pymunk._chipmunk import ffi, lib
+
+#: The environment variable that forces pymunk's public API ("0"; anything else: choose by the check).
+SWITCH = "ASPERITY2D_PYMUNK_NATIVE"
 
 
 class Native:
@@ -78,9 +91,9 @@ class Native:
         return ffi.unpack(ints.arr, ints.num), ffi.unpack(floats.arr, floats.num)
 
 
-def friction_setter(shapes):
-    """A function ``set(i, mu)`` that sets ``shapes[i]``'s friction coefficient, the same
-    ``cpShapeSetFriction`` call as ``shapes[i].friction = mu`` without its Python layer."""
+def _native_friction_setter(shapes):
+    """``set(i, mu)``: the same ``cpShapeSetFriction`` call as ``shapes[i].friction = mu``
+    without its Python layer."""
     handles = [shape._shape for shape in shapes]
     set_friction = lib.cpShapeSetFriction
 
@@ -98,6 +111,125 @@ def _data(buf: batch.Buffer, fields):
     return data
 
 
-_GET_BODY = ffi.addressof(lib, "pmSpaceBodyGetIteratorFuncBatched")
-_SET_BODY = ffi.addressof(lib, "pmSpaceBodySetIteratorFuncBatched")
-_GET_ARBITER = ffi.addressof(lib, "pmSpaceArbiterIteratorFuncBatched")
+class Public:
+    """The same calls as :class:`Native` through pymunk's public API (the fallback): ``Body.force``
+    and ``Space.step``, ``pymunk.batch`` reads and writes, ``Shape.friction``."""
+
+    __slots__ = ("_space", "_body", "_bodies", "_body_fields", "_arbiters", "_arbiter_fields")
+
+    def __init__(self, space, body, bodies: batch.Buffer, body_fields, arbiters: batch.Buffer,
+                 arbiter_fields):
+        if space.threaded:
+            raise RuntimeError("the engine never uses pymunk's threaded stepping")
+        self._space, self._body = space, body
+        self._bodies, self._body_fields = bodies, body_fields
+        self._arbiters, self._arbiter_fields = arbiters, arbiter_fields
+
+    def step(self, dt: float, fx: float, fy: float) -> None:
+        """Set the body's force, step the space, read every body (as :meth:`Native.step`)."""
+        self._body.force = (fx, fy)
+        self._space.step(dt)
+        self.read_bodies()
+
+    def read_bodies(self) -> None:
+        self._bodies.clear()
+        batch.get_space_bodies(self._space, self._body_fields, self._bodies)
+
+    def write_bodies(self) -> None:
+        batch.set_space_bodies(self._space, self._body_fields, self._bodies)
+
+    def read_arbiters(self) -> tuple[list[int], list[float]]:
+        buf = self._arbiters
+        buf.clear()
+        batch.get_space_arbiters(self._space, self._arbiter_fields, buf)
+        return (np.frombuffer(buf.int_buf(), dtype=np.uintp).tolist(),
+                np.frombuffer(buf.float_buf(), dtype=np.float64).tolist())
+
+
+def _public_friction_setter(shapes):
+    """``set(i, mu)``: ``shapes[i].friction = mu``."""
+    shapes = list(shapes)
+
+    def set(i: int, mu: float) -> None:
+        shapes[i].friction = mu
+
+    return set
+
+
+def _probe() -> str | None:
+    """None if the fast path is usable here; else why not (the fallback is used)."""
+    if os.environ.get(SWITCH, "").strip() == "0":
+        return f"{SWITCH}=0"
+    import pymunk
+
+    global ffi, lib, _GET_BODY, _SET_BODY, _GET_ARBITER
+    try:
+        from pymunk._chipmunk import ffi, lib
+
+        _GET_BODY = ffi.addressof(lib, "pmSpaceBodyGetIteratorFuncBatched")
+        _SET_BODY = ffi.addressof(lib, "pmSpaceBodySetIteratorFuncBatched")
+        _GET_ARBITER = ffi.addressof(lib, "pmSpaceArbiterIteratorFuncBatched")
+        # behave: a box pushed along a floor, stepped both ways, must agree to the bit
+        body_fields = batch.BodyFields.POSITION | batch.BodyFields.VELOCITY
+        arbiter_fields = (batch.ArbiterFields.BODY_A_ID | batch.ArbiterFields.BODY_B_ID
+                          | batch.ArbiterFields.CONTACT_COUNT | batch.ArbiterFields.TOTAL_IMPULSE
+                          | batch.ArbiterFields.NORMAL | batch.ArbiterFields.DISTANCE_1)
+        reads = []
+        for kind in (Native, Public):
+            space = pymunk.Space()
+            space.gravity = (0.0, -1.0)
+            floor = pymunk.Segment(space.static_body, (-5.0, 0.0), (5.0, 0.0), 0.0)
+            body = pymunk.Body(1.0, float("inf"))
+            body.position = (0.0, 0.55)
+            box = pymunk.Poly.create_box(body, (1.0, 1.0))
+            floor.friction = box.friction = 0.5
+            space.add(floor, body, box)
+            space.step(1e-3)  # pymunk's own first step: its bookkeeping of the new bodies
+            store = np.zeros(16)
+            bodies = batch.Buffer()
+            bodies.set_float_buf(store)
+            calls = kind(space, body, bodies, body_fields, batch.Buffer(), arbiter_fields)
+            setter = (_native_friction_setter if kind is Native else _public_friction_setter)([box])
+            out = []
+            for k in range(40):
+                calls.step(0.01, 0.3, 0.0)
+                setter(0, 0.5 + 0.01 * (k % 3))
+                ints, floats = calls.read_arbiters()
+                out.append((store[:4].tolist(), ints[2::3], floats, box.friction))
+            store[2] = 0.0
+            calls.write_bodies()
+            calls.read_bodies()
+            out.append(store[:4].tolist())
+            reads.append(out)
+        if reads[0] != reads[1]:
+            return "its direct calls do not agree with pymunk's public API on a probe scene"
+    except Exception as exc:  # noqa: BLE001 - any missing or changed internal means: do not use it
+        return f"pymunk's internals are not as expected ({type(exc).__name__}: {exc})"
+    return None
+
+
+def stepper(space, body, bodies: batch.Buffer, body_fields, arbiters: batch.Buffer, arbiter_fields):
+    """The per-step calls for ``space``: :class:`Native` if :data:`NATIVE`, else :class:`Public`."""
+    return (Native if NATIVE else Public)(space, body, bodies, body_fields, arbiters, arbiter_fields)
+
+
+def friction_setter(shapes):
+    """A function ``set(i, mu)`` that sets ``shapes[i]``'s friction coefficient (the direct
+    ``cpShapeSetFriction`` call if :data:`NATIVE`, else ``shapes[i].friction = mu``)."""
+    return (_native_friction_setter if NATIVE else _public_friction_setter)(shapes)
+
+
+ffi = lib = _GET_BODY = _SET_BODY = _GET_ARBITER = None
+#: Why the public API is used (None: the fast path is), decided once at import.
+NATIVE_REASON: str | None = None
+#: True when the direct Chipmunk calls are used.
+NATIVE = False
+
+
+def _choose() -> None:
+    global NATIVE, NATIVE_REASON
+    NATIVE_REASON = _probe()
+    NATIVE = NATIVE_REASON is None
+
+
+_choose()

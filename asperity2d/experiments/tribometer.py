@@ -18,7 +18,7 @@ velocity. The drive spring is evaluated symplectically (see ``Engine.step``).
   contacts have no tangential compliance) and advances in nm micro-slips
   beyond it: there is no smooth elastic pre-sliding branch.
 * :func:`energy_window` -- one steady window with an
-  :class:`~asperity2d.engine.energy.EnergyMeter` attached: mean friction
+  :meth:`~asperity2d.run.Run.meter_energy` attached: mean friction
   force x distance slid against the energy dissipated plus the change in
   stored energy.
 """
@@ -189,8 +189,8 @@ def reversal_loops(scene: Scene, protocol: Protocol = Protocol(), *, samples_per
     """From rest, strokes 0 -> +a -> -a -> +a for each amplitude a (drive travel, m)."""
     v = protocol.reversal_velocity
     run = _run(scene, v)
-    x0 = run.engine.slider_state()[0]
-    d0 = run.engine.drive_position()
+    x0 = run.slider_state()[0]
+    d0 = run.drive_position()
     parts = []
     position = 0.0
     for amp in protocol.amplitudes:
@@ -218,18 +218,16 @@ def energy_window(scene: Scene, *, velocity: float, pitches: int = 2, transient_
     dissipated + stored change) only by the slider's momentum change and
     the drive spring's stretch change over the window.
     """
-    from ..engine.energy import EnergyMeter
-
     pitch = scene.lower.spacing.mean_pitch
     run = _run(scene, velocity)
     every = 1000
     _stroke(run, velocity, transient_pitches * pitch, every)
-    meter = EnergyMeter(run.engine)
-    x0 = run.engine.slider_state()[0]
+    meter = run.meter_energy()
+    x0 = run.slider_state()[0]
     _stroke(run, velocity, pitches * pitch, every)
     report = meter.report()
     meter.detach()
-    distance = run.engine.slider_state()[0] - x0
+    distance = run.slider_state()[0] - x0
     fd = report["mean_friction_force_N"] * distance
     rhs = report["dissipated_J"] + report["stored_energy_change_J"]
     report.update(distance_m=distance, friction_times_distance_J=fd,

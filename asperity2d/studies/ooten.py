@@ -20,7 +20,7 @@ from ..analysis import event_statistics, stick_slip_events
 from ..builders import make_scene
 from ..critical import critical_force, settled_run
 from ..scene import ConstantForce
-from ..run import Run, default_duration, default_stops, simulate
+from ..run import default_duration, default_stops, simulate
 
 #: Scene size of the seed-000 studies (lower / upper asperities) and the quick (test) size.
 STUDY_SIZE = {"lower_count": 10, "upper_count": 3}
@@ -52,56 +52,12 @@ def pushed(scene, force: float, *, start: str = "rest"):
     return dataclasses.replace(run.result(), scene=pushed_scene)
 
 
-class ContactWork:
-    """Work done on the slider by its contacts, booked by what each contact does (J).
-
-    A step hook (``Engine.step_hooks``), from its construction on: after every
-    step, every contact's impulse on the slider times the slider's mean
-    velocity over the step (the work that changes its kinetic energy
-    exactly). ``pushing_J``: positive work of contacts pushing the slider on
-    towards +x while it moves that way -- a lower spring's restoring force
-    through a full triangle's back flank once a tip is past an apex (seed 000
-    figure 9); ``rebound_J``: positive work of contacts throwing it back
-    (towards -x, while it moves back: bounces off flanks); ``resisting_J``:
-    the work taken by contacts opposing its motion (tips climbing flanks,
-    friction), as a positive number. ``floor_J``: the floor guard's net work
-    (zero unless tips fall through the lower surface).
-    """
-
-    def __init__(self, engine):
-        self.engine = engine
-        self._v = engine.slider_state()[2]
-        self.pushing_J = self.rebound_J = self.resisting_J = self.floor_J = 0.0
-        engine.step_hooks.append(self)
-
-    def __call__(self) -> None:
-        e = self.engine
-        v = e.slider_state()[2]
-        v_mean, self._v = 0.5 * (v + self._v), v
-        impulse = e.dt * e.units.force  # internal force -> N, times the step (s)
-        for index, fx, _ in e.arbiters_internal().slider_forces(e.dt_internal):
-            work = fx * impulse * v_mean
-            if index < 0:
-                self.floor_J += work
-            elif work <= 0:
-                self.resisting_J -= work
-            elif fx > 0:
-                self.pushing_J += work
-            else:
-                self.rebound_J += work
-
-
 def spring_pass(scene, *, contact_work: bool = False):
-    """One spring-driven pass of ``scene`` (as :func:`asperity2d.simulate` with the default
-    stops); with ``contact_work`` also its :class:`ContactWork` books. Returns (result, books)."""
-    if not contact_work:
-        return simulate(scene), None
-    run = Run(scene)
-    if scene.slider.track == "free":
-        run.settle()
-    books = ContactWork(run.engine)
-    run.advance(default_duration(scene), stop=default_stops(scene))
-    return run.result(), books
+    """One spring-driven pass of ``scene`` (:func:`asperity2d.simulate` with the default stops);
+    with ``contact_work`` also its contact-work books (``result.meta["contact_work"]``,
+    :class:`asperity2d.engine.energy.ContactWork`). Returns (result, books or None)."""
+    result = simulate(scene, contact_work=contact_work)
+    return result, result.meta.get("contact_work")
 
 
 def spring_pass_run(*, seed: int = 0, contact_work: bool = False, **params) -> dict:
@@ -142,9 +98,9 @@ def spring_pass_run(*, seed: int = 0, contact_work: bool = False, **params) -> d
         "passed": float(result.status == "passed"),
     }
     if books is not None:
-        out.update(contact_work_pushing_J=books.pushing_J, contact_work_rebound_J=books.rebound_J,
-                   contact_work_resisting_J=books.resisting_J, floor_work_J=books.floor_J,
-                   pushing_force_mean_N=books.pushing_J / travel if travel > 0 else nan)
+        out.update(contact_work_pushing_J=books["pushing_J"], contact_work_rebound_J=books["rebound_J"],
+                   contact_work_resisting_J=books["resisting_J"], floor_work_J=books["floor_J"],
+                   pushing_force_mean_N=books["pushing_J"] / travel if travel > 0 else nan)
     return out
 
 
@@ -170,9 +126,6 @@ def damping_travel_run(*, seed: int = 0, factor: float = 0.9, **params) -> dict:
     damped one stopped; NaN if it never did), which compares the channels
     over one path.
     """
-    from ..engine.energy import EnergyMeter
-    from ..run import Run, Travelled, default_duration, default_stops
-
     params = {k: v for k, v in params.items() if k != "damping"}
     damped = make_scene(seed=seed, drive="force", **params)
     # the pushes below start where the builder puts the slider: so does this threshold
@@ -184,24 +137,20 @@ def damping_travel_run(*, seed: int = 0, factor: float = 0.9, **params) -> dict:
               "elastic": make_scene(seed=seed, drive="force", **{**undamped, "restitution": 1.0})}
     for label, scene in scenes.items():
         scene = scene.replace(drive=ConstantForce(force=force))
-        run = Run(scene)  # as simulate() runs it, metered, with a look at the damped travel
-        if scene.slider.track == "free":
-            run.settle()
-        meter = EnergyMeter(run.engine)
-        stops, duration = default_stops(scene), default_duration(scene)
         same = {}
-        if label != "damped" and out["travel_damped_m"] > 0:
-            if run.advance(duration, stop=[*stops, Travelled(out["travel_damped_m"])]) == "travelled":
-                same = meter.report()
-                run.advance(duration - run.time, stop=stops)
-        else:
-            run.advance(duration, stop=stops)
-        books, result = meter.report(), run.result()
+        reach = out.get("travel_damped_m", 0.0) if label != "damped" else 0.0
+
+        def watch(probe, same=same, reach=reach):  # the books where it first got as far
+            if reach > 0 and not same and abs(probe.x - probe.x_start) >= reach:
+                same.update(probe.energy())
+
+        result = simulate(scene, energy=True, observers=[watch])
+        books = result.meta["energy"]
         same = books if label == "damped" else same
         out[f"travel_{label}_m"] = float(result.x[-1] - result.x[0])
         out[f"reach_{label}_m"] = float(result.x.max() - result.x[0])
-        out[f"passed_{label}"] = float(run.status == "passed")
-        out[f"stuck_{label}"] = float(run.status == "stuck")
+        out[f"passed_{label}"] = float(result.status == "passed")
+        out[f"stuck_{label}"] = float(result.status == "stuck")
         for k in DAMPING_CHANNELS:
             out[f"{label}_{k}_J"] = float(books[f"{k}_J"])
             out[f"{label}_same_{k}_J"] = float(same.get(f"{k}_J", math.nan))
