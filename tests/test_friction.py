@@ -82,7 +82,7 @@ def test_micro_scale_stribeck_chain_matches_the_static_kinetic_limit():
     path's (StaticKinetic) period; with one absolute tolerance shared by x
     and v it used to fail in LSODA (regression).
     """
-    from asperity2d.friction.fits import belt_period
+    from asperity2d.belt.period import belt_period
 
     common = dict(mass=2.88e-15, stiffness=1000.0, velocity=10.0, normal_load=2e-3)
     ode = belt_period(Stribeck(1.9, 0.47, 4e-4, 0.2, 0.0), **common)

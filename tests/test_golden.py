@@ -95,3 +95,23 @@ def test_the_switch_forces_the_public_api_in_a_fresh_process():
     out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=60)
     assert out.returncode == 0, out.stderr
     assert out.stdout.split() == ["False", f"{native.SWITCH}=0", "Public"]
+
+
+def test_the_capability_check_refuses_internals_that_are_missing_or_misbehave(monkeypatch):
+    # the check is not a formality: a renamed internal, or direct calls that no longer do what
+    # the public API does, switch the engine to the public API
+    import pymunk.batch
+
+    monkeypatch.delenv(native.SWITCH, raising=False)
+    original = native.Native.step
+
+    def off_by_a_bit(self, dt, fx, fy):
+        original(self, dt, fx * (1 + 2**-40), fy)
+
+    monkeypatch.setattr(native.Native, "step", off_by_a_bit)
+    assert "do not agree" in native._probe()
+    monkeypatch.setattr(native.Native, "step", original)
+    assert native._probe() is None
+    # a pymunk whose batch buffers keep their arrays under another name
+    monkeypatch.setattr(pymunk.batch.Buffer, "_float_arr", property(lambda self: None), raising=False)
+    assert "internals are not as expected" in native._probe()

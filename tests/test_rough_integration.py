@@ -67,8 +67,6 @@ def test_critical_force_of_a_profile_scene_is_bracketed(profile_file):
 
 
 def test_compare_and_a_sweep_with_random_heights_and_a_profile(profile_file, tmp_path):
-    from asperity2d.cli.sweep import main as sweep_main
-
     comparison = a.compare(a.critical_force,
                            {"rough": {"upper_height_std": 0.08e-6}, "smooth": {}},
                            seeds=[0, 1], base=scene_kw(profile_file, track="free"),
@@ -82,8 +80,8 @@ def test_compare_and_a_sweep_with_random_heights_and_a_profile(profile_file, tmp
                      f'quantities = ["critical_force_N"]\n[grid]\nupper_height_std = [0.0, 0.08e-6]\n'
                      f'[fixed]\nlower_surface = "{profile_file}"\nsurface_detrend = false\n'
                      f'upper_count = 2\ntrack = "free"\n')
-    assert sweep_main(["run", str(study), "--store", str(tmp_path / "store"), "--workers", "1",
-                       "--no-progress", "--json"]) == 0
+    assert main(["sweep", "run", str(study), "--store", str(tmp_path / "store"), "--workers", "1",
+                 "--no-progress", "--json"]) == 0
     from asperity2d.sweep import ResultStore
 
     table = ResultStore(tmp_path / "store").table()

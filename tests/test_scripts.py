@@ -6,7 +6,8 @@ from pathlib import Path
 import pytest
 from PIL import Image
 
-from asperity2d.cli.args import load_script, main
+from asperity2d.cli.args import load_script
+from asperity2d.cli.main import main
 
 SCENES = Path(__file__).resolve().parent.parent / "scenes"
 

@@ -6,8 +6,12 @@
 * :mod:`.contacts` — one batch read of the contacts per step, the stick/slip
   switch and the contact forces;
 * :mod:`.native` — the per-step calls into Chipmunk (step, force, batched
-  reads) without pymunk's per-call Python layer;
-* :mod:`.energy` — per-step energy accounting (:class:`~.energy.EnergyMeter`);
+  reads) without pymunk's per-call Python layer, chosen by a capability check,
+  with pymunk's public API as the fallback (``ASPERITY2D_PYMUNK_NATIVE=0``);
+* :mod:`.recorder` — the run's record and divergence guard in internal units,
+  handed out in SI (:class:`~.recorder.Recorder`);
+* :mod:`.energy` — per-step energy accounting (:class:`~.energy.EnergyMeter`)
+  and the contacts' work (:class:`~.energy.ContactWork`).
 """
 
 from .core import PYMUNK_VERSION, Engine
