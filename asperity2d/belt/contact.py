@@ -41,7 +41,7 @@ def contact_spec(masses, springs, dampers, *, mu_s=None, mu_k=None, v_belt, x0, 
         raise SceneError("give the load through `normal` (NormalContact(preload=...)), not `normal_load`: with a "
                          "normal degree of freedom the normal force is computed, not imposed")
     chain = ChainSpec(masses, springs, dampers, mu_s, mu_k, v_belt, x0, v0, t_end, g, None, friction)
-    load = chain.m * chain.g + normal.preload  # the chain's scales (velocity, force) see the real load
+    load = np.abs(chain.m * chain.g + normal.preload)  # the chain's scales (velocity, force) see the real load
     chain = ChainSpec(masses, springs, dampers, mu_s, mu_k, v_belt, x0, v0, t_end, g, tuple(load.tolist()), friction)
     return ContactSpec(chain, normal, y0, vy0)
 

@@ -70,7 +70,10 @@ def run_contact(spec, options) -> ContactRun:
     Z = np.concatenate([chain.x0, spec.y0, chain.v0, spec.vy0]).astype(float)
     V = float(chain.v_belt)
     guess = np.where(np.array(chain.v0) >= V, 1, -1)
-    guess = np.where(np.array(spec.y0) > 0, SEPARATED, guess)
+    # a rigid contact starts "separated at the surface" so that the resolver decides it as a landing
+    # (rebound, rest in contact or lift-off); a compliant one by its gap
+    y0 = np.array(spec.y0)
+    guess = np.where(spec.normal.rigid | (y0 > 0) | ((y0 == 0) & (np.array(spec.vy0) > 0)), SEPARATED, guess)
     modes, Z, first, impulse = resolve_contact(spec, Z, guess)
     t, switches, zero_steps, restarts, next_sample, opened = 0.0, 0, 0, 0, 0, False
     rec = {key: [] for key in ("t", "Z", "modes", "F", "N", "work")}

@@ -120,7 +120,8 @@ class ContactTemplate:
         n, D = self.n, self.D
         rows, offs, role, owner, kappa = [], [], [], [], []
         v_scale = spec.velocity_scale
-        frictional = spec.chain.frictional
+        law = spec.chain.law  # friction follows the actual N: a mass is frictional by its coefficients alone
+        frictional = np.full(n, law.static_coefficient > 0 or law.kinetic_coefficient > 0)
         for i in range(n):
             if self.modes[i] == SEPARATED:
                 r = np.zeros(2 * D)

@@ -65,7 +65,8 @@ class NormalContact:
     damping : float
         Normal damper to the frame, c_n (N·s/m, >= 0).
     preload : float
-        Force pressing each mass on the belt besides its weight (N, >= 0).
+        Force pressing each mass on the belt besides its weight (N; negative: a force lifting
+        it off).
     contact_stiffness : float or None
         k_c (N/m, > 0) of a compliant contact; ``None`` for a rigid contact (impacts).
     restitution : float
@@ -86,7 +87,7 @@ class NormalContact:
         s = object.__setattr__
         s(self, "stiffness", check.real("normal.stiffness", self.stiffness, nonneg=True))
         s(self, "damping", check.real("normal.damping", self.damping, nonneg=True))
-        s(self, "preload", check.real("normal.preload", self.preload, nonneg=True))
+        s(self, "preload", check.real("normal.preload", self.preload))
         if self.contact_stiffness is not None:
             s(self, "contact_stiffness", check.real("normal.contact_stiffness", self.contact_stiffness, positive=True))
         e = check.real("normal.restitution", self.restitution, nonneg=True)
@@ -276,7 +277,7 @@ class ContactSpec:
     def normal_scale(self) -> float:
         """A force (N) > 0 normalising the normal-force event functions: the largest load W, at least
         1e-12 of the chain's force scale."""
-        return max(float(np.max(self.load)), 1e-12 * self.chain.force_scale)
+        return max(float(np.max(np.abs(self.load))), 1e-12 * self.chain.force_scale)
 
     @cached_property
     def gap_scale(self) -> float:
@@ -289,9 +290,9 @@ class ContactSpec:
 
     @cached_property
     def limit_scale(self) -> np.ndarray:
-        """Per mass, the force (N) normalising the stick event functions: mu_s·W_i, floored."""
-        return np.maximum(self.chain.law.static_coefficient * self.load, 1e-12 * max(self.chain.force_scale,
-                                                                                      self.normal_scale))
+        """Per mass, the force (N) normalising the stick event functions: mu_s·|W_i|, floored."""
+        return np.maximum(self.chain.law.static_coefficient * np.abs(self.load),
+                          1e-12 * max(self.chain.force_scale, self.normal_scale))
 
     @cached_property
     def energy_scale(self) -> float:
