@@ -157,6 +157,23 @@ class MinimalModel:
         """max Re lambda (1/s) of steady sliding at ``mu``."""
         return float(np.max(self.eigenvalues(mu).real))
 
+    def first_limit_speed(self, mu: float) -> float:
+        """The belt speed V* (m/s) that decides which nonlinearity a growing flutter meets first.
+
+        The unstable mode grows as a·w·exp(lambda·t) (w its eigenvector over (x, y, x', y')): the
+        slip velocity x' - V reaches zero (stick) when a·|w_x'| = V, the contact force
+        N = N* - k_c·y reaches zero (separation) when a·k_c·|w_y| = N*. Below V* = N*·|w_x'|/(k_c·|w_y|)
+        the oscillation sticks first, above it the contact opens first. NaN below mu_crit (nothing grows).
+        """
+        if self.growth_rate(mu) <= 0:
+            return math.nan
+        m, c = self.mass, self.eta * self.mass
+        A = np.block([[np.zeros((2, 2)), np.eye(2)], [-self.k_eff(mu) / m, -c / m * np.eye(2)]])
+        lam, W = np.linalg.eig(A)
+        w = W[:, int(np.argmax(lam.real))]
+        _, _, N = self.equilibrium(mu)
+        return float(N * abs(w[2]) / (self.contact_stiffness * abs(w[1])))
+
     def equilibrium(self, mu: float) -> tuple[float, float, float]:
         """(x*, y*, N*) of steady sliding (m, m, N)."""
         x, y = np.linalg.solve(self.k_eff(mu), [0.0, -self.preload])
