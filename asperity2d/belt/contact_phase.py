@@ -42,6 +42,7 @@ import math
 import numpy as np
 
 from .affine import AffineModes
+from .events import ModalEvents
 from .finder import SWITCH_TOL  # noqa: F401 -- the tolerance the docstring refers to
 from .modal import ModalForm
 from .normal import SEPARATED
@@ -249,8 +250,9 @@ class ContactPhase:
         return cum[:, np.cumsum(pieces)]
 
 
-class ModalRows:
-    """Event rows of a closed-form phase (the interface :func:`.finder.find_event` reads).
+class ModalRows(ModalEvents):
+    """Event rows of a closed-form phase (the interface :func:`.finder.find_event` reads; values
+    and points as :class:`~.events.ModalEvents`).
 
     ``mass`` holds *row* numbers, so that the finder's touching / contradicted lists name
     rows (a mass has up to three); ``bound4`` bounds |g''''| over the phase's run
@@ -268,24 +270,6 @@ class ModalRows:
         d = self.g.derivative()
         self._both = ModalForm(lam, np.vstack([self.g.B, d.B]), np.concatenate([self.g.c0, d.c0]),
                                np.concatenate([self.g.c1, d.c1]))
-
-    def __len__(self):
-        return self.kind.size
-
-    def values(self, tau):
-        both = self._both.at(np.asarray(tau, dtype=float))
-        R = self.kind.size
-        return both[:R], both[R:]
-
-    def point(self, r):
-        lam, b, c0, c1 = self.g.scalar(r)
-        M = np.vstack([b, b * lam, b * lam * lam])
-
-        def f(t):
-            d0, d1, d2 = (M @ np.exp(lam * t)).real
-            return float(d0) + c0 + c1 * t, float(d1) + c1, float(d2)
-
-        return f
 
 
 class SampledRows:
