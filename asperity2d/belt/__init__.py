@@ -13,6 +13,14 @@ RunOptions in, RawRun out) -> back-ends ``linear`` (closed-form phases from
 (event functions), ``finder`` (locating switches, the touch rule) and
 ``modes`` (stick or slip at a switch) -> ``solver`` (``simulate_chain``, the
 ``METHODS`` table) -> ``result`` (BeltResult) -> ``regime``, ``plots``.
+
+A normal degree of freedom (``simulate_chain(..., normal=NormalContact(...))``:
+separated, sliding or sticking) runs through ``normal`` (NormalContact,
+ContactSpec) -> ``contact`` (driver, steady-sliding linearisation) ->
+``contact_loop`` over ``contact_phase`` (phases in closed form from ``affine``,
+the non-symmetric first-order solution) and ``contact_modes`` (impacts,
+opening, closing at a switch) -> ``contact_result`` (ContactResult);
+``minimal`` holds Hoffmann's minimal model and its closed forms.
 """
 
 from .._lazy import exports
@@ -20,10 +28,12 @@ from .._lazy import exports
 #: Public names and the module each lives in, imported on first use: the command line's
 #: ``belt`` parser and its bad-input errors (``asperity2d.cli.belt``) run without NumPy.
 _LAZY = {"Event": "backend", "BeltResult": "result", "load": "result", "METHODS": "solver",
-         "simulate_chain": "solver", "ChainSpec": "spec"}
+         "simulate_chain": "solver", "ChainSpec": "spec", "NormalContact": "normal", "ContactResult": "contact_result",
+         "load_contact": "contact_result", "MinimalModel": "minimal", "steady_sliding": "contact"}
 _SUBMODULES = ("presets",)
 
-__all__ = ["simulate_chain", "BeltResult", "Event", "ChainSpec", "load", "METHODS", "presets"]
+__all__ = ["simulate_chain", "BeltResult", "Event", "ChainSpec", "load", "METHODS", "presets", "NormalContact",
+           "ContactResult", "load_contact", "MinimalModel", "steady_sliding"]
 
 
 __getattr__, __dir__ = exports(__name__, globals(), _LAZY, _SUBMODULES)

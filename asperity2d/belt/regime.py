@@ -123,3 +123,44 @@ def stribeck_boundary(law, base, v_values, y_name, y_values):
         return None
     vx = v[cross[0]]
     return (np.array([vx, vx]), np.array([min(y_values), max(y_values)]))
+
+
+#: regimes of a chain with a normal contact (``simulate_chain(..., normal=...)``), judged on the
+#: second half of the run like :func:`classify`
+CONTACT_REGIMES = ("steady sliding", "quasi-harmonic", "flutter", "stick-slip", "separation", "separation + stick",
+                   "stuck")
+
+
+def classify_contact(result, *, stick_fraction: float = 1e-3, osc_tol: float = 1e-3, grow_tol: float = 0.05) -> str:
+    """The regime (one of ``CONTACT_REGIMES``) of a contact-chain run over its second half.
+
+    * ``separation``: some contact opens in the window (bouncing), and no mass sticks for more
+      than ``stick_fraction`` of it; ``separation + stick`` when one also does;
+    * ``stick-slip``: a mass sticks (more than ``stick_fraction``), no contact opens;
+    * ``stuck``: every frictional mass stuck throughout;
+    * otherwise every mass slides in contact, and the velocity swing over the last quarter of the
+      run, against the one over the third quarter, decides: grown by more than ``grow_tol``,
+      ``flutter`` (an unstable steady sliding that has not met stick or separation yet); shrunk by
+      more than ``grow_tol``, or below ``osc_tol`` of the belt speed, ``steady sliding``; in
+      between ``quasi-harmonic`` (a neutral oscillation: undamped chains). A growth or decay rate
+      is resolved when it changes the swing by more than ``grow_tol`` over a quarter of the run.
+    """
+    t = result.t
+    t_half = 0.5 * (t[0] + t[-1])
+    span = t[-1] - t_half
+    overlap = [sum(max(0.0, min(b, t[-1]) - max(a, t_half)) for a, b in per) for per in result.stick_intervals]
+    opened = any(b > t_half and a < t[-1] for per in result.separation_intervals for a, b in per)
+    stuck = np.array(overlap) > stick_fraction * span
+    if opened:
+        return "separation + stick" if stuck.any() else "separation"
+    if np.all(np.array(overlap) >= span * (1 - 1e-9)):
+        return "stuck"
+    if stuck.any():
+        return "stick-slip"
+    V = float(result.chain.v_belt)
+    q3 = (t >= t_half) & (t < t_half + 0.5 * span)
+    q4 = t >= t_half + 0.5 * span
+    swing3, swing4 = (float(np.max(np.ptp(result.v[:, q], axis=1))) for q in (q3, q4))
+    if swing4 <= osc_tol * max(abs(V), 1e-12) or swing4 < (1 - grow_tol) * swing3:
+        return "steady sliding"
+    return "flutter" if swing4 > (1 + grow_tol) * swing3 else "quasi-harmonic"

@@ -65,6 +65,9 @@ def simulate_chain(
     integrator="LSODA",
     max_events=1_000_000,
     max_steps=1_000_000,
+    normal=None,
+    y0=None,
+    vy0=None,
 ) -> BeltResult:
     """Simulate n masses (kg) on a belt at ``v_belt`` (m/s, or a callable of t) for ``t_end`` s.
 
@@ -86,8 +89,22 @@ def simulate_chain(
     switches; ``max_steps`` scan steps (1/16 of the fastest period each) or
     right-hand-side evaluations. Bad input raises ``SceneError`` naming the
     parameter; a run that fails or exceeds a budget raises ``SimulationError``.
+
+    ``normal``, a :class:`~.normal.NormalContact`, gives every mass a normal
+    degree of freedom and a unilateral contact (separated, sliding or sticking;
+    :mod:`.normal`); ``y0`` / ``vy0`` (m, m/s) are then the initial gaps and
+    normal velocities (default: at rest on the contact) and the result is a
+    :class:`~.contact_result.ContactResult`.
     """
     method = check_choice("method", method, tuple(METHODS))
+    if normal is not None or y0 is not None or vy0 is not None:
+        from .contact import simulate_contact  # lazily: chains without a normal DOF never import it
+
+        return simulate_contact(
+            masses, springs, dampers, mu_s=mu_s, mu_k=mu_k, v_belt=v_belt, x0=x0, v0=v0, t_end=t_end, g=g,
+            normal_load=normal_load, friction=friction, method=method, n_samples=n_samples, t_eval=t_eval,
+            include_events=include_events, rtol=rtol, atol=atol, integrator=integrator, max_events=max_events,
+            max_steps=max_steps, normal=normal, y0=y0, vy0=vy0)
     spec = ChainSpec(masses, springs, dampers, mu_s, mu_k, v_belt, x0, v0, t_end, g, normal_load, friction)
     options = RunOptions.build(spec, n_samples=n_samples, t_eval=t_eval, include_events=include_events,
                                rtol=rtol, atol=atol, integrator=integrator, max_events=max_events,

@@ -13,12 +13,12 @@
 from .cycles import Cycle, SteadyState, chain_cycle, detect_period, limit_cycle, steady_state
 from .floquet import Floquet, floquet, flow_map, monodromy
 from .lyapunov import Lyapunov, chain_lyapunov, lyapunov_series
-from .sections import Section, chain_section, crossings, poincare_section
+from .sections import Section, chain_section, crossings, opening_section, poincare_section
 from .signals import resample, signal
 from .spectrum import Peak, Spectrum, spectrum
 
 __all__ = [
     "Cycle", "Floquet", "Lyapunov", "Peak", "Section", "Spectrum", "SteadyState", "chain_cycle",
     "chain_lyapunov", "chain_section", "crossings", "detect_period", "floquet", "flow_map", "limit_cycle",
-    "lyapunov_series", "monodromy", "poincare_section", "resample", "signal", "spectrum", "steady_state",
+    "lyapunov_series", "monodromy", "opening_section", "poincare_section", "resample", "signal", "spectrum", "steady_state",
 ]

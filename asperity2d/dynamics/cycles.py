@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import SceneError
-from .sections import chain_section, crossings, poincare_section
+from .sections import chain_section, crossings, opening_section, poincare_section
 from .signals import check_series
 
 
@@ -194,6 +194,13 @@ def chain_cycle(result, *, mass: int | None = None, rtol: float = 1e-6, max_mult
     if mass is not None:
         sec = chain_section(result, mass=mass)
         ref = mass
+    elif hasattr(result, "separation_intervals") and any(
+            a >= t[half][0] for per in result.separation_intervals for a, _ in per):
+        # a contact chain that slides and separates but never sticks: its exact section is the
+        # instant a contact opens (a sample), not an interpolated velocity crossing
+        opens = [sum(a >= t[half][0] for a, _ in per) for per in result.separation_intervals]
+        ref = int(np.argmax(opens))
+        sec = opening_section(result, mass=ref)
     else:
         ref = 0
         v = result.v[0]
@@ -210,6 +217,10 @@ def chain_cycle(result, *, mass: int | None = None, rtol: float = 1e-6, max_mult
         return _cycle(0, np.nan, -1, np.nan, sec.t, t, result.x[ref], sec.t.size, sec.description, rtol,
                       max_multiplicity, why="every mass moves steadily over the last quarter (at rest)")
     scale = np.concatenate([np.where(swing_x > 0, swing_x, swing_x.max()), np.where(swing_v > 0, swing_v, size)])
+    if sec.points.shape[1:] == (4 * result.n,):  # the opening section holds (x, y, v, vy)
+        swing_y, swing_vy = np.ptp(result.y[:, tail], axis=1), np.ptp(result.vy[:, tail], axis=1)
+        scale = np.concatenate([scale[:result.n], np.where(swing_y > 0, swing_y, max(swing_y.max(), 1e-300)),
+                                scale[result.n:], np.where(swing_vy > 0, swing_vy, max(swing_vy.max(), 1e-300))])
     n, period, k0, mis = detect_period(sec.points, sec.t, scale=scale, rtol=rtol,
                                        max_multiplicity=max_multiplicity, min_repeats=min_repeats)
     return _cycle(n, period, k0, mis, sec.t, t, result.x[ref], sec.t.size, sec.description, rtol,

@@ -39,6 +39,14 @@ mode change (or a grazing orbit, where M does not exist).
 
 The base point s is chosen on the cycle at the middle of the longest
 interval free of switches, so Φ_T is smooth there.
+
+**Chains with a normal degree of freedom** (``chain["normal"]``, a
+:class:`~asperity2d.belt.normal.NormalContact`): the state is (x, y, v, vy),
+4n coordinates, and the openings, closings and impacts are inside Φ_T like the
+switches. A rigid contact that is closed at the base point holds y = vy = 0:
+those columns are zero (two zero multipliers per such mass, like a stuck
+mass's velocity). A compliant contact's gap is free: a separation limit cycle
+of the minimal model has four multipliers.
 """
 
 from __future__ import annotations
@@ -105,8 +113,14 @@ def flow_map(chain: dict, state, duration: float) -> np.ndarray:
     from ..belt import simulate_chain
 
     state = np.asarray(state, dtype=float)
-    n = state.size // 2
     kw = {k: v for k, v in chain.items() if k not in ("n_samples", "t_eval", "include_events")}
+    if chain.get("normal") is not None:  # (x, y, v, vy): the normal degree of freedom
+        n = state.size // 4
+        kw.update(x0=state[:n].tolist(), y0=state[n:2 * n].tolist(), v0=state[2 * n:3 * n].tolist(),
+                  vy0=state[3 * n:].tolist(), t_end=float(duration))
+        r = simulate_chain(**kw, n_samples=2, include_events=False)
+        return np.concatenate([r.x[:, -1], r.y[:, -1], r.v[:, -1], r.vy[:, -1]])
+    n = state.size // 2
     kw.update(x0=state[:n].tolist(), v0=state[n:].tolist(), t_end=float(duration))
     r = simulate_chain(**kw, n_samples=2, include_events=False)
     return np.concatenate([r.x[:, -1], r.v[:, -1]])
@@ -156,15 +170,26 @@ def floquet(chain: dict, *, mass: int | None = None, step: float = 1e-6, rtol: f
     t_point = _base_time(result, T)
     k = int(np.argmin(np.abs(t - t_point)))
     t_point = float(t[k])
-    state = np.concatenate([result.x[:, k], result.v[:, k]])
     last = t >= t[-1] - T
     n = result.n
     px = max(float(np.max(np.ptp(result.x[:, last], axis=1))), 1e-300)
     pv = max(float(np.max(np.ptp(result.v[:, last], axis=1))), abs(float(result.chain.v_belt)), 1e-300)
-    scale = np.concatenate([np.full(n, px), np.full(n, pv)])
-    closure = float(np.max(np.abs(flow_map(chain, state, T) - state) / scale))
     held = np.flatnonzero(result.state[:, k] == 0)  # stuck at the base point: v_i = V is not free
-    free = np.setdiff1d(np.arange(2 * n), n + held)
+    if chain.get("normal") is None:
+        state = np.concatenate([result.x[:, k], result.v[:, k]])
+        scale = np.concatenate([np.full(n, px), np.full(n, pv)])
+        free = np.setdiff1d(np.arange(2 * n), n + held)
+    else:
+        state = np.concatenate([result.x[:, k], result.y[:, k], result.v[:, k], result.vy[:, k]])
+        py = max(float(np.max(np.ptp(result.y[:, last], axis=1))), 1e-300)
+        pvy = max(float(np.max(np.ptp(result.vy[:, last], axis=1))), 1e-300)
+        scale = np.concatenate([np.full(n, px), np.full(n, py), np.full(n, pv), np.full(n, pvy)])
+        fixed = list(2 * n + held)
+        if result.contact.normal.rigid:  # a closed rigid contact holds y = vy = 0
+            closed = np.flatnonzero(result.state[:, k] != 2)
+            fixed += list(n + closed) + list(3 * n + closed)
+        free = np.setdiff1d(np.arange(4 * n), fixed)
+    closure = float(np.max(np.abs(flow_map(chain, state, T) - state) / scale))
     M = monodromy(chain, state, T, step=step, scale=scale, coordinates=free)
     M_fine = monodromy(chain, state, T, step=step / 10, scale=scale, coordinates=free)
     mu = _sorted_eig(M)

@@ -119,5 +119,24 @@ def chain_section(result, *, mass: int = 0, direction: int = 1) -> Section:
     return Section(times, points, names, f"v{mass + 1} = belt speed ({_dir(direction)})")
 
 
+def opening_section(result, *, mass: int = 0) -> Section:
+    """Section of a contact-chain run (``ContactResult``) where mass ``mass`` (0-based) loses contact.
+
+    The openings are switching instants, sampled exactly (the solver records a sample at each, the
+    first one of the flight): points are the full state (x_1..x_n, y_1..y_n in m, v_1..v_n,
+    vy_1..vy_n in m/s) there, to rounding.
+    """
+    if not hasattr(result, "separation_intervals"):
+        raise SceneError("`result` must be a contact-chain result (simulate_chain with `normal`)")
+    if isinstance(mass, bool) or not isinstance(mass, (int, np.integer)) or not 0 <= mass < result.n:
+        raise SceneError(f"`mass` must be an index 0..{result.n - 1}, got {mass!r}")
+    times = np.array([a for a, _ in result.separation_intervals[mass] if a > result.t[0]])
+    idx = np.searchsorted(result.t, times, side="right") - 1  # the last sample at the opening: after it
+    states = np.vstack([result.x, result.y, result.v, result.vy])
+    n = result.n
+    names = tuple(f"{c}{i + 1}" for c in ("x", "y", "v", "vy") for i in range(n))
+    return Section(times, states[:, idx].T.reshape(times.size, 4 * n), names, f"contact {mass + 1} opens")
+
+
 def _dir(direction):
     return {1: "upward", -1: "downward", 0: "both ways"}[direction]

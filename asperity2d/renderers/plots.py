@@ -20,17 +20,24 @@ from ..errors import SceneError
 FORMATS = (".png", ".svg", ".pdf")
 
 
+def blank(width: float, height: float):
+    """An empty figure ``width`` x ``height`` inches on the Agg canvas (constrained layout), for a
+    layout :func:`figure` does not make (e.g. a gridspec with an axis spanning rows)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(width, height), layout="constrained")
+    FigureCanvasAgg(fig)
+    return fig
+
+
 def figure(rows: int = 1, cols: int = 1, *, width: float = 7.0, height: float = 2.2, sharex: bool = True,
            width_ratios=None):
     """A (figure, axes) pair on the Agg canvas, without pyplot's global state: ``rows`` x
     ``cols`` axes, the figure ``width`` inches wide and ``height`` inches per row. ``axes`` is
     the 1-D array of the rows' axes when ``cols`` is 1, else the ``rows`` x ``cols`` array.
     Every figure of the package (and of the scene scripts) starts here; :func:`save` writes it."""
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(width, height * rows), layout="constrained")
-    FigureCanvasAgg(fig)
+    fig = blank(width, height * rows)
     axes = fig.subplots(rows, cols, sharex=sharex, squeeze=False,
                         gridspec_kw=None if width_ratios is None else {"width_ratios": width_ratios})
     return fig, (axes[:, 0] if cols == 1 else axes)

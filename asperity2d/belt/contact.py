@@ -1,0 +1,112 @@
+"""Chains with a normal degree of freedom: the driver and the linearisation about steady sliding.
+
+``simulate_chain(..., normal=NormalContact(...))`` lands in :func:`simulate_contact`
+(validation, :func:`~.contact_loop.run_contact`, :class:`~.contact_result.ContactResult`).
+
+:func:`steady_sliding` linearises a chain about steady sliding -- every mass in
+contact, slipping against the belt (s_i = -sign V), at rest -- with the *solver's
+own* phase matrix for that mode pattern: its equilibrium solves A·z* + b0 = 0 and
+its eigenvalues are those of A. With mu·N coupling A is not symmetric: a pair of
+eigenvalues can leave the imaginary axis (flutter, the mode-coupling
+instability) where the undamped symmetric problem never could. For the one-mass
+minimal model the closed forms are in :mod:`.minimal`.
+"""
+
+from __future__ import annotations
+
+import time as _time
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import SceneError
+from .. import _validate as check
+from .backend import RunOptions
+from .contact_loop import run_contact
+from .contact_phase import ContactTemplate
+from .contact_result import ContactResult, assemble_contact
+from .normal import ContactSpec, NormalContact
+from .spec import ChainSpec
+
+
+def contact_spec(masses, springs, dampers, *, mu_s=None, mu_k=None, v_belt, x0, v0, t_end, g=9.81, normal_load=None,
+                 friction=None, normal, y0=None, vy0=None) -> ContactSpec:
+    """The validated :class:`~.normal.ContactSpec` of ``simulate_chain``'s arguments."""
+    if normal is None:
+        raise SceneError("`y0` and `vy0` need `normal` (a NormalContact): without it the chain has no normal "
+                         "coordinate")
+    if not isinstance(normal, NormalContact):
+        raise SceneError(f"`normal` must be a NormalContact, got {check.show(normal)}")
+    if normal_load is not None:
+        raise SceneError("give the load through `normal` (NormalContact(preload=...)), not `normal_load`: with a "
+                         "normal degree of freedom the normal force is computed, not imposed")
+    chain = ChainSpec(masses, springs, dampers, mu_s, mu_k, v_belt, x0, v0, t_end, g, None, friction)
+    load = np.abs(chain.m * chain.g + normal.preload)  # the chain's scales (velocity, force) see the real load
+    chain = ChainSpec(masses, springs, dampers, mu_s, mu_k, v_belt, x0, v0, t_end, g, tuple(load.tolist()), friction)
+    return ContactSpec(chain, normal, y0, vy0)
+
+
+def simulate_contact(masses, springs, dampers, *, method="exact", n_samples=2001, t_eval=None, include_events=True,
+                     rtol=1e-8, atol=None, integrator="LSODA", max_events=1_000_000, max_steps=1_000_000,
+                     **chain) -> ContactResult:
+    """``simulate_chain`` with ``normal`` (see there); returns a :class:`ContactResult`."""
+    if method != "exact":
+        raise SceneError(f"`method` must be 'exact' with `normal` (the contact solver is event-driven), got "
+                         f"{check.show(method)}")
+    spec = contact_spec(masses, springs, dampers, **chain)
+    options = RunOptions.build(spec, n_samples=n_samples, t_eval=t_eval, include_events=include_events, rtol=rtol,
+                               atol=atol, integrator=integrator, max_events=max_events, max_steps=max_steps)
+    clock = _time.perf_counter()
+    raw = run_contact(spec, options)
+    meta = {**raw.meta, "method": method, "backend": "closed-form contact phases",
+            "wall_time": _time.perf_counter() - clock}
+    return assemble_contact(spec, raw, meta)
+
+
+@dataclass(frozen=True)
+class SteadySliding:
+    """Steady sliding of a contact chain and its linear stability.
+
+    ``state`` (4n,) the equilibrium [x; y; v; vy] (v = 0); ``normal_force`` (n,) N there (N);
+    ``eigenvalues`` of the phase matrix A (1/s; growth rate = max real part); ``matrix`` A
+    (rows: the free coordinates then their rates); ``holds`` True when every N > 0 there
+    (else the chain cannot slide steadily in contact).
+    """
+
+    state: np.ndarray
+    normal_force: np.ndarray
+    eigenvalues: np.ndarray
+    matrix: np.ndarray
+    holds: bool
+
+    @property
+    def growth_rate(self) -> float:
+        """max Re(lambda) (1/s): > 0 unstable (flutter when the root is complex, divergence when real)."""
+        return float(np.max(self.eigenvalues.real))
+
+
+def steady_sliding(**chain) -> SteadySliding:
+    """Linearise ``simulate_chain(**chain)`` (with ``normal``) about steady sliding at rest against the belt.
+
+    Only the chain's parameters matter (its ``x0``, ``v0``, ``t_end`` are ignored). The belt
+    speed must not be zero (no sliding direction).
+    """
+    keep = {k: v for k, v in chain.items() if k in ("masses", "springs", "dampers", "mu_s", "mu_k", "v_belt", "g",
+                                                     "friction", "normal", "normal_load", "x0", "v0")}
+    n = len(keep["masses"]) if isinstance(keep.get("masses"), (list, tuple, np.ndarray)) else 1
+    keep.setdefault("x0", [0.0] * n)
+    keep.setdefault("v0", [0.0] * n)
+    spec = contact_spec(keep.pop("masses"), keep.pop("springs"), keep.pop("dampers"), t_end=1.0, **keep)
+    V = float(spec.chain.v_belt)
+    if V == 0:
+        raise SceneError("`v_belt` must not be 0 for steady sliding (the friction has no direction)")
+    modes = np.full(spec.n, -1 if V > 0 else 1)
+    t = ContactTemplate(spec, modes)
+    A = t.affine.A
+    d = t.free.size
+    b0 = np.zeros(2 * d)
+    b0[d:] = t.g_f / t.m_f  # held coordinates (a rigid contact's y) are 0 and still
+    z = -np.linalg.solve(A, b0) if d else np.zeros(0)
+    Z = t.E @ z
+    N = t.N_map @ Z + t.N_offset
+    return SteadySliding(Z, N, np.linalg.eigvals(A) if d else np.zeros(0, complex), A, bool(np.all(N > 0)))

@@ -1,0 +1,175 @@
+"""The event-driven run of a chain with a normal degree of freedom (separated, sliding, sticking).
+
+Phases (:class:`~.contact_phase.ContactPhase`, closed form) alternate with
+switching instants located by :func:`.finder.find_event` -- the same grid screen,
+root finder and touch rule as the tangential solver -- and resolved by
+:func:`.contact_modes.resolve_contact`. A phase whose motion grows (flutter) is
+restarted from its end state, with the same modes, before any of its modes has
+doubled: the screen's bound on the event functions' fourth derivative is taken
+for that span (no event is recorded at a restart).
+
+The energy books (J, cumulative from t = 0):
+
+* belt work      W_b = ∫ Σ F_i·V dt + Σ P_t·V           (friction forces and impulses at belt speed)
+* friction loss  D_f = ∫ Σ F_i·(V - v_i) dt + Σ P_t·(V - v̄)   (>= 0)
+* damper loss    D_c = ∫ q'ᵀ·C_s·q' dt
+* impact loss    D_i = Σ ½·m·(y'-² - y'+²)               (rigid contacts)
+
+so that the stored energy (:class:`~.contact_result.ContactResult`) obeys
+E - E(0) = W_b - D_f - D_c - D_i.
+
+Event kinds (:class:`~.backend.Event`): ``stick``, ``slip``, ``reverse``, ``graze`` as
+for the tangential solver; ``open`` (the contact force reached zero: separation),
+``close`` (the gap closed: contact again), ``impact`` (a rigid contact's collision,
+also when it rebounds), ``graze-gap`` (the gap touched zero without closing) and
+``graze-normal`` (the normal force touched zero without opening).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import SimulationError
+from .backend import Event
+from .contact_modes import resolve_contact
+from .contact_phase import ContactPhase, ContactTemplate
+from .finder import find_event
+from .normal import SEPARATED
+
+#: bounded memory: at most this many cached mode patterns
+CACHE_SIZE = 512
+
+
+@dataclass(frozen=True)
+class ContactRun:
+    """What the contact back-end returns (SI): samples ``t`` (T,), state ``Z`` (4n, T) = [x; y; v; vy],
+    ``modes`` (n, T), ``friction_force`` and ``normal_force`` (n, T, N), ``work`` (4, T, J: belt,
+    friction, dampers, impacts), ``events``, ``stick_intervals`` and ``separation_intervals`` (per
+    mass, (start, end) s), ``meta``."""
+
+    t: np.ndarray
+    Z: np.ndarray
+    modes: np.ndarray
+    friction_force: np.ndarray
+    normal_force: np.ndarray
+    work: np.ndarray
+    events: list = field(default_factory=list)
+    stick_intervals: list = field(default_factory=list)
+    separation_intervals: list = field(default_factory=list)
+    meta: dict = field(default_factory=dict)
+
+
+def run_contact(spec, options) -> ContactRun:
+    """Run a :class:`~.normal.ContactSpec` from t = 0 to ``t_end`` with :class:`~.backend.RunOptions`."""
+    n = spec.n
+    chain = spec.chain
+    templates: dict = {}
+    samples = options.samples
+    Z = np.concatenate([chain.x0, spec.y0, chain.v0, spec.vy0]).astype(float)
+    V = float(chain.v_belt)
+    guess = np.where(np.array(chain.v0) >= V, 1, -1)
+    # a rigid contact starts "separated at the surface" so that the resolver decides it as a landing
+    # (rebound, rest in contact or lift-off); a compliant one by its gap
+    y0 = np.array(spec.y0)
+    guess = np.where(spec.normal.rigid | (y0 > 0) | ((y0 == 0) & (np.array(spec.vy0) > 0)), SEPARATED, guess)
+    modes, Z, first, impulse = resolve_contact(spec, Z, guess)
+    t, switches, zero_steps, restarts, next_sample, opened = 0.0, 0, 0, 0, 0, False
+    rec = {key: [] for key in ("t", "Z", "modes", "F", "N", "work")}
+    work = np.concatenate([impulse[:2], [0.0, impulse[2]]])
+    events: list[Event] = []
+    stick_start = [0.0 if modes[i] == 0 else None for i in range(n)]
+    sep_start = [0.0 if modes[i] == SEPARATED else None for i in range(n)]
+    sticks: list[list] = [[] for _ in range(n)]
+    seps: list[list] = [[] for _ in range(n)]
+    events += [Event(t=0.0, mass=int(i), kind=kind, x=float(Z[i])) for i, kind in first if kind == "impact"]
+    while True:
+        key = np.asarray(modes, dtype=np.int8).tobytes()
+        template = templates.get(key)
+        if template is None:
+            template = templates[key] = ContactTemplate(spec, modes)
+            if len(templates) > CACHE_SIZE:
+                templates.pop(next(iter(templates)))
+        phase = ContactPhase(template, Z)
+        rows = phase.events()
+        horizon = min(chain.t_end - t, phase.cap)
+        found = find_event(rows, horizon, phase.step)
+        restart = found is None and horizon < chain.t_end - t
+        tau_e, touching, contradicted = (None, (), ()) if found is None else found
+        end = tau_e if tau_e is not None else horizon
+        last = tau_e is None and not restart
+        t1 = chain.t_end if last else t + end
+        stop = np.searchsorted(samples, t1, side="right" if last else "left")
+        taus = samples[next_sample:stop] - t
+        next_sample = stop
+        if opened and options.include_events and (not taus.size or taus[0] > 0):
+            taus = np.concatenate([[0.0], taus])
+        work, Z = _record(phase, taus, t, end, work, rec)
+        if last:
+            break
+        if restart:
+            restarts += 1
+            t, opened = float(t1), False
+            continue
+        switches += 1
+        zero_steps = zero_steps + 1 if tau_e <= 1e-12 * min(phase.step, chain.t_end) else 0
+        if zero_steps > 64:
+            raise SimulationError(f"switching did not progress at t = {t1:.17g} s (65 switches in a row); hint: "
+                                  "check for a degenerate chain (coincident switches, forces on the friction limit, "
+                                  "a contact held at zero force)", time=t1)
+        if switches > options.max_events:
+            raise SimulationError(f"more than `max_events` = {options.max_events:,} switches before t = {t1:.6g} s; "
+                                  "raise `max_events` or shorten `t_end`", time=t1)
+        t = float(t1)
+        label = [(template.role[r], int(template.owner[r])) for r in range(len(template.role))]
+        new, Z, changes, impulse = resolve_contact(spec, Z, modes, [label[r] for r in touching],
+                                                   [label[r] for r in contradicted])
+        work = work + np.concatenate([impulse[:2], [0.0, impulse[2]]])
+        for i, kind in changes:
+            events.append(Event(t=t, mass=int(i), kind=kind, x=float(Z[i])))
+        for i in range(n):
+            if modes[i] == 0 and new[i] != 0:
+                sticks[i].append((stick_start[i], t))
+                stick_start[i] = None
+            if modes[i] != 0 and new[i] == 0:
+                stick_start[i] = t
+            if modes[i] != SEPARATED and new[i] == SEPARATED:
+                sep_start[i] = t
+            if modes[i] == SEPARATED and new[i] != SEPARATED:
+                seps[i].append((sep_start[i], t))
+                sep_start[i] = None
+        modes, opened = new, True
+    for i in range(n):
+        if stick_start[i] is not None:
+            sticks[i].append((stick_start[i], chain.t_end))
+        if sep_start[i] is not None:
+            seps[i].append((sep_start[i], chain.t_end))
+    out = ContactRun(
+        t=np.concatenate(rec["t"]), Z=np.concatenate(rec["Z"], axis=1), modes=np.concatenate(rec["modes"], axis=1),
+        friction_force=np.concatenate(rec["F"], axis=1), normal_force=np.concatenate(rec["N"], axis=1),
+        work=np.concatenate(rec["work"], axis=1), events=events, stick_intervals=sticks, separation_intervals=seps,
+        meta={"n_events": sum(not e.kind.startswith("graze") for e in events),
+              "n_grazes": sum(e.kind.startswith("graze") for e in events), "restarts": restarts,
+              "v_scale": spec.velocity_scale, "gap_scale": spec.gap_scale, "normal_scale": spec.normal_scale,
+              "patterns": len(templates)})
+    for name in ("Z", "friction_force", "normal_force", "work"):
+        if not np.all(np.isfinite(getattr(out, name))):
+            raise SimulationError(f"the solution became non-finite ({name}): the motion grew beyond double precision "
+                                  "(an unstable chain run too long?)", time=float(t))
+    return out
+
+
+def _record(phase, taus, t0, length, work, rec):
+    """Append samples at ``taus`` (s from the phase start); return the cumulative work (4,) and Z at ``length``."""
+    Z, F, N, w = phase.sample(np.append(taus, length))
+    w = np.vstack([w, np.zeros((1, w.shape[1]))]) + work[:, None]
+    m = taus.size
+    if m:
+        rec["t"].append(t0 + taus)
+        rec["Z"].append(Z[:, :m])
+        rec["modes"].append(np.repeat(phase.modes[:, None], m, axis=1))
+        rec["F"].append(F[:, :m])
+        rec["N"].append(N[:, :m])
+        rec["work"].append(w[:, :m])
+    return w[:, -1], Z[:, -1]

@@ -1,0 +1,135 @@
+"""ContactResult: a belt-chain result with the normal degree of freedom (gap, normal force, separations).
+
+A :class:`~.result.BeltResult` (so every tool that reads one -- regimes, cycles,
+spectra, sound, plots -- reads this too) with, per mass, the gap ``y`` and its
+rate ``vy``, the ``normal_force`` and the exact ``separation_intervals``; ``state``
+is 0 stuck, ±1 sliding, 2 separated (:data:`~.normal.SEPARATED`). Its energy book
+adds the normal, inclined and contact springs and the work against the load W·y
+to the stored energy, and the ``impact_dissipation`` to the losses.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from .._io import load_npz, save_npz
+from ..friction.laws import law_from_dict
+from .backend import Event
+from .normal import SEPARATED, ContactSpec, NormalContact
+from .result import ENERGY_SERIES, MASS_SERIES, BeltResult
+from .spec import ChainSpec, link_force
+
+#: per-mass (n, T) and scalar (T,) series a contact result adds to a BeltResult's
+CONTACT_SERIES = ("y", "vy", "normal_force")
+CONTACT_ENERGY = ("load_energy", "impact_dissipation")
+
+
+@dataclass(eq=False)
+class ContactResult(BeltResult):
+    """Time series of a chain with a normal degree of freedom (SI); see :class:`BeltResult` for the rest.
+
+    Attributes
+    ----------
+    y, vy : (n, T) gap above the belt surface (m; negative: penetration of a compliant contact)
+        and its rate (m/s).
+    normal_force : (n, T) contact force pressing each mass off the belt (N, >= 0; 0 when separated).
+    load_energy : (T,) Σ W_i·y_i (J), the work done against the weights and preloads.
+    impact_dissipation : (T,) cumulative kinetic energy lost in impacts (J).
+    separation_intervals : per mass, the (t_open, t_close) intervals (s) out of contact.
+    contact : the :class:`~.normal.ContactSpec` (normal parameters and initial gaps).
+    """
+
+    y: np.ndarray = None
+    vy: np.ndarray = None
+    normal_force: np.ndarray = None
+    load_energy: np.ndarray = None
+    impact_dissipation: np.ndarray = None
+    separation_intervals: list = field(default_factory=list)
+    contact: ContactSpec | None = None
+
+    @property
+    def stored_energy(self) -> np.ndarray:
+        """Kinetic (both directions) + every spring (contact spring included) + load energy (J)."""
+        return self.kinetic_energy + self.spring_energy + self.load_energy
+
+    @property
+    def energy_residual(self) -> np.ndarray:
+        """(E - E0) - (W_belt - D_friction - D_damper - D_impact) at every sample (J)."""
+        return (self.stored_energy - self.stored_energy[0]) - (
+            self.belt_work - self.friction_dissipation - self.damper_dissipation - self.impact_dissipation)
+
+    def energy_balance_error(self) -> float:
+        """max |residual| over the largest energy flow or store (dimensionless)."""
+        scale = max(np.max(np.abs(a)) for a in (self.belt_work, self.friction_dissipation, self.damper_dissipation,
+                                                self.impact_dissipation, self.stored_energy))
+        return float(np.max(np.abs(self.energy_residual)) / max(scale, 1e-300))
+
+    @property
+    def separated(self) -> np.ndarray:
+        """(n, T) True where a mass is out of contact."""
+        return self.state == SEPARATED
+
+    def __repr__(self) -> str:
+        opened = sum(len(s) for s in self.separation_intervals)
+        return (f"ContactResult(n={self.n}, {self.t.size} samples, t_end={self.t[-1]:.4g} s, "
+                f"events={len(self.events)}, separations={opened})")
+
+    def save(self, path: str | os.PathLike) -> Path:
+        """Write the result to ``path`` (``.npz``) atomically and return the path."""
+        from dataclasses import asdict
+
+        meta = dict(self.meta)
+        meta["chain"] = self.chain.to_dict() if self.chain is not None else meta.get("chain")
+        meta["normal"] = self.contact.to_dict() if self.contact is not None else meta.get("normal")
+        meta["events"] = [asdict(e) for e in self.events]
+        meta["stick_intervals"] = [[list(iv) for iv in per] for per in self.stick_intervals]
+        meta["separation_intervals"] = [[list(iv) for iv in per] for per in self.separation_intervals]
+        names = ("t",) + MASS_SERIES + ENERGY_SERIES + CONTACT_SERIES + CONTACT_ENERGY
+        return save_npz(path, {name: getattr(self, name) for name in names}, meta)
+
+
+def load_contact(path: str | os.PathLike) -> ContactResult:
+    """Read a :class:`ContactResult` written by :meth:`ContactResult.save`."""
+    names = ("t",) + MASS_SERIES + ENERGY_SERIES + CONTACT_SERIES + CONTACT_ENERGY
+    arrays, meta = load_npz(path, names, kind="a belt contact result file", meta_keys=("chain", "normal"))
+    events = [Event(**e) for e in meta.pop("events")]
+    sticks = [[tuple(iv) for iv in per] for per in meta.pop("stick_intervals")]
+    seps = [[tuple(iv) for iv in per] for per in meta.pop("separation_intervals")]
+    c, nd = meta["chain"], dict(meta["normal"])
+    y0, vy0 = nd.pop("y0"), nd.pop("vy0")
+    chain = ChainSpec(c["masses"], c["springs"], c["dampers"], None, None, c["v_belt"], c["x0"], c["v0"], c["t_end"],
+                      c["g"], c["normal_load"], law_from_dict(c["friction"]))
+    spec = ContactSpec(chain, NormalContact.from_dict(nd), y0, vy0)
+    return ContactResult(**arrays, stick_intervals=sticks, events=events, chain=chain, meta=meta,
+                         separation_intervals=seps, contact=spec)
+
+
+def assemble_contact(spec: ContactSpec, raw, meta: dict) -> ContactResult:
+    """Build a ContactResult from :class:`~.contact_loop.ContactRun` (adds forces and stored energies)."""
+    n, D = spec.n, 2 * spec.n
+    Z = raw.Z
+    q, qd = Z[:D], Z[D:]
+    x, y, v, vy = q[:n], q[n:], qd[:n], qd[n:]
+    Ks = spec.stiffness_matrix
+    contact = raw.modes != SEPARATED
+    spring = 0.5 * np.einsum("it,ij,jt->t", q, Ks, q)
+    if not spec.normal.rigid:
+        depth = np.where(contact, np.maximum(-y, 0.0), 0.0)
+        spring = spring + 0.5 * spec.normal.contact_stiffness * np.sum(depth * depth, axis=0)
+    meta = dict(meta)
+    meta["chain"] = spec.chain.to_dict()
+    meta["normal"] = spec.to_dict()
+    return ContactResult(
+        t=raw.t, x=x, v=v, state=np.asarray(raw.modes, dtype=np.int8), friction_force=raw.friction_force,
+        spring_force=-(Ks[:n] @ q), damper_force=link_force(spec.chain.c, v),
+        belt_work=raw.work[0], friction_dissipation=raw.work[1], damper_dissipation=raw.work[2],
+        kinetic_energy=0.5 * (spec.mass_vector[:, None] * qd * qd).sum(axis=0), spring_energy=spring,
+        stick_intervals=[[tuple(map(float, iv)) for iv in per] for per in raw.stick_intervals],
+        events=list(raw.events), chain=spec.chain, meta=meta,
+        y=y, vy=vy, normal_force=raw.normal_force, load_energy=spec.load @ y, impact_dissipation=raw.work[3],
+        separation_intervals=[[tuple(map(float, iv)) for iv in per] for per in raw.separation_intervals],
+        contact=spec)

@@ -1,0 +1,181 @@
+"""Contacts that open (issue 26): the studies behind ``scenes/belt_contact.py``.
+
+The multi-DOF belt thesis lets its Coulomb contact be "separated, sliding or
+sticking" and names the mechanisms of friction-induced vibration beyond
+stick-slip: mode coupling (Hoffmann's minimal model), sprag-slip, a falling
+friction curve. Here:
+
+* :func:`minimal_map` -- regimes of the minimal model over (mu, belt speed), one exact
+  run per grid point through the sweep machinery (resumable store, local
+  processes or Dask), classified by :func:`~asperity2d.belt.regime.classify_contact`;
+* :func:`thesis_opening` -- when the thesis' 3-DOF chain (Table 2), given normal
+  compliance k_c and one inclined spring per mass, loses contact: its steady
+  sliding's growth rate (the solver's phase matrix) against the simulated first
+  opening, over (k_c, mu, belt speed);
+* :func:`chain_states` -- the three states of a belt run in the table that
+  :func:`asperity2d.analysis.contact_states` fills for an asperity run.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from ..belt import presets, simulate_chain
+from ..belt.contact import steady_sliding
+from ..belt.minimal import MinimalModel
+from ..belt.normal import SEPARATED, NormalContact
+from ..belt.regime import CONTACT_REGIMES, classify_contact
+from ..errors import SceneError
+
+MAP_RUN = "asperity2d.studies.contact:contact_map_run"
+MAP_KEYS = ("label", "first", "t_first", "separated_fraction", "stuck_fraction", "events")
+#: first nonlinearity a run meets: none, a stick, a contact opening
+FIRST = ("none", "stick", "open")
+
+
+def contact_map_run(*, mu: float, v_belt: float, model: str, t_end: float, kick: float, n_samples: int,
+                    seed: int = 0) -> dict:
+    """Sweep run function: the minimal model (``model``: JSON of :class:`MinimalModel` fields) at one
+    (mu, v_belt) from steady sliding kicked by ``kick`` (m/s, normal velocity); ``seed`` unused."""
+    from ..dynamics.basins import RUN_CPU_LIMIT, cpu_limit
+
+    mm = MinimalModel(**json.loads(model))
+    with cpu_limit(RUN_CPU_LIMIT):
+        r = simulate_chain(**mm.chain(mu=mu, v_belt=v_belt, t_end=t_end, kick=kick, n_samples=n_samples))
+    first = next((e for e in r.events if e.kind in ("stick", "open")), None)
+    states = chain_states(r, window=0.5)
+    return {"label": float(CONTACT_REGIMES.index(classify_contact(r))),
+            "first": float(0 if first is None else FIRST.index("stick" if first.kind == "stick" else "open")),
+            "t_first": float("nan") if first is None else first.t,
+            "separated_fraction": states["separated"], "stuck_fraction": states["sticking"],
+            "events": float(len(r.events))}
+
+
+@dataclass(frozen=True)
+class ContactMap:
+    """Regimes of the minimal model over ``mu`` (rows) x ``v_belt`` (columns, m/s).
+
+    ``values[key]`` (len(mu), len(v)) for ``MAP_KEYS``: ``label`` indexes ``CONTACT_REGIMES`` (-1 a
+    failed run), ``first`` indexes ``FIRST``; ``model`` the :class:`MinimalModel`; ``t_end`` (s).
+    """
+
+    mu: np.ndarray
+    v_belt: np.ndarray
+    values: dict
+    model: MinimalModel
+    t_end: float
+    kick: float
+    failed: int
+    wall_time: float
+
+    def counts(self) -> dict:
+        lab = self.values["label"]
+        return {name: int(np.sum(lab == i)) for i, name in enumerate(CONTACT_REGIMES)} | {"failed": self.failed}
+
+    def onset(self) -> tuple[float, float]:
+        """(largest mu of the first column band that is steady, smallest mu that is not) over all speeds:
+        the grid's bracket of the flutter onset."""
+        lab = self.values["label"]
+        steady = np.all(lab == CONTACT_REGIMES.index("steady sliding"), axis=1)
+        unsteady = np.all(lab != CONTACT_REGIMES.index("steady sliding"), axis=1)
+        lo = float(self.mu[steady].max()) if steady.any() else float("nan")
+        hi = float(self.mu[unsteady].min()) if unsteady.any() else float("nan")
+        return lo, hi
+
+    def to_dict(self) -> dict:
+        n = self.values["label"].size
+        counts = self.counts()
+        return {"mu": self.mu.tolist(), "v_belt_m_s": self.v_belt.tolist(), "t_end_s": self.t_end, "kick_m_s": self.kick,
+                "model": asdict(self.model), "counts": counts,
+                "fractions": {k: v / n for k, v in counts.items() if k != "failed"},
+                "labels": [[CONTACT_REGIMES[int(v)] if v >= 0 else "failed" for v in row]
+                           for row in self.values["label"]],
+                "first": [[FIRST[int(v)] if np.isfinite(v) else "failed" for v in row] for row in self.values["first"]],
+                "onset_bracket": list(self.onset()), "run_seconds_total": self.wall_time}
+
+
+def minimal_map(model: MinimalModel, mu_values, v_values, *, t_end: float, kick: float = 1e-2,
+                samples_per_period: int = 24, store=None, workers: int | None = None, progress: bool = True
+                ) -> ContactMap:
+    """Run the minimal model over ``mu_values`` x ``v_values`` (m/s) from kicked steady sliding (see the module doc).
+
+    ``store``/``workers`` as for :func:`asperity2d.dynamics.chain_basins` (resumable, local processes).
+    """
+    from ..dynamics.basins import _run as run_grid
+    from ..sweep import Study
+
+    if not isinstance(model, MinimalModel):
+        raise SceneError(f"`model` must be a MinimalModel, got {model!r}")
+    mus = tuple(float(m) for m in mu_values)
+    vs = tuple(float(v) for v in v_values)
+    if not mus or not vs:
+        raise SceneError("`mu_values` and `v_values` must not be empty")
+    period = 2 * np.pi / model.coalescence_frequency
+    n_samples = int(min(200_000, max(201, samples_per_period * t_end / period)))
+    study = Study(name="contact-map", run=MAP_RUN, grid={"mu": mus, "v_belt": vs},
+                  fixed={"model": json.dumps(asdict(model), sort_keys=True), "t_end": float(t_end),
+                         "kick": float(kick), "n_samples": n_samples})
+    im, iv = {v: i for i, v in enumerate(mus)}, {v: j for j, v in enumerate(vs)}
+    values, failed, wall = run_grid(study, store, workers, None, progress, (len(mus), len(vs)), MAP_KEYS,
+                                    lambda spec: (im[spec.params["mu"]], iv[spec.params["v_belt"]]))
+    return ContactMap(np.array(mus), np.array(vs), values, model, float(t_end), float(kick), failed, wall)
+
+
+def chain_states(result, *, window: float = 1.0) -> dict:
+    """Time fractions {"separated", "sliding", "sticking"} of a belt run over its last ``window`` fraction,
+    all masses pooled, from the exact stick and separation intervals; ``hops`` (contacts opened and closed
+    again in the window), ``hops_per_second``, ``contacts_mean`` (masses in contact, time average)."""
+    t0, t1 = result.t[-1] - window * (result.t[-1] - result.t[0]), result.t[-1]
+    span = (t1 - t0) * result.n
+
+    def inside(intervals):
+        return sum(max(0.0, min(b, t1) - max(a, t0)) for per in intervals for a, b in per)
+
+    seps = getattr(result, "separation_intervals", [[] for _ in range(result.n)])
+    separated, sticking = inside(seps) / span, inside(result.stick_intervals) / span
+    hops = sum(1 for per in seps for a, b in per if t0 <= a and b < t1)
+    return {"separated": separated, "sticking": sticking, "sliding": max(0.0, 1.0 - separated - sticking),
+            "hops": hops, "hops_per_second": hops / (t1 - t0), "contacts_mean": result.n * (1 - separated)}
+
+
+def thesis_opening(contact_stiffness, mu_values, v_values, *, inclined=((10.0, 135.0),), t_end: float = 60.0,
+                   progress: bool = True) -> list[dict]:
+    """The thesis' Table 2 chain (eq 3.12 start) with ``NormalContact(contact_stiffness=k_c, inclined=...)``
+    on every mass, over k_c x mu x v_belt: per point the steady sliding's growth rate (1/s) and normal
+    force (N), and the run's first contact opening (s, NaN if none), separated fraction and regime."""
+    from tqdm import tqdm
+
+    grid = [(float(k), float(m), float(v)) for k in contact_stiffness for m in mu_values for v in v_values]
+    rows = []
+    for kc, mu, v in tqdm(grid, desc="thesis chain, normal compliance", disable=not progress, leave=False):
+        normal = NormalContact(contact_stiffness=kc, inclined=tuple(inclined))
+        kw = presets.preset("table2-3dof", mu_s=mu, mu_k=mu, v_belt=v, t_end=t_end, n_samples=int(50 * t_end) + 1)
+        lin = steady_sliding(**kw, normal=normal)
+        r = simulate_chain(**kw, normal=normal)
+        opens = [a for per in r.separation_intervals for a, _ in per]
+        rows.append({"contact_stiffness": kc, "mu": mu, "v_belt": v, "growth_rate": lin.growth_rate,
+                     "steady_normal_force": lin.normal_force.tolist(), "first_open_s": min(opens, default=float("nan")),
+                     "openings": len(opens), "separated_fraction": chain_states(r)["separated"],
+                     "regime": classify_contact(r)})
+    return rows
+
+
+def normal_force_without_coupling(*, stiff: bool = True) -> dict:
+    """Every thesis preset with a rigid (and, if ``stiff``, a compliant k_c = 1e6 N/m) contact and no inclined
+    spring: the largest relative departure of N from m·g and the number of openings (the normal equation is
+    decoupled from x)."""
+    worst, openings = 0.0, 0
+    contacts = (NormalContact(), NormalContact(contact_stiffness=1e6)) if stiff else (NormalContact(),)
+    for name in presets.names():
+        kw = presets.preset(name)
+        for normal in contacts:
+            r = simulate_chain(**kw, normal=normal)
+            weight = r.chain.m[:, None] * r.chain.g
+            if np.any(weight > 0):
+                worst = max(worst, float(np.max(np.abs(r.normal_force - weight) / weight)))
+            openings += sum(len(s) for s in r.separation_intervals) + int(np.any(r.state == SEPARATED))
+    return {"presets": len(presets.names()), "contacts": ["rigid", "compliant k_c = 1e6 N/m"][:len(contacts)],
+            "max_relative_departure": worst, "openings": openings}
