@@ -116,6 +116,12 @@ class Result:
             f"status={self.status!r})"
         )
 
+    def _repr_html_(self) -> str:
+        """The interactive player of the run (Jupyter shows it; :mod:`asperity2d.renderers.player`)."""
+        from .renderers.notebook import result_html
+
+        return result_html(self)
+
     def summary(self) -> dict:
         """A few headline numbers of the run (SI), JSON-ready."""
         return {

@@ -88,6 +88,12 @@ class BeltResult:
     def __repr__(self) -> str:
         return f"BeltResult(n={self.n}, {self.t.size} samples, t_end={self.t[-1]:.4g} s, events={len(self.events)})"
 
+    def _repr_html_(self) -> str:
+        """The interactive player of the chain (Jupyter shows it; :mod:`asperity2d.renderers.player`)."""
+        from ..renderers.notebook import result_html
+
+        return result_html(self)
+
     # -- persistence -------------------------------------------------------
     def save(self, path: str | os.PathLike) -> Path:
         """Write the result to ``path`` (``.npz``) atomically and return the path."""

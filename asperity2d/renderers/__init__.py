@@ -1,12 +1,16 @@
 """Renderers chosen by the output file's extension (like pyinstrument's renderers).
 
-``render(result, "run.gif")`` writes an animated GIF, ``"run.mp4"`` a video
-(:mod:`.animate`: Pillow frames, imageio encoding; MP4 needs the ``video``
-extra); ``.png`` / ``.svg`` / ``.pdf`` write the time-series plot
-(:mod:`.plots`, matplotlib, imported only when used); ``.wav`` writes the
-sound of the run and its spectrogram (:mod:`.sound`). ``result`` may be a
-:class:`~asperity2d.result.Result` or the path of one saved with
-``Result.save``, so a run is rendered again without re-simulating.
+``render(result, "run.gif")`` writes an animation with meters, ``"run.mp4"``
+the same as a video (:mod:`.animate`: palette frames drawn with Pillow; MP4
+needs the ``video`` extra); ``.html`` the interactive player, one
+self-contained file (:mod:`.player`); ``.png`` / ``.svg`` / ``.pdf`` the
+time-series plot (:mod:`.plots`, matplotlib, imported only when used; a belt
+chain's: :func:`.belt.plot_chain`); ``.wav`` the sound of the run and its
+spectrogram (:mod:`.sound`). ``result`` may be a
+:class:`~asperity2d.result.Result`, a
+:class:`~asperity2d.belt.result.BeltResult` (told apart by type), or the path
+of a Result saved with ``Result.save``, so a run is rendered again without
+re-simulating.
 """
 
 from __future__ import annotations
@@ -17,15 +21,17 @@ from pathlib import Path
 from ..errors import SceneError
 
 #: Output extensions and the renderer each selects.
-RENDERERS = {".gif": "animation", ".mp4": "animation", ".png": "plot", ".svg": "plot",
-             ".pdf": "plot", ".wav": "sound"}
+RENDERERS = {".gif": "animation", ".mp4": "animation", ".html": "player", ".png": "plot",
+             ".svg": "plot", ".pdf": "plot", ".wav": "sound"}
 
 
 def render(result, path: str | os.PathLike, **options) -> Path:
     """Render ``result`` to ``path``, choosing the renderer by extension.
 
     ``options`` go to :func:`~asperity2d.renderers.animate.render_animation` (``.gif``, ``.mp4``),
-    :func:`~asperity2d.renderers.plots.plot_run` (``.png``, ``.svg``, ``.pdf``)
+    :func:`~asperity2d.renderers.player.write_player` (``.html``),
+    :func:`~asperity2d.renderers.plots.plot_run` or, for a belt chain,
+    :func:`~asperity2d.renderers.belt.plot_chain` (``.png``, ``.svg``, ``.pdf``)
     or :func:`~asperity2d.renderers.sound.write_wav` (``.wav``).
 
     Raises
@@ -49,6 +55,16 @@ def render(result, path: str | os.PathLike, **options) -> Path:
         from .animate import render_animation
 
         return render_animation(result, path, **options)
+    if kind == "player":
+        from .player import write_player
+
+        return write_player(result, path, **options)
+    from .animate import is_chain
+
+    if is_chain(result):
+        from .belt import plot_chain
+
+        return plot_chain(result, path, **options)
     from .plots import plot_run
 
     return plot_run(result, path, **options)
