@@ -95,6 +95,7 @@
     meters: $(".ap-meters"), events: $(".ap-events"), tip: $(".ap-tip"), foot: $(".ap-foot"),
   };
   ui.title.textContent = D.title;
+  if (D.kind === "chain") ui.meters.classList.add("chain");
   ui.scrub.max = String(N - 1);
   ui.foot.textContent = "asperity2d " + D.version + " \u00b7 " + N + " of " + D.recorded +
     " recorded samples (every sample inside a slip kept) \u00b7 keys: space play/pause, \u2190 \u2192 step, Home/End";
