@@ -111,15 +111,15 @@ def ticks(lo: float, hi: float, *, factor: float, count: int = 5) -> tuple[np.nd
 
 # -- what is metered ---------------------------------------------------------------------------
 def asperity_meters(result) -> list[Meter]:
-    """Drive force; contact force (horizontal total and its tangential part); slider position
-    (and the drive's far end); slider velocity."""
+    """Drive force; contact force (the friction, its horizontal total, and the contacts'
+    tangential, Coulomb, part); slider position (and the drive's far end); slider velocity."""
     drive = np.asarray(result.drive_force, float)
     friction = np.asarray(result.friction_force, float)
     tangential = np.asarray(result.tangential_force, float)
     x, v = np.asarray(result.x, float), np.asarray(result.v, float)
     forces = [Meter("drive force", "N", (Trace("drive", drive, "c1"),), limits([drive])),
               Meter("contact force on the slider", "N",
-                    (Trace("friction", friction, "c2"), Trace("tangential", tangential, "c3")),
+                    (Trace("friction (total)", friction, "c2"), Trace("tangential", tangential, "c3")),
                     limits([friction, tangential]))]
     position = [Trace("slider", x, "c0")]
     drive_x = np.asarray(result.drive_x, float)
@@ -173,7 +173,7 @@ class MeterPanel:
         self.size = font_size
         self.factor, self.unit_label = meter.scale
         # several traces: a legend with the current values, on the title row if it fits
-        self.value_width = raster.text_size("-888 mm/s", font_size)[0]
+        self.value_width = raster.text_size("-88.8 mN", font_size)[0]
         title_w = raster.text_size(self._title(), font_size + 1, True)[0] + 24
         entries = [raster.text_size(tr.label, font_size)[0] + 24 + self.value_width for tr in meter.traces]
         self.legend_inline = len(meter.traces) > 1 and title_w + sum(entries) < x1 - x0 - 8

@@ -136,7 +136,7 @@ def payload(result, *, max_samples: int = 8000, camera: str = "follow") -> dict:
 
 
 def _asperity_scene(result, keep, camera):
-    from .stage import Stage
+    from .stage import ARROW_PX, Stage, tip_force_scale
 
     scene = result.scene
     # the GIF's own camera, computed for every kept sample (the player's default view)
@@ -168,9 +168,7 @@ def _asperity_scene(result, keep, camera):
               "camera_left": _b64(stage.lefts[keep], "f8")}
     if geometry["lateral"]:
         series["lower_dx"] = _b64(np.asarray(r.lower_dx)[:, keep], "f4")
-    touching = np.asarray(r.contact_count) > 0
-    forces = np.hypot(np.asarray(r.friction_force, float), np.asarray(r.normal_force, float))
-    geometry["force_scale"] = float(np.percentile(forces[touching], 99)) if touching.any() else 0.0
+    geometry["force_scale"], geometry["arrow_px"] = tip_force_scale(result, keep), ARROW_PX
     return geometry, series
 
 

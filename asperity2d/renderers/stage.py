@@ -15,8 +15,8 @@ pixels of a scene panel and paints it on a palette image:
   recorded total (``-friction_force``, ``normal_force``) shared among the
   touching asperities in proportion to the load on each one's track spring
   (``k * max(-dy, 0)``; equal shares when none is compressed), so the arrows
-  sum to the measured force; one px-per-newton scale for the whole run, with
-  a key;
+  sum to the measured force; one px-per-newton scale for the whole run (the
+  largest force on one tip about 40 px long), with a key;
 * a header (time in engineering units, STICK / SLIP, "×N slow", frame
   counter) and a footer (scale bar, "vertical ×N", the arrow key).
 
@@ -41,9 +41,9 @@ from ..errors import SceneError
 from . import raster
 
 CAMERAS = ("follow", "whole")
-HEADER, FOOTER, GROUND = 24, 22, 16  # px: time row, scale bar row, ground band below the tracks
+HEADER, CAPTION, FOOTER, GROUND = 24, 16, 22, 16  # px: time row, caption, scale bar row, ground band
 MIN_HEIGHT = 190  # px: the least a scene panel takes (spare room goes to the ground band)
-ARROW_PX = 55.0  # px for the run's largest (99th percentile) contact force
+ARROW_PX = 40.0  # px for the largest (99th percentile) force on one tip over the frames
 
 
 def slip_mask(result) -> np.ndarray:
@@ -69,6 +69,25 @@ def force_shares(result, k: int) -> np.ndarray:
     if total > 0:
         return load / total
     return touching / touching.sum()
+
+
+def tip_force_scale(result, samples) -> float:
+    """The 99th percentile over ``samples`` (with contact) of the largest force on one tip (N):
+    the arrows' scale, so the longest arrows are about :data:`ARROW_PX` long."""
+    samples = np.asarray(samples, dtype=np.int64)
+    force = np.hypot(np.asarray(result.friction_force, float), np.asarray(result.normal_force, float))
+    stiffness = np.asarray(result.scene.lower.stiffness, dtype=float)[:, None]
+    largest = []
+    for chunk in np.array_split(samples, max(1, len(samples) // 2000)):  # bounded memory
+        touching = np.asarray(result.lower_contact[:, chunk], dtype=bool)
+        count = touching.sum(axis=0)
+        load = np.where(touching, stiffness * np.maximum(-np.asarray(result.lower_dy[:, chunk], float), 0.0), 0.0)
+        total = load.sum(axis=0)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            share = np.where(total > 0, load.max(axis=0) / total, 1.0 / np.maximum(count, 1))
+        largest.append((share * force[chunk])[count > 0])
+    values = np.concatenate(largest) if largest else np.array([])
+    return float(np.percentile(values, 99)) if values.size else 0.0
 
 
 class Stage:
@@ -114,9 +133,7 @@ class Stage:
         self.slipping = slip_mask(result) if self.has_drive else np.zeros(len(x), dtype=bool)
         self._horizontal()
         self._vertical(exaggeration)
-        forces = np.hypot(np.asarray(result.friction_force, float), np.asarray(result.normal_force, float))
-        touching = np.asarray(result.contact_count) > 0
-        big = float(np.percentile(forces[touching], 99)) if touching.any() else 0.0
+        big = tip_force_scale(result, self.frames)
         self.newton_px = ARROW_PX / big if big > 0 else 0.0
 
     # -- camera ---------------------------------------------------------------------------------
@@ -126,7 +143,7 @@ class Stage:
         left = self.x + self.rear - margin
         right = self.x + self.front + margin
         if self.has_drive:
-            right = np.fmax(right, self.drive_end + 0.4 * self.pitch)
+            right = np.fmax(right, self.drive_end + 0.8 * self.pitch)
         return left, right
 
     def _horizontal(self):
@@ -159,7 +176,7 @@ class Stage:
         top_world = float(np.nanmax(self.y))  # the slider's datum; its bar is drawn in px above
         bottom_world = self.floor  # the bottom of the tracks (the ground's top)
         self.bar_px = max(8.0, min(0.3 * self.base * self.scale, 18.0))
-        fixed = HEADER + 10 + self.bar_px + GROUND + FOOTER
+        fixed = HEADER + CAPTION + 10 + self.bar_px + GROUND + FOOTER
         room = self.max_height - fixed  # px for the heights at most
         extent = max(top_world - bottom_world, 1e-300)
         fit = room / (extent * self.scale)
@@ -176,7 +193,7 @@ class Stage:
         self.height = int(min(self.max_height, max(MIN_HEIGHT, math.ceil(fixed + used))))
         spare = max(0.0, self.height - fixed - used)
         self.y_ref = top_world
-        self.top_py = HEADER + 10 + self.bar_px + 0.35 * spare
+        self.top_py = HEADER + CAPTION + 10 + self.bar_px + 0.35 * spare
         self.ground_py = self.top_py + (top_world - bottom_world) * self.vscale
 
     def to_px(self, X, Y, k: int):
@@ -249,18 +266,32 @@ class Stage:
         return out
 
     # -- painting ---------------------------------------------------------------------------------
+    def caption(self) -> str:
+        """One short line saying what the scene is (under the time row)."""
+        scene = self.result.scene
+        lower, slider, drive = scene.lower, scene.slider, scene.drive
+        track = "on a fixed track" if slider.track == "fixed" else f"free under {si(slider.normal_load, 'N', trim=True)}"
+        text = (f"{lower.count} lower asperities on spring tracks · slider with {slider.count} "
+                f"tip{'s' if slider.count != 1 else ''} {track} · ")
+        if self.has_drive:
+            text += f"pulled by a {si(drive.stiffness, 'N/m', trim=True)} spring, far end at {si(drive.velocity, 'm/s', trim=True)}"
+        else:
+            text += f"pushed by {si(drive.force, 'N', trim=True)}"
+        return text
+
     def paint_static(self, img) -> None:
-        """What never changes: the footer (scale bar, "vertical ×N", the force arrows' key)."""
+        """What never changes: the caption, the footer (scale bar, "vertical ×N", the force arrows' key)."""
         from PIL import ImageDraw
 
         I, W, H = raster.INDEX, self.width, self.height
         d = ImageDraw.Draw(img)
+        raster.draw_text(img, (8, HEADER), self.caption(), colour="grey", size=11)
         d.rectangle((0, H - FOOTER, W, H), fill=I["white"])
         extra = f"   vertical ×{self.exaggeration:g}" if self.exaggeration > 1 else ""
         raster.scale_bar(img, 10, H - FOOTER / 2, px_per_unit=self.scale, unit="m", target_px=80,
                          label_extra=extra)
         if self.arrows and self.newton_px > 0:
-            force = raster.nice_length(40.0 / self.newton_px)
+            force = raster.nice_length(30.0 / self.newton_px)
             x1, y = W - 10, H - FOOTER / 2
             raster.arrow(d, x1 - force * self.newton_px, y, x1, y, fill=I["arrow"], width=2)
             raster.draw_text(img, (x1 - force * self.newton_px - 6, y),

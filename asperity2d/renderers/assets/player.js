@@ -259,7 +259,7 @@
       drawn.drive_end_px = end;
     }
     if (state.arrows && G.force_scale > 0) {
-      const shares = forceShares(i), k = 55 / G.force_scale;
+      const shares = forceShares(i), k = G.arrow_px / G.force_scale;
       const fx = -S.friction_force.values[i] * k, fy = S.normal_force.values[i] * k;
       for (let j = 0; j < n; j++) {
         if (!(shares[j] > 0)) continue;
@@ -276,7 +276,7 @@
     const vert = state.exaggeration > 1 ? "   vertical \u00d7" + state.exaggeration : "";
     ctx.fillText(si(len, "m", 1) + vert, 16 + len * scalePx, H - 11);
     if (state.arrows && G.force_scale > 0) {
-      const k = 55 / G.force_scale, f = niceLength(40 / k);
+      const k = G.arrow_px / G.force_scale, f = niceLength(30 / k);
       arrow(ctx, W - 10 - f * k, H - 11, W - 10, H - 11, C.arrow, 2);
       ctx.fillStyle = C.arrow; ctx.textAlign = "right";
       ctx.fillText("contact force on the slider " + si(f, "N", 1), W - 16 - f * k, H - 11);
