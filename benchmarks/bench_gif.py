@@ -97,6 +97,7 @@ class MatplotlibMovie:
         ax.text(16 + length * stage.scale, sh - FOOTER / 2, si(length, "m", 1), va="center", fontsize=8)
         ax.text(W - 60, sh - FOOTER / 2, "contact force on the slider", va="center", ha="right", fontsize=8,
                 color=_rgb("arrow"))
+        ax.text(8, 24, stage.caption(), va="top", fontsize=8, color=_rgb("grey"))
         outline = _rgb("outline")
         kw = {"antialiased": False}
         self.hatch = LineCollection([], colors=[_rgb("hatch")], linewidths=PX, **kw)

@@ -161,3 +161,12 @@ def test_import_stays_light():
             "print(' '.join(m for m in ('matplotlib', 'PIL', 'asperity2d.renderers.notebook') if m in sys.modules))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == ""
+
+
+def test_command_line_renders_the_player(run, tmp_path, capsys):
+    from asperity2d.cli import main
+
+    saved = run.save(tmp_path / "run.npz")
+    assert main(["render", str(saved), "-o", str(tmp_path / "run.html"), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["output"].endswith("run.html")
+    assert embedded((tmp_path / "run.html").read_text(encoding="utf-8"))["recorded"] == len(run.t)

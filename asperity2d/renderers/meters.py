@@ -103,8 +103,9 @@ def ticks(lo: float, hi: float, *, factor: float, count: int = 5) -> tuple[np.nd
     step = nice_step(b - a, count)
     first = math.ceil(a / step - 1e-9)
     values = np.arange(first, math.floor(b / step + 1e-9) + 1) * step
-    decimals = max(0, -math.floor(math.log10(step) + 1e-9)) + (1 if round(step / 10.0 ** math.floor(
-        math.log10(step)), 6) == 2.5 else 0)
+    lead = math.floor(math.log10(step) + 1e-9)
+    # a step of 2.5 x 10^lead needs one more decimal than 10^lead when it is below 10 (0.25, 2.5)
+    decimals = max(0, -lead) + (1 if lead <= 0 and round(step / 10.0**lead, 6) == 2.5 else 0)
     labels = [f"{v:.{decimals}f}".replace("-0", "-0") if abs(v) > 1e-12 * step else "0" for v in values]
     return values * factor, labels
 
@@ -210,7 +211,7 @@ class MeterPanel:
         for a, b in slips:
             ca, cb = self.column(np.array([a, b]))
             self.band[ca:cb + 1] = True
-        self.tick_count = int(min(5, max(2, (py1 - py0) // 24)))
+        self.tick_count = int(min(5, max(3, (py1 - py0) // 24)))
         self.grid_rows = [int(round(v)) for v in self.row(self.value_ticks()[0])]
         self.done = 0  # columns drawn on the persistent layer
 

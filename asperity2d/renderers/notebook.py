@@ -74,7 +74,7 @@ def scene_svg(scene, *, width: int = SVG_WIDTH, height: int = SVG_HEIGHT) -> str
            f'font-family="DejaVu Sans, sans-serif" font-size="12">',
            f'<rect width="{W}" height="{H}" fill="white"/>']
     g = s["ground"][1]
-    if g < H - FOOTER:
+    if g < H - FOOTER - 1:
         out.append(f'<rect x="0" y="{g:.1f}" width="{W}" height="{H - FOOTER - g:.1f}" fill="{_hex("ground")}"/>')
         out += [f'<line x1="{a[0]:.1f}" y1="{a[1]:.1f}" x2="{b[0]:.1f}" y2="{b[1]:.1f}" stroke="{_hex("hatch")}"/>'
                 for a, b in s["hatch"]]

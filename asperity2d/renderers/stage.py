@@ -21,7 +21,8 @@ pixels of a scene panel and paints it on a palette image:
   counter) and a footer (scale bar, "vertical ×N", the arrow key).
 
 Camera: ``"follow"`` (default) keeps the slider and the drive block in a
-window as wide as the widest the run needs, and moves only when one of them
+window as wide as the widest the run needs (and at least the slider plus six
+pitches of surface), and moves only when one of them
 would leave it (a lazy camera: the ground stands still while the slider
 sticks); ``"whole"`` shows the whole surface and the drive's travel at once.
 One horizontal scale for the whole animation. Vertical exaggeration
@@ -155,7 +156,8 @@ class Stage:
             self.scale = self.width / (hi - lo)
             self.lefts = np.full(len(self.x), lo)
             return
-        span = float(np.max(right - left))
+        # as wide as the run needs, and at least the slider and six pitches of surface around it
+        span = max(float(np.max(right - left)), self.front - self.rear + 6.0 * self.pitch)
         self.scale = self.width / span
         # lazy camera, frame by frame: keep the previous centre unless that loses something
         centres = np.empty(len(self.frames))
@@ -305,7 +307,7 @@ class Stage:
         I, W = raster.INDEX, self.width
         d = ImageDraw.Draw(img)
         ground = shapes["ground"]
-        if ground[1] < self.height - FOOTER:
+        if ground[1] < self.height - FOOTER - 1:  # (a tall scene's ground may be below the panel)
             d.rectangle((ground[0], ground[1], ground[2], self.height - FOOTER - 1), fill=I["ground"])
             for a, b in shapes["hatch"]:
                 d.line([a, b], fill=I["hatch"])

@@ -54,8 +54,8 @@
   function ticks(lo, hi, factor, count) {
     const a = lo / factor, b = hi / factor, step = niceStep(b - a, count);
     const out = [];
-    const lead = Math.floor(Math.log10(step));
-    const decimals = Math.max(0, -lead) + (Math.round(step / Math.pow(10, lead) * 1e6) === 2.5e6 ? 1 : 0);
+    const lead = Math.floor(Math.log10(step) + 1e-9);
+    const decimals = Math.max(0, -lead) + (lead <= 0 && Math.round(step / Math.pow(10, lead) * 1e6) === 2.5e6 ? 1 : 0);
     for (let k = Math.ceil(a / step - 1e-9); k <= Math.floor(b / step + 1e-9); k++) {
       const v = k * step;
       out.push([v * factor, Math.abs(v) < 1e-12 * step ? "0" : v.toFixed(decimals)]);
@@ -394,7 +394,7 @@
     }
     ctx.font = "11px system-ui, sans-serif"; ctx.fillStyle = "#777"; ctx.strokeStyle = "#e6e6ea"; ctx.lineWidth = 1;
     ctx.textAlign = "right"; ctx.textBaseline = "middle";
-    const count = Math.max(2, Math.min(5, Math.floor((p.y1 - p.y0) / 24)));
+    const count = Math.max(3, Math.min(5, Math.floor((p.y1 - p.y0) / 24)));
     for (const [v, label] of ticks(m.spec.limits[0], m.spec.limits[1], m.spec.factor, count)) {
       const y = Math.round(meterY(p, m, v)) + 0.5;
       ctx.beginPath(); ctx.moveTo(p.x0, y); ctx.lineTo(p.x1, y); ctx.stroke();
