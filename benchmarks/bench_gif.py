@@ -286,7 +286,11 @@ def run(quick: bool = False) -> dict:
     for name in med:
         med[name]["total"] = statistics.median(np.add(times[name]["draw"], times[name]["encode"]))
     ours, mpl = med["ours"], med["matplotlib"]
+    import datetime
+    import os
+
     out = {"width": size[0], "height": size[1], "frames": frames, "repeats": repeats,
+           "date": datetime.date.today().isoformat(), "load_average_after": list(os.getloadavg()),
            "timer": "process_time", "scene": f"make_scene(lower_count={scene.lower.count}, "
                                                f"upper_count={scene.slider.count})",
            "ours_s_per_frame": ours["total"], "matplotlib_s_per_frame": mpl["total"],
