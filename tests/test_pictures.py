@@ -27,9 +27,8 @@ I = raster.INDEX
 
 
 @pytest.fixture(scope="module")
-def run():
-    """8 lower / 3 upper asperities, spring drive: 4 stick-slip events, slips of 1-25 ns (2.5 s)."""
-    return a.simulate(a.make_scene(lower_count=8, upper_count=3))
+def run(stick_slip_run):
+    return stick_slip_run
 
 
 @pytest.fixture(scope="module")

@@ -17,13 +17,13 @@ from asperity2d.belt import simulate_chain
 from asperity2d.belt.presets import preset
 from asperity2d.experiments.compare import Comparison
 from asperity2d.renderers import render
-from asperity2d.renderers.player import keep_indices, page, payload
+from asperity2d.renderers.player import keep_indices, payload
 from asperity2d.renderers.timeline import slip_intervals
 
 
 @pytest.fixture(scope="module")
-def run():
-    return a.simulate(a.make_scene(lower_count=8, upper_count=3))
+def run(stick_slip_run):
+    return stick_slip_run
 
 
 @pytest.fixture(scope="module")

@@ -84,8 +84,8 @@ def pixel(browser, selector, x, y):
 
 
 @pytest.fixture(scope="module")
-def run():
-    return a.simulate(a.make_scene(lower_count=8, upper_count=3))
+def run(stick_slip_run):
+    return stick_slip_run
 
 
 @pytest.fixture(scope="module")
@@ -156,6 +156,32 @@ def test_zoom_pan_keep_the_bodies_under_the_camera(browser, run, player):
     if 0 < bar[0] + 3 < cam["W"]:
         assert pixel(browser, ".ap-scene", bar[0] + 3, 0.5 * (bar[1] + bar[3])) in (
             list(raster.COLOURS["slider_stick"]), list(raster.COLOURS["slider_slip"]))
+    assert console_errors(browser) == []
+
+
+def test_hover_reads_out_with_units_and_the_timeline_jumps_to_events(browser, run, player):
+    open_player(browser, player)
+    meter = browser.find_elements("css selector", ".ap-meters canvas")[0]  # the drive force
+    box = browser.execute_script("const r = arguments[0].getBoundingClientRect(); return [r.left, r.top, r.width, r.height]",
+                                 meter)
+    plot = browser.execute_script("return window.asperityPlayer.state().meter_plots[0]")
+    x = box[0] + plot["x0"] + 0.5 * (plot["x1"] - plot["x0"])
+    browser.execute_script("arguments[0].dispatchEvent(new MouseEvent('mousemove', {clientX: arguments[1],"
+                           " clientY: arguments[2], bubbles: true}))", meter, x, box[1] + 60)
+    tip = browser.execute_script("const t = document.querySelector('.ap-tip'); return [t.hidden, t.textContent]")
+    assert not tip[0]
+    assert "t = " in tip[1] and ("ns" in tip[1] or "µs" in tip[1])
+    assert any(unit in tip[1] for unit in (" mN", " µN", " N")) and "drive:" in tip[1]
+    # a click on the timeline next to an event's marker jumps to that slip
+    event = a.stick_slip_events(run)[2]
+    track = browser.find_element("css selector", ".ap-track")
+    tb = browser.execute_script("const r = arguments[0].getBoundingClientRect(); return [r.left, r.top, r.width, r.height]",
+                                track)
+    mx = tb[0] + 6 + (event.t_slip - run.t[0]) / (run.t[-1] - run.t[0]) * (tb[2] - 12) + 3
+    browser.execute_script("arguments[0].dispatchEvent(new MouseEvent('click', {clientX: arguments[1],"
+                           " clientY: arguments[2], bubbles: true}))", track, mx, tb[1] + 10)
+    t = browser.execute_script("return window.asperityPlayer.state().t")
+    assert abs(t - event.t_slip) <= float(np.max(np.diff(run.t)))
     assert console_errors(browser) == []
 
 

@@ -18,8 +18,6 @@ displacements are drawn to scale, with a scale bar.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from .._format import si

@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._format import number, prefixed, si
+from .._format import prefixed, si
 from . import raster
 
 #: Percentiles of the values the value axis spans (spikes beyond are clipped).
@@ -261,8 +261,8 @@ class MeterPanel:
             if cx + raster.text_size(label, self.size - 1)[0] / 2 < px1 - unit_w - 4:  # clear of the unit
                 raster.draw_text(img, (cx, py1 + 4), label, colour="grey", bg="panel", size=self.size - 1,
                                  anchor="ma")
-        unit = raster.draw_text(img, (px1, y1 - 1), self.tunit, colour="grey", bg="panel",
-                                size=self.size - 1, anchor="rd")
+        raster.draw_text(img, (px1, y1 - 1), self.tunit, colour="grey", bg="panel", size=self.size - 1,
+                         anchor="rd")
         d.rectangle((px0 - 1, py0 - 1, px1 + 1, py1 + 1), outline=I["grey"])
         title = raster.draw_text(img, (x0 + 6, y0 + 3), self._title(), colour="black",
                                  bg="panel", size=self.size + 1, bold=True)

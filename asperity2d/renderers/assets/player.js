@@ -557,9 +557,14 @@
   ui.exag.addEventListener("change", () => { state.exaggeration = parseFloat(ui.exag.value); render(); });
   ui.arrows.addEventListener("change", () => { state.arrows = ui.arrows.checked; render(); });
   ui.scrub.addEventListener("input", () => { pause(); state.index = parseInt(ui.scrub.value, 10); state.t = T[state.index]; render(); });
-  ui.track.addEventListener("click", (ev) => {
+  ui.track.addEventListener("click", (ev) => { // a click within 6 px of an event's marker jumps to it
     const r = ui.track.getBoundingClientRect(), x0 = 6, x1 = r.width - 6;
-    pause(); seek(t0 + (ev.clientX - r.left - x0) / (x1 - x0) * (t1 - t0));
+    let t = t0 + (ev.clientX - r.left - x0) / (x1 - x0) * (t1 - t0);
+    for (const e of D.events) {
+      const te = e.t_slip !== undefined ? e.t_slip : e.t;
+      if (e.kind !== "stick" && Math.abs(te - t) / (t1 - t0) * (x1 - x0) <= 6) { t = te; break; }
+    }
+    pause(); seek(t);
   });
   document.addEventListener("keydown", (ev) => {
     if (ev.target && (ev.target.tagName === "INPUT" && ev.target.type !== "range" || ev.target.tagName === "SELECT")) return;
