@@ -214,6 +214,7 @@ class MeterPanel:
         self.tick_count = int(min(5, max(3, (py1 - py0) // 24)))
         self.grid_rows = [int(round(v)) for v in self.row(self.value_ticks()[0])]
         self.done = 0  # columns drawn on the persistent layer
+        self.tail = [None] * len(meter.traces)  # each trace's last point drawn there (px)
 
     def value_ticks(self):
         return ticks(self.lo, self.hi, factor=self.factor, count=self.tick_count)
@@ -278,6 +279,7 @@ class MeterPanel:
         else:
             self.legend_slots.append((x1 - self.RIGHT, y0 + 3))
         self.done = 0
+        self.tail = [None] * len(self.meter.traces)
 
     def advance(self, img, t_now: float) -> None:
         """Draw the trace columns before the cursor at ``t_now`` (s) that are not drawn yet."""
@@ -298,25 +300,22 @@ class MeterPanel:
                 d.rectangle((px0 + run[0], py0, px0 + run[-1], py1), fill=I["slip_band"])
                 for row in self.grid_rows:
                     d.line([(px0 + run[0], row), (px0 + run[-1], row)], fill=I["light"])
-        start = max(a - 1, 0)
-        for tr, env in zip(self.meter.traces, self.envelopes):
+        for n, (tr, env) in enumerate(zip(self.meter.traces, self.envelopes)):
             if env is None:
                 continue
-            pts = []
-            for c in range(start, b):
-                first, low, high, last = env[c]
-                if np.isnan(first):
-                    continue
-                x = px0 + c
-                pts += [(x, first), (x, low), (x, high), (x, last)]
-            if len(pts) < 2:
-                if pts:
-                    d.point(pts[0], fill=I[tr.colour])
+            cols = np.flatnonzero(~np.isnan(env[a:b, 0])) + a
+            if not cols.size:
                 continue
+            # from the last point drawn (columns without samples are bridged, as a line plot does)
+            pts = [self.tail[n]] if self.tail[n] is not None else []
+            for c in cols:
+                x = px0 + int(c)
+                pts += [(x, env[c, 0]), (x, env[c, 1]), (x, env[c, 2]), (x, env[c, 3])]
+            self.tail[n] = pts[-1]
             if tr.dashed:
-                for k in range(0, len(pts) - 1, 4):
-                    if (int(pts[k][0]) // 4) % 2 == 0:
-                        d.line(pts[k:k + 5], fill=I[tr.colour], width=1)
+                for p, q in zip(pts[:-1], pts[1:]):
+                    if (int(p[0]) // 4) % 2 == 0:
+                        d.line([p, q], fill=I[tr.colour], width=1)
             else:
                 d.line(pts, fill=I[tr.colour], width=1)
         self.done = b
@@ -333,9 +332,9 @@ class MeterPanel:
             if env is None:
                 continue
             y = float(self.row(tr.values[k]))
-            prev = self.done - 1
-            if prev >= 0 and not np.isnan(env[prev, 3]) and not tr.dashed:
-                d.line([(px0 + prev, env[prev, 3]), (cx, y)], fill=I[tr.colour], width=1)
+            tail = self.tail[self.meter.traces.index(tr)]
+            if tail is not None and not tr.dashed and np.isfinite(y):
+                d.line([tail, (cx, y)], fill=I[tr.colour], width=1)
         d.line([(cx, py0), (cx, py1)], fill=I["cursor"], width=1)
         for tr, env in zip(self.meter.traces, self.envelopes):
             if env is None:
