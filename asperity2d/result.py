@@ -139,6 +139,12 @@ class Result:
             f"status={self.status!r})"
         )
 
+    def _repr_html_(self) -> str:
+        """The interactive player of the run (Jupyter shows it; :mod:`asperity2d.renderers.player`)."""
+        from ._display import represent
+
+        return represent(self, "html")
+
     def summary(self) -> dict:
         """A few headline numbers of the run (SI), JSON-ready."""
         return {

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ._format import si
 from ._validate import (check_choice, check_finite, check_nonnegative, check_positive, check_text,
                         per_item, show)
 from .errors import SceneError
@@ -320,6 +321,18 @@ class Scene:
                         f"{level:g} m, at or below the profile's rigid valley floor ({highest:g} m): the "
                         "slider would jam; use a smaller `interference`")
 
+    # -- display -------------------------------------------------------------
+    def __repr__(self) -> str:
+        """One readable line (``Scene('name', 16 lower full triangles 1 µm base, ...)``); the full
+        parameters are in :meth:`to_dict`."""
+        return f"Scene({self.name!r}, {describe(self)})" if self.name else f"Scene({describe(self)})"
+
+    def _repr_svg_(self) -> str:
+        """The scene at rest as an SVG drawing (Jupyter shows it)."""
+        from ._display import represent
+
+        return represent(self, "svg")
+
     # -- derived quantities --------------------------------------------------
     @property
     def base(self) -> float:
@@ -361,6 +374,49 @@ class Scene:
     @classmethod
     def from_dict(cls, data: dict) -> "Scene":
         return _from_plain(data)
+
+
+_KINDS = {"full": "full triangles", "half": "half triangles", "flat": "flat blocks"}
+
+
+def _si(value: float, unit: str) -> str:
+    return si(value, unit, trim=True)
+
+
+def _span(values, unit: str) -> str:
+    lo, hi = float(np.min(values)), float(np.max(values))
+    return _si(lo, unit) if math.isclose(lo, hi, rel_tol=1e-9) else f"{_si(lo, unit)}–{_si(hi, unit)}"
+
+
+def describe(scene: Scene) -> str:
+    """A one-line, plain-words summary of ``scene``: surfaces, slider, drive (SI prefixes)."""
+    lower, slider, drive = scene.lower, scene.slider, scene.drive
+    kind = _KINDS.get(lower.profile.kind, lower.profile.kind)
+    text = f"{lower.count} lower {kind} {_si(lower.profile.base, 'm')} base"
+    if lower.shapes is not None:
+        text = (f"{lower.count} lower {kind}, bases {_span(lower.shape_set().bases, 'm')}, "
+                f"heights {_span(lower.heights(), 'm')}")
+    spacing = lower.spacing
+    if isinstance(spacing, RegularSpacing):
+        text += f", pitch {_si(spacing.pitch, 'm')} regular"
+    elif isinstance(spacing, RandomSpacing):
+        text += f", mean pitch {_si(spacing.mean_pitch, 'm')} random"
+    else:
+        text += f", mean pitch {_si(spacing.mean_pitch, 'm')}"
+    if lower.substrate:
+        text += " on a rigid substrate"
+    if lower.is_lattice:
+        text += ", joined by lateral springs"
+    text += f"; slider {slider.count} tip{'s' if slider.count != 1 else ''}"
+    if slider.track == "fixed":
+        text += f" on a fixed track ({_si(slider.interference, 'm')} interference)"
+    else:
+        text += f", free under {_si(slider.normal_load, 'N')}"
+    if isinstance(drive, SpringDrive):
+        text += f"; spring drive {_si(drive.stiffness, 'N/m')} at {_si(drive.velocity, 'm/s')}"
+    else:
+        text += f"; constant force {_si(drive.force, 'N')}"
+    return text
 
 
 _TYPES = {c.__name__: c for c in (Scene, LowerSurface, Slider, ConstantForce, SpringDrive,

@@ -5,7 +5,9 @@ regular lower asperities on spring-damper tracks, a slider with 4 tips on a
 fixed-height horizontal track.
 
 1. A spring whose far end moves at constant speed pulls the slider over the
-   surface: it sticks and slips. Writes ``run.gif`` and ``timeseries.png``.
+   surface: it sticks and slips. Writes ``run.gif`` (the scene with its
+   meters, slips in slow motion), ``run.html`` (the same run in an
+   interactive player: open it in a browser) and ``timeseries.png``.
 2. Regular against random spacing (both surfaces random, seed 000 figure
    11) over ``--seeds`` seeds, two measures of the force that breaks the
    slider loose: the critical force from rest (the smallest constant force
@@ -50,6 +52,7 @@ def main(argv=None) -> int:
     a.render(result, out / "timeseries.png", events=events)
     if not args.no_gif:
         a.render(result, out / "run.gif", frames=args.frames or (40 if args.quick else 120))
+    a.render(result, out / "run.html")
     flank = math.tan(math.radians(scene.lower.profile.flank_angle) + math.atan(scene.contact.mu_static))
     all_tips = scene.slider.count * scene.lower.stiffness[0] * scene.slider.interference * flank
 
@@ -75,7 +78,7 @@ def main(argv=None) -> int:
         f"stick-slip run on seed 000's set-up ({scene.lower.count} regular lower asperities, a slider with "
         f"{scene.slider.count} tips on a fixed-height track, spring drive): {len(events)} stick-slip events; "
         f"the peak stick force {summary['peak_stick_force_N'] * 1e3:.1f} mN is the flank law for all "
-        f"{scene.slider.count} tips at once ({all_tips * 1e3:.1f} mN) -> {out / 'run.gif'}",
+        f"{scene.slider.count} tips at once ({all_tips * 1e3:.1f} mN) -> {out / 'run.gif'}, {out / 'run.html'}",
         f"Does random spacing lower the force that breaks the slider loose? {args.seeds} seeds, "
         f"fixed track (seed 000's set-up); the free slider under a 10 mN load beside it:",
     ]

@@ -1,21 +1,25 @@
-"""Animation and plot renderers: frame counts, sizes, dispatch by extension, atomic files."""
+"""Animation and plot renderers: frame counts, sizes, dispatch by extension, atomic files.
+
+What the frames show (bodies where the arrays put them, meters, slow motion) is tested in
+test_pictures.py; the HTML player in test_player.py and, in a browser, test_player_browser.py.
+"""
 
 import dataclasses
 import sys
 
 import numpy as np
 import pytest
-from PIL import Image, ImageFont, ImageSequence
+from PIL import Image, ImageSequence
 
 import asperity2d as a
 from asperity2d.analysis import synthetic_stick_slip
 from asperity2d.experiments.compare import Comparison
 from asperity2d.renderers import render
-from asperity2d.renderers.animate import (Layout, draw_frame, frame_indices, frame_shapes,
-                                       render_animation)
+from asperity2d.renderers.animate import Movie, render_animation
 from asperity2d.renderers.plots import plot_comparison, plot_force_displacement, plot_run
 
 MAGIC = {".gif": b"GIF89a", ".png": b"\x89PNG", ".pdf": b"%PDF"}
+SMALL = {"width": 480, "height": 320}  # the least that holds the meters
 
 
 @pytest.fixture(scope="module")
@@ -29,10 +33,10 @@ def leftovers(directory):
 
 @pytest.mark.parametrize("frames", [1, 7, 33])
 def test_gif_has_exactly_the_frames_asked(run, tmp_path, frames):
-    path = render_animation(run, tmp_path / "run.gif", frames=frames, width=200, height=100)
+    path = render_animation(run, tmp_path / "run.gif", frames=frames, **SMALL)
     with Image.open(path) as im:
         assert im.n_frames == frames
-        assert im.size == (200, 100)
+        assert im.size == (480, 320)
     assert 0 < path.stat().st_size < 5e6
     assert leftovers(tmp_path) == []
 
@@ -40,9 +44,9 @@ def test_gif_has_exactly_the_frames_asked(run, tmp_path, frames):
 def test_gif_defaults_size_and_frame_count(run, tmp_path):
     path = render(run, tmp_path / "default.gif")
     with Image.open(path) as im:
-        assert im.n_frames == 120 and im.size == (640, 320)
+        assert im.n_frames == 120 and im.size == (720, 480)
         assert im.info["duration"] == 50  # 20 fps
-    assert 1e3 < path.stat().st_size < 5e6
+    assert 1e3 < path.stat().st_size < 2e6
 
 
 def test_gif_frames_exact_even_with_fewer_samples_than_frames(tmp_path):
@@ -51,51 +55,49 @@ def test_gif_frames_exact_even_with_fewer_samples_than_frames(tmp_path):
         "t", "x", "v", "y", "drive_x", "drive_force")},
         lower_dx=result.lower_dx[:, :5], lower_dy=result.lower_dy[:, :5],
         lower_contact=result.lower_contact[:, :5])
-    path = render_animation(few, tmp_path / "few.gif", frames=12, width=160, height=80)
+    path = render_animation(few, tmp_path / "few.gif", frames=12, **SMALL)
     with Image.open(path) as im:
         assert im.n_frames == 12  # identical pictures would be merged by the GIF writer
 
 
-def test_view_follows_the_slider(run):
-    layout = Layout(run, width=400, height=200)
-    centres = []
-    for k in (0, len(run.t) // 2, len(run.t) - 1):
-        x0, _, x1, _ = frame_shapes(layout, k)["bar"]
-        centres.append(0.5 * (x0 + x1))
-    assert run.x[-1] - run.x[0] > layout.view_width / 2  # the slider really travelled
-    np.testing.assert_allclose(centres, centres[0], atol=1.0)
-    assert abs(centres[0] - 200) < 0.1 * 400
+def test_small_frames_without_meters(run, tmp_path):
+    path = render_animation(run, tmp_path / "small.gif", frames=3, width=240, height=160, meters=False)
+    with Image.open(path) as im:
+        assert im.size == (240, 160) and im.n_frames == 3
+    with pytest.raises(a.SceneError, match="meters=False"):
+        render_animation(run, tmp_path / "x.gif", frames=3, width=240, height=160)
 
 
-@pytest.mark.parametrize("suffix", [".gif", ".png", ".svg", ".pdf"])
+@pytest.mark.parametrize("suffix", [".gif", ".html", ".png", ".svg", ".pdf"])
 def test_renderer_chosen_by_extension(run, tmp_path, suffix):
-    opts = {"frames": 3, "width": 120, "height": 64} if suffix == ".gif" else {"dpi": 40}
+    opts = {".gif": {"frames": 3, **SMALL}, ".html": {}}.get(suffix, {"dpi": 40})
     path = render(run, tmp_path / f"out{suffix}", **opts)
     head = path.read_bytes()[:200]
     if suffix == ".svg":
         assert b"<svg" in head
+    elif suffix == ".html":
+        assert head.startswith(b"<!DOCTYPE html>")
     else:
         assert head.startswith(MAGIC[suffix])
 
 
 def test_render_a_saved_result_without_resimulating(run, tmp_path):
     saved = run.save(tmp_path / "run.npz")
-    path = render(saved, tmp_path / "again.gif", frames=4, width=120, height=64)
+    path = render(saved, tmp_path / "again.gif", frames=4, **SMALL)
     with Image.open(path) as im:
         assert im.n_frames == 4
 
 
-def test_gif_frames_are_the_pillow_drawings_unchanged(run, tmp_path):
-    """imageio encodes the palette frames exactly as Pillow drew them (no re-quantisation)."""
-    path = render_animation(run, tmp_path / "run.gif", frames=5, width=160, height=80)
-    layout, font = Layout(run, width=160, height=80), ImageFont.load_default()
-    drawn = [draw_frame(frame_shapes(layout, int(k), frame=i, frames=5), width=160, height=80,
-                        font=font) for i, k in enumerate(frame_indices(run, 5))]
+def test_gif_frames_are_the_palette_drawings_unchanged(run, tmp_path):
+    """The GIF holds the palette frames exactly as drawn (no re-quantisation, none merged)."""
+    path = render_animation(run, tmp_path / "run.gif", frames=5, **SMALL)
+    movie = Movie(run, frames=5, **SMALL)
+    drawn = [np.asarray(f.convert("RGB")) for f in movie.frames()]
     with Image.open(path) as im:
         decoded = [np.asarray(f.convert("RGB")) for f in ImageSequence.Iterator(im)]
     assert len(decoded) == 5
     for picture, frame in zip(drawn, decoded):
-        np.testing.assert_array_equal(np.asarray(picture.convert("RGB")), frame)
+        np.testing.assert_array_equal(picture, frame)
 
 
 def test_mp4_has_the_frames_and_size_asked(run, tmp_path):
@@ -103,18 +105,18 @@ def test_mp4_has_the_frames_and_size_asked(run, tmp_path):
     pytest.importorskip("imageio_ffmpeg")
     import imageio.v3 as iio
 
-    path = render(run, tmp_path / "run.mp4", frames=9, width=160, height=80, fps=10)
+    path = render(run, tmp_path / "run.mp4", frames=9, fps=10, **SMALL)
     frames = list(iio.imiter(path, plugin="FFMPEG"))
-    assert len(frames) == 9 and frames[0].shape == (80, 160, 3)
+    assert len(frames) == 9 and frames[0].shape == (320, 480, 3)
     assert leftovers(tmp_path) == [] and sorted(p.name for p in tmp_path.iterdir()) == ["run.mp4"]
     with pytest.raises(a.SceneError, match="`width` must be even"):
-        render(run, tmp_path / "odd.mp4", frames=2, width=161, height=80)
+        render(run, tmp_path / "odd.mp4", frames=2, width=481, height=320)
 
 
 def test_mp4_without_the_video_extra_is_a_scene_error(run, tmp_path, monkeypatch):
     monkeypatch.setitem(sys.modules, "imageio_ffmpeg", None)  # import now raises ImportError
     with pytest.raises(a.SceneError, match=r"asperity2d\[video\]"):
-        render(run, tmp_path / "run.mp4", frames=2, width=160, height=80)
+        render(run, tmp_path / "run.mp4", frames=2, **SMALL)
     assert list(tmp_path.iterdir()) == []
 
 
@@ -130,8 +132,11 @@ def test_bad_gif_options(run, tmp_path):
         render_animation(run, tmp_path / "x.gif", frames=0)
     with pytest.raises(a.SceneError, match="`fps`"):
         render_animation(run, tmp_path / "x.gif", fps=0)
-    with pytest.raises(a.SceneError, match="`view_width`"):
-        render_animation(run, tmp_path / "x.gif", view_width=-1.0)
+    for name, value in (("camera", "orbit"), ("timing", "random"), ("exaggeration", 0.5),
+                        ("width", 100), ("height", 10)):
+        with pytest.raises(a.SceneError, match=f"`{name}`"):
+            render_animation(run, tmp_path / "x.gif", frames=2, **{**SMALL, name: value})
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_plots_write_files(run, tmp_path):

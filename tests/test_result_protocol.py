@@ -160,10 +160,14 @@ def test_render_and_analyze_work_on_both_kinds(tmp_path, capsys, asperity_result
         assert "events" in summary
 
 
-def test_a_belt_result_has_no_gif_yet_and_says_so(tmp_path, capsys, belt_result):
+def test_a_saved_belt_result_renders_as_a_gif_and_a_player_from_the_command_line(tmp_path, belt_result):
+    from asperity2d.renderers import suffixes
+
     saved = str(belt_result.save(tmp_path / "r.npz"))
-    assert main(["render", saved, "-o", str(tmp_path / "r.gif")]) == 2
-    err = capsys.readouterr().err
-    assert "`--output` must end in one of .png, .svg, .pdf, .wav for a belt result" in err
-    with pytest.raises(a.SceneError, match="`path` must end in one of .png, .svg, .pdf, .wav for a belt result"):
-        a.render(belt_result, tmp_path / "r.mp4")
+    assert set(suffixes("belt")) == set(suffixes("asperity")) == {".gif", ".mp4", ".html", ".png", ".svg",
+                                                                 ".pdf", ".wav"}
+    for name in ("r.gif", "r.html"):
+        assert main(["render", saved, "-o", str(tmp_path / name)]) == 0
+        assert (tmp_path / name).stat().st_size > 1000
+    with pytest.raises(a.SceneError, match="`result` must be a Result or a BeltResult, got dict"):
+        a.render({"t": []}, tmp_path / "r.gif")

@@ -46,7 +46,7 @@ def test_profile_scene_runs_saves_loads_and_renders(profile_file, tmp_path):
     result.save(tmp_path / "run.npz")
     back = a.load(tmp_path / "run.npz")
     assert back.scene == scene and np.array_equal(back.x, result.x)
-    gif = a.render(back, tmp_path / "run.gif", frames=4, width=160, height=80)
+    gif = a.render(back, tmp_path / "run.gif", frames=4, width=480, height=320)
     assert gif.read_bytes()[:6] == b"GIF89a"
     assert a.render(back, tmp_path / "run.png").stat().st_size > 0
     assert np.isfinite(a.mean_stick_force(result))

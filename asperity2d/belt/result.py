@@ -128,6 +128,12 @@ class BeltResult:
     def __repr__(self) -> str:
         return f"BeltResult(n={self.n}, {self.t.size} samples, t_end={self.t[-1]:.4g} s, events={len(self.events)})"
 
+    def _repr_html_(self) -> str:
+        """The interactive player of the chain (Jupyter shows it; :mod:`asperity2d.renderers.player`)."""
+        from .._display import represent
+
+        return represent(self, "html")
+
     # -- persistence -------------------------------------------------------
     def save(self, path: str | os.PathLike) -> Path:
         """Write the result to ``path`` (``.npz``, tagged :data:`FORMAT`) atomically and return the path."""

@@ -65,7 +65,7 @@ def build_parser() -> Parser:
     p.add_argument("scene", nargs="?",
                    help="scene script (.py; other arguments go to its main()) or .toml")
     p.add_argument("-o", "--output",
-                   help="render to this file (.gif, .mp4, .png, .svg, .pdf, .wav); a script's output directory")
+                   help="render to this file (.gif, .mp4, .html, .png, .svg, .pdf, .wav); a script's output directory")
     p.add_argument("--save", help="save the Result (.npz) (TOML scenes)")
     p.add_argument("--duration", type=positive_float, help="simulated time in s (TOML scenes)")
     _json_flag(p)
@@ -80,8 +80,8 @@ def build_parser() -> Parser:
     p = sub.add_parser("render", help="render a saved result; the extension picks the renderer")
     p.add_argument("result", help="a result saved with --save / Result.save / BeltResult.save (.npz)")
     p.add_argument("-o", "--output", required=True,
-                   help=".gif, .mp4 (needs the video extra), .png, .svg, .pdf or .wav (the slider's sound); "
-                        "a belt chain: .png, .svg, .pdf, .wav")
+                   help=".gif, .mp4 (needs the video extra), .html (the interactive player), .png, .svg, .pdf "
+                        "or .wav (the slider's sound); a belt chain: the same")
     _json_flag(p)
     p.set_defaults(handler=asperity.render)
 

@@ -139,6 +139,12 @@ class Comparison:
             raise SceneError(f"`name` must be one of {sorted(self.values)}, got {show(name)}")
         return np.asarray(self.values[name], dtype=float)
 
+    def _repr_html_(self) -> str:
+        """A table of each variant's statistics and the plot (Jupyter shows it)."""
+        from .._display import represent
+
+        return represent(self, "html")
+
     def finite(self, name: str) -> np.ndarray:
         """The variant's finite values."""
         return stats.finite(self._get(name))

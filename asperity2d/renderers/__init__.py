@@ -1,13 +1,14 @@
 """Renderers chosen by the result's kind and the output file's extension (like pyinstrument's).
 
-``render(result, "run.gif")`` writes an animated GIF, ``"run.mp4"`` a video
-(:mod:`.animate`: Pillow frames, imageio encoding; MP4 needs the ``video``
-extra); ``.png`` / ``.svg`` / ``.pdf`` write the time-series plot
-(:mod:`.plots`, matplotlib, imported only when used); ``.wav`` writes the
-sound of the run and its spectrogram (:mod:`.sound`). A belt chain
-(:class:`~asperity2d.belt.BeltResult`) renders to ``.png`` / ``.svg`` / ``.pdf``
-(:func:`.belt.plot_chain`) and ``.wav``. ``result`` may be a result or the path of one
-saved with ``save`` (either kind, :func:`asperity2d.load`), so a run is
+``render(result, "run.gif")`` writes an animation with meters, ``"run.mp4"``
+the same as a video (:mod:`.animate`: palette frames drawn with Pillow; MP4
+needs the ``video`` extra); ``.html`` the interactive player, one
+self-contained file (:mod:`.player`); ``.png`` / ``.svg`` / ``.pdf`` the
+time-series plot (:mod:`.plots`, matplotlib, imported only when used; a belt
+chain's: :func:`.belt.plot_chain`); ``.wav`` the sound of the run and its
+spectrogram (:mod:`.sound`). ``result`` may be an asperity
+:class:`~asperity2d.result.Result`, a :class:`~asperity2d.belt.result.BeltResult`,
+or the path of either saved with ``save`` (:func:`asperity2d.load`), so a run is
 rendered again without re-simulating.
 
 Which renderer draws what is one table, :data:`DRAWERS`: (result kind, renderer) -> the
@@ -22,14 +23,20 @@ from pathlib import Path
 from ..errors import SceneError
 
 #: Output extensions and the renderer each selects.
-RENDERERS = {".gif": "animation", ".mp4": "animation", ".png": "plot", ".svg": "plot",
-             ".pdf": "plot", ".wav": "sound"}
+RENDERERS = {".gif": "animation", ".mp4": "animation", ".html": "player", ".png": "plot",
+             ".svg": "plot", ".pdf": "plot", ".wav": "sound"}
 
 
 def _animation(result, path, **options):
     from .animate import render_animation
 
     return render_animation(result, path, **options)
+
+
+def _player(result, path, **options):
+    from .player import write_player
+
+    return write_player(result, path, **options)
 
 
 def _plot(result, path, **options):
@@ -51,8 +58,9 @@ def _chain_plot(result, path, **options):
 
 
 #: (result kind, renderer) -> function(result, path, **options) -> path written.
-DRAWERS = {("asperity", "animation"): _animation, ("asperity", "plot"): _plot,
-           ("asperity", "sound"): _sound, ("belt", "plot"): _chain_plot, ("belt", "sound"): _sound}
+DRAWERS = {("asperity", "animation"): _animation, ("asperity", "player"): _player, ("asperity", "plot"): _plot,
+           ("asperity", "sound"): _sound, ("belt", "animation"): _animation, ("belt", "player"): _player,
+           ("belt", "plot"): _chain_plot, ("belt", "sound"): _sound}
 
 
 def suffixes(kind: str) -> tuple[str, ...]:
@@ -65,9 +73,10 @@ def render(result, path: str | os.PathLike, **options) -> Path:
     choosing the renderer by the result's kind and the path's extension.
 
     ``options`` go to :func:`~asperity2d.renderers.animate.render_animation` (``.gif``, ``.mp4``),
-    :func:`~asperity2d.renderers.plots.plot_run` (``.png``, ``.svg``, ``.pdf``)
-    or :func:`~asperity2d.renderers.sound.write_wav` (``.wav``); for a belt chain to
-    :func:`~asperity2d.renderers.belt.plot_chain` (``.wav``: ``write_wav``, as for an asperity run).
+    :func:`~asperity2d.renderers.player.write_player` (``.html``),
+    :func:`~asperity2d.renderers.plots.plot_run` or, for a belt chain,
+    :func:`~asperity2d.renderers.belt.plot_chain` (``.png``, ``.svg``, ``.pdf``)
+    or :func:`~asperity2d.renderers.sound.write_wav` (``.wav``).
 
     Raises
     ------
