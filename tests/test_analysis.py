@@ -75,7 +75,8 @@ def test_short_noise_spike_is_ignored_with_min_slip():
     v[spike] = 10 * result.scene.drive.velocity
     spiky = dataclasses.replace(result, v=v)
     assert len(stick_slip_events(spiky)) == 3
-    assert len(stick_slip_events(spiky, min_slip=0.0, min_stick=0.0)) == 4
+    assert len(stick_slip_events(spiky, min_slip=0.0, min_stick=0.0)) == 3  # it moves 0.01 base
+    assert len(stick_slip_events(spiky, min_slip=0.0, min_stick=0.0, min_slip_distance=0.0)) == 4
 
 
 def test_unfinished_last_slip_is_marked_incomplete():
