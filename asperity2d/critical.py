@@ -36,7 +36,7 @@ from dataclasses import dataclass
 from ._validate import check_choice, check_int, check_positive
 from .errors import SceneError
 from .scene import ConstantForce, Scene
-from .run import MAX_STEPS, Run, default_duration, default_stops
+from .run import MAX_STEPS, Run, default_dt, default_duration, default_stops
 
 STARTS = ("rest", "entry", "run-up")
 #: The settling push of ``start="rest"``, as a fraction of the flank-law estimate.
@@ -54,6 +54,22 @@ SCAN_STEP = 0.02
 #: a 1 % grid). A passing band narrower than SCAN_STEP, or more than SCAN_WINDOW below the
 #: bisected force, can still be missed; the record says what was checked.
 SCAN_WINDOW = 0.10
+
+
+#: The step of the critical-force runs, as a fraction of :func:`asperity2d.run.default_dt`.
+#: At the default step the fixed track's thresholds sit low -- the tips sink into the flanks
+#: they press (pymunk removes 10 % of an overlap per step, so the overlap left under a load
+#: shrinks with dt) -- by 1.2-1.6 % from rest and 0.4-4.6 % with a run-up (measured on 10/3,
+#: regular and 4 random seeds, against dt/2, dt/4, dt/8; second order: each halving cuts the
+#: change about 4 x). From rest dt/2 is within 0.32 % of dt/4; the run-up, a momentum
+#: threshold decided at an impact, needs dt/4 (within 0.2 % of dt/8; dt/2 is 1.0 % off).
+DT_FRACTION = {"rest": 0.5, "entry": 0.5, "run-up": 0.25}
+
+
+def measure_dt(scene: Scene, start: str) -> float:
+    """The step (s) :func:`critical_force` uses from ``start`` when given none."""
+    check_choice("start", start, STARTS)
+    return DT_FRACTION[start] * default_dt(scene)
 
 
 class NonMonotoneWarning(UserWarning):
@@ -227,7 +243,9 @@ def critical_force_bracket(scene: Scene, *, start: str = "rest", rel_tol: float 
     passing is not always monotone in the force, and a smaller force that
     passes moves the search there. ``band`` reports the forces with mixed
     outcomes. Raises :class:`SceneError` if more than ``max_runs`` runs are
-    needed. ``dt``, ``iterations`` and ``max_steps`` (per run) are those of
+    needed. ``dt`` (s) defaults to :func:`measure_dt` (half the simulation's
+    default step from rest, a quarter with a run-up: converged to 0.3 %);
+    ``iterations`` and ``max_steps`` (per run) are those of
     :func:`asperity2d.simulate`.
     """
     if not isinstance(scene, Scene):
@@ -236,7 +254,9 @@ def critical_force_bracket(scene: Scene, *, start: str = "rest", rel_tol: float 
     if rel_tol >= 1:
         raise SceneError(f"`rel_tol` must be < 1, got {rel_tol!r}")
     max_runs = check_int("max_runs", max_runs, minimum=2)
-    base = settled_run(scene, start=start, dt=dt, iterations=iterations, max_steps=max_steps)
+    check_choice("start", start, STARTS)
+    base = settled_run(scene, start=start, dt=measure_dt(scene, start) if dt is None else dt,
+                       iterations=iterations, max_steps=max_steps)
     runs = 0
 
     def test(force):

@@ -190,7 +190,7 @@ def float_array(name: str, value, count: int | None, *, minimum: str | None = No
     if np.any(bad):
         i = int(np.argmax(bad))
         need = {"positive": "finite and > 0", "nonnegative": "finite and >= 0"}.get(minimum, "finite")
-        raise SceneError(f"`{name}[{i}]` must be {need}, got {arr[i]!r}")
+        raise SceneError(f"`{name}[{i}]` must be {need}, got {float(arr[i])!r}")  # not np.float64(...)
     return arr
 
 
@@ -294,7 +294,8 @@ class ExplicitSpacing:
         steps = np.diff(pos)
         if np.any(steps <= 0):
             i = int(np.argmax(steps <= 0))
-            raise SceneError(f"`positions` must increase: {pos[i + 1]!r} follows {pos[i]!r} at index {i + 1}")
+            raise SceneError(f"`positions` must increase: {float(pos[i + 1])!r} follows {float(pos[i])!r} "
+                             f"at index {i + 1}")
         object.__setattr__(self, "positions", tuple(pos.tolist()))
         if self.mean_pitch is None:
             if len(pos) == 1:

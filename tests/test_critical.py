@@ -17,7 +17,7 @@ import pytest
 
 import asperity2d as a
 from asperity2d.critical import (SCAN_STEP, SCAN_WINDOW, NonMonotoneWarning, critical_force,
-                                 critical_force_bracket, passes, settled_run, smallest_passing)
+                                 critical_force_bracket, measure_dt, passes, settled_run, smallest_passing)
 from asperity2d.run import default_dt
 from asperity2d.studies.ooten import STUDY_SIZE
 
@@ -94,41 +94,57 @@ def test_what_the_check_cannot_see_is_what_its_window_and_step_say(island):
 
 @pytest.fixture(scope="module")
 def undamped_run_up():
-    """Seed 000's regular fixed track (10/3) without track dampers, from the run-up: the slider
-    arrives with momentum and the lower asperities ring, so whether a force passes depends on
-    the phase it meets (measured on a 0.1 % grid: passing and stopping alternate from 0.99 to
-    1.05 x the smallest passing force)."""
-    scene = a.make_scene(drive="force", damping_ratio=0.0, **STUDY_SIZE)
-    return scene, critical_force_bracket(scene, start="run-up"), settled_run(scene, start="run-up")
+    """Seed 000's regular fixed track (6 lower, 3 upper) without track dampers, from the run-up:
+    the slider arrives with momentum and the lower asperities ring, so whether a force passes
+    depends on the phase it meets (on the 10/3 scene a 0.1 % grid shows passing and stopping
+    alternating from 0.99 to 1.05 x the smallest passing force)."""
+    scene = a.make_scene(drive="force", damping_ratio=0.0, lower_count=6, upper_count=3)
+    base = settled_run(scene, start="run-up", dt=measure_dt(scene, "run-up"))  # the bracket's own step
+    return scene, critical_force_bracket(scene, start="run-up"), base
 
 
 def test_non_monotone_run_up_finds_a_lower_passing_force_and_reports_the_band(undamped_run_up):
     scene, bracket, base = undamped_run_up
-    # the issue's case: bisection alone returned 1.398-1.404 mN while smaller forces pass
-    assert bracket.value < 0.97 * 1.398e-3
     assert passes(base, bracket.passes) and not passes(base, bracket.stops)
     assert bracket.band is not None and not bracket.monotone
     low, high = bracket.band
     assert low == bracket.passes and high > low and not passes(base, high)
-    # brute force on a 0.5 % grid over the checked window below: nothing passes more than
-    # one scan step below the returned force (what the check guarantees at its resolution)
-    grid = bracket.value * np.arange(1.0 - SCAN_WINDOW, 1.0 - SCAN_STEP, 0.005)
+    # plain bisection (what the search did before the check), run here independently from the
+    # same bracket start, ends on a larger force: it trusted the one transition it found
+    lo, hi = 0.5 * bracket.passes, 2.0 * bracket.passes
+    assert not passes(base, lo) and passes(base, hi)
+    while (hi - lo) / hi > 0.0025:
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if passes(base, mid) else (mid, hi)
+    assert hi > bracket.passes
+    # brute force on a 1 % grid over the checked window below: nothing passes more than one
+    # scan step below the returned force (what the check guarantees at its resolution)
+    grid = bracket.value * np.arange(1.0 - SCAN_WINDOW, 1.0 - SCAN_STEP, 0.01)
     assert not any(passes(base, f) for f in grid)
 
 
-def test_critical_force_warns_when_passing_is_not_monotone(undamped_run_up):
-    scene, bracket, _ = undamped_run_up
-    with pytest.warns(NonMonotoneWarning, match="not monotone"):
-        value = critical_force(scene, start="run-up")
-    assert value == bracket.value
+def test_critical_force_warns_with_the_band(monkeypatch):
+    from asperity2d import critical
+
+    def fake_bracket(scene, **kw):
+        return critical.CriticalForce(stops=0.9, passes=1.0, runs=3, start=kw["start"], band=(1.0, 1.07))
+
+    monkeypatch.setattr(critical, "critical_force_bracket", fake_bracket)
+    with pytest.warns(NonMonotoneWarning, match=r"not monotone in the force \(start='run-up'\): 1 N passes, "
+                                                r"1.07 N does not"):
+        assert critical.critical_force(a.make_scene(drive="force"), start="run-up") == 1.0
+    monkeypatch.setattr(critical, "critical_force_bracket",
+                        lambda scene, **kw: critical.CriticalForce(stops=0.9, passes=1.0, runs=3))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert critical.critical_force(a.make_scene(drive="force")) == 1.0
 
 
 def test_a_damped_start_from_rest_is_monotone_and_silent():
-    scene = a.make_scene(drive="force", **STUDY_SIZE)
+    scene = a.make_scene(drive="force", lower_count=6, upper_count=3)
     with warnings.catch_warnings():
         warnings.simplefilter("error", NonMonotoneWarning)
         bracket = critical_force_bracket(scene)
-        critical_force(scene)
     assert bracket.monotone and bracket.checked == SCAN_WINDOW
 
 
@@ -146,13 +162,13 @@ def test_runs_counts_every_simulation_and_max_runs_is_exact():
         critical_force_bracket(scene, max_runs=bracket.runs - 1)
 
 
-def test_dt_and_iterations_reach_the_runs():
+def test_a_given_dt_reaches_the_runs():
     """Checked through the public simulate() path, which starts where the run-up does: at
     dt/2 the bracket's stopping force stops and its passing force passes."""
     scene = a.make_scene(drive="force", **SMALL)
     half = default_dt(scene) / 2
     fine = critical_force_bracket(scene, start="run-up", dt=half)
-    coarse = critical_force_bracket(scene, start="run-up")
+    coarse = critical_force_bracket(scene, start="run-up", dt=2 * half)
     assert fine.passes != coarse.passes  # this scene's threshold moves with dt ...
     for force, status in ((fine.stops, False), (fine.passes, True)):  # ... and dt/2 was used
         result = a.simulate(scene.replace(drive=a.ConstantForce(force=force)), dt=half)
@@ -169,19 +185,30 @@ def test_run_arguments_reach_every_run(monkeypatch):
 
     built = []
 
-    class Spy(Run):
-        def __init__(self, scene, **kw):
-            built.append(kw)
-            super().__init__(scene, **kw)
+    class Built(Exception):
+        pass
 
-    monkeypatch.setattr(critical, "Run", Spy)
+    def spy(scene, **kw):  # records the run's arguments and stops the search there
+        built.append(kw)
+        raise Built
+
+    monkeypatch.setattr(critical, "Run", spy)
     scene = a.make_scene(drive="force", **SMALL)
-    critical.critical_force(scene)
+
+    def args(**kw):
+        with pytest.raises(Built):
+            critical.critical_force(scene, **kw)
+        return built[-1]
+
     run_defaults = inspect.signature(Run).parameters
-    assert built[-1]["iterations"] == run_defaults["iterations"].default == 20
-    assert built[-1]["dt"] is None and built[-1]["max_steps"] == critical.MAX_STEPS
-    critical.critical_force(scene, dt=3e-12, iterations=7, max_steps=123_456)
-    assert built[-1]["dt"] == 3e-12 and built[-1]["iterations"] == 7 and built[-1]["max_steps"] == 123_456
+    assert args()["iterations"] == run_defaults["iterations"].default == 20
+    # the step: half the simulation's default from rest (converged there), a quarter with a run-up
+    assert args()["dt"] == 0.5 * default_dt(scene) == critical.measure_dt(scene, "rest")
+    assert args()["max_steps"] == critical.MAX_STEPS
+    assert args(start="run-up")["dt"] == 0.25 * default_dt(scene)
+    assert args(start="entry")["dt"] == 0.5 * default_dt(scene)
+    given = args(dt=3e-12, iterations=7, max_steps=123_456)
+    assert (given["dt"], given["iterations"], given["max_steps"]) == (3e-12, 7, 123_456)
 
 
 def test_bad_arguments():

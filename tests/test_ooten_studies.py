@@ -25,7 +25,7 @@ import pytest
 from PIL import Image
 
 import asperity2d as a
-from asperity2d.critical import critical_force_bracket, passes, settled_run
+from asperity2d.critical import critical_force_bracket, measure_dt, passes, settled_run
 from asperity2d.studies import claims
 from asperity2d.studies import ooten as studies
 
@@ -181,12 +181,13 @@ def test_critical_force_brackets_correctly(setup, start):
     assert bracket.stops < bracket.passes and bracket.relative_width <= 0.01 and bracket.start == start
     # 5 % either side: within ~2 % of the boundary inertia can make passing non-monotone in the
     # force (measured at the entry start: 0.98 x passes, 0.99 x does not)
-    base = settled_run(scene, start=start)
+    dt = measure_dt(scene, start)  # the bracket's own step
+    base = settled_run(scene, start=start, dt=dt)
     assert not passes(base, 0.95 * bracket.value)
     assert passes(base, 1.05 * bracket.value)
     if start == "run-up":  # the public path: simulate from the builder's start, force at t = 0
-        below = a.simulate(scene.replace(drive=a.ConstantForce(force=0.95 * bracket.value)))
-        above = a.simulate(scene.replace(drive=a.ConstantForce(force=1.05 * bracket.value)))
+        below = a.simulate(scene.replace(drive=a.ConstantForce(force=0.95 * bracket.value)), dt=dt)
+        above = a.simulate(scene.replace(drive=a.ConstantForce(force=1.05 * bracket.value)), dt=dt)
         assert below.status != "passed" and above.status == "passed"
 
 
