@@ -54,6 +54,10 @@ SCAN_STEP = 0.02
 #: a 1 % grid). A passing band narrower than SCAN_STEP, or more than SCAN_WINDOW below the
 #: bisected force, can still be missed; the record says what was checked.
 SCAN_WINDOW = 0.10
+#: A slider that still passes under this fraction of the flank-law estimate meets nothing that
+#: resists it (on a rough surface the only asperities tall enough to reach a fixed track can be
+#: behind it): the search stops there and reports the bracket (0, that force).
+FORCE_FLOOR = 2.0 ** -20
 
 
 #: The step of the critical-force runs, as a fraction of :func:`asperity2d.run.default_dt`.
@@ -139,13 +143,17 @@ def settled_run(scene: Scene, *, start: str = "rest", dt: float | None = None, i
               max_steps=MAX_STEPS if max_steps is None else max_steps, engaged=start == "rest")
     if start in ("rest", "entry"):
         push = PUSH_FRACTION * flank_estimate(scene)
+        x0 = run.engine.slider_state()[0]
         run.settle(push=push)
         # The gentle push, slowed by the settling damping, may not carry the slider across a
         # wide valley within one settling phase: at mu <= 0.2 on seed 000's 10/3 fixed track it
         # stopped 0.2-0.5 um short of the flanks, so "from rest" was partly a run-up (0.42-0.79
-        # x the step-load law). Push again until a tip rests against a flank.
+        # x the step-load law). Push again until a tip rests against a flank -- but no farther
+        # than two mean pitches: on a rough surface whose only asperity tall enough to reach the
+        # fixed track is behind the tip nothing is ahead to touch.
+        reach = 2.0 * scene.lower.spacing.mean_pitch  # m
         for _ in range(MAX_PUSHES):
-            if len(run.engine.arbiters_internal()):
+            if len(run.engine.arbiters_internal()) or run.engine.slider_state()[0] - x0 > reach:
                 break
             run.settle(push=push)
     elif scene.slider.track == "free":
@@ -159,14 +167,19 @@ def passes(base, force: float) -> bool:
     run = base.fork()
     run.set_drive_force(force)
     scene = base.scene.replace(drive=ConstantForce(force=force))
-    return run.advance(default_duration(scene), stop=default_stops(scene), record=False) == "passed"
+    # A small force gets a long time limit (it grows as 1/sqrt(F)); within the run's step budget
+    # it is cut to what the budget allows: a slider neither past nor stuck by then has not passed.
+    room = 0.999 * (run.max_steps - run.engine.step_count) * run.dt
+    duration = min(default_duration(scene), room)
+    return run.advance(duration, stop=default_stops(scene), record=False) == "passed"
 
 
 def smallest_passing(test, estimate: float, *, rel_tol: float = REL_TOL, scan_step: float = SCAN_STEP,
                      window: float = SCAN_WINDOW) -> tuple[float, float, tuple[float, float] | None, list]:
     """The smallest force ``f`` with ``test(f)`` true, searched from ``estimate`` (> 0).
 
-    1. Bracket: double (or halve) ``estimate`` until one force stops and one passes.
+    1. Bracket: double (or halve) ``estimate`` until one force stops and one passes (below
+       :data:`FORCE_FLOOR` x ``estimate`` the search stops: ``(0, that force)``).
     2. Bisect to a bracket ``rel_tol`` wide (relative to its upper end).
     3. Bracket check: try the forces ``scan_step``, 2 ``scan_step``, ... below the
        upper end, down to ``window`` below it; if one passes, bisect again below the lowest
@@ -191,6 +204,8 @@ def smallest_passing(test, estimate: float, *, rel_tol: float = REL_TOL, scan_st
     while lo is None or hi is None:
         if run(force):
             hi = force
+            if force < FORCE_FLOOR * estimate:  # nothing ahead resists: (0, this force)
+                return 0.0, hi, None, tried
             force = force / 2.0
         else:
             lo = force

@@ -222,3 +222,25 @@ def test_bad_arguments():
     with pytest.raises(a.SceneError, match="`start`"):
         critical_force_bracket(scene, start="sideways")
     assert math.isfinite(critical_force(scene))
+
+
+def test_a_slider_nothing_resists_reports_a_zero_lower_bracket():
+    """Every force passes (on a rough surface the only asperity tall enough to reach a fixed
+    track can be behind the slider): halving stops below FORCE_FLOOR of the estimate."""
+    from asperity2d.critical import FORCE_FLOOR
+
+    test = Counting(lambda f: True)
+    lo, hi, band, tried = smallest_passing(test, 3.0)
+    assert lo == 0.0 and band is None
+    assert FORCE_FLOOR * 3.0 / 2 <= hi < FORCE_FLOOR * 3.0
+    assert len(test.asked) == 22  # 3, 3/2, ..., 3 / 2**21
+
+
+def test_a_small_force_is_cut_to_the_step_budget_not_refused():
+    """The time limit of a constant-force run grows as 1/sqrt(F); inside the bracket search it is
+    cut to what the run's step budget allows (a run that has not passed by then has not)."""
+    scene = a.make_scene(drive="force", **SMALL)
+    base = settled_run(scene, dt=measure_dt(scene, "rest"), max_steps=20_000)
+    assert not passes(base, 1e-9)  # 20 000 steps: far too short to cross under 1 nN
+    with pytest.raises(a.SceneError, match="`max_steps`"):  # the public run is still refused
+        a.simulate(scene.replace(drive=a.ConstantForce(force=1e-9)), max_steps=20_000)

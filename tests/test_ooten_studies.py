@@ -32,7 +32,7 @@ from asperity2d.studies import ooten as studies
 ROOT = Path(__file__).resolve().parent.parent
 SCRIPTS = ("profiles", "spacing", "damping", "drive", "stickslip")
 FRAMES = {"profiles": 5, "spacing": 6, "damping": 7, "drive": 4, "stickslip": 3}
-SEEDS_SLOW = range(20)
+SEEDS_SLOW = None  # set below, by a rule
 
 
 def _command(name: str, out: Path) -> list[str]:
@@ -136,31 +136,47 @@ def test_micro_spacing_reports_both_setups(tmp_path):
     assert "static_kinetic_gap_over_load" in summary["results"]["free"]
 
 
-# -- the headline, in the default run (~20 s on 2 cores) ------------------------------
+# -- the headline, in the default run, on seeds the README did not use --------------------------
 
-HEADLINE_SEEDS = range(8)  # 8: the exact one-sided signed-rank p can reach 2**-8 < 0.01
+#: Seeds are picked by a rule, never by hand: numpy.random.SeedSequence(entropy) -- disjoint from
+#: the README's seeds (0-23) and from every other test's.
+HEADLINE_ENTROPY = 0x25_0EAD_11
 HEADLINE_SIZE = {"lower_count": 8, "upper_count": 3}
 VARIANTS = {"regular": {"spacing": "regular"}, "random-upper": {"spacing": "random-upper"},
             "random": {"spacing": "random"}}
 
 
+def rule_seeds(entropy: int, n: int) -> list[int]:
+    seeds = [int(s) for s in np.random.SeedSequence(entropy).generate_state(n, dtype=np.uint32)]
+    assert not set(seeds) & set(range(24))
+    return seeds
+
+
+HEADLINE_SEEDS = rule_seeds(HEADLINE_ENTROPY, 7)  # 7: the exact one-sided signed-rank p reaches 2**-7 < 0.01
+
+
 @pytest.fixture(scope="module")
 def headline():
-    """Critical force from rest and peak stick force, three spacings, seed 000's default set-up."""
+    """Critical force from rest and peak stick force (the mean of the named measure's three
+    passes), regular against random spacing on both surfaces, seed 000's default set-up."""
     assert a.make_scene().slider.track == "fixed"  # the default scene is the seed's set-up
-    return {name: a.compare(name, VARIANTS, HEADLINE_SEEDS, progress=False, workers=2,
+    both = {k: VARIANTS[k] for k in ("regular", "random")}
+    return {name: a.compare(name, both, HEADLINE_SEEDS, progress=False, workers=2,
                             base={**HEADLINE_SIZE, "drive": drive})
             for name, drive in (("critical", "force"), ("peak-stick", "spring"))}
 
 
 @pytest.mark.parametrize("measure", ["critical", "peak-stick"])
-@pytest.mark.parametrize("variant", ["random-upper", "random"])
-def test_random_spacing_lowers_the_breakaway_force_on_the_seed_set_up(headline, measure, variant):
-    numbers = headline[measure].versus(variant, "regular", alternative="less")
+def test_random_spacing_lowers_the_breakaway_force_on_the_seed_set_up(headline, measure):
+    """README: random spacing lowers both on the fixed track, x0.4-0.6. On new seeds every one is
+    below the regular value and the Hodges-Lehmann ratio's 95 % interval lies below 0.8."""
+    comparison = headline[measure]
+    numbers = comparison.versus("random", "regular", alternative="less")
     assert numbers["n"] == len(HEADLINE_SEEDS) and numbers["missing"] == 0  # every run gave a number
-    assert numbers["mean"] < numbers["reference"]
-    assert numbers["p_wilcoxon"] < 0.01  # one-sided Wilcoxon signed-rank against the regular value
+    assert numbers["below"] == len(HEADLINE_SEEDS) and numbers["p_wilcoxon"] < 0.01
     assert claims.judge(numbers, 0.01) == claims.HOLDS
+    effect = a.stats.relative_effect(comparison.values["random"], comparison.values["regular"][0])
+    assert effect["ci_high"] < -0.2
 
 
 def test_regular_peak_stick_force_is_the_flank_law_for_all_tips(headline):
@@ -201,6 +217,9 @@ def test_entry_start_sees_the_first_asperity_only():
 
 
 # -- the 20-seed studies (slow: ~1-3 minutes each on 2 cores) ---------------------
+
+#: The slow re-checks run on 20 seeds of their own, by the same rule.
+SEEDS_SLOW = rule_seeds(0x25_51_0E, 20)
 
 def _versus_regular(measure: str, setup: str) -> dict:
     drive = "force" if measure.startswith("critical") else "spring"
