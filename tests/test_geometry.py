@@ -200,3 +200,92 @@ def test_float_array_checks_and_names_entries():
         float_array("x", ["1.0", "a"], None)  # strings: each entry checked and named
     with pytest.raises(a.SceneError, match=r"`x\[0\]`"):
         float_array("x", [True, False], None)  # booleans are not numbers
+
+
+def test_fields_come_back_as_plain_python_numbers():
+    """Every dataclass converts what it is given (NumPy scalars, ints, Fractions) to plain float /
+    int: what reaches pymunk and JSON is never a NumPy type."""
+    from fractions import Fraction
+
+    p = Profile(kind="full", base=np.float32(1e-6), height=1)
+    assert type(p.base) is float and type(p.height) is float and p.height == 1.0
+    r = RegularSpacing(count=np.int64(3), pitch=Fraction(5, 4), offset=np.int16(2))
+    assert (type(r.count), type(r.pitch), type(r.offset)) == (int, float, float)
+    assert (r.count, r.pitch, r.offset) == (3, 1.25, 2.0)
+    s = RandomSpacing(count=np.int64(4), mean_pitch=np.float32(1.5), min_gap=0, seed=np.uint8(9), offset=1)
+    assert [type(v) for v in (s.count, s.mean_pitch, s.min_gap, s.seed, s.offset)] == [int, float, float, int, float]
+    e = ExplicitSpacing(positions=np.array([0, 2, 3]), mean_pitch=np.float32(1.5))
+    assert e.positions == (0.0, 2.0, 3.0) and all(type(v) is float for v in e.positions)
+    assert type(e.mean_pitch) is float
+    assert RandomSpacing(seed=2**63 - 1).seed == 2**63 - 1
+    with pytest.raises(a.SceneError, match="`seed`"):
+        RandomSpacing(seed=2**63)
+    assert Profile.from_angle("full", base=2e-6, flank_angle=45.0).base == 2e-6
+    assert Profile.from_angle("full", flank_angle=0.5).flank_angle == pytest.approx(0.5)  # any angle in (0, 90)
+    with pytest.raises(a.SceneError, match=r"`flank_angle` must be in \(0, 90\) degrees, got 90.0"):
+        Profile.from_angle("full", flank_angle=90.0)
+    with pytest.raises(a.SceneError, match=r"`flank_angle` must be in \(0, 90\) degrees, got -3"):
+        Profile.from_angle("full", flank_angle=-3)
+    assert Profile(kind="half").vertices(upper=True)[2][1] < 0  # the kind reaches the outline
+    assert len(Profile(kind="flat").vertices(upper=False)) == 8
+
+
+def test_two_tips_are_checked_and_the_tolerance_is_relative():
+    """Two asperities can overlap (the check starts at two, not three); bases overlapping by
+    less than 1e-9 of their width are rounding, by more are an error, with one run per tip too."""
+    with pytest.raises(a.SceneError, match="`pitch` is too small"):
+        RegularSpacing(count=2, pitch=0.9e-6).tips(0.5e-6, 0.5e-6)
+    with pytest.raises(a.SceneError, match="asperities 0 and 1"):
+        ExplicitSpacing(positions=(0.0, 0.9e-6)).tips(np.array([0.5e-6, 0.5e-6]), np.array([0.5e-6, 0.5e-6]))
+    for left, right in ((0.5e-6, 0.5e-6), (np.array([0.5e-6, 0.5e-6]), np.array([0.5e-6, 0.5e-6]))):
+        ok = ExplicitSpacing(positions=(0.0, 1e-6 * (1 - 5e-10))).tips(left, right)  # within rounding
+        assert len(ok) == 2
+        with pytest.raises(a.SceneError, match="too small"):
+            ExplicitSpacing(positions=(0.0, 1e-6 * (1 - 2e-9))).tips(left, right)
+    # unequal runs: the right run of one and the left run of the next must fit (0.3 + 0.6 > 0.85)
+    with pytest.raises(a.SceneError, match=r"their flanks need 9e-07 m"):
+        ExplicitSpacing(positions=(0.0, 0.85e-6)).tips(np.array([0.1e-6, 0.6e-6]), np.array([0.3e-6, 0.1e-6]))
+    assert len(ExplicitSpacing(positions=(0.0, 0.85e-6)).tips(np.array([0.6e-6, 0.1e-6]),
+                                                               np.array([0.1e-6, 0.3e-6]))) == 2
+    # one scalar run and one array: checked per tip, not as scalars
+    with pytest.raises(a.SceneError, match="asperities 1 and 2"):
+        ExplicitSpacing(positions=(0.0, 1.0e-6, 1.5e-6)).tips(0.2e-6, np.array([0.3e-6, 0.4e-6, 0.1e-6]))
+    tips = RandomSpacing(count=3, mean_pitch=1.2e-6, seed=1).tips(0.4e-6, np.array([0.5e-6, 0.6e-6, 0.5e-6]))
+    shortest = np.array([0.5e-6, 0.6e-6]) + 0.4e-6
+    u = np.random.default_rng(1).random(2)
+    assert np.allclose(np.diff(tips), shortest + 2 * (1.2e-6 - shortest) * u, rtol=1e-13, atol=0)
+
+
+def test_random_gaps_with_a_minimum_gap_and_per_asperity_runs():
+    left, right = np.array([0.3e-6, 0.5e-6, 0.4e-6]), np.array([0.2e-6, 0.6e-6, 0.5e-6])
+    tips = RandomSpacing(count=3, mean_pitch=1.4e-6, min_gap=0.1e-6, seed=5).tips(left, right)
+    shortest = right[:-1] + left[1:] + 0.1e-6
+    u = np.random.default_rng(5).random(2)
+    assert np.allclose(np.diff(tips), shortest + 2 * (1.4e-6 - shortest) * u, rtol=1e-13, atol=0)
+    # exactly the widest pair's need is allowed; one count is never checked
+    assert len(RandomSpacing(count=3, mean_pitch=1.2e-6, min_gap=0.1e-6).tips(left, right)) == 3
+    assert RandomSpacing(count=1, mean_pitch=1e-9).tips(left[:1], right[:1]).tolist() == [0.0]
+
+
+def test_flat_edges_at_the_exact_half_height_limit():
+    """The edge (6 % of the width deep) is scaled only when it would pass half the height: at
+    exactly twice its depth the block keeps it as it is."""
+    full = np.array(outline("flat", 0.5e-6, 0.5e-6, 120e-9, 0.0, upper=False))
+    assert full[2, 1] == pytest.approx(60e-9) and full[4, 0] == pytest.approx(0.35e-6)
+    assert outline("flat", 0.5e-6, 0.5e-6, 0.2e-6, 0.1e-6, upper=False)[0] == (-0.5e-6, 0.1e-6)  # level kept
+
+
+def test_explicit_positions_limits_and_names():
+    from asperity2d._validate import MAX_COUNT
+
+    with pytest.raises(a.SceneError, match=f"`positions` must hold <= {MAX_COUNT} tips, got {MAX_COUNT + 1}"):
+        ExplicitSpacing(positions=np.arange(MAX_COUNT + 1, dtype=float))
+    assert ExplicitSpacing(positions=np.arange(MAX_COUNT, dtype=float)).count == MAX_COUNT
+    with pytest.raises(a.SceneError, match=r"`positions` must increase: 1.0 follows 1.0 at index 1"):
+        ExplicitSpacing(positions=(1.0, 1.0))  # equal tips are not increasing
+    with pytest.raises(a.SceneError, match=r"`positions\[1\]` must be finite"):
+        ExplicitSpacing(positions=(0.0, math.inf))
+    assert ExplicitSpacing(positions=(2e-6, 5e-6, 6e-6)).mean_pitch == pytest.approx(2e-6)
+    with pytest.raises(a.SceneError, match="`positions` is too small"):
+        ExplicitSpacing(positions=(0.0, 0.5e-6)).tips(0.5e-6, 0.5e-6)
+    assert RegularSpacing(count=3, pitch=1.0, offset=0).tips(0.1, 0.1).dtype == np.float64
