@@ -10,8 +10,11 @@ Segmentation (seed 000's stick–slip: the slider stops, the drive spring loads
 it, it breaks away and slips): a sample is *stick* when the slider is nearly at
 rest, ``|v| < stick_speed``, and *slip* when it moves clearly faster than the
 drive, ``v > slip_speed``; in between the previous state holds (hysteresis).
-Slips shorter than ``min_slip`` are noise; sticks shorter than ``min_stick``
-inside a slip are bounces off asperities, not re-sticking.
+Slips shorter than ``min_slip`` or moving the slider less than
+``min_slip_distance`` are noise (micro-slips of one contact); sticks in which
+the slider is slow for less than ``min_stick`` inside a slip are bounces off
+asperities, not re-sticking. Both rules look at time and distance, not at
+sample counts, so the events do not depend on how often the run was recorded.
 """
 
 from __future__ import annotations
@@ -34,6 +37,12 @@ SLIP_SPEED_FRACTION = 3.0
 #: Default minimum durations as fractions of the slider's period on the drive spring.
 MIN_STICK_PERIODS = 0.5
 MIN_SLIP_PERIODS = 0.1
+#: Default minimum slip distance as a fraction of the asperity base. A real slip on seed
+#: 000's scenes moves the slider 0.4-10 um; a contact letting go of one flank moves it
+#: 2-30 nm in under a nanosecond, near the 0.55 ns ``min_slip``, so whether it counted
+#: depended on where the samples fell (measured: two extra "events" at record_every=10
+#: that record_every=1 did not see, on the same trajectory).
+MIN_SLIP_BASES = 0.1
 
 
 @dataclass(frozen=True)
@@ -88,7 +97,8 @@ def _merge(runs: list[list[int]]) -> list[list[int]]:
 
 
 def stick_slip_events(result, *, stick_speed: float | None = None, slip_speed: float | None = None,
-                      min_stick: float | None = None, min_slip: float | None = None) -> list[Event]:
+                      min_stick: float | None = None, min_slip: float | None = None,
+                      min_slip_distance: float | None = None) -> list[Event]:
     """Segment the slider's motion into stick–slip events.
 
     Parameters
@@ -105,6 +115,9 @@ def stick_slip_events(result, *, stick_speed: float | None = None, slip_speed: f
         into the slip. Default: half the slider's period on the drive spring.
     min_slip : float, optional
         A slip shorter than this (s) is ignored. Default: 0.1 of that period.
+    min_slip_distance : float, optional
+        A slip moving the slider less than this (m) is ignored. Default: 0.1
+        of the asperity base.
 
     Returns
     -------
@@ -117,7 +130,8 @@ def stick_slip_events(result, *, stick_speed: float | None = None, slip_speed: f
     defaults = {"stick_speed": (stick_speed, STICK_SPEED_FRACTION, speed),
                 "slip_speed": (slip_speed, SLIP_SPEED_FRACTION, speed),
                 "min_stick": (min_stick, MIN_STICK_PERIODS, period),
-                "min_slip": (min_slip, MIN_SLIP_PERIODS, period)}
+                "min_slip": (min_slip, MIN_SLIP_PERIODS, period),
+                "min_slip_distance": (min_slip_distance, MIN_SLIP_BASES, result.scene.base)}
     values = {}
     for name, (given, fraction, scale) in defaults.items():
         if given is None:
@@ -141,10 +155,19 @@ def stick_slip_events(result, *, stick_speed: float | None = None, slip_speed: f
     state = np.where(label[idx] != 0, label[idx], 0)
     runs = _runs(state)
     edge = np.append(t, t[-1] + (t[-1] - t[-2]))  # run [a, b) lasts edge[b] - edge[a]
-    runs = _merge([[-1 if (r[0] == 1 and edge[r[2]] - edge[r[1]] < values["min_slip"]) else r[0],
-                    r[1], r[2]] for r in runs])
+
+    def noise(r):  # a slip too short in time or in distance (from the sample before it)
+        moved = x[min(r[2], len(x) - 1)] - x[max(r[1] - 1, 0)]
+        return edge[r[2]] - edge[r[1]] < values["min_slip"] or moved < values["min_slip_distance"]
+
+    runs = _merge([[-1 if (r[0] == 1 and noise(r)) else r[0], r[1], r[2]] for r in runs])
+    # A stick is judged by the time the slider is really slow in it, not by the run's length:
+    # the hysteresis holds "stick" through the dead band, so a slider swinging freely on the
+    # drive spring after a slip (no contact, v from -1.4 V to 3.4 V, measured) would otherwise
+    # log a "stick" every drive period (events 110 nm = V x period apart at 0.2-0.8 mN).
+    slow_time = np.concatenate(([0.0], np.cumsum(np.diff(edge) * (np.abs(v) < values["stick_speed"]))))
     for i, r in enumerate(runs):
-        if r[0] == -1 and i > 0 and runs[i - 1][0] == 1 and edge[r[2]] - edge[r[1]] < values["min_stick"]:
+        if r[0] == -1 and i > 0 and runs[i - 1][0] == 1 and slow_time[r[2]] - slow_time[r[1]] < values["min_stick"]:
             r[0] = 1  # a bounce inside a slip (or a stop too short to trust at the end)
     runs = _merge(runs)
 
@@ -202,7 +225,8 @@ def event_statistics(events: list[Event]) -> dict:
 
 
 def breakaway_force(result, *, stick_speed: float | None = None, slip_speed: float | None = None,
-                    min_stick: float | None = None, min_slip: float | None = None) -> float:
+                    min_stick: float | None = None, min_slip: float | None = None,
+                    min_slip_distance: float | None = None) -> float:
     """The first breakaway: drive force (N) at the first stick-to-slip transition of a
     spring-driven run.
 
@@ -218,21 +242,23 @@ def breakaway_force(result, *, stick_speed: float | None = None, slip_speed: flo
     SceneError
         The run is not spring-driven, or never breaks away (named `result`).
     """
-    return _spring_events(result, stick_speed, slip_speed, min_stick, min_slip)[0].force_peak
+    return _spring_events(result, stick_speed, slip_speed, min_stick, min_slip, min_slip_distance)[0].force_peak
 
 
-def _spring_events(result, stick_speed, slip_speed, min_stick, min_slip) -> list[Event]:
+def _spring_events(result, stick_speed, slip_speed, min_stick, min_slip, min_slip_distance) -> list[Event]:
     if not isinstance(getattr(getattr(result, "scene", None), "drive", None), SpringDrive):
         raise SceneError("`result` must come from a spring-driven run (drive=\"spring\")")
     events = stick_slip_events(result, stick_speed=stick_speed, slip_speed=slip_speed,
-                               min_stick=min_stick, min_slip=min_slip)
+                               min_stick=min_stick, min_slip=min_slip,
+                               min_slip_distance=min_slip_distance)
     if not events:
         raise SceneError("`result` has no stick-to-slip transition (the slider never broke away)")
     return events
 
 
 def peak_stick_force(result, *, stick_speed: float | None = None, slip_speed: float | None = None,
-                     min_stick: float | None = None, min_slip: float | None = None) -> float:
+                     min_stick: float | None = None, min_slip: float | None = None,
+                    min_slip_distance: float | None = None) -> float:
     """Largest drive force (N) at a stick-to-slip transition over the run: the force that
     breaks the slider loose at its worst position on the surface.
 
@@ -242,14 +268,16 @@ def peak_stick_force(result, *, stick_speed: float | None = None, slip_speed: fl
     lower asperities at once and it is the quasi-static flank law for all of
     them, n k delta tan(theta + atan mu_s). Keywords as :func:`stick_slip_events`.
     """
-    return max(e.force_peak for e in _spring_events(result, stick_speed, slip_speed, min_stick, min_slip))
+    events = _spring_events(result, stick_speed, slip_speed, min_stick, min_slip, min_slip_distance)
+    return max(e.force_peak for e in events)
 
 
 def mean_stick_force(result, *, stick_speed: float | None = None, slip_speed: float | None = None,
-                     min_stick: float | None = None, min_slip: float | None = None) -> float:
+                     min_stick: float | None = None, min_slip: float | None = None,
+                    min_slip_distance: float | None = None) -> float:
     """Mean drive force (N) at the stick-to-slip transitions of the run: the typical force
     at which the slider breaks loose over a pass. Keywords as :func:`stick_slip_events`."""
-    events = _spring_events(result, stick_speed, slip_speed, min_stick, min_slip)
+    events = _spring_events(result, stick_speed, slip_speed, min_stick, min_slip, min_slip_distance)
     return float(np.mean([e.force_peak for e in events]))
 
 

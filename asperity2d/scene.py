@@ -23,6 +23,11 @@ from .geometry import ExplicitSpacing, Profile, RandomSpacing, RegularSpacing, S
 from .shapes import Shapes, SurfaceGeometry, check_substrate
 
 TRACKS = ("free", "fixed")
+#: How far (fraction of the slider's tip depth) a slider lying on the guard floor still reaches
+#: above the lower asperities' bases (:attr:`Scene.floor`): well above the collision slop (1e-3
+#: base) and below every free slider's tips in ordinary contact (on seed 000's random spacing
+#: the deepest tip in a valley, 0.25 um plus the springs' give, stays above -0.4 um).
+FLOOR_OVERLAP = 0.1
 
 #: Seed 000's Working Model set-up (its figures 5-8 and Table 1): 45° full
 #: triangles on a 1 µm base, steel asperity mass and stiffness, lightly damped
@@ -337,6 +342,25 @@ class Scene:
     @property
     def base(self) -> float:
         return self.lower.profile.base
+
+    @property
+    def floor(self) -> float:
+        """Height of the engine's guard floor (m): the lower surface's (``travel_down`` below its
+        lowest base level), raised where needed so that a slider lying on it still reaches
+        :data:`FLOOR_OVERLAP` of its tip depth above every lower asperity's base level.
+
+        At ``travel_down`` = the asperity height a slider resting on the floor had its top
+        exactly at the base level: it slid beneath the asperities untouched (one lower asperity
+        and a free slider: the tip slid down the front flank and passed underneath at a
+        quarter of the wedge law). Raised, such a slider meets the asperity flank to flank and
+        must climb it. A profile's rigid valleys (``substrate``) are the surface between its
+        asperities and keep the lower surface's floor.
+        """
+        floor = self.lower.floor
+        if self.lower.substrate:
+            return floor
+        top_of_bases = max(self.lower.shape_set().levels)
+        return max(floor, top_of_bases - (1.0 - FLOOR_OVERLAP) * self.slider.depth)
 
     def natural_frequencies(self) -> dict[str, float]:
         """Angular natural frequencies (rad/s) of the scene's spring-mass pairs (inf where a

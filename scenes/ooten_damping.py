@@ -85,6 +85,8 @@ def analyse(setup: str, rows: list[dict]) -> tuple[dict, list[dict]]:
              "fraction_time_limit": float(np.mean([1 - r[f"passed_{reading}"] - r[f"stuck_{reading}"]
                                                    for r in rows])),
              "p_paired_wilcoxon": p}
+        e = stats.relative_effect(travel, damped)  # Hodges-Lehmann of the per-seed travel ratios
+        n.update(ratio_hl=e["ratio"], ratio_ci_low=1 + e["ci_low"], ratio_ci_high=1 + e["ci_high"])
         numbers[reading] = n
         holds = n["fraction_farther"] > 0.5 and p < ALPHA
         claims.append(claim(

@@ -9,13 +9,19 @@ the lower spring's restoring force pushes the slider on along the back flank
 once a tip is past an apex; a half triangle's vertical back face loses
 contact. Each set-up is run with static > kinetic friction (mu_s 0.3, mu_k
 0.2, the default) and with mu_s = mu_k = 0.3, which separates that back-flank
-push (geometry) from the static/kinetic friction switch. Per run:
+push (geometry) from the static/kinetic friction switch (the free slider: the
+default pair only). Per run:
 
-* critical force from rest (N): the smallest constant force that moves the
-  slider, at rest on the surface, all the way across;
+* the critical force (N) from every start: from rest on the surface (a step
+  load), from rest against the first flank (``entry``) and with the builder's
+  run-up (a momentum threshold, what figure 10's slider had);
+* the quasi-static breakaway (N): a slowly ramped force from rest;
+* figure 10 itself: the travel (m) under one constant force, 0.9 x the half
+  triangles' run-up critical force of that seed, for both profiles;
 * from one spring-driven pass: the first breakaway, the peak and mean stick
-  force, the force to keep the slider moving (work / distance from the first
-  breakaway on, N), and the contact work books
+  force (one pass: chaotic, see :mod:`asperity2d.experiments.measures`), the
+  force to keep the slider moving (work / distance from the first breakaway
+  on, N), and the contact work books
   (:class:`asperity2d.engine.energy.ContactWork`): the work of contacts
   pushing the slider on (J) against the work of those resisting it.
 
@@ -29,7 +35,7 @@ half triangles (``half_shape="full-base"``: the full base and flank angle,
 twice the height), which cannot fall through. ``--quick`` runs the first
 friction pair only.
 
-    python scenes/ooten_profiles.py [--seeds 10] [--workers 2]
+    python scenes/ooten_profiles.py [--seeds 24] [--workers 2]
 """
 
 from __future__ import annotations
@@ -40,7 +46,8 @@ import numpy as np
 
 import asperity2d as a
 from asperity2d import stats
-from asperity2d.experiments.compare import Comparison, measure_label
+from asperity2d.experiments.compare import Comparison
+from asperity2d.experiments.measures import measure_label
 from asperity2d.critical import critical_force
 from asperity2d.renderers.plots import plot_comparison, plot_positions
 from asperity2d.cli import scripting
@@ -56,29 +63,43 @@ FRICTIONS = {"mu_s > mu_k": {"mu_static": 0.3, "mu_kinetic": 0.2},
 #: triangles' are (same seed, same U), so random spacing is as irregular for both profiles
 #: (without it the half-triangle surfaces would be three times as irregular).
 HALF = {"profile": "half", "min_gap": 0.5e-6}
+#: Figure 10's force: this fraction of the half triangles' critical force with a run-up.
+TRAVEL_FACTOR = 0.9
 FULL_BASE_HALF = {"profile": "half", "half_shape": "full-base"}
 #: Per set-up: the half triangles compared with the full ones.
 HALVES = {"fixed": {"half": HALF}, "free": {"half": HALF, "half (full-base)": FULL_BASE_HALF}}
 #: Measure -> (key of the run's numbers, label with unit).
 MEASURES = {
-    "critical": ("critical_force_N", f"{measure_label('critical')} (N)"),
-    "peak-stick": ("peak_stick_force_N", f"{measure_label('peak-stick')} (N)"),
-    "mean-stick": ("mean_stick_force_N", f"{measure_label('mean-stick')} (N)"),
+    "critical": ("critical_rest_N", f"{measure_label('critical')} (N)"),
+    "critical-entry": ("critical_entry_N", "critical force from rest at the entry (N)"),
+    "critical-run-up": ("critical_run_up_N", f"{measure_label('critical-run-up')} (N)"),
+    "quasi-static-breakaway": ("quasi_static_N", f"{measure_label('quasi-static-breakaway')} (N)"),
+    "travel": ("travel_m", "travel under 0.9 x the half triangles' run-up critical force (m)"),
+    "peak-stick": ("peak_stick_force_N", "peak stick force of one pass (N)"),
+    "mean-stick": ("mean_stick_force_N", "mean stick force of one pass (N)"),
     "keep-moving": ("keep_moving_force_N", "force to keep the slider moving, work / distance (N)"),
     "first-breakaway": ("first_breakaway_N", f"{measure_label('first-breakaway')} (N)"),
 }
 
 
-def measure(setup: str, friction: str, *, size: dict, seeds: list[int], workers: int) -> dict:
+def measure(setup: str, friction: str, *, size: dict, seeds: list[int], workers: int,
+            quasi_static: bool = True) -> dict:
     """{profile: {"regular": row, "random": [row per seed]}} of one set-up and friction pair;
     a row holds the critical force and the spring pass's numbers (with contact work)."""
     base = {**size, **studies.SETUPS[setup], **FRICTIONS[friction]}
     profiles = {"full": {"profile": "full"}, **HALVES[setup]}
-    jobs = [dict(base, **shape, spacing=spacing, seed=seed) for shape in profiles.values()
-            for spacing, seed in [("regular", 0)] + [("random", s) for s in seeds]]
-    critical = map_calls(studies.critical_force_run, jobs, workers=workers)
+    cases = [("regular", 0)] + [("random", s) for s in seeds]
+    jobs = [dict(base, **shape, spacing=spacing, seed=seed) for shape in profiles.values() for spacing, seed in cases]
+    forces = map_calls(studies.measures_run, [dict(j, starts=("rest", "entry", "run-up"), passes=0,
+                                                   quasi_static=quasi_static) for j in jobs], workers=workers)
     passes = map_calls(studies.spring_pass_run, [dict(j, contact_work=True) for j in jobs], workers=workers)
-    rows = [{**c, **p, "fell_through": float(fell_through(p))} for c, p in zip(critical, passes)]
+    # figure 10: one force per case for every profile, 0.9 x the half triangles' run-up critical force
+    half_rows = forces[list(profiles).index("half") * len(cases):][:len(cases)]
+    push = [TRAVEL_FACTOR * r["critical_run_up_N"] for r in half_rows]
+    travel = map_calls(studies.travel_run, [dict(j, force=push[i % len(cases)]) for i, j in enumerate(jobs)],
+                       workers=workers)
+    rows = [{**f, **p, **{k: v for k, v in t.items() if k != "force_N"}, "travel_force_N": t["force_N"],
+             "fell_through": float(fell_through(p))} for f, p, t in zip(forces, passes, travel)]
     for row in rows:
         if row["fell_through"]:  # no longer a contact of two surfaces: measure nothing
             row.update({key: math.nan for key, _ in MEASURES.values()})
@@ -95,9 +116,10 @@ def fell_through(row: dict) -> bool:
 
 def compare_profiles(data: dict, seeds: list[int]) -> dict[str, Comparison]:
     """Per measure: every profile over the random seeds (paired by seed)."""
+    first = next(iter(data.values()))["regular"]
     return {name: Comparison(values={p: tuple(r[key] for r in d["random"]) for p, d in data.items()},
                              seeds=tuple(seeds), measure=name)
-            for name, (key, _) in MEASURES.items()}
+            for name, (key, _) in MEASURES.items() if key in first}
 
 
 def _ratio(a_value: float, b_value: float) -> float:
@@ -125,25 +147,32 @@ def claims_for(setup: str, friction: str, data: dict, comparisons: dict) -> list
     for half in HALVES[setup]:
         shape = "half triangles" + (" (full base, twice as tall)" if half != "half" else "")
         for name, (key, label) in MEASURES.items():
-            if name == "first-breakaway":
+            if name == "first-breakaway" or name not in comparisons:
                 continue  # reported, not claimed: on the fixed track the front tip entering alone
+            travel = name == "travel"  # figure 10: at one force the half triangles travel less
+            direction = "less" if travel else "greater"
             values = comparisons[name].values
             pair = {half: values[half], "full": tuple(f if math.isfinite(h) else math.nan
                                                       for f, h in zip(values["full"], values[half]))}
             numbers = Comparison(values=pair, seeds=comparisons[name].seeds, measure=name).versus(
-                half, "full", alternative="greater")
+                half, "full", alternative=direction)
+            e = stats.relative_effect(pair[half], pair["full"])
+            numbers.update(ratio_hl=e["ratio"], ratio_ci_low=1 + e["ci_low"], ratio_ci_high=1 + e["ci_high"],
+                           above=int(np.sum(np.asarray(pair[half]) > np.asarray(pair["full"]))))
             regular = {"full": data["full"]["regular"][key], "half": data[half]["regular"][key]}
             numbers["regular_half_over_full"] = _ratio(regular["half"], regular["full"])
             numbers["regular_N"] = regular
             numbers["random_half_over_full"] = _ratio(numbers["mean"], numbers["reference"])
-            verdict = claims.judge(numbers, ALPHA, direction="greater")
+            verdict = claims.judge(numbers, ALPHA, direction=direction)
+            text = (f"at one constant force full triangles travel farther than {shape} (figure 10), {friction}"
+                    if travel else f"{shape} need a larger {label.rsplit(' (', 1)[0]} than full triangles "
+                                   f"(figures 9-10), {friction}")
             out.append(claims.claim(
-                f"{shape} need a larger {label.rsplit(' (', 1)[0]} than full triangles (figures 9-10), "
-                f"{friction}", verdict, numbers,
-                f"{numbers['test']}, half vs full over random seeds, one-sided (greater): "
-                f"p = {numbers['p_wilcoxon']:.3g}; holds if p < {ALPHA} and the change is at least {100 * claims.MIN_EFFECT:g} %; {numbers['missing']} seeds "
-                f"missing (slider fell through). Regular spacing (deterministic): half / full = "
-                f"{numbers['regular_half_over_full']:.3f}", setup=setup)
+                text, verdict, numbers,
+                f"{numbers['test']}, half vs full over random seeds, one-sided ({direction}): "
+                f"p = {numbers['p_wilcoxon']:.3g}; holds if p < {ALPHA} and the change is at least "
+                f"{100 * claims.MIN_EFFECT:g} %; {numbers['missing']} seeds missing (slider fell through). Regular "
+                f"spacing (deterministic): half / full = {numbers['regular_half_over_full']:.3f}", setup=setup)
                 | {"measure": name, "friction": friction, "half": half})
     return out
 
@@ -162,9 +191,9 @@ def verdict_line(record: dict) -> str:
     n = record["numbers"]
     if not n["n"]:  # not a seed-count problem: every run was left out
         return f"[{record['setup']}] {record['claim']}: not testable, every run's slider fell through"
-    return (f"[{record['setup']}] {record['claim']}: {record['verdict']} (random x{n['random_half_over_full']:.3f}, "
-            f"{n['above']}/{n['n']} seeds above, Wilcoxon p = {n['p_wilcoxon']:.2g}; regular "
-            f"x{n['regular_half_over_full']:.3f})")
+    return (f"[{record['setup']}] {record['claim']}: {record['verdict']} (random half/full x{n['ratio_hl']:.3f} "
+            f"[{n['ratio_ci_low']:.3f}, {n['ratio_ci_high']:.3f}], {n['above']}/{n['n']} seeds above, Wilcoxon "
+            f"p = {n['p_wilcoxon']:.2g}; regular x{n['regular_half_over_full']:.3f})")
 
 
 def flank_laws(friction: str, critical: dict) -> dict:
@@ -203,7 +232,7 @@ def mechanism(setup: str, results: dict) -> dict:
                                                   "random": c["numbers"]["random_half_over_full"]}
                                    for c in res["claims"] if c["half"] == half}}
         if setup == "free":
-            entry["flank_law"] = flank_laws(friction, {p: d["regular"]["critical_force_N"] for p, d in data.items()})
+            entry["flank_law"] = flank_laws(friction, {p: d["regular"]["critical_rest_N"] for p, d in data.items()})
         out[friction] = entry
     if set(FRICTIONS) <= set(out):
         out["switch_effect"] = {}
@@ -241,13 +270,16 @@ def mechanism_lines(setup: str, mech: dict) -> list[str]:
 
 
 def figure10(size: dict, seed: int, force_fraction: float, path) -> dict:
-    """Figure 10 analogue: one constant force, full vs half triangles, from rest (fixed track,
-    random spacing seed ``seed``): ``force_fraction`` x the half-triangle slider's critical force."""
+    """Figure 10 analogue: one constant force, full vs half triangles, with the builder's run-up
+    (fixed track, random spacing seed ``seed``): ``force_fraction`` x the half-triangle
+    slider's critical force with a run-up, at that measure's step."""
+    from asperity2d.critical import measure_dt
+
     base = {**size, **studies.SETUPS["fixed"], "spacing": "random", "seed": seed, "drive": "force"}
     scenes = {"full": a.make_scene(**base), "half": a.make_scene(**base, **HALF)}
-    force = force_fraction * critical_force(scenes["half"])
-    runs = {p: studies.pushed(sc, force) for p, sc in scenes.items()}
-    plot_positions(list(runs.values()), [f"{p} triangles, {force * 1e3:.3g} mN from rest ({r.status})"
+    force = force_fraction * critical_force(scenes["half"], start="run-up")
+    runs = {p: studies.pushed(sc, force, start="run-up", dt=measure_dt(sc, "run-up")) for p, sc in scenes.items()}
+    plot_positions(list(runs.values()), [f"{p} triangles, {force * 1e3:.3g} mN with a run-up ({r.status})"
                                           for p, r in runs.items()], path)
     return {"force_N": force, "seed": seed,
             **{f"travel_{p}_m": float(r.x[-1] - r.x[0]) for p, r in runs.items()},
@@ -255,7 +287,7 @@ def figure10(size: dict, seed: int, force_fraction: float, path) -> dict:
 
 
 def main(argv=None) -> int:
-    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=10, minimum_seeds=2)
+    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=24, minimum_seeds=2)
     out = scripting.out_dir(args, __file__)
     size = studies.QUICK_SIZE if args.quick else studies.STUDY_SIZE
     seeds = list(range(args.seeds))
@@ -265,17 +297,21 @@ def main(argv=None) -> int:
     lines = []
     for setup in studies.SETUPS:  # fixed first: the seed's set-up
         results = {}
-        for friction in (list(FRICTIONS)[:1] if args.quick else FRICTIONS):
-            data = measure(setup, friction, size=size, seeds=seeds, workers=args.workers)
+        pairs = list(FRICTIONS)[:1] if args.quick or setup == "free" else list(FRICTIONS)
+        for friction in pairs:
+            data = measure(setup, friction, size=size, seeds=seeds, workers=args.workers,
+                           quasi_static=not args.quick)
             comparisons = compare_profiles(data, seeds)
             found = claims_for(setup, friction, data, comparisons)
             results[friction] = {"data": data, "comparisons": comparisons, "claims": found}
             summary["claims"] += found
             lines += [verdict_line(c) for c in found]
             tag = friction.replace(" ", "").replace(">", "gt").replace("=", "eq")
-            for name, (_, label) in MEASURES.items():
-                plot_comparison(comparisons[name], out / f"{setup}_{tag}_{name}.png",
-                                label=f"{label.replace('(N)', '(mN)')}, {setup}, {friction}")
+            for name, comparison in comparisons.items():
+                label = MEASURES[name][1]
+                unit = "µm" if label.endswith("(m)") else "mN"
+                plot_comparison(comparison, out / f"{setup}_{tag}_{name}.png", unit=unit,
+                                label=label.replace("(N)", "(mN)").replace("(m)", "(µm)") + f", {setup}, {friction}")
             summary["results"].setdefault(setup, {})[friction] = {
                 "regular": {p: d["regular"] for p, d in data.items()},
                 "random": {p: {k: stats.describe([r[k] for r in d["random"]]) for k in d["random"][0]}
@@ -291,7 +327,7 @@ def main(argv=None) -> int:
                                  "(left out: no longer two surfaces in contact)")
         summary["mechanism"][setup] = mechanism(setup, results)
         lines += mechanism_lines(setup, summary["mechanism"][setup])
-    summary["figure10"] = figure10(size, 0, 0.97, out / "positions_fixed.png")
+    summary["figure10"] = figure10(size, 0, TRAVEL_FACTOR, out / "positions_fixed.png")
     if not args.no_gif:
         result = a.simulate(a.make_scene(**HALF, **size, **studies.SETUPS["fixed"]))
         a.render(result, out / "half_fixed_spring.gif", frames=args.frames or (30 if args.quick else 100))

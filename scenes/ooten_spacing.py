@@ -2,36 +2,41 @@
 
 Three variants (seed 000's three Working Model runs): regular/regular, random
 upper on a regular lower surface ("random-upper"), random on both surfaces
-("random"). For each, over ``--seeds`` seeds (regular spacing does not depend
-on the seed and is measured once):
+("random"). Every named measure (:mod:`asperity2d.experiments.measures`) of
+every scene, over ``--seeds`` seeds (regular spacing does not depend on the
+seed and is measured once):
 
 * critical force from rest (the headline): the smallest constant force that
-  moves the slider, at rest on the surface with every tip against its flank,
-  over the whole surface -- the seed's "force required to move the top
-  surface over the bottom surface";
+  carries the slider, at rest on the surface, across -- a step load;
 * critical force with a run-up: the same force applied a tenth of a base
-  before the surface, so the slider meets the first flank with momentum;
-* from one spring-driven pass: the peak stick force over the pass (the
-  headline breakaway measure: the force that breaks the engaged slider loose
-  at its worst position), the mean stick force, and the first breakaway
-  (on the fixed track the front tip entering alone: the same for every
-  spacing by construction, reported to show it).
+  before the surface (a momentum threshold);
+* quasi-static breakaway: a slowly ramped force from rest (the barrier);
+* over an ensemble of spring-driven passes (their mean: one pass is chaotic):
+  the peak stick force (the headline breakaway measure), the mean stick force,
+  and the first breakaway (on the fixed track the front tip entering alone: the
+  same for every spacing by construction, reported to show it).
 
 Each random variant is tested against the regular value with a one-sample
 Wilcoxon signed-rank test (one-sided, "lower"); "random on both is the
 smallest" with a paired Wilcoxon test of random/random against random-upper
-(same seed). A verdict "holds" needs p < 0.01 in the claimed direction. Both
-set-ups are run: seed 000's fixed-height track (default) and the free slider
-under a normal load.
+(same seed). A verdict "holds" needs p < 0.01 in the claimed direction and a
+change of at least 1 %. Every claim states its effect as a ratio with the
+Hodges-Lehmann 95 % interval of the per-seed ratios (:func:`asperity2d.stats.relative_effect`).
 
-    python scenes/ooten_spacing.py [--seeds 20] [--workers 2]
+    python scenes/ooten_spacing.py [--seeds 24] [--workers 2]
 """
 
 from __future__ import annotations
 
+import math
+
+import numpy as np
+
 import asperity2d as a
+from asperity2d import stats
 from asperity2d.cli import scripting
-from asperity2d.experiments.compare import Comparison, measure_label
+from asperity2d.experiments.compare import Comparison
+from asperity2d.experiments.measures import measure_label
 from asperity2d.renderers.plots import plot_comparison
 from asperity2d.studies import claims
 from asperity2d.studies import ooten as studies
@@ -40,73 +45,102 @@ from asperity2d.sweep.engine import map_calls
 VARIANTS = {"regular": {"spacing": "regular"}, "random-upper": {"spacing": "random-upper"},
             "random": {"spacing": "random"}}
 ALPHA = 0.01
-#: Measures: name -> key of studies.spring_pass_run's output (pass measures) or None (compare).
-MEASURES = {"critical": None, "critical-run-up": None, "peak-stick": "peak_stick_force_N",
-            "mean-stick": "mean_stick_force_N", "first-breakaway": "first_breakaway_N"}
+#: Measures: name -> key of studies.measures_run's output.
+MEASURES = {"critical": "critical_rest_N", "critical-run-up": "critical_run_up_N",
+            "quasi-static-breakaway": "quasi_static_N", "peak-stick": "peak_stick_N",
+            "mean-stick": "mean_stick_N", "first-breakaway": "first_breakaway_N"}
 HEADLINE = ("critical", "peak-stick")
 
 
-def measure_setup(setup: str, *, size: dict, seeds: list[int], workers: int) -> dict[str, Comparison]:
-    """Every measure's :class:`Comparison` of the three variants on one set-up."""
-    base = {**size, **studies.SETUPS[setup]}
-    out = {}
-    for name in ("critical", "critical-run-up"):
-        out[name] = a.compare(name, VARIANTS, seeds, base={**base, "drive": "force"}, progress=False,
-                              workers=workers)
-    # one spring-driven pass per scene gives all three pass measures
-    jobs = [(variant, seed) for variant in VARIANTS for seed in (seeds[:1] if variant == "regular" else seeds)]
-    rows = map_calls(studies.spring_pass_run, [{**base, **VARIANTS[v], "seed": s} for v, s in jobs],
+def rows_for(setup: str, *, size: dict, seeds: list[int], workers: int, passes: int,
+             quasi_static: bool = True) -> dict:
+    """{variant: [row per seed]} of :func:`asperity2d.studies.ooten.measures_run` on one set-up;
+    the regular scene (seed-independent) is measured once and repeated."""
+    base = {**size, **studies.SETUPS[setup], "passes": passes, "quasi_static": quasi_static}
+    jobs = [(v, s) for v in VARIANTS for s in (seeds[:1] if v == "regular" else seeds)]
+    rows = map_calls(studies.measures_run, [{**base, **VARIANTS[v], "seed": s} for v, s in jobs],
                      workers=workers)
-    for name, key in MEASURES.items():
-        if key is None:
-            continue
-        values = {v: tuple(r[key] for (w, _), r in zip(jobs, rows) if w == v) for v in VARIANTS}
-        values["regular"] = values["regular"] * len(seeds)
-        out[name] = Comparison(values=values, seeds=tuple(seeds), variants=VARIANTS,
-                               base={**base, "drive": "spring"}, measure=name)
+    out = {v: [r for (w, _), r in zip(jobs, rows) if w == v] for v in VARIANTS}
+    out["regular"] = out["regular"] * len(seeds)
     return out
 
 
-def claims_for(setup: str, comparisons: dict[str, Comparison]) -> list[dict]:
-    """Seed-000 figure-11 claims for one set-up, with numbers and tests."""
+def comparisons(rows: dict, seeds: list[int], setup: str) -> dict[str, Comparison]:
+    """Per measure the rows carry: every variant over the seeds."""
+    return {name: Comparison(values={v: tuple(r[key] for r in rows[v]) for v in VARIANTS}, seeds=tuple(seeds),
+                             variants=VARIANTS, base=dict(studies.SETUPS[setup]), measure=name)
+            for name, key in MEASURES.items() if key in rows["regular"][0]}
+
+
+def with_effect(numbers: dict, values, reference) -> dict:
+    """``numbers`` plus the Hodges-Lehmann ratio and its 95 % interval (``ratio_hl``,
+    ``ratio_ci_low``, ``ratio_ci_high``) of ``values`` against ``reference`` (a value or
+    per-seed values)."""
+    e = stats.relative_effect(values, reference)
+    return {**numbers, "ratio_hl": e["ratio"], "ratio_ci_low": 1 + e["ci_low"], "ratio_ci_high": 1 + e["ci_high"],
+            "ci_level": e["level"]}
+
+
+def claims_for(setup: str, found: dict[str, Comparison]) -> list[dict]:
+    """Seed-000 figure-11 claims for one set-up, with numbers, effect sizes and tests."""
     out = []
-    for name, comparison in comparisons.items():
+    for name, comparison in found.items():
         label = measure_label(name)
+        regular = comparison.values["regular"][0]
         for variant in ("random-upper", "random"):
-            numbers = comparison.versus(variant, "regular", alternative="less")
+            numbers = with_effect(comparison.versus(variant, "regular", alternative="less"),
+                                  comparison.values[variant], regular)
             out.append(claims.claim(
                 f"random spacing ({variant}) lowers the {label}", claims.judge(numbers, ALPHA), numbers,
-                f"{numbers['test']}, one-sided (lower): p = {numbers['p_wilcoxon']:.3g}; holds if p < {ALPHA} and the change is at least {100 * claims.MIN_EFFECT:g} %",
-                setup=setup) | {"measure": name, "variant": variant})
-        both = comparison.versus("random", "random-upper", alternative="less")
+                f"{numbers['test']}, one-sided (lower): p = {numbers['p_wilcoxon']:.3g}; holds if p < {ALPHA} "
+                f"and the change is at least {100 * claims.MIN_EFFECT:g} %", setup=setup)
+                | {"measure": name, "variant": variant})
+        both = with_effect(comparison.versus("random", "random-upper", alternative="less"),
+                           comparison.values["random"], comparison.values["random-upper"])
         verdict = claims.judge(both, ALPHA)
         if verdict == claims.HOLDS and both["mean"] >= comparison.summary()["regular"]["mean"]:
             verdict = claims.FAILS  # smallest of the three, not just below random-upper
+        means = {v: s["mean"] for v, s in comparison.summary().items()}
+        both["smallest_variant"] = min(means, key=lambda v: means[v] if math.isfinite(means[v]) else math.inf)
         out.append(claims.claim(
             f"random on both surfaces needs the smallest {label} (figure 11)", verdict, both,
             f"paired Wilcoxon random/random - random-upper (same seeds), one-sided (lower): "
-            f"p = {both['p_wilcoxon']:.3g}, and below regular; holds if p < {ALPHA} and the change is at least {100 * claims.MIN_EFFECT:g} %",
-            setup=setup) | {"measure": name, "variant": "random vs random-upper"})
+            f"p = {both['p_wilcoxon']:.3g}, and below regular; holds if p < {ALPHA} and the change is at least "
+            f"{100 * claims.MIN_EFFECT:g} %", setup=setup) | {"measure": name, "variant": "random vs random-upper"})
+    return out
+
+
+def bands(rows: dict) -> dict:
+    """How many critical forces of each variant found passing non-monotone (a band)."""
+    out = {}
+    for start in ("rest", "run_up"):
+        key = f"critical_{start}_band_low_N"
+        out[start] = {v: int(sum(np.isfinite(r[key]) for r in rs)) for v, rs in rows.items()}
     return out
 
 
 def main(argv=None) -> int:
-    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=20, minimum_seeds=2)
+    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=24, minimum_seeds=2)
     out = scripting.out_dir(args, __file__)
     size = studies.QUICK_SIZE if args.quick else studies.STUDY_SIZE
+    passes = 1 if args.quick else 5  # --quick: a smoke test (one pass, no slow ramp)
     seeds = list(range(args.seeds))
-    summary = {"size": size, "seeds": args.seeds, "setups": studies.SETUPS, "alpha": ALPHA,
-               "headline_measures": HEADLINE, "results": {}, "claims": []}
+    summary = {"size": size, "seeds": args.seeds, "passes": passes, "setups": studies.SETUPS, "alpha": ALPHA,
+               "headline_measures": HEADLINE, "results": {}, "rows": {}, "bands": {}, "claims": []}
     lines = []
     for setup in studies.SETUPS:
-        comparisons = measure_setup(setup, size=size, seeds=seeds, workers=args.workers)
+        rows = rows_for(setup, size=size, seeds=seeds, workers=args.workers, passes=passes,
+                        quasi_static=not args.quick)
+        summary["rows"][setup] = rows
+        summary["bands"][setup] = bands(rows)
+        found = comparisons(rows, seeds, setup)
         summary["results"][setup] = {}
-        for name, comparison in comparisons.items():
+        for name, comparison in found.items():
             comparison.save(out / f"{setup}_{name}.json")
             plot_comparison(comparison, out / f"{setup}_{name}.png",
                             label=f"{measure_label(name)} (mN), {setup} set-up")
             summary["results"][setup][name] = comparison.summary()
-        setup_claims = claims_for(setup, comparisons)
+        setup_claims = claims_for(setup, found)
         summary["claims"] += setup_claims
         lines += [claims.verdict_line(c) for c in setup_claims if c["measure"] in HEADLINE or args.quick]
     if not args.no_gif:

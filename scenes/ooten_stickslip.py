@@ -17,7 +17,7 @@ slip carried the slider across) has no force drop and counts as missing.
 Whether the verdict changes with the drive stiffness is reported as
 ``drive_dependent``.
 
-    python scenes/ooten_stickslip.py [--seeds 10] [--workers 2]
+    python scenes/ooten_stickslip.py [--seeds 20] [--workers 2]
 """
 
 from __future__ import annotations
@@ -62,7 +62,7 @@ def plot_amplitudes(results: dict, path) -> None:
 
 
 def main(argv=None) -> int:
-    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=10, minimum_seeds=2)
+    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=20, minimum_seeds=2)
     n_seeds = args.seeds
     out = scripting.out_dir(args, __file__)
     size = studies.QUICK_SIZE if args.quick else studies.STUDY_SIZE
@@ -83,6 +83,8 @@ def main(argv=None) -> int:
             per_k[str(k)] = {"regular": {m: regular[m] for m in METRICS}, "random": described}
             amp = stats.versus_reference([r["force_drop_mean_N"] for r in randoms],
                                            regular["force_drop_mean_N"], alternative="less")
+            e = stats.relative_effect([r["force_drop_mean_N"] for r in randoms], regular["force_drop_mean_N"])
+            amp.update(ratio_hl=e["ratio"], ratio_ci_low=1 + e["ci_low"], ratio_ci_high=1 + e["ci_high"])
             verdict = claims.judge(amp, ALPHA) if math.isfinite(regular["force_drop_mean_N"]) else claims.FAILS
             verdicts[str(k)] = verdict
             numbers = {"drive_stiffness_N_per_m": k, "force_drop": amp,

@@ -75,7 +75,8 @@ def test_short_noise_spike_is_ignored_with_min_slip():
     v[spike] = 10 * result.scene.drive.velocity
     spiky = dataclasses.replace(result, v=v)
     assert len(stick_slip_events(spiky)) == 3
-    assert len(stick_slip_events(spiky, min_slip=0.0, min_stick=0.0)) == 4
+    assert len(stick_slip_events(spiky, min_slip=0.0, min_stick=0.0)) == 3  # it moves 0.01 base
+    assert len(stick_slip_events(spiky, min_slip=0.0, min_stick=0.0, min_slip_distance=0.0)) == 4
 
 
 def test_unfinished_last_slip_is_marked_incomplete():
@@ -161,3 +162,136 @@ def test_friction_traces(real_run):
     assert tr["bin_count"].sum() == moving.sum()
     total = np.sum(tr["friction_mean"] * tr["bin_count"])
     assert total == pytest.approx(real_run.friction_force[moving].sum(), rel=1e-9)
+
+
+# -- series built sample by sample (what the mutation run found unpinned) -------------------------
+
+def series(v, *, dt_over_base=1e-3, preload=0.0):
+    """A spring-driven series with the slider velocity ``v`` (multiples of V) given sample by
+    sample: x integrates v, the drive force is k (V t - x) + preload, so the force peaks
+    exactly where v crosses V (computed here, independently of the detector)."""
+    base, _ = synthetic_stick_slip(n_events=1)
+    scene = base.scene
+    V, k = scene.drive.velocity, scene.drive.stiffness
+    dt = dt_over_base * scene.base / V
+    v = np.asarray(v, dtype=float) * V
+    t = dt * np.arange(len(v))
+    x = np.concatenate(([0.0], np.cumsum(v[1:] * dt)))
+    n = len(t)
+    zeros, lower = np.zeros(n), np.zeros((scene.lower.count, n))
+    return a.Result(t=t, x=x, v=v, y=zeros, vy=zeros, drive_x=V * t, drive_force=k * (V * t - x) + preload,
+                    normal_force=zeros, friction_force=zeros, tangential_force=zeros, contact_count=zeros,
+                    lower_dx=lower, lower_dy=lower, lower_contact=lower > 0, scene=scene,
+                    meta={"dt": dt, "record_every": 1})
+
+
+def test_the_onset_is_where_the_slider_overtakes_the_drive_not_where_it_turns_fast():
+    """The slider leaves the stick gradually: v rises by 0.25 V per sample, so the drive force
+    peaks at the sample where v crosses V, eight samples before v exceeds 3 V (the slip
+    threshold). The detector must search back to it."""
+    stick = [0.0] * 200
+    ramp = list(np.arange(0.25, 40.0, 0.25))  # 0.25 V, 0.5 V, ... up to 39.75 V
+    v = stick + ramp + [40.0] * 40 + list(np.linspace(40.0, 0.0, 20)) + [0.0] * 300
+    result = series(v)
+    events = stick_slip_events(result)
+    assert len(events) == 1
+    crossing = len(stick) + int(np.argmax(np.array(ramp) >= 1.0))  # first sample at >= V
+    top = result.drive_force[: len(stick) + len(ramp)].max()  # the force's top, by brute force
+    # at v = V exactly the force is flat for one sample: either end of the plateau is the top
+    assert sample_of(result, events[0].t_slip) in (crossing - 1, crossing)
+    assert events[0].force_peak == pytest.approx(top, rel=1e-12)
+    fast = len(stick) + int(np.argmax(np.array(ramp) > 3.0))
+    assert fast - crossing >= 7
+
+
+def test_a_free_swing_on_the_drive_spring_is_not_a_stick():
+    """After a slip the slider swings freely on the drive spring, v = V (1 + 2.4 sin wt):
+    from -1.4 V to 3.4 V, below 0.5 V for about 15 % of each period, never at rest. The
+    hysteresis holds "stick" through the dead band for 70 % of a period (more than
+    min_stick, half a period): that is not a stick, and one slip it remains."""
+    base, _ = synthetic_stick_slip(n_events=1)
+    scene = base.scene
+    period = 2 * math.pi * math.sqrt(scene.slider.mass / scene.drive.stiffness)
+    V = scene.drive.velocity
+    dt_over_base = period / 200 * V / scene.base  # 200 samples per drive period
+    swing = 1.0 + 2.4 * np.sin(2 * math.pi * np.arange(1000) / 200)
+    v = [0.0] * 400 + list(np.linspace(0.0, 40.0, 10)) + [40.0] * 30 + list(swing) + [0.0] * 400
+    events = stick_slip_events(series(v, dt_over_base=dt_over_base))
+    assert len(events) == 1 and events[0].complete
+    slow = np.abs(swing) < 0.5
+    assert 0.1 < slow.mean() < 0.2  # the premise: the swing is rarely slow
+
+
+def test_a_micro_slip_is_not_a_slip_however_the_run_was_sampled():
+    """A contact letting go of one flank: v jumps to 5 V for 4 samples (0.02 base moved) in
+    the middle of a stick. Not a slip, at every sampling of the same motion."""
+    v = [0.0] * 300 + [5.0] * 4 + [0.0] * 300 + list(np.linspace(0.0, 40.0, 10)) + [40.0] * 40 + [0.0] * 400
+    fine = series(v, dt_over_base=1e-3)
+    events = stick_slip_events(fine, min_slip=0.0)
+    assert len(events) == 1 and sample_of(fine, events[0].t_slip) > 600
+    for every in (2, 3, 10):
+        coarse = dataclasses.replace(fine, **{n: getattr(fine, n)[::every] for n in
+                                              ("t", "x", "v", "drive_x", "drive_force")})
+        assert len(stick_slip_events(coarse, min_slip=0.0)) == 1
+    # with no distance rule the micro-slip counts (the rule is what removes it)
+    assert len(stick_slip_events(fine, min_slip=0.0, min_slip_distance=0.0)) == 2
+
+
+def test_a_short_stop_at_the_end_of_the_run_leaves_the_slip_unfinished():
+    """The run ends 10 samples into a stop (less than min_stick): the last slip is reported
+    incomplete, ending on the last sample."""
+    v = [0.0] * 300 + list(np.linspace(0.0, 40.0, 10)) + [40.0] * 40 + [0.0] * 10
+    result = series(v)
+    period = 2 * math.pi * math.sqrt(result.scene.slider.mass / result.scene.drive.stiffness)
+    assert 10 * result.meta["dt"] < 0.5 * period  # the premise: shorter than min_stick
+    events = stick_slip_events(result)
+    assert len(events) == 1 and not events[0].complete
+    assert events[0].t_end == result.t[-1]
+    assert events[0].slip_distance == pytest.approx(result.x[-1] - np.interp(events[0].t_slip, result.t, result.x))
+    longer = series(v[:-10] + [0.0] * 400)  # a stop that lasts: complete
+    assert stick_slip_events(longer)[0].complete
+
+
+def test_keywords_reach_the_detector_in_every_force_measure():
+    result, truth = synthetic_stick_slip(n_events=4, seed=11)
+    v = result.v.copy()
+    v[truth["slip_index"][1] - 40] = 10 * result.scene.drive.velocity  # a one-sample spike mid-stick
+    spiky = dataclasses.replace(result, v=v)
+    loose = {"min_slip": 0.0, "min_stick": 0.0, "min_slip_distance": 0.0}
+    events = stick_slip_events(spiky, **loose)
+    assert len(events) == 5 and len(stick_slip_events(spiky)) == 4
+    forces = [e.force_peak for e in events]
+    assert a.mean_stick_force(spiky, **loose) == pytest.approx(np.mean(forces))
+    assert a.mean_stick_force(spiky) == pytest.approx(np.mean([e.force_peak for e in stick_slip_events(spiky)]))
+    assert a.mean_stick_force(spiky, **loose) != a.mean_stick_force(spiky)
+    assert a.peak_stick_force(spiky, **loose) == max(forces)
+    assert breakaway_force(spiky, **loose) == forces[0]
+    strict = {"stick_speed": 0.5 * result.scene.drive.velocity, "slip_speed": 100 * result.scene.drive.velocity}
+    with pytest.raises(a.SceneError, match="`result` has no stick-to-slip transition"):
+        a.mean_stick_force(spiky, **strict)  # 40 V never exceeds 100 V: no slip at all
+    with pytest.raises(a.SceneError, match="`result` has no stick-to-slip"):
+        a.peak_stick_force(spiky, **strict)
+
+
+def test_friction_velocity_bins_by_hand():
+    """Velocities 1..100 (log-spaced, 5 bins) with friction 2 v: bin edges are the geometric
+    sequence from 1 to 100, centres their geometric means, means the bin averages."""
+    v = np.geomspace(1.0, 100.0, 51)
+    base = series(np.zeros(51))
+    result = dataclasses.replace(base, v=v, friction_force=2.0 * v)
+    tr = friction_traces(result, bins=5, dynamic_range=1e3)
+    edges = np.geomspace(1.0, 100.0 * (1 + 1e-12), 6)
+    assert np.allclose(tr["velocity_centers"], np.sqrt(edges[:-1] * edges[1:]), rtol=1e-12)
+    which = np.minimum(np.searchsorted(edges, v, side="right") - 1, 4)
+    for b in range(5):
+        assert tr["bin_count"][b] == np.sum(which == b)
+        assert tr["friction_mean"][b] == pytest.approx(np.mean(2.0 * v[which == b]), rel=1e-12)
+    # the dynamic range cuts the slow end: with 10x only v > 10 are binned
+    cut = friction_traces(result, bins=5, dynamic_range=10.0)
+    assert cut["bin_count"].sum() == np.sum(v > 10.0)
+    with pytest.raises(a.SceneError, match="`dynamic_range` must be > 1"):
+        friction_traces(result, dynamic_range=1.0)
+    with pytest.raises(a.SceneError, match="`bins` must be >= 1"):
+        friction_traces(result, bins=0)
+    still = friction_traces(dataclasses.replace(base, v=np.zeros(51)), bins=5)
+    assert len(still["velocity_centers"]) == len(still["friction_mean"]) == len(still["bin_count"]) == 0

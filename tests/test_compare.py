@@ -122,6 +122,6 @@ def test_bad_files_and_shapes(tmp_path):
 
 def test_the_command_line_offers_exactly_the_standard_measures():
     from asperity2d.cli.main import COMPARE_MEASURES
-    from asperity2d.experiments.compare import MEASURES
+    from asperity2d.experiments.measures import MEASURES
 
     assert COMPARE_MEASURES == tuple(MEASURES)

@@ -88,6 +88,61 @@ def test_flat_block_breaks_away_at_mu_static_and_slides_at_mu_kinetic():
     assert np.median(result.friction_force[sliding]) == pytest.approx(0.3 * load, rel=0.01)
 
 
+def test_contiguous_flat_blocks_let_the_slider_slide_at_mu_kinetic():
+    """Eight flat blocks side by side (pitch = width), one flat block sliding on them under
+    N = 10 uN: the loaded block sits N / k = 0.27 nm below the next one. With square corners the
+    slider met that step face-on and jammed (the drive force climbed to 47 mu_s N); with
+    rounded edges it crosses every block: it breaks away at mu_s N and slides at mu_k N (median
+    over the sliding samples, within 1 %), the brief impacts at the block edges (above mu_s N
+    in under 1 % of them) aside."""
+    load = 1e-5
+    scene = a.make_scene(profile="flat", height=0.25e-6, lower_count=8, upper_count=1, pitch=1e-6,
+                         track="free", mu_static=0.4, mu_kinetic=0.3, normal_load=load, drive_velocity=5.0)
+    assert load / scene.lower.stiffness[0] == pytest.approx(0.27e-9, rel=0.01)
+    result = a.simulate(scene, record_every=1)
+    assert result.status == "passed" and result.x[-1] - result.x[0] > 6 * BASE
+    moved = result.x - result.x[0]
+    before = moved < 1e-5 * BASE
+    assert result.friction_force[before].max() == pytest.approx(0.4 * load, rel=0.01)
+    sliding = result.v > 0.5 * scene.drive.velocity
+    assert sliding.sum() > 1000
+    assert np.median(result.friction_force[sliding]) == pytest.approx(0.3 * load, rel=0.01)
+    assert np.mean(result.friction_force[sliding] > 1.02 * 0.4 * load) < 0.01
+    assert np.median(result.normal_force) == pytest.approx(load, rel=0.01)
+
+
+def test_a_free_slider_never_passes_beneath_the_lower_surface():
+    """One lower asperity, one tip, a free slider under 10 mN: the tip slides down the front
+    flank onto the guard floor. The floor used to lie exactly one tip depth below the asperity's
+    base, so the slider slid underneath it at ~2 mN (a fifth of the wedge law). Now it lies a
+    tenth of the depth higher: the slider must climb, and the critical force with a run-up is
+    the static wedge law L tan(45 deg + atan mu_s) (within 2 %, the quasi-static bound here)."""
+    scene = a.make_scene(track="free", lower_count=1, upper_count=1, drive="force")
+    load, depth = scene.slider.normal_load, scene.slider.depth
+    assert scene.floor == pytest.approx(0.0 - 0.9 * depth, rel=1e-12)
+    assert scene.lower.floor == pytest.approx(-depth)  # the tracks' bottom, below the new floor
+    wedge = load * math.tan(math.radians(45.0) + math.atan(scene.contact.mu_static))
+    assert a.critical_force(scene, start="run-up") == pytest.approx(wedge, rel=0.02)
+    rest = a.critical_force(scene)
+    assert rest > 0.5 * load * math.tan(math.radians(45.0) + math.atan(scene.contact.mu_kinetic))
+    # in a passing run the slider's top (its datum) stays above the asperity's base whenever
+    # the two overlap in x
+    result = a.simulate(scene.replace(drive=a.ConstantForce(force=1.1 * wedge)))
+    assert result.status == "passed"
+    tip_x = result.x + scene.slider.tips()[0]  # the slider's x is its rear (only) tip's
+    overlap = np.abs(tip_x - scene.lower.tips()[0]) < BASE
+    assert overlap.sum() > 10
+    assert np.all(result.y[overlap] > result.lower_dy[0, overlap] + 0.05 * depth)
+
+
+def test_the_guard_floor_stays_where_it_was_when_it_is_deep_enough():
+    """Taller upper tips (1 um on 0.5 um asperities) reach the base level from the old floor
+    already: nothing to raise. A profile's own valleys keep their floor."""
+    scene = a.make_scene(track="free", upper_profile="half", half_shape="full-base")
+    assert scene.slider.depth == pytest.approx(2 * scene.lower.profile.height)
+    assert scene.floor == scene.lower.floor
+
+
 @pytest.mark.parametrize("force_ratio, slip_distance, moves", [
     (2.2, None, False),  # between the kinetic (1.857) and static (2.333) flank thresholds
     (2.2, 0.0, True),  # switching on instantaneous slip speed alone: micro-slip -> mu_k

@@ -76,3 +76,146 @@ def test_a_change_below_the_models_resolution_is_no_effect():
     assert tiny["p_wilcoxon"] < 0.01 and clear["p_wilcoxon"] < 0.01
     assert judge(tiny, 0.01, direction="greater") == FAILS
     assert judge(clear, 0.01, direction="greater") == HOLDS
+
+
+# -- what the mutation run found unpinned ---------------------------------------------------------
+
+def test_finite_returns_floats_whatever_it_is_given():
+    assert stats.finite([1, 2, 3]).dtype == np.float64
+    assert list(stats.finite(["1.5", "2", "nan", "inf"])) == [1.5, 2.0]
+    assert list(stats.finite([[1.0, math.nan], [3.0, 4.0]])) == [1.0, 3.0, 4.0]  # flattened
+
+
+def test_the_same_number_means_within_one_part_in_a_trillion():
+    """SAME_RTOL is relative to the values: 1e-13 apart is the same number, 1e-11 apart is not
+    (a tolerance divided by |x| instead, at x ~ 6e-3 N, would be 160 times looser; at 1e-6 m,
+    a million times)."""
+    for ref in (6.3e-3, 1e-6, 25.0):
+        assert stats.difference(ref * (1 + 1e-13), ref) == 0.0
+        assert stats.difference(ref * (1 + 1e-11), ref) == pytest.approx(ref * 1e-11, rel=1e-3)
+        assert stats.difference(ref * (1 - 1e-11), ref) < 0  # the sign survives: a - b, not a + b
+    assert list(stats.difference([3, 5], [1, 2])) == [2.0, 3.0]  # ints in, float differences out
+    assert stats.difference(["2.5"], ["1"])[0] == 1.5
+
+
+def test_describe_fields_and_edges():
+    d = stats.describe([2.0, 4.0])
+    assert set(d) == {"n", "missing", "mean", "std", "median", "ci_low", "ci_high"}
+    t975_1 = 12.706204736174707  # Student t, 97.5 %, 1 degree of freedom
+    assert (d["ci_low"], d["ci_high"]) == (pytest.approx(3 - t975_1), pytest.approx(3 + t975_1))
+    empty = stats.describe([math.nan])
+    assert empty["n"] == 0 and empty["missing"] == 1
+    assert all(math.isnan(empty[k]) for k in ("mean", "std", "median", "ci_low", "ci_high"))
+    one = stats.describe([5.0])
+    assert one["mean"] == one["median"] == 5.0 and math.isnan(one["std"]) and math.isnan(one["ci_high"])
+    # spread at rounding level: the interval is the value itself, on both sides
+    flat = stats.describe([1.0, 1.0 + 1e-14, 1.0 - 1e-14])
+    assert flat["ci_low"] == flat["ci_high"] == flat["mean"]
+    # a real spread of 1e-10 relative is an interval (a rounding guard of SAME_RTOL / max|x|
+    # would take 1e-10 at x = 1e-3 for no spread)
+    small = stats.describe([1e-3, 1e-3 * (1 + 1e-10), 1e-3 * (1 + 2e-10)])
+    assert small["ci_low"] < small["mean"] < small["ci_high"]
+    for level in (0.0, 1.0, -0.5):
+        with pytest.raises(a.SceneError, match="`level` must be in"):
+            stats.describe([1.0, 2.0], level=level)
+    # level reaches the interval: 90 % is narrower than 95 %
+    wide, narrow = stats.describe([1.0, 2.0, 4.0]), stats.describe([1.0, 2.0, 4.0], level=0.9)
+    assert wide["ci_low"] < narrow["ci_low"] < narrow["ci_high"] < wide["ci_high"]
+
+
+def test_mann_whitney_needs_both_samples():
+    assert math.isnan(stats.mann_whitney([1.0, 2.0], []))
+    assert math.isnan(stats.mann_whitney([], []))
+
+
+def test_wilcoxon_messages_and_types():
+    with pytest.raises(a.SceneError, match="`alternative` must be one of"):
+        stats.wilcoxon([1.0], reference=0.0, alternative="sideways")
+    with pytest.raises(a.SceneError, match=r"give `b` \(paired samples\) or `reference` \(one sample\), not both"):
+        stats.wilcoxon([1.0])
+    with pytest.raises(a.SceneError, match="`a` and `b` must pair up, got 2 and 3 values"):
+        stats.wilcoxon([1.0, 2.0], [1.0, 2.0, 3.0])
+    # strings and ints are read as floats, paired or not
+    assert stats.wilcoxon(["1.1", "1.2", "1.3"], reference=1) == stats.wilcoxon([1.1, 1.2, 1.3], reference=1.0)
+    assert stats.wilcoxon([2, 3, 4], ["1", "1", "1"]) == stats.wilcoxon([2.0, 3.0, 4.0], [1.0, 1.0, 1.0])
+    assert math.isnan(stats.wilcoxon([math.nan], reference=1.0))
+
+
+def test_versus_reference_every_field_by_hand():
+    values = [0.8, 0.9, 1.0, 1.3, math.nan]
+    v = stats.versus_reference(values, 1.0, level=0.9)
+    assert v["reference"] == 1.0 and v["difference"] == pytest.approx(0.0)
+    v = stats.versus_reference([0.8, 0.9, 1.0, 0.7, 1.1], 1.0, level=0.9)
+    mean = np.mean([0.8, 0.9, 1.0, 0.7, 1.1])
+    assert v["difference"] == pytest.approx(mean - 1.0) and v["relative_difference"] == pytest.approx(mean - 1.0)
+    assert (v["below"], v["above"]) == (3, 1)  # 1.0 itself is neither
+    assert v["ci_high"] < stats.describe([0.8, 0.9, 1.0, 0.7, 1.1])["ci_high"]  # level reached describe
+    # one-sided "less" and the two-sided test, against scipy on the non-zero differences
+    d = np.array([-0.2, -0.1, -0.3, 0.1])
+    assert v["p_wilcoxon"] == pytest.approx(sp.wilcoxon(d, alternative="less").pvalue)
+    assert v["p_wilcoxon_two_sided"] == pytest.approx(sp.wilcoxon(d).pvalue)
+    assert v["p_wilcoxon_two_sided"] != v["p_wilcoxon"]
+    assert stats.versus_reference([2.0, 4.0], 2.0)["relative_difference"] == pytest.approx(0.5)
+    assert math.isnan(stats.versus_reference([1.0, 2.0], 0.0)["relative_difference"])
+
+
+def test_above_and_below_skip_values_equal_to_the_reference_up_to_rounding():
+    ref = 6.332050719200081e-3
+    near = [ref * (1 + 4e-13), ref * (1 - 4e-13)]  # distinct floats, within SAME_RTOL
+    assert len({*near, ref}) == 3
+    v = stats.versus_reference(near + [ref * 1.01, ref * 0.99, ref * 0.98], ref)
+    assert (v["below"], v["above"]) == (2, 1)
+
+
+def test_effect_size_is_undefined_without_spread():
+    assert math.isnan(stats.versus_reference([2.0, 2.0, 2.0], 1.0)["effect_size_d"])
+    assert math.isnan(stats.versus_reference([2.0], 1.0)["effect_size_d"])
+    d = stats.versus_reference([2.0, 4.0], 1.0)["effect_size_d"]
+    assert d == pytest.approx(2.0 / math.sqrt(2.0))
+
+
+# -- Hodges-Lehmann ----------------------------------------------------------------------------
+
+def test_hodges_lehmann_estimate_by_hand():
+    # Walsh averages of 1, 2, 9: 1, 1.5, 2, 5, 5.5, 9 -> median 3.5 (the mean is 4, the median 2)
+    assert stats.hodges_lehmann([1.0, 2.0, 9.0])["estimate"] == 3.5
+    assert stats.hodges_lehmann([1.0, math.nan, 2.0, 9.0])["n"] == 3
+    assert math.isnan(stats.hodges_lehmann([])["estimate"])
+
+
+@pytest.mark.parametrize("n, seed", [(8, 0), (15, 1), (24, 2)])
+def test_hodges_lehmann_interval_inverts_scipys_exact_wilcoxon_test(n, seed):
+    """Independent check: just outside the interval scipy's exact two-sided signed-rank test
+    rejects at 5 %, just inside it does not."""
+    x = np.random.default_rng(seed).normal(0.3, 1.0, n)
+    h = stats.hodges_lehmann(x)
+    eps = 1e-9
+    for edge, sign in ((h["ci_low"], -1), (h["ci_high"], +1)):
+        assert sp.wilcoxon(x - (edge + sign * eps), method="exact").pvalue < 0.05
+        assert sp.wilcoxon(x - (edge - sign * eps), method="exact").pvalue >= 0.05
+    assert h["ci_low"] < h["estimate"] < h["ci_high"] and 0.95 <= h["level"] < 0.97
+
+
+def test_hodges_lehmann_small_samples_and_the_normal_branch():
+    # 5 values: the widest interval (min, max) has coverage 1 - 2/32 = 0.9375 < 0.95: none
+    assert math.isnan(stats.hodges_lehmann([1.0, 2.0, 3.0, 4.0, 5.0])["ci_low"])
+    six = stats.hodges_lehmann([1.0, 2.0, 3.0, 4.0, 5.0, 6.0])  # 1 - 2/64 = 0.96875
+    assert (six["ci_low"], six["ci_high"], six["level"]) == (1.0, 6.0, 1 - 2 / 64)
+    x = np.random.default_rng(3).normal(0.0, 1.0, 80)  # normal approximation; close to exact
+    h = stats.hodges_lehmann(x)
+    lo = sp.wilcoxon(x - h["ci_low"] + 1e-9).pvalue
+    assert 0.03 < lo < 0.07 and h["ci_low"] < h["estimate"] < h["ci_high"]
+    with pytest.raises(a.SceneError, match="`level`"):
+        stats.hodges_lehmann([1.0, 2.0], level=1.0)
+
+
+def test_relative_effect_against_a_value_and_paired():
+    e = stats.relative_effect([0.5, 0.6, 0.4, 0.55, 0.45, 0.5], 1.0)
+    assert e["estimate"] == pytest.approx(-0.5) and e["ratio"] == pytest.approx(0.5)
+    assert e["ci_low"] < -0.5 < e["ci_high"] < 0
+    paired = stats.relative_effect([2.0, 4.0, 6.0, 8.0, 10.0, 12.0], [1.0, 2.0, 3.0, 4.0, 5.0, 6.0])
+    assert paired["estimate"] == 1.0 and paired["ci_low"] == paired["ci_high"] == 1.0
+    with pytest.raises(a.SceneError, match="`values` and `reference` must pair up"):
+        stats.relative_effect([1.0, 2.0], [1.0])
+    with pytest.raises(a.SceneError, match="`reference`"):
+        stats.relative_effect([1.0, 2.0])

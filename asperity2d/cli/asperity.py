@@ -194,7 +194,8 @@ def critical(args) -> int:
 
     bracket = critical_force_bracket(scene, rel_tol=args.rel_tol)
     summary = {"critical_force_N": bracket.value, "stops_N": bracket.stops,
-               "passes_N": bracket.passes, "runs": bracket.runs}
+               "passes_N": bracket.passes, "runs": bracket.runs, "monotone": bracket.monotone,
+               "band_N": list(bracket.band) if bracket.band else None}
     _emit(args, summary, [f"{k}: {v}" for k, v in summary.items()])
     return 0
 
@@ -228,7 +229,8 @@ def compare(args) -> int:
     else:
         variants = {name: {"spacing": name} for name in args.variants.split(",")}
         base = _parse_set(args.set)
-        base.setdefault("drive", "force" if args.measure.startswith("critical") else "spring")
+        force = args.measure.startswith("critical") or args.measure in ("quasi-static-breakaway", "travel")
+        base.setdefault("drive", "force" if force else "spring")
         comparison = run_compare(args.measure, variants, range(args.seeds), base=base, progress=not args.json,
                                  workers=args.workers, scheduler=args.scheduler)
     if save:

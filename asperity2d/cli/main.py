@@ -45,9 +45,10 @@ def _json_flag(p) -> None:
     p.add_argument("--json", action="store_true", help="print one JSON object")
 
 
-#: The names of asperity2d.experiments.compare.MEASURES (kept here so --help imports nothing; a test checks
-#: they agree).
-COMPARE_MEASURES = ("critical", "critical-run-up", "first-breakaway", "peak-stick", "mean-stick")
+#: The names of asperity2d.experiments.measures.MEASURES (kept here so --help imports nothing; a test
+#: checks they agree).
+COMPARE_MEASURES = ("critical", "critical-run-up", "quasi-static-breakaway", "first-breakaway", "peak-stick",
+                    "mean-stick", "travel")
 
 
 def build_parser() -> Parser:
@@ -87,15 +88,17 @@ def build_parser() -> Parser:
 
     p = sub.add_parser("critical", help="critical constant drive force of a TOML scene")
     p.add_argument("scene", help="TOML scene file")
-    p.add_argument("--rel-tol", type=positive_float, default=0.01, help="bracket width (default 0.01)")
+    p.add_argument("--rel-tol", type=positive_float, default=0.0025, help="bracket width (default 0.0025)")
     _json_flag(p)
     p.set_defaults(handler=asperity.critical)
 
     p = sub.add_parser("compare", help="compare spacings over seeds (critical force, stick forces)")
     p.add_argument("--measure", choices=COMPARE_MEASURES, default="critical",
-                   help="critical: force to move the slider from rest on the surface (default); "
-                        "critical-run-up; peak-stick / mean-stick / first-breakaway: stick forces "
-                        "of a spring-driven pass")
+                   help="critical: constant force that moves the slider across from rest on the "
+                        "surface, a step load (default); critical-run-up; quasi-static-breakaway: "
+                        "a slowly ramped force; first-breakaway / peak-stick / mean-stick: stick "
+                        "forces of spring-driven passes; travel: distance under the scene's "
+                        "drive_force")
     p.add_argument("--variants", default="regular,random", help="comma-separated spacings")
     p.add_argument("--seeds", type=positive_int, default=20)
     p.add_argument("--workers", type=positive_int, default=1)

@@ -287,9 +287,9 @@ def _reach(lo: float, hi: float, *xs: float) -> tuple[float, float]:
 def _build_floor(space, scene, u: Units, x_lower, friction: float, extent: tuple[float, float]) -> None:
     # A guard at the bottom of the lower tracks: upper tips that sink into
     # wide gaps (or half triangles that would fall through) land on it. It
-    # is deep enough never to carry load in ordinary contact: travel_down
-    # below the lowest base level.
-    y = scene.lower.floor / u.length
+    # is deep enough never to carry load in ordinary contact, and high enough
+    # that a slider on it cannot pass beneath a lower asperity (Scene.floor).
+    y = scene.floor / u.length
     lo, hi = _reach(float(x_lower[0]) - 1e6, 1e6 - float(x_lower[0]), *extent)
     floor = pymunk.Segment(space.static_body, (lo, y), (hi, y), 0.0)
     segments = [floor]

@@ -10,7 +10,8 @@ triangles, damped against undamped) as a study::
 
 Each scene is ``make_scene(**base, **variant, seed=seed)``; ``measure(scene)``
 returns a float (NaN is allowed and ignored by the statistics). ``measure`` is
-a callable or the name of one of :data:`MEASURES`. The runs go through the
+a callable or the name of one of the named measures
+(:data:`asperity2d.experiments.measures.MEASURES`). The runs go through the
 ensemble engine (:func:`asperity2d.sweep.engine.run_calls`: in-process, a
 local process pool, or a Dask cluster, one failure contract), like
 :func:`asperity2d.sweep.run_study`; a run that raises raises here, with a note
@@ -32,77 +33,17 @@ from typing import Callable, Iterable
 
 import numpy as np
 
-from .. import analysis, stats
+from .. import stats
 from .._io import FileError, read_text, write_json
 from .._validate import check_int, show
 from ..builders import make_scene
-from ..critical import critical_force
 from ..errors import SceneError
-from ..scene import Scene, SpringDrive
-from ..run import simulate
+from ..scene import Scene
 from ..sweep.engine import run_calls
 from ..sweep.progress import Progress
+from .measures import MEASURES, measure_label  # noqa: F401  (the named measures live there)
 
 FORMAT = "asperity2d.comparison/1"
-
-
-# -- the standard measures (module level: worker processes import them) --------------------------
-def critical_force_rest(scene: Scene) -> float:
-    """Critical constant force (N) from rest on the surface (:func:`asperity2d.critical_force`)."""
-    return critical_force(scene)
-
-
-def critical_force_run_up(scene: Scene) -> float:
-    """Critical constant force (N) with the builder's run-up (``start="run-up"``)."""
-    return critical_force(scene, start="run-up")
-
-
-def spring_pass(scene: Scene):
-    """One spring-driven pass of ``scene`` (its drive made a spring if it was a constant force)."""
-    if not isinstance(scene.drive, SpringDrive):
-        scene = scene.replace(drive=SpringDrive())
-    return simulate(scene)
-
-
-def _or_nan(fn, result) -> float:
-    try:
-        return float(fn(result))
-    except SceneError:  # no stick-to-slip transition in the pass
-        return math.nan
-
-
-def first_breakaway(scene: Scene) -> float:
-    """Drive force (N) at the first stick-to-slip transition of a spring-driven pass."""
-    return _or_nan(analysis.breakaway_force, spring_pass(scene))
-
-
-def peak_stick_force(scene: Scene) -> float:
-    """Largest drive force (N) at a stick-to-slip transition over a spring-driven pass."""
-    return _or_nan(analysis.peak_stick_force, spring_pass(scene))
-
-
-def mean_stick_force(scene: Scene) -> float:
-    """Mean drive force (N) at the stick-to-slip transitions of a spring-driven pass."""
-    return _or_nan(analysis.mean_stick_force, spring_pass(scene))
-
-
-#: Named measures: the CLI's ``--measure`` and ``compare(measure="...")``; each with its
-#: label for plots and verdicts.
-MEASURES = {
-    "critical": (critical_force_rest, "critical force from rest"),
-    "critical-run-up": (critical_force_run_up, "critical force with a run-up"),
-    "first-breakaway": (first_breakaway, "first breakaway force"),
-    "peak-stick": (peak_stick_force, "peak stick force over a pass"),
-    "mean-stick": (mean_stick_force, "mean stick force over a pass"),
-}
-
-
-def measure_label(name: str) -> str:
-    """A plain-language label of a measure's name (the name itself if it is not standard)."""
-    for key, (fn, label) in MEASURES.items():
-        if name in (key, fn.__name__):
-            return label
-    return name.replace("_", " ")
 
 
 def _evaluate(measure: Callable, scene: Scene, where: str) -> float:

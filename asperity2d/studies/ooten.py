@@ -18,9 +18,9 @@ import numpy as np
 
 from ..analysis import event_statistics, stick_slip_events
 from ..builders import make_scene
-from ..critical import critical_force, settled_run
+from ..critical import critical_force, critical_force_bracket, settled_run
 from ..scene import ConstantForce
-from ..run import default_duration, default_stops, simulate
+from ..run import default_dt, default_duration, default_stops, simulate
 
 #: Scene size of the seed-000 studies (lower / upper asperities) and the quick (test) size.
 STUDY_SIZE = {"lower_count": 10, "upper_count": 3}
@@ -40,13 +40,60 @@ def critical_force_run(*, seed: int = 0, start: str = "rest", **params) -> dict:
     return {"critical_force_N": critical_force(scene, start=start)}
 
 
-def pushed(scene, force: float, *, start: str = "rest"):
+def measures_run(*, seed: int = 0, passes: int = 5, starts: tuple = ("rest", "run-up"),
+                 quasi_static: bool = True, **params) -> dict:
+    """Sweep run: the named measures of ``make_scene(seed=seed, **params)``
+    (:mod:`asperity2d.experiments.measures`), each with what it reports about itself.
+
+    Returns (N): ``critical_<start>_N`` for each of ``starts`` and its non-monotone band
+    (``critical_<start>_band_low_N`` / ``_high_N``, NaN when monotone) and run count;
+    ``quasi_static_N`` and its ``quasi_static_rate_change`` (the ramp's convergence); over
+    ``passes`` spring-driven passes (:func:`~asperity2d.experiments.measures.stick_forces`)
+    ``peak_stick_N`` and ``mean_stick_N`` (ensemble means), every pass's values
+    (``peak_stick_passes_N``, ``mean_stick_passes_N``, lists) and ``first_breakaway_N`` of
+    the pass at the nominal drive speed (the middle one).
+    """
+    from ..critical import critical_force_bracket
+    from ..experiments.measures import quasi_static_breakaway, stick_forces
+
+    scene = make_scene(seed=seed, drive="force", **params)
+    out: dict = {}
+    for start in starts:
+        key = "critical_" + start.replace("-", "_")
+        bracket = critical_force_bracket(scene, start=start)
+        low, high = bracket.band if bracket.band else (math.nan, math.nan)
+        out.update({f"{key}_N": bracket.value, f"{key}_band_low_N": low, f"{key}_band_high_N": high,
+                    f"{key}_runs": float(bracket.runs)})
+    if quasi_static:
+        q = quasi_static_breakaway(scene)
+        out.update(quasi_static_N=q.force, quasi_static_rate_change=q.rate_change)
+    if passes:
+        sf = stick_forces(scene, passes=passes)
+        out.update(peak_stick_N=sf.average("peak"), mean_stick_N=sf.average("mean"),
+                   peak_stick_passes_N=list(sf.peak), mean_stick_passes_N=list(sf.mean),
+                   first_breakaway_N=sf.first_breakaway[len(sf.first_breakaway) // 2],
+                   events=list(map(float, sf.events)))
+    return out
+
+
+def travel_run(*, seed: int = 0, force: float, start: str = "run-up", **params) -> dict:
+    """Sweep run: seed 000 figure 10, how far a constant ``force`` (N) carries the slider of
+    ``make_scene(seed=seed, **params)`` from ``start``: ``travel_m`` and ``passed`` / ``stuck`` (1/0)."""
+    from ..experiments.measures import travel_under_force
+
+    travel, status = travel_under_force(make_scene(seed=seed, drive="force", **params), force=force, start=start)
+    return {"travel_m": travel, "passed": float(status == "passed"), "stuck": float(status == "stuck"),
+            "force_N": force}
+
+
+def pushed(scene, force: float, *, start: str = "rest", dt: float | None = None):
     """A constant ``force`` (N) applied to ``scene`` from ``start`` (as
     :func:`asperity2d.critical_force` begins each run: ``"rest"`` on the surface,
-    every tip against its flank; ``"run-up"`` from the builder's position).
+    every tip against its flank; ``"run-up"`` from the builder's position), with step ``dt``
+    (s, default :func:`asperity2d.run.default_dt`).
     Returns the :class:`~asperity2d.result.Result` (ended by the default stops)."""
     pushed_scene = scene.replace(drive=ConstantForce(force=force))
-    run = settled_run(scene, start=start)
+    run = settled_run(scene, start=start, dt=dt)
     run.set_drive_force(force)
     run.advance(default_duration(pushed_scene), stop=default_stops(pushed_scene))
     return dataclasses.replace(run.result(), scene=pushed_scene)
@@ -128,8 +175,10 @@ def damping_travel_run(*, seed: int = 0, factor: float = 0.9, **params) -> dict:
     """
     params = {k: v for k, v in params.items() if k != "damping"}
     damped = make_scene(seed=seed, drive="force", **params)
-    # the pushes below start where the builder puts the slider: so does this threshold
-    critical = critical_force(damped, start="run-up")
+    # the pushes below start where the builder puts the slider: so does this threshold, and it is
+    # taken at their step (the default: travel is converged there; the run-up threshold itself
+    # reads ~4 % low at it, the same for the threshold and the pushes)
+    critical = critical_force_bracket(damped, start="run-up", dt=default_dt(damped)).value
     force = factor * critical
     out = {"critical_force_N": critical, "force_N": force}
     undamped = {**params, "damping_ratio": 0.0}

@@ -110,7 +110,7 @@ def pass_measures(scene: Scene):
         "passed": float(result.status == "passed"),
         # the guard floor must never carry the slider (DESIGN: wide gaps); 1e-3 base of slack
         "floor_touched": float(np.min(result.y) - scene.slider.depth
-                               <= scene.lower.floor + 1e-3 * scene.base),
+                               <= scene.floor + 1e-3 * scene.base),
         # a lower asperity pushed to the bottom of its track (the load is too large for it)
         "track_bottomed": float(np.min(result.lower_dy) <= -(1 - 1e-3) * scene.lower.travel_down),
     }

@@ -1,0 +1,246 @@
+"""The critical-force search: toy predicates whose answer is known exactly, then the one
+physical case where passing is known not to be monotone in the force (the undamped regular
+run-up), checked by brute force, and the run budget, dt and iterations on their way to the runs.
+
+The toys call :func:`smallest_passing` with a plain predicate of the force, so the answer (the
+smallest passing force, the band of mixed outcomes) is set by the test, not computed by the
+code under test.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+import asperity2d as a
+from asperity2d.critical import (SCAN_STEP, SCAN_WINDOW, NonMonotoneWarning, critical_force,
+                                 critical_force_bracket, measure_dt, passes, settled_run, smallest_passing)
+from asperity2d.run import default_dt
+from asperity2d.studies.ooten import STUDY_SIZE
+
+
+class Counting:
+    """A predicate that records every force it is asked about."""
+
+    def __init__(self, rule):
+        self.rule, self.asked = rule, []
+
+    def __call__(self, force):
+        self.asked.append(force)
+        return self.rule(force)
+
+
+def test_a_monotone_threshold_is_bracketed_within_the_tolerance():
+    threshold, tol = 0.7312, 0.0025
+    test = Counting(lambda f: f >= threshold)
+    lo, hi, band, tried = smallest_passing(test, 0.1, rel_tol=tol)
+    assert lo < threshold <= hi
+    # bisection stops at the first bracket within tol: the one before it was wider than tol,
+    # and halving it gives more than tol / 2
+    assert tol / 2 < (hi - lo) / hi <= tol
+    assert band is None
+    assert [f for f, _ in tried] == test.asked  # every force asked once, in order
+    assert len(set(test.asked)) == len(test.asked)
+    # upward: 0.1 stops, so the bracket doubles it until it passes: 0.1, 0.2, 0.4, 0.8
+    assert test.asked[:4] == [0.1, 0.2, 0.4, 0.8]
+    # the check: 2 %, 4 %, ..., 10 % below and above hi (all below the threshold stop)
+    steps = int(round(SCAN_WINDOW / SCAN_STEP))
+    assert test.asked[-2 * steps:] == pytest.approx(
+        [hi * (1 - j * SCAN_STEP) for j in range(1, steps + 1)]
+        + [hi * (1 + j * SCAN_STEP) for j in range(1, steps + 1)], rel=1e-15)
+
+
+def test_downward_bracketing_halves_a_passing_estimate():
+    test = Counting(lambda f: f >= 1.0)
+    lo, hi, band, _ = smallest_passing(test, 8.0, rel_tol=0.01)
+    assert test.asked[:4] == [8.0, 4.0, 2.0, 1.0] and test.asked[4] == 0.5
+    assert lo < 1.0 <= hi and band is None
+
+
+def test_a_passing_band_below_the_threshold_is_found_and_reported():
+    """Passes at >= 1 and in [0.93, 0.95]: bisection from 0.3 lands on the threshold at 1;
+    the check finds 0.94 (6 % below), bisects down to the band's lower edge 0.93 and reports
+    the band (0.93, the highest force that stopped, just under 1)."""
+    rule = lambda f: f >= 1.0 or 0.93 <= f <= 0.95  # noqa: E731
+    lo, hi, band, tried = smallest_passing(rule, 0.3, rel_tol=0.0025)
+    assert lo < 0.93 <= hi <= 0.93 * 1.0025
+    assert band is not None and band[0] == hi
+    stops_above = [f for f, ok in tried if f > hi and not ok]
+    assert band[1] == max(stops_above) and 0.95 < band[1] < 1.0
+    assert not rule(band[1]) and rule(band[0])
+
+
+def test_two_bands_below_are_followed_down_to_the_lowest():
+    rule = lambda f: f >= 1.0 or 0.90 <= f <= 0.93 or 0.83 <= f <= 0.86  # noqa: E731
+    lo, hi, band, _ = smallest_passing(rule, 2.0, rel_tol=0.001)
+    assert lo < 0.83 <= hi <= 0.83 * 1.001
+    assert band is not None and band[1] < 1.0
+
+
+@pytest.mark.parametrize("island", [(0.945, 0.955), (0.80, 0.82)])
+def test_what_the_check_cannot_see_is_what_its_window_and_step_say(island):
+    """An island narrower than SCAN_STEP between two scan points, or more than SCAN_WINDOW
+    below, is missed: the search returns the threshold and says it saw no band."""
+    rule = lambda f: f >= 1.0 or island[0] <= f <= island[1]  # noqa: E731
+    lo, hi, band, tried = smallest_passing(rule, 0.3, rel_tol=0.0025)
+    assert lo < 1.0 <= hi and band is None
+    assert not any(island[0] <= f <= island[1] for f, _ in tried)
+
+
+# -- the physical non-monotone case ----------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def undamped_run_up():
+    """Seed 000's regular fixed track (6 lower, 3 upper) without track dampers, from the run-up:
+    the slider arrives with momentum and the lower asperities ring, so whether a force passes
+    depends on the phase it meets (on the 10/3 scene a 0.1 % grid shows passing and stopping
+    alternating from 0.99 to 1.05 x the smallest passing force)."""
+    scene = a.make_scene(drive="force", damping_ratio=0.0, lower_count=6, upper_count=3)
+    base = settled_run(scene, start="run-up", dt=measure_dt(scene, "run-up"))  # the bracket's own step
+    return scene, critical_force_bracket(scene, start="run-up"), base
+
+
+def test_non_monotone_run_up_finds_a_lower_passing_force_and_reports_the_band(undamped_run_up):
+    scene, bracket, base = undamped_run_up
+    assert passes(base, bracket.passes) and not passes(base, bracket.stops)
+    assert bracket.band is not None and not bracket.monotone
+    low, high = bracket.band
+    assert low == bracket.passes and high > low and not passes(base, high)
+    # plain bisection (what the search did before the check), run here independently from the
+    # same bracket start, ends on a larger force: it trusted the one transition it found
+    lo, hi = 0.5 * bracket.passes, 2.0 * bracket.passes
+    assert not passes(base, lo) and passes(base, hi)
+    while (hi - lo) / hi > 0.0025:
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if passes(base, mid) else (mid, hi)
+    assert hi > bracket.passes
+    # brute force on a 1 % grid over the checked window below: nothing passes more than one
+    # scan step below the returned force (what the check guarantees at its resolution)
+    grid = bracket.value * np.arange(1.0 - SCAN_WINDOW, 1.0 - SCAN_STEP, 0.01)
+    assert not any(passes(base, f) for f in grid)
+
+
+def test_critical_force_warns_with_the_band(monkeypatch):
+    from asperity2d import critical
+
+    def fake_bracket(scene, **kw):
+        return critical.CriticalForce(stops=0.9, passes=1.0, runs=3, start=kw["start"], band=(1.0, 1.07))
+
+    monkeypatch.setattr(critical, "critical_force_bracket", fake_bracket)
+    with pytest.warns(NonMonotoneWarning, match=r"not monotone in the force \(start='run-up'\): 1 N passes, "
+                                                r"1.07 N does not"):
+        assert critical.critical_force(a.make_scene(drive="force"), start="run-up") == 1.0
+    monkeypatch.setattr(critical, "critical_force_bracket",
+                        lambda scene, **kw: critical.CriticalForce(stops=0.9, passes=1.0, runs=3))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert critical.critical_force(a.make_scene(drive="force")) == 1.0
+
+
+def test_a_damped_start_from_rest_is_monotone_and_silent():
+    scene = a.make_scene(drive="force", lower_count=6, upper_count=3)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", NonMonotoneWarning)
+        bracket = critical_force_bracket(scene)
+    assert bracket.monotone and bracket.checked == SCAN_WINDOW
+
+
+# -- the run budget, dt and iterations --------------------------------------------------------
+
+SMALL = {"lower_count": 4, "upper_count": 2}
+
+
+def test_runs_counts_every_simulation_and_max_runs_is_exact():
+    scene = a.make_scene(drive="force", **SMALL)
+    bracket = critical_force_bracket(scene)
+    assert bracket.runs == len(bracket.tried)  # one simulation per distinct force
+    assert critical_force_bracket(scene, max_runs=bracket.runs) == bracket
+    with pytest.raises(a.SceneError, match="`max_runs`"):
+        critical_force_bracket(scene, max_runs=bracket.runs - 1)
+
+
+def test_a_given_dt_reaches_the_runs():
+    """Checked through the public simulate() path, which starts where the run-up does: at
+    dt/2 the bracket's stopping force stops and its passing force passes."""
+    scene = a.make_scene(drive="force", **SMALL)
+    half = default_dt(scene) / 2
+    fine = critical_force_bracket(scene, start="run-up", dt=half)
+    coarse = critical_force_bracket(scene, start="run-up", dt=2 * half)
+    assert fine.passes != coarse.passes  # this scene's threshold moves with dt ...
+    for force, status in ((fine.stops, False), (fine.passes, True)):  # ... and dt/2 was used
+        result = a.simulate(scene.replace(drive=a.ConstantForce(force=force)), dt=half)
+        assert (result.status == "passed") is status
+
+
+def test_run_arguments_reach_every_run(monkeypatch):
+    """A spy in place of Run records what the search builds its runs with: the defaults are
+    Run's own (iterations 20, default dt), and given values arrive unchanged."""
+    import inspect
+
+    from asperity2d import critical
+    from asperity2d.run import Run
+
+    built = []
+
+    class Built(Exception):
+        pass
+
+    def spy(scene, **kw):  # records the run's arguments and stops the search there
+        built.append(kw)
+        raise Built
+
+    monkeypatch.setattr(critical, "Run", spy)
+    scene = a.make_scene(drive="force", **SMALL)
+
+    def args(**kw):
+        with pytest.raises(Built):
+            critical.critical_force(scene, **kw)
+        return built[-1]
+
+    run_defaults = inspect.signature(Run).parameters
+    assert args()["iterations"] == run_defaults["iterations"].default == 20
+    # the step: half the simulation's default from rest (converged there), a quarter with a run-up
+    assert args()["dt"] == 0.5 * default_dt(scene) == critical.measure_dt(scene, "rest")
+    assert args()["max_steps"] == critical.MAX_STEPS
+    assert args(start="run-up")["dt"] == 0.25 * default_dt(scene)
+    assert args(start="entry")["dt"] == 0.5 * default_dt(scene)
+    given = args(dt=3e-12, iterations=7, max_steps=123_456)
+    assert (given["dt"], given["iterations"], given["max_steps"]) == (3e-12, 7, 123_456)
+
+
+def test_bad_arguments():
+    scene = a.make_scene(drive="force", **SMALL)
+    with pytest.raises(a.SceneError, match="`rel_tol`"):
+        critical_force_bracket(scene, rel_tol=1.0)
+    with pytest.raises(a.SceneError, match="`rel_tol`"):
+        critical_force_bracket(scene, rel_tol=-0.1)
+    with pytest.raises(a.SceneError, match="`scene`"):
+        critical_force_bracket("scene")
+    with pytest.raises(a.SceneError, match="`start`"):
+        critical_force_bracket(scene, start="sideways")
+    assert math.isfinite(critical_force(scene))
+
+
+def test_a_slider_nothing_resists_reports_a_zero_lower_bracket():
+    """Every force passes (on a rough surface the only asperity tall enough to reach a fixed
+    track can be behind the slider): halving stops below FORCE_FLOOR of the estimate."""
+    from asperity2d.critical import FORCE_FLOOR
+
+    test = Counting(lambda f: True)
+    lo, hi, band, tried = smallest_passing(test, 3.0)
+    assert lo == 0.0 and band is None
+    assert FORCE_FLOOR * 3.0 / 2 <= hi < FORCE_FLOOR * 3.0
+    assert len(test.asked) == 22  # 3, 3/2, ..., 3 / 2**21
+
+
+def test_a_small_force_is_cut_to_the_step_budget_not_refused():
+    """The time limit of a constant-force run grows as 1/sqrt(F); inside the bracket search it is
+    cut to what the run's step budget allows (a run that has not passed by then has not)."""
+    scene = a.make_scene(drive="force", **SMALL)
+    base = settled_run(scene, dt=measure_dt(scene, "rest"), max_steps=20_000)
+    assert not passes(base, 1e-9)  # 20 000 steps: far too short to cross under 1 nN
+    with pytest.raises(a.SceneError, match="`max_steps`"):  # the public run is still refused
+        a.simulate(scene.replace(drive=a.ConstantForce(force=1e-9)), max_steps=20_000)
