@@ -231,6 +231,11 @@ def load(path: str | os.PathLike) -> Result:
                 or arrays[name].dtype.kind not in "biuf"):
             raise FileError("path", path, f"is not {kind}", f"array {name!r} has shape {shape}, "
                             f"dtype {arrays[name].dtype}, for {samples} samples")
+        # a run that went non-finite raises instead of returning: such a file was not written by
+        # Result.save (the drive's far end is NaN for a constant force, by design)
+        if name != "drive_x" and not np.all(np.isfinite(arrays[name])):
+            raise FileError("path", path, f"is damaged or not {kind}",
+                            f"array {name!r} holds non-finite values (NaN or infinity)")
     try:
         scene = Scene.from_dict(meta.pop("scene"))
     except Exception as exc:  # noqa: BLE001 - any malformed record; the file is not ours to trust

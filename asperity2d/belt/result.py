@@ -273,6 +273,9 @@ def load(path: str | os.PathLike) -> BeltResult:
         if t.ndim != 1 or array.shape != want or array.dtype.kind not in "biuf":
             raise FileError("path", path, f"is not {kind}", f"array {name!r} has shape {array.shape}, "
                             f"dtype {array.dtype}, for {t.size} samples of {n} masses")
+        if not np.all(np.isfinite(array)):  # a chain run never returns non-finite values
+            raise FileError("path", path, f"is damaged or not {kind}",
+                            f"array {name!r} holds non-finite values (NaN or infinity)")
     try:
         events = [Event(**e) for e in meta.pop("events")]
         intervals = [[(float(a), float(b)) for a, b in per] for per in meta.pop("stick_intervals")]
