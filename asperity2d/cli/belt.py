@@ -66,7 +66,7 @@ def run(args) -> int:
         raise SceneError("give either a `chain` TOML file or `--preset`")
     out = None if args.output is None else _io.output_path("--output", args.output, suffixes=OUTPUTS)
     # the user's file is read (and refused) before the solver and NumPy are imported
-    kwargs = None if args.preset or args.list_presets else load_chain(args.chain)
+    kwargs = None if args.chain is None or args.list_presets else load_chain(args.chain)
     from ..belt import presets
 
     if args.list_presets:

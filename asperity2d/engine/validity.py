@@ -206,7 +206,7 @@ class Validity:
         dx = max(abs(svx) * dt, abs(sx - last[1]) / steps if steps > 0 else 0.0)
         dy = max(abs(svy) * dt, abs(sy - last[2]) / steps if steps > 0 else 0.0) if self.free else 0.0
         lower = rows[layout.lower_rows]
-        dl = float(np.max(np.abs(lower[:, 3]))) * dt if len(lower) else 0.0
+        dl = float(np.max(np.abs(lower[:, 2:]))) * dt if len(lower) else 0.0  # vx: the lattice's peaks
         worst = max(dx / self.limit_x, dy / self.limit_y, dl / min(self.limit_x, self.limit_y))
         if worst > self.worst_step:
             self.worst_step = worst
