@@ -90,7 +90,8 @@ def read_text(arg: str, path) -> str:
     """The contents of file ``path``, which must be UTF-8 text."""
     data = read_bytes(arg, path)
     try:
-        return data.decode("utf-8")
+        # utf-8-sig: a byte-order mark (some Windows editors write one) is not part of the text
+        return data.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
         raise FileError(arg, path, "is not UTF-8 text",
                         f"byte {data[exc.start]:#04x} at position {exc.start}") from None
@@ -108,12 +109,14 @@ def read_toml(arg: str, path) -> dict:
 
 
 # -- writing -----------------------------------------------------------------
-def output_path(arg: str, path, *, suffixes: tuple[str, ...] | None = None) -> Path:
+def output_path(arg: str, path, *, suffixes: tuple[str, ...] | None = None, probe: bool = True) -> Path:
     """``path`` as a Path if a file can be written there; checked before any work is done.
 
     Refuses a wrong extension (``suffixes``, lower case with the dot), an
     existing directory, and a parent that is a file or not writable.
     """
+    if not str(path).strip():
+        raise FileError(arg, path, "is empty", "give a file name")
     path = Path(path)
     if suffixes is not None and path.suffix.lower() not in suffixes:
         raise FileError(arg, path, f"must end in {', '.join(suffixes)}")
@@ -126,11 +129,28 @@ def output_path(arg: str, path, *, suffixes: tuple[str, ...] | None = None) -> P
         raise FileError(arg, path, "cannot be created", f"{str(parent)!r} is not a directory")
     if not os.access(parent, os.W_OK | os.X_OK):
         raise FileError(arg, path, "cannot be created", f"{str(parent)!r} is not writable")
+    if probe:
+        _probe_write(arg, path, parent)
     return path
+
+
+def _probe_write(arg: str, path, directory: Path) -> None:
+    """Create and remove a temporary file in ``directory``: the only sure test that files can be
+    written there (``os.access`` says yes to root for /proc, /sys and read-only mounts)."""
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=".asperity2d-probe-", dir=directory)
+    except OSError as exc:
+        raise FileError(arg, path, "cannot be created",
+                        f"{str(directory)!r}: {exc.strerror or exc}") from None
+    os.close(fd)
+    with contextlib.suppress(OSError):
+        os.unlink(tmp)
 
 
 def output_dir(arg: str, path) -> Path:
     """``path`` as a Path if it is, or can be created as, a directory we can write into."""
+    if not str(path).strip():
+        raise FileError(arg, path, "is empty", "give a directory name")
     path = Path(path)
     existing = path
     while not existing.exists() and existing != existing.parent:
@@ -141,6 +161,7 @@ def output_dir(arg: str, path) -> Path:
         raise FileError(arg, path, "cannot be created", f"{str(existing)!r} is not a directory")
     if not os.access(existing, os.W_OK | os.X_OK):
         raise FileError(arg, path, "is not writable", f"permission denied in {str(existing)!r}")
+    _probe_write(arg, path, existing)
     return path
 
 
@@ -152,9 +173,12 @@ def atomic_write(path: str | os.PathLike, write: Callable[[IO[bytes]], None]) ->
     A directory at ``path``, or a file where a parent directory should be,
     raises :class:`FileError` before anything is written.
     """
-    path = output_path("path", path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    path = output_path("path", path, probe=False)  # the temporary file below is the probe
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    except OSError as exc:
+        raise FileError("path", path, "cannot be created", exc.strerror or str(exc)) from None
     try:
         os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0600; give the usual permissions
         with os.fdopen(fd, "wb") as fh:

@@ -29,6 +29,10 @@ from .errors import SceneError
 
 #: Largest count of asperities (per surface) or of anything else counted.
 MAX_COUNT = 100_000
+#: Default budget of runs one command or study starts (``max_runs`` / ``--max-runs`` raise it).
+MAX_RUNS = 100_000
+#: Most seeds a study or comparison holds (its seed list is kept in memory).
+MAX_SEEDS = 1_000_000
 #: The magnitude window of :func:`check_real`: smallest and largest magnitude of a non-zero number.
 TINY, HUGE = 1e-100, 1e100
 
@@ -197,3 +201,28 @@ def per_item(name: str, value, count: int, *, allow_zero: bool) -> tuple[float, 
     if len(items) != count:
         raise SceneError(f"`{name}` must have {count} entries (one per asperity), got {len(items)}")
     return tuple(check(f"{name}[{i}]", v) for i, v in enumerate(items))
+
+
+def check_runs(runs: int, max_runs: int | None, why: str, *, name: str = "max_runs") -> None:
+    """Refuse (SceneError naming ``name``) work of ``runs`` runs over ``max_runs`` (default
+    :data:`MAX_RUNS`); ``why`` says where the count comes from. Every command and study that
+    starts many runs checks this before it starts any."""
+    limit = MAX_RUNS if max_runs is None else check_int(name, max_runs, minimum=1, maximum=None)
+    if runs > limit:
+        raise SceneError(f"{why}: {runs:,} runs, over `{name}` = {limit:,}; ask for fewer, or raise "
+                         f"`{name}`")
+
+
+def count_seeds(name: str, seeds) -> int:
+    """How many seeds ``seeds`` holds, refusing (SceneError naming ``name``) more than
+    :data:`MAX_SEEDS` before any list of them is made (``range(10**12)`` would not fit in memory)."""
+    try:
+        count = len(seeds)
+    except OverflowError:
+        count = math.inf
+    except TypeError:
+        return -1  # an iterator: counted as it is read
+    if count > MAX_SEEDS:
+        raise SceneError(f"`{name}` holds {f'{count:,}' if math.isfinite(count) else 'over 2**63'} seeds, over "
+                         f"the {MAX_SEEDS:,} a study or comparison can hold; use fewer seeds")
+    return count

@@ -30,7 +30,7 @@ from .surface.asperities import Asperities
 from .surface.heights import DISTRIBUTIONS, random_shapes
 from .surface.read import UNITS
 from .surface.source import check_heights, label, lower_material, surface_asperities, surface_spec
-from .units import MIN_LENGTH_RATIO
+from .units import MIN_LENGTH_RATIO, Units, check_scales
 
 #: Every override make_scene accepts, with its default (None: derived, see make_scene).
 DEFAULTS = {
@@ -287,4 +287,6 @@ def make_scene(*, spacing: str = "regular", seed: int = 0, profile: str = "full"
     if not p["name"] and any(r is not None for r in records.values()):
         name = "-".join(f"{k}={label(p[f'{k}_surface'])}" for k, r in records.items() if r is not None) + \
             f"-{drive}-{p['track']}-seed{seed}"
-    return Scene(lower=lower, slider=slider, drive=drv, contact=contact, gravity=p["gravity"], name=name)
+    scene = Scene(lower=lower, slider=slider, drive=drv, contact=contact, gravity=p["gravity"], name=name)
+    check_scales(scene, Units.for_scene(scene))  # refused here, not only when it is run
+    return scene

@@ -123,7 +123,17 @@ class Result:
         """True unless the run ended without doing what was asked (:data:`UNSUCCESSFUL`: the
         time limit of ``duration=None`` reached before any stop condition). A run that
         diverged raises :class:`~asperity2d.SimulationError` and has no result."""
-        return bool(self.status) and self.status not in UNSUCCESSFUL
+        return bool(self.status) and self.status not in UNSUCCESSFUL and all(
+            c.get("passed", True) for c in self.checks.values())
+
+    @property
+    def checks(self) -> dict:
+        """The checks the run passed (``meta["checks"]``): the divergence guard, the physical-validity
+        checks (step resolution, floor, contacts) and the step size, each ``{"passed", "worst",
+        "limit", "what"}``. A run that fails a check raises :class:`~asperity2d.SimulationError`,
+        except the step size (``unsafe_dt=True``), which marks the result unsuccessful."""
+        checks = self.meta.get("checks")
+        return checks if isinstance(checks, dict) else {}
 
     @property
     def dt(self) -> float:
@@ -161,6 +171,8 @@ class Result:
             "mean_normal_force_N": float(np.mean(self.normal_force)) if len(self.t) else 0.0,
             "max_overlap_fraction": self.meta.get("max_overlap_fraction"),
             "dt_s": self.meta.get("dt"),
+            "checks": {name: "passed" if c.get("passed", True) else f"failed ({c.get('what', '')})"
+                       for name, c in self.checks.items() if isinstance(c, dict)},
         }
 
     # -- persistence -------------------------------------------------------
@@ -219,6 +231,11 @@ def load(path: str | os.PathLike) -> Result:
                 or arrays[name].dtype.kind not in "biuf"):
             raise FileError("path", path, f"is not {kind}", f"array {name!r} has shape {shape}, "
                             f"dtype {arrays[name].dtype}, for {samples} samples")
+        # a run that went non-finite raises instead of returning: such a file was not written by
+        # Result.save (the drive's far end is NaN for a constant force, by design)
+        if name != "drive_x" and not np.all(np.isfinite(arrays[name])):
+            raise FileError("path", path, f"is damaged or not {kind}",
+                            f"array {name!r} holds non-finite values (NaN or infinity)")
     try:
         scene = Scene.from_dict(meta.pop("scene"))
     except Exception as exc:  # noqa: BLE001 - any malformed record; the file is not ours to trust

@@ -21,8 +21,8 @@ from ._validate import check_finite, check_int, check_positive
 from ._version import __version__
 from .engine import PYMUNK_VERSION, Engine
 from .engine.energy import ContactWork, EnergyMeter
-from .engine.recorder import Recorder
-from .errors import SceneError
+from .engine.recorder import MAX_OVERLAP, Recorder
+from .errors import SceneError, SimulationError
 from .result import Result
 from .scene import ConstantForce, Scene, SpringDrive
 
@@ -35,8 +35,14 @@ COARSEST_DT_FRACTION = 1.0 / 20.0
 #: 0.5 is refused. (pymunk integrates the track and lattice dampers exactly.)
 DAMPER_DT_FRACTION = 0.2
 COARSEST_DAMPER_DT_FRACTION = 0.5
+#: The asperity energy books (``energy=True``) must close to this fraction of the drive work
+#: (measured 1e-14 - 1e-13 on ordinary scenes, and within it on every fuzzed scene).
+ENERGY_TOLERANCE = 1e-6
 #: Default step budget of one run (settling included): about 5 minutes at N = 16.
 MAX_STEPS = 10_000_000
+#: Up to this many asperities (both surfaces: seed 000's 16 + 4) a step counts as one in the
+#: budget; a larger scene's step counts as its asperity count over this (see :func:`step_cost`).
+COST_ASPERITIES = 20
 
 
 @dataclass
@@ -167,6 +173,46 @@ def _fastest_source(scene: Scene) -> str:
             "drive": "`drive_stiffness` and `slider_mass`"}[max(freqs, key=freqs.get)]
 
 
+def settle_cap(scene: Scene) -> float:
+    """Longest settling (s): 10 slowest periods."""
+    return 10.0 * scene.slowest_period()
+
+
+def step_cost(scene: Scene) -> float:
+    """What one step of ``scene`` counts for in ``max_steps``: 1 up to :data:`COST_ASPERITIES`
+    asperities (both surfaces), else its asperity count over that (a step's cost grows with the
+    asperity count: measured ~40 us at 20 asperities, 1.3 ms at 1,000, 0.5 s at 100,000)."""
+    return max(1.0, (scene.lower.count + scene.slider.count) / COST_ASPERITIES)
+
+
+def check_budget(scene: Scene, dt: float, max_steps: int, *, done: int = 0, settle: float = 0.0,
+                 duration: float = 0.0) -> None:
+    """Refuse a settle of up to ``settle`` s and a run of ``duration`` s at step ``dt`` (s), after
+    ``done`` steps, that would exceed ``max_steps`` (SceneError naming what makes it long). Each
+    step counts :func:`step_cost`. Needs no engine: :func:`simulate` checks before building."""
+    cost = step_cost(scene)
+    steps_settle = settle / dt
+    steps_run = duration / dt
+    total = (done + steps_settle + steps_run) * cost
+    if total <= max_steps:
+        return
+    if steps_settle > steps_run:
+        why = (f"settling takes up to {steps_settle:.3g} steps (10 slowest periods, "
+               f"{settle:.3g} s, set by {_slowest_source(scene)})")
+        fix = "bring those closer to the other masses and stiffnesses, pass settle=False"
+    else:
+        why = f"`duration` = {duration:.3g} s is {steps_run:.3g} steps"
+        fix = "shorten `duration`"
+    size = ""
+    if cost > 1:
+        size = (f"; each step of these {scene.lower.count + scene.slider.count:,} asperities counts "
+                f"{cost:.3g} steps (its cost grows with the asperity count)")
+        fix += ", use fewer asperities"
+    raise SceneError(
+        f"the run needs {total:.3g} steps, over `max_steps` = {max_steps:,}: {why} of "
+        f"dt = {dt:.3g} s (set by {_fastest_source(scene)}){size}; {fix}, or raise `max_steps`")
+
+
 class Run:
     """One asperity scene being simulated: settle, advance, change the drive, record.
 
@@ -219,26 +265,13 @@ class Run:
     # -- budget ---------------------------------------------------------------
     def settle_cap(self) -> float:
         """Longest settling (s): 10 slowest periods."""
-        return 10.0 * self.scene.slowest_period()
+        return settle_cap(self.scene)
 
     def check_budget(self, *, settle: float = 0.0, duration: float = 0.0) -> None:
         """Refuse, before running, a settle and run that would exceed ``max_steps`` (SceneError
-        naming what makes it long)."""
-        steps_settle = settle / self.dt
-        steps_run = duration / self.dt
-        total = self.engine.step_count + steps_settle + steps_run
-        if total <= self.max_steps:
-            return
-        if steps_settle > steps_run:
-            why = (f"settling takes up to {steps_settle:.3g} steps (10 slowest periods, "
-                   f"{settle:.3g} s, set by {_slowest_source(self.scene)})")
-            fix = "bring those closer to the other masses and stiffnesses, pass settle=False"
-        else:
-            why = f"`duration` = {duration:.3g} s is {steps_run:.3g} steps"
-            fix = "shorten `duration`"
-        raise SceneError(
-            f"the run needs {total:.3g} steps, over `max_steps` = {self.max_steps:,}: {why} of "
-            f"dt = {self.dt:.3g} s (set by {_fastest_source(self.scene)}); {fix}, or raise `max_steps`")
+        naming what makes it long; see :func:`check_budget`)."""
+        check_budget(self.scene, self.dt, self.max_steps, done=self.engine.step_count, settle=settle,
+                     duration=duration)
 
     # -- the record ---------------------------------------------------------
     def _reset_record(self) -> None:
@@ -406,7 +439,31 @@ class Run:
             "units": e.units.as_dict(), "asperity2d_version": __version__,
             "pymunk_version": PYMUNK_VERSION, "numpy_version": np.__version__,
         }
+        meta["checks"] = _checks(self)
+        for check in meta["checks"].values():
+            if not check["passed"]:
+                meta["message"] += f"; WARNING: {check['warning']}"
         return Result(**self._record.arrays(start), scene=self.scene, meta=meta)
+
+
+def _checks(run: Run) -> dict:
+    """What ``run`` passed (``result.meta["checks"]``): the divergence guard, the physical-validity
+    checks (:mod:`asperity2d.engine.validity`) and the step size, each with its worst value and
+    limit. A check that failed carries a ``warning`` (the result is marked unsuccessful): the step
+    size (``unsafe_dt``) and a step resolution past :data:`~asperity2d.engine.validity.STEP_WARNING`;
+    the other failures raise."""
+    coarse = max(run.dt / (COARSEST_DT_FRACTION * run.scene.shortest_period()),
+                 run.dt / (COARSEST_DAMPER_DT_FRACTION * _damper_time(run.scene)))
+    checks = {"divergence": {"passed": True, "worst": run.max_overlap, "limit": MAX_OVERLAP,
+                             "what": "deepest overlap (bases); kinetic energy within what was given"},
+              **run._record.validity.report(),
+              "step_size": {"passed": coarse <= 1.0, "worst": coarse, "limit": 1.0,
+                            "what": "dt / the coarsest converged step (T/20, M/c / 2)"}}
+    if coarse > 1.0:
+        checks["step_size"]["warning"] = (
+            f"dt is {coarse:.3g} times the coarsest step that converges (unsafe_dt=True): contacts may "
+            "have been skipped and the forces are not converged")
+    return checks
 
 
 def _callables(name: str, items) -> list:
@@ -474,8 +531,8 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
         The run diverged: non-finite state, kinetic energy far beyond what the
         scene held and was given, or deep penetration.
     """
-    run = Run(scene, dt=dt, record_every=record_every, iterations=iterations, unsafe_dt=unsafe_dt,
-              max_steps=max_steps)
+    if not isinstance(scene, Scene):
+        raise SceneError(f"`scene` must be a Scene (see make_scene), got {type(scene).__name__}")
     stops = [] if stop is None else ([stop] if callable(stop) else list(stop))
     if duration is None:
         stops = default_stops(scene) + stops
@@ -485,7 +542,12 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
         check_positive("duration", duration)
     if settle is None:
         settle = scene.slider.track == "free"
-    run.check_budget(settle=run.settle_cap() if settle else 0.0, duration=duration)
+    # the budget before anything is built (building 100,000 asperities takes seconds)
+    check_budget(scene, default_dt(scene) if dt is None else check_positive("dt", dt),
+                 check_int("max_steps", max_steps, minimum=1, maximum=None),
+                 settle=settle_cap(scene) if settle else 0.0, duration=duration)
+    run = Run(scene, dt=dt, record_every=record_every, iterations=iterations, unsafe_dt=unsafe_dt,
+              max_steps=max_steps)
     if settle:
         run.settle(progress=progress)
     meter = run.meter_energy() if energy else None
@@ -495,7 +557,16 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
         run.status, run.message = "time limit", "reached the time limit before any stop condition"
     result = run.result()
     if meter is not None:
-        result.meta["energy"] = meter.report()
+        report = result.meta["energy"] = meter.report()
+        result.meta["checks"]["energy_books"] = {
+            "passed": True, "worst": report["residual_fraction"], "limit": ENERGY_TOLERANCE,
+            "what": "energy books' residual / the larger of drive work and energy removed"}
+        if not report["residual_fraction"] <= ENERGY_TOLERANCE:  # also NaN
+            raise SimulationError(
+                f"the energy books do not close: the drive's work and the energy stored and removed "
+                f"differ by {report['residual_fraction']:.3g} of the larger (tolerance {ENERGY_TOLERANCE:g}) "
+                f"at t = {run.time:.6g} s: energy was created or lost by no modelled channel; use a smaller "
+                "`dt` or more `iterations`", time=run.time)
     if books is not None:
         result.meta["contact_work"] = books.report()
     return result

@@ -140,6 +140,17 @@ def check_scales(scene, units: Units) -> None:
     if scene.gravity > 0:
         checks.append(("gravity", "acceleration", scene.gravity))
     low, high = RATIO_RANGE
+    if scene.gravity > 0 and scene.gravity / units.acceleration < low:
+        # Gravity far below the scene's accelerations changes nothing the engine can resolve (the
+        # lower asperities sag by g/omega^2, 1e-13 of a base for steel at 9.81 m/s^2): it is kept
+        # (harmless) unless it is the free slider's only load, which would then never press it on.
+        checks = [c for c in checks if c[0] != "gravity"]
+        if slider.track == "free" and slider.normal_load == 0:
+            raise SceneError(
+                f"`gravity` = {show(scene.gravity)} m/s^2 is the free slider's only load, and at this scale "
+                f"it is {scene.gravity / units.acceleration:.3g} times the scene's accelerations "
+                f"({units.acceleration:.3g} m/s^2): too weak to press the slider onto the surface; give a "
+                "`normal_load`")
     for name, kind, values in checks:
         scale, unit, what = scales[kind]
         values = np.atleast_1d(np.asarray(values, dtype=float))

@@ -87,7 +87,7 @@ def test_exact_real_types_are_accepted():
     ({"masses": [1e-60, 1.0], "t_end": 1.0}, ["`t_end`", "`masses`"]),
     # each value within its window, jointly overflowing
     ({"v_belt": 1e90, "t_end": 1e80}, ["`v_belt` times `t_end`"]),
-    ({"mu_s": 1e80, "g": 1e80}, ["velocity scale"]),
+    ({"mu_s": 1e80, "g": 1e80}, ["`mu_s`", "scale"]),
 ])
 def test_jointly_absurd_chains_are_refused_naming_the_parameters(change, words):
     with pytest.raises(SceneError) as info:

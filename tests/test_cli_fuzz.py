@@ -173,3 +173,160 @@ def test_many_toml_documents_as_chain_files(tmp_path, doc):
 def test_many_byte_strings_as_scene_and_chain_files(tmp_path, capsys, data):
     _cli_case(tmp_path, capsys, data, ["run", "{f}", "--duration", "1e-9", "--json"])
     _cli_case(tmp_path, capsys, data, ["belt", "{f}", "--t-end", "1e-3", "--json"])
+
+
+# -- every subcommand, with fuzzed options, each within a time budget (issue 27 item 6) -------------
+import os  # noqa: E402
+import signal  # noqa: E402
+from contextlib import contextmanager  # noqa: E402
+
+#: a command that computes is given tiny work; any case still running after this fails the test
+CASE_SECONDS = 60.0
+TINY = ["--set", "lower_count=2", "--set", "upper_count=1"]
+NUMBERS = ["0", "-1", "1", "2", "0.5", "1e-9", "1e300", "nan", "inf", "-inf", "x", "", "100000000000000000000",
+           "1e-300", "3,4", "--json"]
+OUTPUTS = ["{root}/o.png", "{root}/o.svg", "{root}/o.npz", "{root}/o.csv", "{root}/o.json", "{root}/o.wav",
+           "{root}/o.gif", "{root}/o.html", "{root}/o.txt", "", "/proc/o.png", "{root}", "{root}/d/e/o.png",
+           "{missing}/o.png", "{scene.toml}/o.png"]
+INPUTS = ["{scene.toml}", "{result.npz}", "{nan.npz}", "{chain.toml}", "{study.toml}", "{missing}", "{root}",
+          "{notes.txt}", "", "/proc/version", "{store}"]
+#: subcommand -> (fixed words, {option: value pool}); each case takes the words and a random subset
+#: of the options (values from the pools, or from any pool)
+COMMANDS = {
+    "run": (["run", "{scene.toml}", "--duration", "1e-9"],
+            {"-o": OUTPUTS, "--save": OUTPUTS, "--duration": NUMBERS, "--json": [None], "scene": INPUTS}),
+    "analyze": (["analyze", "{result.npz}"], {"--json": [None], "result": INPUTS}),
+    "render": (["render", "{result.npz}", "-o", "{root}/r.png"], {"-o": OUTPUTS, "result": INPUTS, "--json": [None]}),
+    "critical": (["critical", "{tiny.toml}"], {"--rel-tol": ["0.3", "0.5"] + NUMBERS, "scene": INPUTS,
+                                               "--json": [None]}),
+    "compare": (["compare", "--seeds", "1", "--variants", "regular", "--measure", "first-breakaway", *TINY],
+                {"--seeds": ["1", "2"] + NUMBERS, "--variants": ["regular", "regular,random", "", "x", "regular,"],
+                 "--measure": ["first-breakaway", "x", ""], "--save": OUTPUTS, "-o": OUTPUTS,
+                 "--load": INPUTS, "--max-runs": NUMBERS, "--set": ["spacing=random", "x=1", "seed=3", "=", "a"],
+                 "--workers": NUMBERS, "--json": [None]}),
+    "belt": (["belt", "--preset", "table2-3dof", "--t-end", "0.5"],
+             {"--preset": ["table2-3dof", "table1-2dof", "x", ""], "--t-end": ["0.5"] + NUMBERS,
+              "--method": ["exact", "sign", "x"], "-o": OUTPUTS, "--max-wall-time": ["5"] + NUMBERS,
+              "--json": [None], "chain": INPUTS}),
+    "basins": (["belt", "basins", "--preset", "table2-3dof", "--grid", "2", "--t-end", "0.5", "--workers", "1",
+                "-o", "{root}/b.png"],
+               {"--grid": ["2", "2,3", "1"] + NUMBERS, "--t-end": ["0.5"] + NUMBERS, "-o": OUTPUTS,
+                "--store": OUTPUTS, "--x": ["x1", "v3", "x9", ""], "--x-range": ["-0.1,0.1", "1,0", "x"] + NUMBERS,
+                "--max-runs": NUMBERS, "--rtol": NUMBERS, "--json": [None]}),
+    "sweep run": (["sweep", "run", "{study.toml}", "--store", "{root}/s", "--workers", "1", "--no-progress"],
+                  {"--store": OUTPUTS, "--max-runs": NUMBERS, "--workers": ["1"] + NUMBERS,
+                   "study": INPUTS, "--json": [None]}),
+    "sweep status": (["sweep", "status", "{store}"], {"store": INPUTS, "--json": [None]}),
+    "sweep report": (["sweep", "report", "{store}", "-o", "{root}/rep.png"], {"-o": OUTPUTS, "store": INPUTS}),
+    "sweep export": (["sweep", "export", "{store}", "-o", "{root}/e.csv"], {"-o": OUTPUTS, "store": INPUTS}),
+    "version": (["--version"], {}),
+}
+
+
+@contextmanager
+def _within(seconds):
+    def alarm(signum, frame):
+        raise AssertionError(f"still running after {seconds} s: past any budget")
+
+    old = signal.signal(signal.SIGALRM, alarm)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, old)
+
+
+@pytest.fixture(scope="module")
+def cli_files(tmp_path_factory):
+    import asperity2d as a
+    import numpy as np
+    from asperity2d.sweep import ResultStore, Study
+
+    root = tmp_path_factory.mktemp("cli_fuzz")
+    f = {"root": str(root), "missing": str(root / "missing")}
+    (root / "scene.toml").write_text("lower_count = 2\nupper_count = 1\n")
+    (root / "tiny.toml").write_text('lower_count = 2\nupper_count = 1\ndrive = "force"\n')
+    result = a.simulate(a.make_scene(lower_count=2, upper_count=1), 4e-9, progress=False)
+    result.save(root / "result.npz")
+    data = dict(np.load(root / "result.npz"))
+    data["v"] = np.full_like(data["v"], np.nan)
+    np.savez(root / "nan.npz", **data)
+    (root / "chain.toml").write_text('masses = [1.0]\nsprings = [10.0, 0.0]\ndampers = [0.0, 0.0]\nmu_s = 0.3\n'
+                                     'v_belt = 0.1\nx0 = [0.0]\nv0 = [0.0]\nt_end = 0.5\n')
+    study = {"name": "fuzz", "run": "asperity2d.studies.ooten:critical_force_run", "seeds": 1,
+             "grid": {"spacing": ["regular"]}, "fixed": {"lower_count": 2, "upper_count": 1}}
+    (root / "study.toml").write_text('name = "fuzz"\nrun = "asperity2d.studies.ooten:critical_force_run"\n'
+                                     'seeds = 1\n[grid]\nspacing = ["regular"]\n[fixed]\nlower_count = 2\n'
+                                     'upper_count = 1\n')
+    ResultStore(root / "store").begin_session(Study.from_dict(study), executor="test")
+    (root / "notes.txt").write_text("not a result\n")
+    for name in ("scene.toml", "tiny.toml", "result.npz", "nan.npz", "chain.toml", "study.toml", "notes.txt"):
+        f[name] = str(root / name)
+    f["store"] = str(root / "store")
+    return f
+
+
+#: where each subcommand's positional argument sits in its words
+POSITION = {"run": 1, "analyze": 1, "render": 1, "critical": 1, "sweep run": 2, "sweep status": 2,
+            "sweep report": 2, "sweep export": 2}
+
+
+@st.composite
+def command_lines(draw):
+    name = draw(st.sampled_from(sorted(COMMANDS)))
+    words, options = COMMANDS[name]
+    argv = list(words)
+    everything = [v for pool in options.values() for v in pool]
+    chosen = draw(st.lists(st.sampled_from(sorted(options)), unique=True, max_size=3)) if options else []
+    for option in chosen:
+        pool = options[option] if draw(st.integers(0, 3)) or not everything else everything
+        value = draw(st.sampled_from(pool))
+        if option in ("scene", "result", "study", "store"):  # the positional argument
+            argv[POSITION[name]] = "" if value is None else value
+        elif option == "chain":  # `belt CHAIN` instead of `belt --preset NAME`
+            argv = ["belt", "" if value is None else value] + argv[3:]
+        else:
+            if option in argv:  # replace the fixed value
+                i = argv.index(option)
+                del argv[i:i + (1 if options[option] == [None] else 2)]
+            argv += [option] if value is None else [option, value]
+    return name, argv
+
+
+def _fill_words(argv, files):
+    out = []
+    for word in argv:
+        for key, path in files.items():
+            word = word.replace("{" + key + "}", path)
+        out.append(word)
+    return out
+
+
+def _any_command_case(capsys, files, argv):
+    argv = _fill_words(argv, files)
+    here = os.getcwd()
+    os.chdir(files["root"])  # a relative output such as `--store 0` lands in the test's folder
+    try:
+        with _within(CASE_SECONDS):
+            code = main(argv)
+    finally:
+        os.chdir(here)
+    out, err = capsys.readouterr()
+    assert code in (0, 2), (argv, code, err)
+    assert "Traceback" not in err, (argv, err)
+    if code == 2:
+        assert len(err.splitlines()) == 1 and err.startswith("asperity2d: error: "), (argv, err)
+
+
+@settings(FAST, max_examples=80)
+@given(case=command_lines())
+def test_every_subcommand_answers_exit_0_or_2_within_its_budget(cli_files, capsys, case):
+    _any_command_case(capsys, cli_files, case[1])
+
+
+@pytest.mark.slow
+@settings(SLOW, max_examples=1000)
+@given(case=command_lines())
+def test_every_subcommand_many_times(cli_files, capsys, case):
+    _any_command_case(capsys, cli_files, case[1])

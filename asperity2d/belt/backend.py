@@ -14,6 +14,8 @@ Back-ends never print, never write files and raise only ``SceneError`` (bad inpu
 
 from __future__ import annotations
 
+import math
+import time
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -23,6 +25,10 @@ from .._validate import check_choice, check_flag, check_int, check_real, check_v
 from . import limits
 
 INTEGRATORS = ("LSODA", "Radau", "BDF", "DOP853", "RK45")
+#: Default wall-clock budget of one run (s): a chain that needs longer says so and names
+#: ``max_wall_time`` (the step and event budgets are counted; this one is the backstop for
+#: work neither counts well: a chattering sign() solve, a stiff friction law, a huge chain).
+MAX_WALL_TIME = 30.0
 
 
 @dataclass(frozen=True)
@@ -58,11 +64,17 @@ class RunOptions:
     integrator: str = "LSODA"
     max_events: int = 1_000_000
     max_steps: int = 1_000_000
+    max_wall_time: float = MAX_WALL_TIME
+    #: when the run's wall-clock budget ends (``time.perf_counter()``), set by :meth:`build`
+    deadline: float = math.inf
 
     @classmethod
-    def build(cls, spec, *, n_samples, t_eval, include_events, rtol, atol, integrator, max_events, max_steps):
-        """Check every setting against ``spec`` (names the parameter the user wrote)."""
+    def build(cls, spec, *, n_samples, t_eval, include_events, rtol, atol, integrator, max_events, max_steps,
+              max_wall_time=MAX_WALL_TIME):
+        """Check every setting against ``spec`` (names the parameter the user wrote); the wall-clock
+        budget starts now."""
         max_steps = check_int("max_steps", max_steps, minimum=1, maximum=None)
+        max_wall_time = check_real("max_wall_time", max_wall_time, positive=True)
         samples = _sample_times(spec, n_samples, t_eval)
         limits.budget(spec, samples.size, max_steps)
         rtol = check_real("rtol", rtol, positive=True)
@@ -76,7 +88,18 @@ class RunOptions:
             integrator=check_choice("integrator", integrator, INTEGRATORS),
             max_events=check_int("max_events", max_events, minimum=1, maximum=None),
             max_steps=max_steps,
+            max_wall_time=max_wall_time,
+            deadline=time.perf_counter() + max_wall_time,
         )
+
+    def check_clock(self, t: float) -> None:
+        """Raise SimulationError naming ``max_wall_time`` once the run's wall-clock budget is spent
+        (``t``: the simulated time reached, s)."""
+        if time.perf_counter() > self.deadline:
+            raise SimulationError(
+                f"the run used its wall-clock budget `max_wall_time` = {self.max_wall_time:g} s and had "
+                f"reached t = {t:.6g} s; raise `max_wall_time`, shorten `t_end`, or make the chain less "
+                "stiff (its rates, friction law and belt speed set the work per simulated second)", time=t)
 
 
 def _sample_times(spec, n_samples, t_eval) -> np.ndarray:
@@ -112,13 +135,17 @@ class RawRun:
 
 
 class StepBudget:
-    """Counts right-hand-side evaluations of an integrator against ``max_steps``."""
+    """Counts right-hand-side evaluations of an integrator against ``max_steps``, and watches the
+    wall-clock budget of ``options`` (:meth:`RunOptions.check_clock`)."""
 
-    def __init__(self, max_steps: int):
-        self.left = self.max_steps = max_steps
+    def __init__(self, options: "RunOptions"):
+        self.left = self.max_steps = options.max_steps
+        self.options = options
 
     def spend(self, t: float) -> None:
         self.left -= 1
+        if not self.left % 256:  # a clock reading costs ~50 ns, an evaluation tens of us
+            self.options.check_clock(t)
         if self.left < 0:
             raise SimulationError(f"the integrator needed more than `max_steps` = {self.max_steps:,} right-hand-side "
                                   f"evaluations before t = {t:.6g} s; raise `max_steps` or shorten `t_end`", time=t)

@@ -21,7 +21,7 @@ import numpy as np
 
 from ..errors import SceneError
 from .. import _validate as check
-from .backend import RunOptions
+from .backend import MAX_WALL_TIME, RunOptions
 from .contact_loop import run_contact
 from .contact_phase import ContactTemplate
 from .contact_result import ContactResult, assemble_contact
@@ -48,14 +48,15 @@ def contact_spec(masses, springs, dampers, *, mu_s=None, mu_k=None, v_belt, x0, 
 
 def simulate_contact(masses, springs, dampers, *, method="exact", n_samples=2001, t_eval=None, include_events=True,
                      rtol=1e-8, atol=None, integrator="LSODA", max_events=1_000_000, max_steps=1_000_000,
-                     **chain) -> ContactResult:
+                     max_wall_time=MAX_WALL_TIME, **chain) -> ContactResult:
     """``simulate_chain`` with ``normal`` (see there); returns a :class:`ContactResult`."""
     if method != "exact":
         raise SceneError(f"`method` must be 'exact' with `normal` (the contact solver is event-driven), got "
                          f"{check.show(method)}")
     spec = contact_spec(masses, springs, dampers, **chain)
     options = RunOptions.build(spec, n_samples=n_samples, t_eval=t_eval, include_events=include_events, rtol=rtol,
-                               atol=atol, integrator=integrator, max_events=max_events, max_steps=max_steps)
+                               atol=atol, integrator=integrator, max_events=max_events, max_steps=max_steps,
+                               max_wall_time=max_wall_time)
     clock = _time.perf_counter()
     raw = run_contact(spec, options)
     meta = {**raw.meta, "method": method, "backend": "closed-form contact phases",

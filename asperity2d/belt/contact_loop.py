@@ -113,6 +113,7 @@ def run_contact(spec, options) -> ContactRun:
             t, opened = float(t1), False
             continue
         switches += 1
+        options.check_clock(t1)
         zero_steps = zero_steps + 1 if tau_e <= 1e-12 * min(phase.step, chain.t_end) else 0
         if zero_steps > 64:
             raise SimulationError(f"switching did not progress at t = {t1:.17g} s (65 switches in a row); hint: "

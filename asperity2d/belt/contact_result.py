@@ -10,6 +10,7 @@ to the stored energy, and the ``impact_dissipation`` to the losses.
 
 from __future__ import annotations
 
+import math
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -20,7 +21,7 @@ from .._io import load_npz, save_npz
 from ..friction.laws import law_from_dict
 from .backend import Event
 from .normal import SEPARATED, ContactSpec, NormalContact
-from .result import ENERGY_SERIES, MASS_SERIES, BeltResult
+from .result import ENERGY_SERIES, MASS_SERIES, BeltResult, check_books
 from .spec import ChainSpec, link_force
 
 #: per-mass (n, T) and scalar (T,) series a contact result adds to a BeltResult's
@@ -57,16 +58,19 @@ class ContactResult(BeltResult):
         return self.kinetic_energy + self.spring_energy + self.load_energy
 
     @property
+    def initial_energy(self) -> float:
+        """Stored energy at t = 0 (J): the first sample's; NaN when the samples start later."""
+        return float(self.stored_energy[0]) if self.t.size and self.t[0] == 0 else math.nan
+
+    @property
     def energy_residual(self) -> np.ndarray:
         """(E - E0) - (W_belt - D_friction - D_damper - D_impact) at every sample (J)."""
-        return (self.stored_energy - self.stored_energy[0]) - (
+        return (self.stored_energy - self.initial_energy) - (
             self.belt_work - self.friction_dissipation - self.damper_dissipation - self.impact_dissipation)
 
-    def energy_balance_error(self) -> float:
-        """max |residual| over the largest energy flow or store (dimensionless)."""
-        scale = max(np.max(np.abs(a)) for a in (self.belt_work, self.friction_dissipation, self.damper_dissipation,
-                                                self.impact_dissipation, self.stored_energy))
-        return float(np.max(np.abs(self.energy_residual)) / max(scale, 1e-300))
+    def _energy_parts(self) -> tuple:
+        return (self.belt_work, self.friction_dissipation, self.damper_dissipation, self.impact_dissipation,
+                self.kinetic_energy, self.spring_energy, self.load_energy)
 
     @property
     def separated(self) -> np.ndarray:
@@ -123,7 +127,7 @@ def assemble_contact(spec: ContactSpec, raw, meta: dict) -> ContactResult:
     meta = dict(meta)
     meta["chain"] = spec.chain.to_dict()
     meta["normal"] = spec.to_dict()
-    return ContactResult(
+    result = ContactResult(
         t=raw.t, x=x, v=v, state=np.asarray(raw.modes, dtype=np.int8), friction_force=raw.friction_force,
         spring_force=-(Ks[:n] @ q), damper_force=link_force(spec.chain.c, v),
         belt_work=raw.work[0], friction_dissipation=raw.work[1], damper_dissipation=raw.work[2],
@@ -133,3 +137,5 @@ def assemble_contact(spec: ContactSpec, raw, meta: dict) -> ContactResult:
         y=y, vy=vy, normal_force=raw.normal_force, load_energy=spec.load @ y, impact_dissipation=raw.work[3],
         separation_intervals=[[tuple(map(float, iv)) for iv in per] for per in raw.separation_intervals],
         contact=spec)
+    check_books(result)
+    return result

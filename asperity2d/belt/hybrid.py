@@ -49,7 +49,7 @@ def run_ode_phases(spec, options) -> RawRun:
     rate = spec.fastest_rate
     step = 2 * math.pi / (16 * rate) if rate > 0 else spec.t_end
     atol = np.concatenate([_atol(spec, options.rtol, options.atol), _work_atol(spec, options.rtol)])
-    budget = StepBudget(options.max_steps)
+    budget = StepBudget(options)
 
     def make_phase(modes, x, v, t):
         return OdePhase(spec, modes, x, v, t, step, options, atol, budget)
@@ -168,7 +168,7 @@ def run_state_law(spec, options) -> RawRun:
     from scipy.integrate import solve_ivp  # lazily: keeps `import asperity2d.belt` free of SciPy
 
     n, law, normal = spec.n, spec.law, spec.normal
-    budget = StepBudget(options.max_steps)
+    budget = StepBudget(options)
 
     def rhs(t, y):
         budget.spend(t)

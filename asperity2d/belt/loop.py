@@ -56,6 +56,7 @@ def event_loop(spec, options, make_phase) -> RawRun:
         if tau_e is None:
             break
         switches += 1
+        options.check_clock(t1)
         # switches that do not move time on (below 1e-12 of the sampling step): a few happen when
         # several masses switch at one instant; a long run of them is a cycle of modes at one
         # instant, refused at once rather than after max_events switches

@@ -48,7 +48,8 @@ PRESETS = {
 
 #: ``simulate_chain`` arguments a preset does not set but accepts as overrides
 RUN_SETTINGS = frozenset({"method", "n_samples", "t_eval", "rtol", "atol", "integrator", "friction", "normal_load",
-                          "g", "include_events", "max_events", "max_steps", "normal", "y0", "vy0"})
+                          "g", "include_events", "max_events", "max_steps", "max_wall_time", "normal", "y0",
+                          "vy0"})
 
 
 def names() -> list[str]:

@@ -10,6 +10,7 @@ intervals and the run settings).
 
 from __future__ import annotations
 
+import math
 import os
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -17,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from .._io import FileError, atomic_write, check_format, load_npz, save_npz
-from ..errors import SceneError
+from ..errors import SceneError, SimulationError
 from ..friction.laws import law_from_dict
 from .backend import Event, RawRun
 from .spec import ChainSpec, link_extension, link_force
@@ -103,6 +104,8 @@ class BeltResult:
         return {"kind": self.kind, "status": self.status, "success": self.success, "message": self.message,
                 "n": self.n, "duration_s": duration, "samples": int(self.t.size), "events": len(self.events),
                 "method": self.meta.get("method"), "energy_balance_error": self.energy_balance_error(),
+                "checks": {name: "passed" if c.get("passed", True) else "failed"
+                           for name, c in self.meta.get("checks", {}).items() if isinstance(c, dict)},
                 "masses": masses}
 
     @property
@@ -111,18 +114,34 @@ class BeltResult:
         return self.kinetic_energy + self.spring_energy
 
     @property
+    def initial_energy(self) -> float:
+        """Stored energy at t = 0 (J): the first sample's, or (samples that start later, ``t_eval``)
+        the chain's initial state's; NaN when neither is known (a loaded callable-belt run)."""
+        if self.t.size and self.t[0] == 0:
+            return float(self.stored_energy[0])
+        if self.chain is None:
+            return math.nan
+        spec = self.chain
+        return float(0.5 * np.sum(spec.m * np.asarray(spec.v0) ** 2)
+                     + 0.5 * np.sum(spec.k * link_extension(np.asarray(spec.x0)) ** 2))
+
+    @property
     def energy_residual(self) -> np.ndarray:
         """(E - E0) - (W_belt - D_friction - D_damper) at every sample (J); zero for a closed balance."""
-        return (self.stored_energy - self.stored_energy[0]) - (
+        return (self.stored_energy - self.initial_energy) - (
             self.belt_work - self.friction_dissipation - self.damper_dissipation
         )
 
+    def _energy_parts(self) -> tuple:
+        return (self.belt_work, self.friction_dissipation, self.damper_dissipation, self.kinetic_energy,
+                self.spring_energy)
+
     def energy_balance_error(self) -> float:
-        """max |residual| over the largest energy flow or store (dimensionless)."""
-        scale = max(
-            np.max(np.abs(a))
-            for a in (self.belt_work, self.friction_dissipation, self.damper_dissipation, self.stored_energy)
-        )
+        """max |residual| over the largest energy flow or store (dimensionless). The stores are
+        taken one by one (kinetic, springs, ...): their sum can cancel to rounding (a mass
+        swinging on its spring against a preload holds E = 0 throughout), and a residual of
+        1e-16 J over a total of 1e-16 J is not an error of 1."""
+        scale = max(np.max(np.abs(a)) for a in self._energy_parts())
         return float(np.max(np.abs(self.energy_residual)) / max(scale, 1e-300))
 
     def __repr__(self) -> str:
@@ -165,8 +184,51 @@ class BeltResult:
         return atomic_write(path, write)
 
 
+#: Energy books a returned run must close to (``energy_balance_error``): closed-form phases
+#: integrate the work exactly (measured 1e-16 - 1e-11 on every chain of the tests and the
+#: fuzzers); integrated phases carry it as ODE states, good to the integrator's tolerance
+#: (measured up to ~3e-6 at rtol = 1e-8; the sign() method's chatter included).
+BOOKS_TOLERANCE = 1e-6
+BOOKS_PER_RTOL = 1e3
+
+
+def books_tolerance(meta: dict) -> float:
+    """The energy-book tolerance of a run with ``meta`` (its back-end and ``rtol``)."""
+    if meta.get("backend") in ("closed-form phases", "closed-form contact phases"):
+        return BOOKS_TOLERANCE
+    return max(BOOKS_TOLERANCE, BOOKS_PER_RTOL * float(meta.get("rtol", 1e-8)))
+
+
+def check_books(result) -> None:
+    """Raise SimulationError if ``result``'s energy books are off by more than their tolerance
+    (:func:`books_tolerance`); else record the check in ``result.meta["checks"]``. A result
+    whose books do not close created or lost energy the model has no term for: switches
+    mis-resolved (a velocity snapped to the belt's), an integrator that did not converge."""
+    if math.isnan(result.initial_energy):  # samples from t > 0 of a contact run: no E(0) to check against
+        result.meta.setdefault("checks", {})["energy_books"] = {
+            "passed": True, "worst": None, "limit": books_tolerance(result.meta),
+            "what": "not checked: the samples start after t = 0"}
+        return
+    error = result.energy_balance_error()
+    limit = books_tolerance(result.meta)
+    t = float(result.t[-1]) if result.t.size else 0.0
+    if not error <= limit:  # also NaN
+        residual = np.abs(result.energy_residual)
+        wrong = ~(residual <= limit / error * np.max(residual)) if error > 0 else np.ones(residual.size, bool)
+        at = int(np.argmax(wrong)) if result.t.size else 0
+        raise SimulationError(
+            f"the energy books do not close: off by {error:.3g} of the largest energy flow (tolerance "
+            f"{limit:.3g}), first beyond the tolerance at t = {float(result.t[at]):.6g} s; the run "
+            f"({result.meta.get('backend')}) created or lost energy; use a smaller `rtol`, or bring the "
+            "chain's forces and speeds closer together (friction limits far beyond the spring forces, "
+            "a belt speed far from the initial speeds)", time=t)
+    result.meta.setdefault("checks", {})["energy_books"] = {
+        "passed": True, "worst": error, "limit": limit, "what": "energy balance error / largest energy flow"}
+
+
 def assemble(spec: ChainSpec, raw: RawRun, meta: dict) -> BeltResult:
-    """Build a BeltResult from a back-end's raw run (adds forces and stored energies); ``meta`` replaces raw.meta."""
+    """Build a BeltResult from a back-end's raw run (adds forces and stored energies); ``meta`` replaces raw.meta.
+    Its energy books are checked (:func:`check_books`)."""
     x, v = raw.x, raw.v
     state = np.array(raw.state, dtype=np.int8)
     frictionless = ~spec.frictional
@@ -177,7 +239,7 @@ def assemble(spec: ChainSpec, raw: RawRun, meta: dict) -> BeltResult:
     meta["chain"] = spec.to_dict()
     meta.setdefault("status", "t_end")
     meta.setdefault("message", f"reached t_end = {float(raw.t[-1]):.6g} s")
-    return BeltResult(
+    result = BeltResult(
         t=raw.t, x=x, v=v, state=state,
         friction_force=raw.friction_force,
         spring_force=link_force(spec.k, x),
@@ -188,6 +250,8 @@ def assemble(spec: ChainSpec, raw: RawRun, meta: dict) -> BeltResult:
         stick_intervals=[[tuple(map(float, iv)) for iv in per] for per in raw.stick_intervals],
         events=list(raw.events), chain=spec, meta=meta,
     )
+    check_books(result)
+    return result
 
 
 def load(path: str | os.PathLike) -> BeltResult:
@@ -209,6 +273,9 @@ def load(path: str | os.PathLike) -> BeltResult:
         if t.ndim != 1 or array.shape != want or array.dtype.kind not in "biuf":
             raise FileError("path", path, f"is not {kind}", f"array {name!r} has shape {array.shape}, "
                             f"dtype {array.dtype}, for {t.size} samples of {n} masses")
+        if not np.all(np.isfinite(array)):  # a chain run never returns non-finite values
+            raise FileError("path", path, f"is damaged or not {kind}",
+                            f"array {name!r} holds non-finite values (NaN or infinity)")
     try:
         events = [Event(**e) for e in meta.pop("events")]
         intervals = [[(float(a), float(b)) for a, b in per] for per in meta.pop("stick_intervals")]

@@ -26,7 +26,7 @@ def run_sign(spec, options) -> RawRun:
     from scipy.integrate import solve_ivp  # lazily: keeps `import asperity2d.belt` free of SciPy
 
     n, law = spec.n, spec.law
-    budget = StepBudget(options.max_steps)
+    budget = StepBudget(options)
     normal = spec.normal
     mu = law.kinetic_coefficient if law.piecewise_constant else None
 

@@ -12,7 +12,7 @@ import time as _time
 from dataclasses import dataclass
 from typing import Callable
 
-from .backend import RawRun, RunOptions
+from .backend import MAX_WALL_TIME, RawRun, RunOptions
 from .hybrid import run_ode_phases, run_state_law
 from .linear import run_closed_form
 from .result import BeltResult, assemble
@@ -65,6 +65,7 @@ def simulate_chain(
     integrator="LSODA",
     max_events=1_000_000,
     max_steps=1_000_000,
+    max_wall_time=MAX_WALL_TIME,
     normal=None,
     y0=None,
     vy0=None,
@@ -87,7 +88,7 @@ def simulate_chain(
     Output is sampled at ``t_eval`` (s) or ``n_samples`` uniform times, plus
     every event time when ``include_events``. Budgets: ``max_events``
     switches; ``max_steps`` scan steps (1/16 of the fastest period each) or
-    right-hand-side evaluations. Bad input raises ``SceneError`` naming the
+    right-hand-side evaluations; ``max_wall_time`` seconds of wall-clock time (default 30 s). Bad input raises ``SceneError`` naming the
     parameter; a run that fails or exceeds a budget raises ``SimulationError``.
 
     ``normal``, a :class:`~.normal.NormalContact`, gives every mass a normal
@@ -104,11 +105,11 @@ def simulate_chain(
             masses, springs, dampers, mu_s=mu_s, mu_k=mu_k, v_belt=v_belt, x0=x0, v0=v0, t_end=t_end, g=g,
             normal_load=normal_load, friction=friction, method=method, n_samples=n_samples, t_eval=t_eval,
             include_events=include_events, rtol=rtol, atol=atol, integrator=integrator, max_events=max_events,
-            max_steps=max_steps, normal=normal, y0=y0, vy0=vy0)
+            max_steps=max_steps, max_wall_time=max_wall_time, normal=normal, y0=y0, vy0=vy0)
     spec = ChainSpec(masses, springs, dampers, mu_s, mu_k, v_belt, x0, v0, t_end, g, normal_load, friction)
     options = RunOptions.build(spec, n_samples=n_samples, t_eval=t_eval, include_events=include_events,
                                rtol=rtol, atol=atol, integrator=integrator, max_events=max_events,
-                               max_steps=max_steps)
+                               max_steps=max_steps, max_wall_time=max_wall_time)
     backend = next(b for b in METHODS[method] if b.accepts(spec))
     clock = _time.perf_counter()
     raw = backend.run(spec, options)

@@ -174,10 +174,26 @@ class ChainSpec:
         """A velocity (m/s) that normalises the slip event functions and the switching tolerance.
 
         The largest of the belt speed, the initial speeds and the speed swing
-        mu_s·N/(m·omega) of a static-friction release (at least 1e-12 m/s).
+        F/(m·omega) of a static-friction release of the force F = mu_s·N (at least 1e-12 m/s).
+        On a constant belt F is at most the force the links can build up during the run
+        (:attr:`release_force`): a static limit beyond it never releases, and a swing taken
+        from it would set the switching tolerance (1e-9 of this scale) above the chain's real
+        speeds (mu_s = 100 under 1e6 N on Table 2's springs: a 2e7 m/s "swing", a 0.02 m/s
+        tolerance, masses snapped to the belt speed 0.02 m/s away, books 2e-4 off).
         """
-        swing = float(np.max(self.static_limit / self.m)) / self.omega
+        force = self.static_limit if callable(self.v_belt) else np.minimum(self.static_limit, self.release_force)
+        swing = float(np.max(force / self.m)) / self.omega
         return float(max(abs(self.belt_velocity(0.0)), float(np.max(np.abs(self.v0))), swing, 1e-12))
+
+    @cached_property
+    def release_force(self) -> np.ndarray:
+        """Per mass, a generous bound (N) on the spring and damper force it can feel on a constant
+        belt: its links stretched by twice the reach (the initial offsets plus the distance the belt
+        and the initial speeds cover in ``t_end``) and moving at twice the belt's or the initial speed."""
+        speed = abs(float(self.belt_velocity(0.0))) + float(np.max(np.abs(self.v0)))
+        reach = float(np.max(np.abs(self.x0))) + speed * self.t_end
+        k, c = self.k[:-1] + self.k[1:], self.c[:-1] + self.c[1:]
+        return 2.0 * (k * reach + c * speed)
 
     @cached_property
     def length_scale(self) -> float:
@@ -213,7 +229,11 @@ class ChainSpec:
         return self._call_belt(t)
 
     def _call_belt(self, t) -> float:
-        value = self.v_belt(float(t))
+        try:
+            value = self.v_belt(float(t))
+        except Exception as exc:  # noqa: BLE001 -- the user's callable: report it, with the time
+            raise SimulationError(f"`v_belt` raised {type(exc).__name__} at t = {float(t):.6g} s: {show(exc, 120)}",
+                                  time=float(t)) from None
         try:
             out = float(value)
         except (TypeError, ValueError, OverflowError):

@@ -10,7 +10,8 @@ from __future__ import annotations
 import argparse
 import sys
 
-from .._validate import check_int, check_positive
+from .._validate import MAX_RUNS, check_int, check_positive
+from .._validate import check_runs as _check_runs
 from ..errors import SceneError
 
 PROG = "asperity2d"
@@ -61,6 +62,12 @@ class Subcommands(argparse._SubParsersAction):
         _, extras = sub.parse_known_args(rest, namespace)
         if extras:
             vars(namespace).setdefault(argparse._UNRECOGNIZED_ARGS_ATTR, []).extend(extras)
+
+
+def check_runs(runs: int, max_runs: int | None, why: str) -> None:
+    """Refuse a command that would start more than ``--max-runs`` runs (see
+    :func:`asperity2d._validate.check_runs`)."""
+    _check_runs(runs, max_runs, why, name="--max-runs")
 
 
 def fail(message) -> int:

@@ -13,7 +13,7 @@ import math
 from pathlib import Path
 
 from .. import _io
-from .args import PLOT_SUFFIXES, load_script
+from .args import PLOT_SUFFIXES, check_runs, load_script
 from ..errors import SceneError
 
 #: Keys of a TOML scene's ``[run]`` table.
@@ -86,8 +86,9 @@ def run(args) -> int:
         return _run_script(path, args)
     if path.suffix != ".toml":
         raise SceneError(f"`scene` must be a .py script or a .toml scene file, got {str(path)!r}")
-    save = args.save and _io.output_path("--save", args.save, suffixes=(".npz",))
-    output = args.output and _io.output_path("--output", args.output, suffixes=_render_suffixes())
+    save = None if args.save is None else _io.output_path("--save", args.save, suffixes=(".npz",))
+    output = None if args.output is None else _io.output_path("--output", args.output,
+                                                              suffixes=_render_suffixes())
     scene, settings = scene_from_toml(path)
     if args.duration is not None:
         duration = _checked_duration(scene, args.duration, "--duration")
@@ -121,7 +122,7 @@ def _run_script(path: Path, args) -> int:
     if not callable(getattr(module, "main", None)):
         raise SceneError(f"`scene` script {str(path)!r} has no main(argv) function")
     argv = list(args.script_args) + (["--json"] if args.json else [])
-    argv += ["-o", args.output] if args.output else []
+    argv += ["-o", args.output] if args.output is not None else []
     saved, sys.argv = sys.argv, [str(path), *argv]  # the script's usage names the script
     try:
         return int(module.main(argv) or 0)
@@ -218,8 +219,8 @@ def _parse_set(items: list[str]) -> dict:
 
 def compare(args) -> int:
     """``asperity2d compare``: a measure of each spacing over seeds, with statistics."""
-    save = args.save and _io.output_path("--save", args.save, suffixes=(".json",))
-    output = args.output and _io.output_path("--output", args.output, suffixes=PLOT_SUFFIXES)
+    save = None if args.save is None else _io.output_path("--save", args.save, suffixes=(".json",))
+    output = None if args.output is None else _io.output_path("--output", args.output, suffixes=PLOT_SUFFIXES)
     from ..experiments.compare import Comparison, measure_label
     from ..experiments.compare import compare as run_compare
 
@@ -229,6 +230,12 @@ def compare(args) -> int:
     else:
         variants = {name: {"spacing": name} for name in args.variants.split(",")}
         base = _parse_set(args.set)
+        for key in ("spacing", "seed"):
+            if key in base:
+                raise SceneError(f"`--set {key}=...` cannot be used with compare: each variant of "
+                                 f"`--variants` sets `spacing`, and `--seeds` the seeds")
+        check_runs(len(variants) * args.seeds, args.max_runs,
+                   f"`--variants` ({len(variants)}) x `--seeds` ({args.seeds:,})")
         force = args.measure.startswith("critical") or args.measure in ("quasi-static-breakaway", "travel")
         base.setdefault("drive", "force" if force else "spring")
         comparison = run_compare(args.measure, variants, range(args.seeds), base=base, progress=not args.json,

@@ -18,7 +18,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from .. import _io
 from ..errors import SceneError
+from .args import check_runs
 
 PLOTS = (".png", ".svg", ".pdf")
 
@@ -65,10 +67,9 @@ def run(args) -> int:
         if len(lo_hi) != 2 or not lo_hi[0] < lo_hi[1]:
             raise SceneError(f"`{name}` must be LO,HI with LO < HI, got {text!r}")
         axes.append(np.linspace(*lo_hi, count) if count > 1 else np.array([0.5 * sum(lo_hi)]))
-    out = Path(args.output) if args.output else Path("basins.png")
-    if out.suffix.lower() not in PLOTS:
-        raise SceneError(f"`--output` must end in .png, .svg or .pdf for a basin map, got {str(out)!r}")
-    store = Path(args.store) if args.store else out.with_suffix(".runs")
+    out = _io.output_path("--output", "basins.png" if args.output is None else args.output, suffixes=PLOTS)
+    store = _io.output_dir("--store", out.with_suffix(".runs") if args.store is None else args.store)
+    check_runs(nx * ny, args.max_runs, f"`--grid` {args.grid} is {nx:,} x {ny:,} points, one run each")
     result = b.chain_basins(chain, x=(args.x, axes[0]), y=(args.y, axes[1]), rtol=args.rtol,
                             store=store, workers=args.workers, scheduler=args.scheduler,
                             progress=not args.json)

@@ -64,9 +64,9 @@ def run(args) -> int:
     """Run the parsed ``belt`` command; bad input raises ``SceneError`` (one line, exit 2)."""
     if (args.chain is None) == (args.preset is None) and not args.list_presets:
         raise SceneError("give either a `chain` TOML file or `--preset`")
-    out = args.output and _io.output_path("--output", args.output, suffixes=OUTPUTS)
+    out = None if args.output is None else _io.output_path("--output", args.output, suffixes=OUTPUTS)
     # the user's file is read (and refused) before the solver and NumPy are imported
-    kwargs = None if args.preset or args.list_presets else load_chain(args.chain)
+    kwargs = None if args.chain is None or args.list_presets else load_chain(args.chain)
     from ..belt import presets
 
     if args.list_presets:
@@ -78,6 +78,8 @@ def run(args) -> int:
         kwargs["method"] = args.method
     if args.t_end is not None:
         kwargs["t_end"] = args.t_end
+    if args.max_wall_time is not None:
+        kwargs["max_wall_time"] = args.max_wall_time
     from ..belt.regime import classify
     from ..belt.solver import simulate_chain
 

@@ -22,7 +22,7 @@ import warnings
 
 from ..errors import SceneError, SimulationError
 from . import asperity, basins, belt, sweep
-from .args import PLOT_SUFFIXES, PROG, Parser, Subcommands, fail, positive_float, positive_int
+from .args import MAX_RUNS, PLOT_SUFFIXES, PROG, Parser, Subcommands, fail, positive_float, positive_int
 
 __all__ = ["main", "build_parser", "Parser", "PROG", "PLOT_SUFFIXES", "fail", "positive_float",
            "positive_int"]
@@ -108,12 +108,18 @@ def build_parser() -> Parser:
     p.add_argument("--save", help="save the comparison (.json) to re-plot later")
     p.add_argument("--load", help="re-use a saved comparison instead of running")
     p.add_argument("-o", "--output", help="comparison plot (.png, .svg, .pdf)")
+    _max_runs(p)
     _json_flag(p)
     p.set_defaults(handler=asperity.compare)
 
     _add_belt(sub)
     _add_sweep(sub)
     return parser
+
+
+def _max_runs(p) -> None:
+    p.add_argument("--max-runs", type=positive_int, default=None,
+                   help=f"refuse to start more runs than this (default {MAX_RUNS:,})")
 
 
 def _belt_common() -> Parser:
@@ -157,6 +163,7 @@ def _add_belt(subparsers) -> None:
     p.add_argument("--workers", type=positive_int, help="local worker processes")
     p.add_argument("--scheduler", help="Dask scheduler address, or 'local'")
     p.add_argument("--rtol", type=positive_float, default=1e-6, help="relative tolerance of the limit-cycle test")
+    _max_runs(p)
     p.set_defaults(handler=basins.run)
 
 
@@ -165,6 +172,8 @@ def _belt_run_options(p, *, chain: bool = True) -> None:
         p.add_argument("chain", nargs="?", help="TOML chain file")
     p.add_argument("--list-presets", action="store_true", help="print the preset names and exit")
     p.add_argument("--method", choices=("exact", "sign"), help="override the solver")
+    p.add_argument("--max-wall-time", type=positive_float, default=None,
+                   help="stop a run after this many seconds of wall-clock time (default 30)")
     p.add_argument("-o", "--output", help="plot (.png/.svg/.pdf), result (.npz) or table (.csv)")
 
 
@@ -183,6 +192,7 @@ def _add_sweep(subparsers) -> None:
                    help="Dask scheduler address tcp://host:port, or 'local' for a LocalCluster")
     p.add_argument("--retry-failed", action="store_true", help="re-run runs recorded as failed")
     p.add_argument("--no-progress", action="store_true", help="hide the progress bar")
+    _max_runs(p)
     _json_flag(p)
 
     p = sub.add_parser("status", help="count done / failed / pending runs of a store")

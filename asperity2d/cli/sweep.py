@@ -29,13 +29,17 @@ def _store(path):
 
 
 def _cmd_run(args) -> int:
-    from ..sweep.runner import run_study
+    from ..sweep.runner import run_study, study_size
+    from ..sweep.study import load_study
+    from .args import check_runs
 
-    study = _io.input_path("study", args.study)
+    study = load_study(_io.input_path("study", args.study))
+    check_runs(len(study), args.max_runs, study_size(study))
     store = _io.output_dir("--store", args.store)
     try:
         summary = run_study(study, store=store, workers=args.workers, scheduler=args.scheduler,
-                            progress=not args.no_progress, retry_failed=args.retry_failed)
+                            progress=not args.no_progress, retry_failed=args.retry_failed,
+                            max_runs=args.max_runs)
     except OSError as exc:
         # the store's own files (a read-only mount, a full disk); any other OSError is not ours
         if exc.filename is None or not str(exc.filename).startswith(str(store)):

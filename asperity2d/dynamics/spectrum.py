@@ -77,7 +77,7 @@ def spectrum(t, y, *, method: str = "welch", segment: float | None = None, dt: f
     """Power spectrum of ``y(t)`` (SI): see the module docstring.
 
     ``segment`` (s) is Welch's segment length (default: a quarter of the run,
-    giving 7 half-overlapping averages); the bin width is 1/segment.
+    giving 7 half-overlapping averages, but at least 16 samples); the bin width is 1/segment.
     ``dt`` (s) is the resampling step (default: the median sample spacing).
     ``detrend`` ("linear", "constant" or "none") is applied per segment; the
     linear default keeps a drifting position (an asperity slider's x) from
@@ -99,7 +99,8 @@ def spectrum(t, y, *, method: str = "welch", segment: float | None = None, dt: f
     fs = 1.0 / (tu[1] - tu[0])
     trend = False if detrend == "none" else detrend
     if method == "welch":
-        nperseg = tu.size // 4 if segment is None else int(round(segment * fs))
+        # default: quarters of the run, but never under 16 samples (a short run: one segment)
+        nperseg = min(tu.size, max(16, tu.size // 4)) if segment is None else int(round(segment * fs))
         if not 16 <= nperseg <= tu.size:
             raise SceneError(f"`segment` must span 16 samples to the whole run ({tu[-1] - tu[0]:.6g} s), "
                              f"got {segment!r}")

@@ -28,6 +28,7 @@ from ..units import Units, check_scales
 from .contacts import ARBITER_FIELDS, Arbiters, StickSlip
 from .native import stepper
 from .space import build
+from .validity import check_scene
 
 PYMUNK_VERSION = pymunk.version
 BODY_FIELDS = batch.BodyFields.POSITION | batch.BodyFields.VELOCITY
@@ -79,6 +80,7 @@ class Engine:
         self.scene = scene
         self.units = u = Units.for_scene(scene)
         check_scales(scene, u)  # before pymunk sees a value it cannot represent
+        check_scene(scene, dt, u)  # nor a motion its step cannot resolve, nor a load it cannot carry
         self.dt = dt  # s
         self.dt_internal = dt / u.time
         self.layout = build(scene, u, self.dt_internal, iterations=iterations,

@@ -15,6 +15,7 @@ import math
 import numpy as np
 
 from ..errors import SimulationError
+from .validity import Validity
 
 #: Divergence: deepest overlap (asperity bases); kinetic energy above this
 #: multiple of the energy the scene held at t = 0 plus all the drive has put in.
@@ -46,6 +47,7 @@ class Recorder:
         self.max_overlap = 0.0
         self.max_drift = 0.0
         self._energy = None  # the divergence guard's books, opened at the first sample
+        self.validity = Validity(self.engine)  # the physical-validity checks, beside the guard
 
     def _check_energy(self, rows: np.ndarray, drive_force: float) -> None:
         """Raise SimulationError if the bodies hold far more kinetic energy than the scene
@@ -106,6 +108,7 @@ class Recorder:
                 f"use a smaller dt (now {e.dt:.3g} s) or more iterations", time=e.time)
         if overlap > self.max_overlap:
             self.max_overlap = overlap
+        self.validity.check(rows)
 
     def check(self) -> None:
         """The divergence guard alone on the engine's current state (a run that keeps no record)."""

@@ -35,7 +35,7 @@ import numpy as np
 
 from .. import stats
 from .._io import FileError, read_text, write_json
-from .._validate import check_int, show
+from .._validate import check_int, count_seeds, show
 from ..builders import make_scene
 from ..errors import SceneError
 from ..scene import Scene
@@ -188,6 +188,7 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
     if not all(isinstance(kw, dict) or kw is None for kw in variants.values()):
         raise SceneError("`variants` must map each name to a dict of make_scene arguments")
     base = dict(base or {})
+    count_seeds("seeds", seeds)  # before a tuple of 10**20 seeds is attempted
     seeds = tuple(seeds)
     if not seeds:
         raise SceneError("`seeds` must not be empty")
@@ -204,7 +205,7 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
     # Build every scene first: bad arguments fail here, before any run starts.
     jobs, slots = [], {}
     for name, kw in variants.items():
-        scenes = [make_scene(**base, **(kw or {}), seed=s) for s in seeds]
+        scenes = [make_scene(**{**base, **(kw or {})}, seed=s) for s in seeds]  # a variant overrides base
         unseeded = all(sc.replace(name="") == scenes[0].replace(name="") for sc in scenes)
         for j, (seed, scene) in enumerate(zip(seeds, scenes)):
             if unseeded and j:

@@ -96,7 +96,10 @@ def write_wav(source, path: str | os.PathLike, *, signal: str = "acceleration", 
         if not np.isfinite(target_hz) or target_hz <= 0:
             raise SceneError(f"`target_hz` must be > 0, got {target_hz!r}")
         if not dominant > 0:
-            raise SceneError("`time_scale` must be given: the signal has no dominant frequency to scale")
+            why = (f"the run has {tu.size} samples, too few to find its dominant frequency (16 at "
+                   "least): record a longer run" if tu.size < 16 else "the signal has no dominant frequency")
+            raise SceneError(f"`time_scale` must be given: {why} (or give `time_scale`, playback "
+                             "frequency over simulated frequency)")
         time_scale = target_hz / dominant
     if not np.isfinite(time_scale) or time_scale <= 0:
         raise SceneError(f"`time_scale` must be > 0, got {time_scale!r}")

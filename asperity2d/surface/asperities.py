@@ -214,6 +214,9 @@ def find_asperities(profile: SurfaceProfile, *, min_prominence: float, min_width
     """
     from scipy.signal import find_peaks
 
+    from .stats import check_profile
+
+    check_profile(profile)
     min_prominence = check_positive("min_prominence", min_prominence)
     min_width = check_nonnegative("min_width", min_width)
     _one_of("stiffness", stiffness, "modulus", modulus)

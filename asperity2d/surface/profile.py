@@ -27,11 +27,13 @@ from types import MappingProxyType
 
 import numpy as np
 
-from .._validate import check_finite, check_int, check_positive
+from .._validate import HUGE, check_finite, check_flag, check_int, check_positive, check_real, check_text
 from ..errors import SceneError
 
 #: Relative tolerance on the sample spacing for a profile to count as uniformly sampled.
 UNIFORM_TOLERANCE = 1e-3
+#: Most points of a generated profile (a 2**24-point trace is 128 MB of heights).
+MAX_POINTS = 2**24
 
 
 @dataclass(frozen=True, eq=False)
@@ -50,6 +52,9 @@ class SurfaceProfile:
     metadata: Mapping = field(default_factory=dict)
 
     def __post_init__(self):
+        check_text("name", self.name)
+        if not isinstance(self.metadata, Mapping):
+            raise SceneError(f"`metadata` must be a mapping, got {type(self.metadata).__name__}")
         x, z = _vector("x", self.x), _vector("z", self.z)
         if len(x) != len(z):
             raise SceneError(f"`x` and `z` must have the same length, got {len(x)} and {len(z)}")
@@ -106,19 +111,28 @@ def _vector(name: str, values) -> np.ndarray:
     if not np.all(np.isfinite(arr)):
         i = int(np.argmax(~np.isfinite(arr)))
         raise SceneError(f"`{name}` must be finite, got {arr[i]!r} at index {i}")
+    # the package's magnitude window: squares (rms, spectra) and products must not overflow
+    big = np.abs(arr) > HUGE
+    if np.any(big):
+        i = int(np.argmax(big))
+        raise SceneError(f"`{name}` must be within +-{HUGE:g} m, got {arr[i]!r} at index {i}")
     arr.setflags(write=False)
     return arr
 
 
 def _grid(n, length) -> tuple[int, float, np.ndarray]:
-    n = check_int("n", n, minimum=8)
-    length = check_positive("length", length)
+    n = check_int("n", n, minimum=8, maximum=MAX_POINTS)
+    length = check_real("length", length, positive=True)
     return n, length, np.arange(n) * (length / n)
 
 
 def _scaled(z: np.ndarray, rms_height: float) -> np.ndarray:
     z = z - z.mean()
-    return z * (rms_height / math.sqrt(float(np.mean(z * z))))
+    spread = math.sqrt(float(np.mean(z * z)))
+    if not (math.isfinite(spread) and spread > 0):  # a spectrum that under- or overflowed
+        raise SceneError(f"the profile's spectrum over `length` does not fit in double precision "
+                         f"(rms {spread!r} before scaling); use a `length` nearer to 1 m")
+    return z * (rms_height / spread)
 
 
 def self_affine_profile(*, n: int, length: float, rms_height: float, hurst: float,
@@ -142,7 +156,9 @@ def self_affine_profile(*, n: int, length: float, rms_height: float, hurst: floa
         Seed of ``numpy.random.default_rng``.
     """
     n, length, x = _grid(n, length)
-    rms_height = check_positive("rms_height", rms_height)
+    rms_height = check_real("rms_height", rms_height, positive=True)
+    rolloff = check_flag("rolloff", rolloff)
+    name = check_text("name", name)
     hurst = check_finite("hurst", hurst)
     if not 0.0 < hurst <= 1.0:
         raise SceneError(f"`hurst` must be in (0, 1], got {hurst!r}")
@@ -184,7 +200,8 @@ def gaussian_profile(*, n: int, length: float, rms_height: float, correlation_le
     from scipy.ndimage import gaussian_filter1d
 
     n, length, x = _grid(n, length)
-    rms_height = check_positive("rms_height", rms_height)
+    rms_height = check_real("rms_height", rms_height, positive=True)
+    name = check_text("name", name)
     ell = check_positive("correlation_length", correlation_length)
     dx = length / n
     if not 2.0 * dx <= ell <= length / 4.0:

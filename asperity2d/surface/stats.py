@@ -31,7 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import check_choice, check_int, check_positive
+from .._validate import check_choice, check_int, check_positive, show
 from ..errors import SceneError
 from .profile import SurfaceProfile
 
@@ -39,16 +39,38 @@ METHODS = ("periodogram", "welch")
 WINDOWS = ("hann", "boxcar")
 
 
+def check_profile(profile, *, spectrum: bool = False) -> SurfaceProfile:
+    """``profile`` if it is a :class:`SurfaceProfile` (or, with ``spectrum``, a
+    :class:`PowerSpectrum`); else SceneError naming it."""
+    kinds = (SurfaceProfile, PowerSpectrum) if spectrum else (SurfaceProfile,)
+    if not isinstance(profile, kinds):
+        raise SceneError(f"`profile` must be a {' or '.join(k.__name__ for k in kinds)} (see "
+                         f"asperity2d.surface), got {show(profile)}")
+    return profile
+
+
+def _finite(what: str, value: float) -> float:
+    """``value``, or SceneError if the statistic overflowed (heights near the magnitude window)."""
+    if not math.isfinite(value):
+        raise SceneError(f"the profile's {what} overflows double precision ({value!r}); express its "
+                         "heights and positions in metres nearer to 1")
+    return value
+
+
 def rms_height(profile: SurfaceProfile) -> float:
     """Root-mean-square height about the mean line, Rq (m)."""
-    z = profile.z - profile.z.mean()
-    return math.sqrt(float(np.mean(z * z)))
+    z = check_profile(profile).z
+    z = z - z.mean()
+    with np.errstate(over="ignore", invalid="ignore"):
+        return _finite("rms height", math.sqrt(float(np.mean(z * z))))
 
 
 def rms_slope(profile: SurfaceProfile) -> float:
     """Root-mean-square slope from forward differences (dimensionless)."""
-    slope = np.diff(profile.z) / np.diff(profile.x)
-    return math.sqrt(float(np.mean(slope * slope)))
+    profile = check_profile(profile)
+    with np.errstate(over="ignore", invalid="ignore"):
+        slope = np.diff(profile.z) / np.diff(profile.x)
+        return _finite("rms slope", math.sqrt(float(np.mean(slope * slope))))
 
 
 @dataclass(frozen=True, eq=False)
@@ -79,6 +101,7 @@ def power_spectrum(profile: SurfaceProfile, *, method: str = "periodogram",
     """
     from scipy import signal
 
+    profile = check_profile(profile)
     check_choice("method", method, METHODS)
     check_choice("window", window, WINDOWS)
     if not profile.is_uniform:
@@ -97,6 +120,8 @@ def power_spectrum(profile: SurfaceProfile, *, method: str = "periodogram",
                             scaling="density")
     keep = f > 0
     q, psd = 2.0 * math.pi * f[keep], p[keep] / (2.0 * math.pi)  # per cycle/m -> per rad/m
+    if not (np.all(np.isfinite(psd)) and np.all(np.isfinite(q))):
+        _finite("power spectrum", math.inf)
     q.setflags(write=False)
     psd.setflags(write=False)
     return PowerSpectrum(q=q, psd=psd, method=method)
@@ -134,6 +159,7 @@ def fit_hurst(profile: SurfaceProfile | PowerSpectrum, *, q_min: float | None = 
     """
     from scipy import stats
 
+    check_profile(profile, spectrum=True)
     spectrum = profile if isinstance(profile, PowerSpectrum) else power_spectrum(profile)
     q, psd = spectrum.q, spectrum.psd
     q_min = 8.0 * float(q[0]) if q_min is None else check_positive("q_min", q_min)
@@ -143,7 +169,11 @@ def fit_hurst(profile: SurfaceProfile | PowerSpectrum, *, q_min: float | None = 
     if points < 3:
         raise SceneError(f"`q_min` .. `q_max` ({q_min:.6g} .. {q_max:.6g} rad/m) holds {points} "
                          f"spectrum values (spectrum spans {q[0]:.6g} .. {q[-1]:.6g} rad/m); need >= 3")
-    fit = stats.linregress(np.log(q[band]), np.log(psd[band]))
+    log_q, log_c = np.log(q[band]), np.log(psd[band])
+    if np.ptp(log_q) == 0 or not np.all(np.isfinite(log_c)):
+        raise SceneError(f"`q_min` .. `q_max` ({q_min:.6g} .. {q_max:.6g} rad/m): the spectrum values in "
+                         "the band cannot be fitted (one wavenumber, or values that under- or overflow)")
+    fit = stats.linregress(log_q, log_c)
     return HurstFit(hurst=float(-(1.0 + fit.slope) / 2.0), hurst_stderr=float(fit.stderr / 2.0),
                     slope=float(fit.slope), prefactor=math.exp(fit.intercept), q_min=q_min,
                     q_max=q_max, points=points)

@@ -17,6 +17,7 @@ import time
 from dataclasses import dataclass
 from typing import Iterator
 
+from .._validate import check_runs
 from ..errors import SceneError
 from .engine import decide_workers, run_calls
 from .executors import (DaskExecutor, LocalExecutor, check_executor_args, execute_run, jobs_for,
@@ -78,6 +79,12 @@ def _locked(store: ResultStore) -> Iterator[None]:
         yield
 
 
+def study_size(study: Study) -> str:
+    """Where a study's run count comes from, in words (for budget messages)."""
+    points = " x ".join(f"{len(v):,}" for v in study.grid.values()) or "1"
+    return f"study {study.name!r} has {points} grid point(s) x {len(study.seeds):,} seeds"
+
+
 def run_study(
     study: Study | str | os.PathLike,
     *,
@@ -87,6 +94,7 @@ def run_study(
     progress: bool = True,
     retry_failed: bool = False,
     executor: LocalExecutor | DaskExecutor | None = None,
+    max_runs: int | None = None,
 ) -> SweepSummary:
     """Run every unfinished run of ``study`` and record it in ``store``.
 
@@ -109,11 +117,15 @@ def run_study(
     executor : LocalExecutor or DaskExecutor, optional
         An executor to use (and leave open) instead of ``workers``/``scheduler``,
         e.g. to run several studies on one Dask client.
+    max_runs : int, optional
+        Refuse (``SceneError``, before any run starts) a study of more runs (grid points x
+        seeds) than this; default :data:`asperity2d._validate.MAX_RUNS` (100,000).
     """
     if executor is not None and (workers is not None or scheduler is not None):
         raise SceneError("`executor` excludes `workers` and `scheduler`")
     if not isinstance(study, Study):
         study = load_study(study)
+    check_runs(len(study), max_runs, study_size(study))
     store = store if isinstance(store, ResultStore) else ResultStore(store)
     check_executor_args(workers=workers, scheduler=scheduler)
     resolve_run(study.run)  # fail fast on a bad dotted path, before any process starts

@@ -42,6 +42,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Iterable, Mapping
 
+from .._validate import MAX_SEEDS, count_seeds
 from ..errors import SceneError
 
 _RUN_PATH = re.compile(r"^[A-Za-z_][\w.]*:[A-Za-z_]\w*$")
@@ -175,7 +176,10 @@ class Study:
     def _checked_seeds(seeds: Any) -> tuple[int, ...]:
         if isinstance(seeds, (int, str, bytes)) or not isinstance(seeds, Iterable):
             raise SceneError(f"`seeds` must be an iterable of ints such as range(n), got {seeds!r}")
-        seeds = tuple(seeds)
+        count_seeds("seeds", seeds)  # before a tuple of 10**12 seeds is attempted
+        seeds = tuple(itertools.islice(seeds, MAX_SEEDS + 1))
+        if len(seeds) > MAX_SEEDS:
+            count_seeds("seeds", seeds)
         for s in seeds:
             if isinstance(s, bool) or not isinstance(s, int) or s < 0:
                 raise SceneError(f"`seeds` must be ints >= 0, got {s!r}")
