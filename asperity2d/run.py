@@ -12,6 +12,7 @@ strokes and the critical force's bisection share it.
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass
 from typing import Callable, Iterable
 
@@ -188,7 +189,7 @@ class Run:
 
     def __init__(self, scene: Scene, *, dt: float | None = None, record_every: int = 10,
                  iterations: int = 20, unsafe_dt: bool = False, max_steps: int = MAX_STEPS,
-                 engaged: bool = False):
+                 engaged: bool = False, record_lower: bool = True, record_to=None):
         if not isinstance(scene, Scene):
             raise SceneError(f"`scene` must be a Scene (see make_scene), got {type(scene).__name__}")
         period = scene.shortest_period()
@@ -209,11 +210,28 @@ class Run:
         self.record_every = check_int("record_every", record_every, minimum=1)
         self.iterations = check_int("iterations", iterations, minimum=1, maximum=10_000)
         self.max_steps = check_int("max_steps", max_steps, minimum=1, maximum=None)
+        if not isinstance(record_lower, bool):
+            raise SceneError(f"`record_lower` must be True or False, got {record_lower!r}")
+        self.record_lower = record_lower
         self.scene, self.dt = scene, dt
         self.engine = Engine(scene, dt, iterations=self.iterations, engaged=engaged)
         self.settle_time = 0.0
         self.status, self.message = "duration", "nothing run yet"
         self._meter = None
+        self._sink = None
+        #: Entries added to the result's ``meta`` (e.g. the energy books of :func:`simulate`).
+        self.extra_meta: dict = {}
+        self._reset_record()
+        if record_to is not None:
+            self._stream(record_to)
+
+    def _stream(self, path) -> None:
+        """Stream the record to directory ``path`` from now on (:mod:`asperity2d.streamed`)."""
+        from .streamed import Writer
+
+        if self._record.size:
+            raise SceneError("`record_to` must be set before the run records anything")
+        self._sink = Writer(path, scene=self.scene, lower=self.record_lower, meta=self._meta())
         self._reset_record()
 
     # -- budget ---------------------------------------------------------------
@@ -242,8 +260,8 @@ class Run:
 
     # -- the record ---------------------------------------------------------
     def _reset_record(self) -> None:
-        # the engine's recorder keeps the samples and the divergence guard (internal units)
-        self._record = Recorder(self.engine)
+        # the engine's recorder keeps the samples (SI) and the divergence guard (internal units)
+        self._record = Recorder(self.engine, lower=self.record_lower, sink=self._sink)
 
     @property
     def max_overlap(self) -> float:
@@ -315,6 +333,8 @@ class Run:
         probe = Probe(base=self.scene.base, last_apex_x=rec.last_apex_x(),
                       energy=None if self._meter is None else self._meter.report)
         sample = rec.sample if record else rec.check
+        if record:
+            rec.reserve(n_steps // k + 2)
         sample()
         look = bool(stops or observers)  # the SI view is read only when someone looks
         if look:
@@ -353,6 +373,8 @@ class Run:
         out.__dict__.update(self.__dict__)
         out.engine = self.engine.copy()
         out._meter = None
+        out._sink = None  # a fork keeps its record in memory
+        out.extra_meta = {}
         out._reset_record()
         return out
 
@@ -394,10 +416,10 @@ class Run:
         """Number of samples recorded so far."""
         return self._record.size
 
-    def result(self, *, start: int = 0) -> Result:
-        """The samples recorded so far (from sample ``start`` on) as a :class:`Result` (SI)."""
+    def _meta(self) -> dict:
+        """The run's settings and diagnostics (a result's ``meta``)."""
         e = self.engine
-        meta = {
+        return {
             "settle_time": self.settle_time, "iterations": self.iterations, "dt": self.dt,
             "record_every": self.record_every, "status": self.status, "message": self.message,
             "steps": e.step_count, "max_overlap_fraction": self.max_overlap,
@@ -405,8 +427,27 @@ class Run:
             "max_solver_drift_fraction": e.max_solver_drift,  # removed by projection each step
             "units": e.units.as_dict(), "asperity2d_version": __version__,
             "pymunk_version": PYMUNK_VERSION, "numpy_version": np.__version__,
+            "record_lower": self.record_lower, **self.extra_meta,
         }
+
+    def result(self, *, start: int = 0) -> Result:
+        """The samples recorded so far (from sample ``start`` on) as a :class:`Result` (SI):
+        views of the record, not copies. A run streamed to disk (``record_to``) writes what it
+        has not written yet and returns the record read back from its files (memory maps)."""
+        meta = self._meta()
+        if self._sink is not None:
+            from .streamed import read
+
+            self._record.flush()
+            self._sink.finish(meta)
+            return read(self._sink.path, start=start)
         return Result(**self._record.arrays(start), scene=self.scene, meta=meta)
+
+    def abort(self, reason: str) -> None:
+        """A streamed record keeps what it has written, marked as stopped by ``reason``."""
+        if self._sink is not None:
+            self._record.flush()
+            self._sink.abort(reason, self._meta())
 
 
 def _callables(name: str, items) -> list:
@@ -421,7 +462,8 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
              record_every: int = 10, stop: Callable | Iterable[Callable] | None = None,
              settle: bool | None = None, iterations: int = 20, unsafe_dt: bool = False,
              progress: bool | None = None, energy: bool = False, max_steps: int = MAX_STEPS,
-             observers: Iterable[Callable] = (), contact_work: bool = False) -> Result:
+             observers: Iterable[Callable] = (), contact_work: bool = False,
+             record_lower: bool = True, record_to: str | os.PathLike | None = None) -> Result:
     """Run ``scene`` with a fixed step and return its :class:`Result`.
 
     Parameters
@@ -464,6 +506,18 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
         books so far when ``energy=True``), before the stop conditions. For
         studies that watch a run as it goes (e.g. the books when the slider
         first got somewhere); an observer watches, it must not change the run.
+    record_lower : bool
+        Keep the lower asperities' displacements and contacts (``lower_dx``, ``lower_dy``,
+        ``lower_contact``; 17 B per asperity and sample) besides the slider's eleven series
+        (88 B a sample). False keeps only the slider's (the three then have no samples; the
+        animations, which draw the asperities, refuse such a result).
+    record_to : path, optional
+        Stream the record to this directory as the run goes (:mod:`asperity2d.streamed`:
+        one ``.npy`` per array and a JSON manifest, written a block of at most 4 MB at a
+        time), so the run's memory stays flat whatever its length; the result returned reads
+        the files lazily (memory maps), as ``asperity2d.load(record_to)`` does later. A run
+        that is killed leaves the samples written so far, loaded with status
+        ``"interrupted"``; one that raises leaves them too, its message saying why.
 
     Raises
     ------
@@ -475,7 +529,7 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
         scene held and was given, or deep penetration.
     """
     run = Run(scene, dt=dt, record_every=record_every, iterations=iterations, unsafe_dt=unsafe_dt,
-              max_steps=max_steps)
+              max_steps=max_steps, record_lower=record_lower)
     stops = [] if stop is None else ([stop] if callable(stop) else list(stop))
     if duration is None:
         stops = default_stops(scene) + stops
@@ -485,17 +539,23 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
         check_positive("duration", duration)
     if settle is None:
         settle = scene.slider.track == "free"
+    observers = _callables("observers", observers)
     run.check_budget(settle=run.settle_cap() if settle else 0.0, duration=duration)
-    if settle:
-        run.settle(progress=progress)
-    meter = run.meter_energy() if energy else None
-    books = run.meter_contact_work() if contact_work else None
-    run.advance(duration, stop=stops, progress=progress, observers=_callables("observers", observers))
+    if record_to is not None:  # after every check: a refused run leaves no directory behind
+        run._stream(record_to)
+    try:
+        if settle:
+            run.settle(progress=progress)
+        meter = run.meter_energy() if energy else None
+        books = run.meter_contact_work() if contact_work else None
+        run.advance(duration, stop=stops, progress=progress, observers=observers)
+    except BaseException as exc:  # a streamed record keeps its samples, saying why it stopped
+        run.abort(f"{type(exc).__name__}: {exc}")
+        raise
     if stops and run.status == "duration":
         run.status, run.message = "time limit", "reached the time limit before any stop condition"
-    result = run.result()
     if meter is not None:
-        result.meta["energy"] = meter.report()
+        run.extra_meta["energy"] = meter.report()
     if books is not None:
-        result.meta["contact_work"] = books.report()
-    return result
+        run.extra_meta["contact_work"] = books.report()
+    return run.result()
