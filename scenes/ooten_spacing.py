@@ -24,7 +24,7 @@ smallest" with a paired Wilcoxon test of random/random against random-upper
 set-ups are run: seed 000's fixed-height track (default) and the free slider
 under a normal load.
 
-    python scenes/ooten_spacing.py [--seeds 20] [--workers 2]
+    python scenes/ooten_spacing.py [--seeds 20] [--workers auto|N]
 """
 
 from __future__ import annotations
@@ -46,7 +46,7 @@ MEASURES = {"critical": None, "critical-run-up": None, "peak-stick": "peak_stick
 HEADLINE = ("critical", "peak-stick")
 
 
-def measure_setup(setup: str, *, size: dict, seeds: list[int], workers: int) -> dict[str, Comparison]:
+def measure_setup(setup: str, *, size: dict, seeds: list[int], workers: int | None) -> dict[str, Comparison]:
     """Every measure's :class:`Comparison` of the three variants on one set-up."""
     base = {**size, **studies.SETUPS[setup]}
     out = {}

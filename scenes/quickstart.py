@@ -17,7 +17,7 @@ fixed-height horizontal track.
    and the change is at least 1 %, twice the model's force resolution),
    on the fixed track and, beside it, on the free slider under a 10 mN load.
 
-    python scenes/quickstart.py [--seeds 10] [--workers 2]
+    python scenes/quickstart.py [--seeds 10] [--workers auto|N]
 """
 
 from __future__ import annotations
