@@ -119,6 +119,8 @@ def main(argv=None) -> int:
             out["headline"].append({"benchmark": name, "figure": label, "value": value, "target": target,
                                     "measured": res["measured"]["date"]})
         print(f"[{name}] done in {time.perf_counter() - start:.0f} s", file=sys.stderr, flush=True)
+        if not args.quick:  # saved after every module: a later one that fails loses nothing
+            atomic_write_text(args.output, json.dumps(out, indent=2, default=float) + "\n")
     out["machine"]["load_average_after"] = os.getloadavg()
     atomic_write_text(args.output, json.dumps(out, indent=2, default=float) + "\n")
     width = max((len(r["figure"]) for r in out["headline"]), default=10)

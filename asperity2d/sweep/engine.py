@@ -45,6 +45,7 @@ from __future__ import annotations
 import math
 import os
 import pickle
+import threading
 import time
 import traceback
 from dataclasses import dataclass, field
@@ -62,6 +63,11 @@ DISPATCH_S = 2e-3
 #: Parallel is chosen when its predicted wall time is at most this fraction of serial's (a
 #: margin for a shared machine, whose second core is not always free).
 PAYS = 0.8
+#: A first call (the pilot) still running after this many seconds is costly enough that the
+#: rest will likely go to workers: they are started then, beside it, so their start-up is
+#: hidden behind the pilot instead of added after it (a pool that turns out not to pay stays
+#: warm for the process's next ensemble).
+SPECULATE_AFTER = 0.25
 
 
 class CallFailed(RuntimeError):
@@ -181,7 +187,16 @@ def run_calls(fn: Callable, calls: Sequence[tuple], *, workers: int | str | None
         cores = min(os.cpu_count() or 1, len(jobs))
         if workers is None and cost is None and cores > 1 and cores not in warm_pools():
             # what a call costs is measured: the first runs here, and its time decides the rest
-            status, value, error, tb, wall, exc = guarded(*jobs[0])
+            from .executors import shared_pool
+
+            early = threading.Timer(SPECULATE_AFTER, shared_pool, args=(cores,))
+            early.daemon = True
+            early.start()
+            try:
+                status, value, error, tb, wall, exc = guarded(*jobs[0])
+            finally:
+                early.cancel()
+                early.join()
             first, cost = 1, wall
             pilot = f"call 0 in-process ({wall:.3g} s), then "
             yield Outcome(0, status, value, error, tb, wall, exc)
