@@ -123,6 +123,10 @@ def check_vector(name: str, value, length: int | None = None, *, positive: bool 
         if value.ndim != 1 or value.dtype.kind not in "iuf":
             raise SceneError(f"`{name}` must be a 1-D sequence of real numbers, got an array of "
                              f"shape {value.shape} and dtype {value.dtype}")
+        if value.dtype.kind == "f" and value.size and (length is None or value.size == length):
+            arr = value.astype(float)  # fast path for long arrays (sample times): no Python loop
+            if _plain_ok(arr, positive, nonneg):
+                return tuple(arr.tolist())
         items = value.tolist()
     elif isinstance(value, (list, tuple)):
         items = list(value)

@@ -408,6 +408,7 @@ def contact_states(result, *, stick_speed: float | None = None) -> ContactStates
     t = np.asarray(result.t, dtype=float)
     if t.size < 2:
         raise SceneError(f"`result` must have at least 2 samples, got {t.size}")
+    result.require_lower("counting the touching asperities")
     if stick_speed is None:
         speed, _ = _drive_scales(result)
         if speed is None:

@@ -45,8 +45,9 @@ LOWER_SERIES = ("lower_dx", "lower_dy", "lower_contact")
 #: The format tag of a saved asperity run (version 1: the previous release's untagged files).
 FORMAT = "asperity2d.result/2"
 #: Statuses of a run that did not do what was asked (``success`` is False): with
-#: ``duration=None`` no stop condition (passed, stuck) held before the time limit.
-UNSUCCESSFUL = ("time limit",)
+#: ``duration=None`` no stop condition (passed, stuck) held before the time limit; a record
+#: streamed to disk whose run stopped before it finished (:mod:`asperity2d.streamed`).
+UNSUCCESSFUL = ("time limit", "interrupted")
 
 
 @dataclass(eq=False)
@@ -77,7 +78,9 @@ class Result:
     lower_dx, lower_dy : ndarray (N, T)
         Displacement of each lower asperity from its rest position (m).
     lower_contact : ndarray of bool (N, T)
-        Which lower asperities touch the slider at each sample.
+        Which lower asperities touch the slider at each sample. The three have no samples,
+        shape (N, 0), when the run kept only the slider (``simulate(..., record_lower=False)``;
+        :attr:`lower_recorded`).
     scene : Scene
         The scene that was run.
     meta : dict
@@ -139,6 +142,18 @@ class Result:
     def dt(self) -> float:
         """Integration step (s)."""
         return float(self.meta["dt"])
+
+    @property
+    def lower_recorded(self) -> bool:
+        """True if the lower asperities' arrays hold every sample (False: the run kept only the
+        slider's series, ``record_lower=False``)."""
+        return np.shape(self.lower_dy)[-1] == len(self.t)
+
+    def require_lower(self, what: str) -> None:
+        """Raise ``SceneError`` if :attr:`lower_recorded` is False: ``what`` needs them."""
+        if not self.lower_recorded:
+            raise SceneError(f"`result` was recorded without the lower asperities (record_lower=False); "
+                             f"{what} needs them: run it again with record_lower=True")
 
     def __len__(self) -> int:
         return len(self.t)
@@ -225,9 +240,11 @@ def load(path: str | os.PathLike) -> Result:
     arrays, meta = load_npz(path, SERIES + LOWER_SERIES, kind=kind, meta_keys=("scene",))
     check_format(path, meta, FORMAT, kind=kind)
     samples = len(arrays["t"]) if arrays["t"].ndim == 1 else -1
+    lower = samples if meta.get("record_lower", True) else 0
     for name in SERIES + LOWER_SERIES:
         shape = arrays[name].shape
-        if (shape[-1:] != (samples,) or len(shape) != (2 if name in LOWER_SERIES else 1)
+        if (shape[-1:] != ((lower if name in LOWER_SERIES else samples),)
+                or len(shape) != (2 if name in LOWER_SERIES else 1)
                 or arrays[name].dtype.kind not in "biuf"):
             raise FileError("path", path, f"is not {kind}", f"array {name!r} has shape {shape}, "
                             f"dtype {arrays[name].dtype}, for {samples} samples")

@@ -12,6 +12,7 @@ strokes and the critical force's bisection share it.
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass
 from typing import Callable, Iterable
 
@@ -234,7 +235,7 @@ class Run:
 
     def __init__(self, scene: Scene, *, dt: float | None = None, record_every: int = 10,
                  iterations: int = 20, unsafe_dt: bool = False, max_steps: int = MAX_STEPS,
-                 engaged: bool = False):
+                 engaged: bool = False, record_lower: bool = True, record_to=None):
         if not isinstance(scene, Scene):
             raise SceneError(f"`scene` must be a Scene (see make_scene), got {type(scene).__name__}")
         period = scene.shortest_period()
@@ -255,11 +256,28 @@ class Run:
         self.record_every = check_int("record_every", record_every, minimum=1)
         self.iterations = check_int("iterations", iterations, minimum=1, maximum=10_000)
         self.max_steps = check_int("max_steps", max_steps, minimum=1, maximum=None)
+        if not isinstance(record_lower, bool):
+            raise SceneError(f"`record_lower` must be True or False, got {record_lower!r}")
+        self.record_lower = record_lower
         self.scene, self.dt = scene, dt
         self.engine = Engine(scene, dt, iterations=self.iterations, engaged=engaged)
         self.settle_time = 0.0
         self.status, self.message = "duration", "nothing run yet"
         self._meter = None
+        self._sink = None
+        #: Entries added to the result's ``meta`` (e.g. the energy books of :func:`simulate`).
+        self.extra_meta: dict = {}
+        self._reset_record()
+        if record_to is not None:
+            self._stream(record_to)
+
+    def _stream(self, path) -> None:
+        """Stream the record to directory ``path`` from now on (:mod:`asperity2d.streamed`)."""
+        from .streamed import Writer
+
+        if self._record.size:
+            raise SceneError("`record_to` must be set before the run records anything")
+        self._sink = Writer(path, scene=self.scene, lower=self.record_lower, meta=self._meta())
         self._reset_record()
 
     # -- budget ---------------------------------------------------------------
@@ -275,8 +293,8 @@ class Run:
 
     # -- the record ---------------------------------------------------------
     def _reset_record(self) -> None:
-        # the engine's recorder keeps the samples and the divergence guard (internal units)
-        self._record = Recorder(self.engine)
+        # the engine's recorder keeps the samples (SI) and the divergence guard (internal units)
+        self._record = Recorder(self.engine, lower=self.record_lower, sink=self._sink)
 
     @property
     def max_overlap(self) -> float:
@@ -348,6 +366,8 @@ class Run:
         probe = Probe(base=self.scene.base, last_apex_x=rec.last_apex_x(),
                       energy=None if self._meter is None else self._meter.report)
         sample = rec.sample if record else rec.check
+        if record:
+            rec.reserve(n_steps // k + 2)
         sample()
         look = bool(stops or observers)  # the SI view is read only when someone looks
         if look:
@@ -386,6 +406,8 @@ class Run:
         out.__dict__.update(self.__dict__)
         out.engine = self.engine.copy()
         out._meter = None
+        out._sink = None  # a fork keeps its record in memory
+        out.extra_meta = {}
         out._reset_record()
         return out
 
@@ -427,8 +449,8 @@ class Run:
         """Number of samples recorded so far."""
         return self._record.size
 
-    def result(self, *, start: int = 0) -> Result:
-        """The samples recorded so far (from sample ``start`` on) as a :class:`Result` (SI)."""
+    def _meta(self) -> dict:
+        """The run's settings, diagnostics and checks (a result's ``meta``)."""
         e = self.engine
         meta = {
             "settle_time": self.settle_time, "iterations": self.iterations, "dt": self.dt,
@@ -438,12 +460,32 @@ class Run:
             "max_solver_drift_fraction": e.max_solver_drift,  # removed by projection each step
             "units": e.units.as_dict(), "asperity2d_version": __version__,
             "pymunk_version": PYMUNK_VERSION, "numpy_version": np.__version__,
+            "record_lower": self.record_lower, **self.extra_meta,
         }
         meta["checks"] = _checks(self)
         for check in meta["checks"].values():
             if not check["passed"]:
                 meta["message"] += f"; WARNING: {check['warning']}"
+        return meta
+
+    def result(self, *, start: int = 0) -> Result:
+        """The samples recorded so far (from sample ``start`` on) as a :class:`Result` (SI):
+        views of the record, not copies. A run streamed to disk (``record_to``) writes what it
+        has not written yet and returns the record read back from its files (memory maps)."""
+        meta = self._meta()
+        if self._sink is not None:
+            from .streamed import read
+
+            self._record.flush()
+            self._sink.finish(meta)
+            return read(self._sink.path, start=start)
         return Result(**self._record.arrays(start), scene=self.scene, meta=meta)
+
+    def abort(self, reason: str) -> None:
+        """A streamed record keeps what it has written, marked as stopped by ``reason``."""
+        if self._sink is not None:
+            self._record.flush()
+            self._sink.abort(reason, self._meta())
 
 
 def _checks(run: Run) -> dict:
@@ -459,6 +501,13 @@ def _checks(run: Run) -> dict:
               **run._record.validity.report(),
               "step_size": {"passed": coarse <= 1.0, "worst": coarse, "limit": 1.0,
                             "what": "dt / the coarsest converged step (T/20, M/c / 2)"}}
+    if "energy" in run.extra_meta:  # a metered run (simulate raises if its books do not close)
+        residual = run.extra_meta["energy"]["residual_fraction"]
+        checks["energy_books"] = {
+            "passed": bool(residual <= ENERGY_TOLERANCE), "worst": residual, "limit": ENERGY_TOLERANCE,
+            "what": "energy books' residual / the larger of drive work and energy removed"}
+        if not checks["energy_books"]["passed"]:
+            checks["energy_books"]["warning"] = "the energy books do not close"
     if coarse > 1.0:
         checks["step_size"]["warning"] = (
             f"dt is {coarse:.3g} times the coarsest step that converges (unsafe_dt=True): contacts may "
@@ -478,7 +527,8 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
              record_every: int = 10, stop: Callable | Iterable[Callable] | None = None,
              settle: bool | None = None, iterations: int = 20, unsafe_dt: bool = False,
              progress: bool | None = None, energy: bool = False, max_steps: int = MAX_STEPS,
-             observers: Iterable[Callable] = (), contact_work: bool = False) -> Result:
+             observers: Iterable[Callable] = (), contact_work: bool = False,
+             record_lower: bool = True, record_to: str | os.PathLike | None = None) -> Result:
     """Run ``scene`` with a fixed step and return its :class:`Result`.
 
     Parameters
@@ -521,6 +571,18 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
         books so far when ``energy=True``), before the stop conditions. For
         studies that watch a run as it goes (e.g. the books when the slider
         first got somewhere); an observer watches, it must not change the run.
+    record_lower : bool
+        Keep the lower asperities' displacements and contacts (``lower_dx``, ``lower_dy``,
+        ``lower_contact``; 17 B per asperity and sample) besides the slider's eleven series
+        (88 B a sample). False keeps only the slider's (the three then have no samples; the
+        animations, which draw the asperities, refuse such a result).
+    record_to : path, optional
+        Stream the record to this directory as the run goes (:mod:`asperity2d.streamed`:
+        one ``.npy`` per array and a JSON manifest, written a block of at most 4 MB at a
+        time), so the run's memory stays flat whatever its length; the result returned reads
+        the files lazily (memory maps), as ``asperity2d.load(record_to)`` does later. A run
+        that is killed leaves the samples written so far, loaded with status
+        ``"interrupted"``; one that raises leaves them too, its message saying why.
 
     Raises
     ------
@@ -542,31 +604,36 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
         check_positive("duration", duration)
     if settle is None:
         settle = scene.slider.track == "free"
+    observers = _callables("observers", observers)
     # the budget before anything is built (building 100,000 asperities takes seconds)
     check_budget(scene, default_dt(scene) if dt is None else check_positive("dt", dt),
                  check_int("max_steps", max_steps, minimum=1, maximum=None),
                  settle=settle_cap(scene) if settle else 0.0, duration=duration)
     run = Run(scene, dt=dt, record_every=record_every, iterations=iterations, unsafe_dt=unsafe_dt,
-              max_steps=max_steps)
-    if settle:
-        run.settle(progress=progress)
-    meter = run.meter_energy() if energy else None
-    books = run.meter_contact_work() if contact_work else None
-    run.advance(duration, stop=stops, progress=progress, observers=_callables("observers", observers))
+              max_steps=max_steps, record_lower=record_lower)
+    if record_to is not None:  # after every check: a refused run leaves no directory behind
+        run._stream(record_to)
+    try:
+        if settle:
+            run.settle(progress=progress)
+        meter = run.meter_energy() if energy else None
+        books = run.meter_contact_work() if contact_work else None
+        run.advance(duration, stop=stops, progress=progress, observers=observers)
+    except BaseException as exc:  # a streamed record keeps its samples, saying why it stopped
+        run.abort(f"{type(exc).__name__}: {exc}")
+        raise
     if stops and run.status == "duration":
         run.status, run.message = "time limit", "reached the time limit before any stop condition"
-    result = run.result()
     if meter is not None:
-        report = result.meta["energy"] = meter.report()
-        result.meta["checks"]["energy_books"] = {
-            "passed": True, "worst": report["residual_fraction"], "limit": ENERGY_TOLERANCE,
-            "what": "energy books' residual / the larger of drive work and energy removed"}
+        report = run.extra_meta["energy"] = meter.report()  # its check: see _checks
         if not report["residual_fraction"] <= ENERGY_TOLERANCE:  # also NaN
-            raise SimulationError(
+            error = SimulationError(
                 f"the energy books do not close: the drive's work and the energy stored and removed "
                 f"differ by {report['residual_fraction']:.3g} of the larger (tolerance {ENERGY_TOLERANCE:g}) "
                 f"at t = {run.time:.6g} s: energy was created or lost by no modelled channel; use a smaller "
                 "`dt` or more `iterations`", time=run.time)
+            run.abort(str(error))
+            raise error
     if books is not None:
-        result.meta["contact_work"] = books.report()
-    return result
+        run.extra_meta["contact_work"] = books.report()
+    return run.result()

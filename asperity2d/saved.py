@@ -1,6 +1,8 @@
 """Saved results of either kind, read by their format tag: :func:`load` (``asperity2d.load``).
 
-An asperity run (:class:`asperity2d.result.Result`, ``"asperity2d.result/2"``) and a belt chain
+A record streamed to disk as its run went (a directory, :mod:`asperity2d.streamed`) is an
+asperity run too, read lazily. An asperity run (:class:`asperity2d.result.Result`,
+``"asperity2d.result/2"``) and a belt chain
 (:class:`asperity2d.belt.BeltResult`, ``"asperity2d.belt-result/2"``) share one result protocol
 and one file layout: an ``.npz`` of arrays plus a JSON ``metadata`` entry carrying the tag. The
 previous release wrote no tag; its files are told apart by their metadata (a ``scene`` record or
@@ -22,6 +24,10 @@ def kind_of(path: str | os.PathLike) -> str:
     """``"asperity"`` or ``"belt"``: the kind of result saved at ``path`` (only its metadata is
     read). A file that is neither raises :class:`~asperity2d._io.FileError` naming ``path``."""
     what = "an asperity2d result file (asperity run or belt chain)"
+    from .streamed import is_record
+
+    if is_record(path):
+        return "asperity"
     _, meta = load_npz(path, (), kind=what)
     tag = meta.get("format")
     if tag is None:
@@ -37,7 +43,8 @@ def kind_of(path: str | os.PathLike) -> str:
 
 def load(path: str | os.PathLike):
     """Read a result saved with ``save``: a :class:`~asperity2d.result.Result` or a
-    :class:`~asperity2d.belt.BeltResult`, chosen by the file's format tag.
+    :class:`~asperity2d.belt.BeltResult`, chosen by the file's format tag; or a record streamed
+    to a directory (``simulate(..., record_to=path)``), read lazily.
 
     A file that is neither (missing, empty, foreign, damaged, malformed) raises one
     :class:`~asperity2d._io.FileError` (a ``SceneError``) naming ``path``.
@@ -46,6 +53,10 @@ def load(path: str | os.PathLike):
         from .belt.result import load as load_belt
 
         return load_belt(path)
+    from .streamed import is_record, load as load_streamed
+
+    if is_record(path):
+        return load_streamed(path)
     from .result import load as load_asperity
 
     return load_asperity(path)

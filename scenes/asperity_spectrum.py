@@ -1,6 +1,6 @@
 """The asperity stick-slip spectrum: regular against random spacing, and a drive-preload scan.
 
-Run: ``python scenes/asperity_spectrum.py [--quick] [--workers N] [-o DIR] [--json]``.
+Run: ``python scenes/asperity_spectrum.py [--quick] [--workers auto|N] [-o DIR] [--json]``.
 
 Seed 000's set-up on the fixed-height track (``make_scene(track="fixed")``)
 with a spring drive, at two drive stiffnesses: the default 3 720 N/m over
@@ -24,7 +24,6 @@ friction force (its pitch frequency heard at 110 Hz) with its spectrogram.
 """
 
 import itertools
-import os
 
 import numpy as np
 
@@ -51,7 +50,7 @@ def line_fraction(sp, f_pitch, harmonics=5):
 
 def main(argv=None) -> int:
     p = scripting.parser(__doc__.splitlines()[0])
-    p.add_argument("--workers", type=int, default=min(2, os.cpu_count() or 1))
+    scripting.add_workers(p)
     args = p.parse_args(argv)
     out = scripting.out_dir(args, __file__)
     drives = {"stiff": (DRIVES["stiff"][0], 10)} if args.quick else DRIVES

@@ -1,6 +1,6 @@
 """Seed 001's 3-DOF base case (Table 2): initial-condition basins, stability, and its sound.
 
-Run: ``python scenes/belt_basins.py [--quick] [--grid N] [--workers N] [-o DIR] [--json]``
+Run: ``python scenes/belt_basins.py [--quick] [--grid N] [--workers auto|N] [-o DIR] [--json]``
 (also ``asperity2d run scenes/belt_basins.py -- ...``).
 
 * a basin map over mass 1's initial displacement and velocity (x1, v1), the
@@ -19,7 +19,6 @@ Run: ``python scenes/belt_basins.py [--quick] [--grid N] [--workers N] [-o DIR] 
   lowest mode heard at 440 Hz, with its spectrogram.
 """
 
-import os
 
 import numpy as np
 
@@ -77,7 +76,7 @@ def basin_summary(bm) -> dict:
 def main(argv=None) -> int:
     p = scripting.parser(__doc__.splitlines()[0])
     p.add_argument("--grid", type=int, default=None, help="points per axis (default 60, quick 3)")
-    p.add_argument("--workers", type=int, default=min(2, os.cpu_count() or 1))
+    scripting.add_workers(p)
     args = p.parse_args(argv)
     out = scripting.out_dir(args, __file__)
     quick = args.quick

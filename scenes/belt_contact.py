@@ -1,6 +1,6 @@
 """Contacts that open: separation, mode-coupling flutter and squeal on the moving belt.
 
-Run: ``python scenes/belt_contact.py [--quick] [-o DIR] [--json] [--workers N]``.
+Run: ``python scenes/belt_contact.py [--quick] [-o DIR] [--json] [--workers auto|N]``.
 
 The multi-DOF belt thesis lets its Coulomb contact be "separated, sliding or
 sticking" and reviews the mechanisms beyond stick-slip; this script gives the
@@ -54,10 +54,8 @@ INCLINED = ((10.0, 135.0),)
 
 def main(argv=None) -> int:
     p = scripting.parser(__doc__.splitlines()[0])
-    p.add_argument("--workers", type=int, default=1, help="processes for the regime map")
+    scripting.add_workers(p)
     args = p.parse_args(argv)
-    if args.workers < 1:
-        p.error(f"`workers` must be >= 1, got {args.workers}")
     out = scripting.out_dir(args, __file__)
     quick = args.quick
     mm = MODEL

@@ -19,7 +19,7 @@ per set-up: random spacing lowers the mean force drop per slip, one-sample
 Wilcoxon signed-rank test of the random passes against the regular value,
 one-sided (lower), holds if p < 0.01 and the change is at least 1 % (:func:`asperity2d.studies.claims.judge`).
 
-    python scenes/micro_spacing.py [--seeds 10] [--workers 2]
+    python scenes/micro_spacing.py [--seeds 10] [--workers auto|N]
 """
 
 from __future__ import annotations
@@ -78,7 +78,7 @@ def measure_run(setup: str, spacing: str, seed: int, quick: bool) -> dict:
     return out
 
 
-def run_setup(setup: str, seeds: list[int], *, quick: bool, workers: int) -> dict[str, Comparison]:
+def run_setup(setup: str, seeds: list[int], *, quick: bool, workers: int | None) -> dict[str, Comparison]:
     """Per quantity, the regular value (for every seed) against the random passes."""
     jobs = [{"setup": setup, "spacing": "regular", "seed": 0, "quick": quick}]
     jobs += [{"setup": setup, "spacing": "random", "seed": s, "quick": quick} for s in seeds]

@@ -23,7 +23,7 @@ decide the travel. A slider that neither passes
 nor comes to rest (it rattles in a valley: elastic impacts return it) is
 counted where the time limit finds it; ``reach`` is the farthest it got.
 
-    python scenes/ooten_damping.py [--seeds 20] [--workers 2]
+    python scenes/ooten_damping.py [--seeds 20] [--workers auto|N]
 """
 
 from __future__ import annotations

@@ -35,7 +35,7 @@ half triangles (``half_shape="full-base"``: the full base and flank angle,
 twice the height), which cannot fall through. ``--quick`` runs the first
 friction pair only.
 
-    python scenes/ooten_profiles.py [--seeds 24] [--workers 2]
+    python scenes/ooten_profiles.py [--seeds 24] [--workers auto|N]
 """
 
 from __future__ import annotations
@@ -82,7 +82,7 @@ MEASURES = {
 }
 
 
-def measure(setup: str, friction: str, *, size: dict, seeds: list[int], workers: int,
+def measure(setup: str, friction: str, *, size: dict, seeds: list[int], workers: int | None,
             quasi_static: bool = True) -> dict:
     """{profile: {"regular": row, "random": [row per seed]}} of one set-up and friction pair;
     a row holds the critical force and the spring pass's numbers (with contact work)."""

@@ -23,7 +23,7 @@ smallest" with a paired Wilcoxon test of random/random against random-upper
 change of at least 1 %. Every claim states its effect as a ratio with the
 Hodges-Lehmann 95 % interval of the per-seed ratios (:func:`asperity2d.stats.relative_effect`).
 
-    python scenes/ooten_spacing.py [--seeds 24] [--workers 2]
+    python scenes/ooten_spacing.py [--seeds 24] [--workers auto|N]
 """
 
 from __future__ import annotations
@@ -52,7 +52,7 @@ MEASURES = {"critical": "critical_rest_N", "critical-run-up": "critical_run_up_N
 HEADLINE = ("critical", "peak-stick")
 
 
-def rows_for(setup: str, *, size: dict, seeds: list[int], workers: int, passes: int,
+def rows_for(setup: str, *, size: dict, seeds: list[int], workers: int | None, passes: int,
              quasi_static: bool = True) -> dict:
     """{variant: [row per seed]} of :func:`asperity2d.studies.ooten.measures_run` on one set-up;
     the regular scene (seed-independent) is measured once and repeated."""

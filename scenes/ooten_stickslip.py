@@ -17,7 +17,7 @@ slip carried the slider across) has no force drop and counts as missing.
 Whether the verdict changes with the drive stiffness is reported as
 ``drive_dependent``.
 
-    python scenes/ooten_stickslip.py [--seeds 20] [--workers 2]
+    python scenes/ooten_stickslip.py [--seeds 20] [--workers auto|N]
 """
 
 from __future__ import annotations

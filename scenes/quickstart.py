@@ -20,7 +20,7 @@ fixed-height horizontal track.
    95 % interval, on the fixed track and, beside it, on the free slider
    under a 10 mN load.
 
-    python scenes/quickstart.py [--seeds 8] [--workers 2]
+    python scenes/quickstart.py [--seeds 8] [--workers auto|N]
 """
 
 from __future__ import annotations

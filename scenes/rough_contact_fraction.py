@@ -33,7 +33,7 @@ Claims tested:
 ``--quick`` is a smoke test (6 asperities, two levels, one seed, a 5x faster
 drive), not a measurement.
 
-    python scenes/rough_contact_fraction.py [--quick] [--seeds 6] [--workers 2] [--json] [-o DIR]
+    python scenes/rough_contact_fraction.py [--quick] [--seeds 6] [--workers auto|N] [--json] [-o DIR]
 """
 
 from __future__ import annotations

@@ -33,7 +33,7 @@ Sanity counts in the summary: runs in which an upper tip reached the guard
 floor or a lower asperity the bottom of its track (both must be 0), and runs
 that did not pass.
 
-    python scenes/rough_height_spread.py [--quick] [--seeds 8] [--workers 2] [--json] [-o DIR]
+    python scenes/rough_height_spread.py [--quick] [--seeds 8] [--workers auto|N] [--json] [-o DIR]
 """
 
 from __future__ import annotations
@@ -61,7 +61,7 @@ LOAD, MU_K = SEED_000["normal_load"], kinetic_default(SEED_000["mu_static"])  # 
 ALPHA = 0.05
 
 
-def measure(setup: str, spreads, seeds, size, workers: int) -> list[dict]:
+def measure(setup: str, spreads, seeds, size, workers: int | None) -> list[dict]:
     """One row per (spread, seed); a spread of 0 is deterministic: one run."""
     keys = [(s, seed) for s in spreads for seed in (seeds if s else seeds[:1])]
     jobs = [dict(size, **SETUPS[setup], seed=seed, **({"height_std": s * BASE} if s else {}))

@@ -52,6 +52,13 @@ def subprocess_env() -> dict[str, str]:
     return {**os.environ, "PYTHONPATH": os.pathsep.join(parts)}
 
 
+def pid_call(x: int) -> int:
+    """The id of the process that ran the call."""
+    import os
+
+    return os.getpid()
+
+
 def engine_call(x: int) -> int:
     """x², except: 3 raises ValueError, 5 kills its worker process (never call 5 in-process)."""
     import os

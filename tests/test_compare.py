@@ -36,6 +36,31 @@ def test_results_do_not_depend_on_workers():
     assert serial == parallel
 
 
+@pytest.mark.parametrize("measure", ["peak-stick", "critical"])
+def test_real_measures_are_bit_identical_in_workers_and_here(measure):
+    # a simulation's every bit is fixed by its scene (fixed dt, single-threaded pymunk, exactly
+    # rounded contact sums): where it runs cannot change it
+    base = {"lower_count": 4, "upper_count": 2, "drive": "force" if measure == "critical" else "spring"}
+    variants = {"regular": {}, "random": {"spacing": "random"}}
+    here = compare(measure, variants, [0, 1, 2], base=base, progress=False, workers=1)
+    pool = compare(measure, variants, [0, 1, 2], base=base, progress=False, workers=2)
+    auto = compare(measure, variants, [0, 1, 2], base=base, progress=False)
+    for name in variants:
+        assert [v.hex() for v in here.values[name]] == [v.hex() for v in pool.values[name]] \
+            == [v.hex() for v in auto.values[name]]
+
+
+def test_an_unpicklable_measure_runs_here_when_workers_are_auto():
+    seen = []
+
+    def measure(scene):  # a local function cannot travel to a worker
+        seen.append(scene)
+        return 1.0
+
+    c = compare(measure, {"random": {"spacing": "random"}}, range(3), base={"lower_count": 3}, progress=False)
+    assert c.values["random"] == (1.0, 1.0, 1.0) and len(seen) == 3
+
+
 def test_bad_arguments_fail_before_any_run():
     calls = []
 

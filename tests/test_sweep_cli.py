@@ -95,6 +95,10 @@ def test_report_json_stats_and_figure(store_dir, tmp_path, capsys):
         (["run", "{study}", "--store", "{tmp}/s", "--workers", "x"], "argument --workers: must be"),
         (["run", "{study}", "--store", "{store}", "--scheduler", "tcp://h:1", "--workers", "2"],
          "`workers` applies only"),
+        # refused up front, before Dask is imported (it used to print a traceback, then hang ~60 s)
+        (["run", "{study}", "--store", "{tmp}/s", "--scheduler", "notaurl"],
+         "`scheduler` must be 'local' or a Dask scheduler address like tcp://host:8786, got 'notaurl'"),
+        (["run", "{study}", "--store", "{tmp}/s", "--scheduler", "tcp://host"], "`scheduler` must be 'local'"),
         (["frobnicate"], "invalid choice"),
     ],
 )

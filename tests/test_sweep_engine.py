@@ -6,10 +6,13 @@ raises the failed call's own exception with a note naming it."""
 
 from __future__ import annotations
 
+import os
+
 import pytest
 
 import sweep_fixtures
 from asperity2d.errors import SceneError
+from asperity2d.sweep import engine, executors
 from asperity2d.sweep.engine import CallFailed, decide_workers, map_calls, run_calls
 
 
@@ -79,3 +82,45 @@ def test_worker_count_is_decided_in_one_place():
         with pytest.raises(SceneError, match="`workers`"):
             decide_workers(bad, 3)
     assert list(run_calls(sweep_fixtures.engine_call, [], workers=2)) == []
+
+
+@pytest.mark.skipif((os.cpu_count() or 1) < 2, reason="needs 2 cores")
+def test_auto_is_serial_when_workers_would_not_pay_and_every_core_when_they_would(monkeypatch):
+    cores = os.cpu_count()
+    monkeypatch.setattr(executors, "warm_pools", lambda: set())  # a cold process
+    # 10 calls of 10 ms: 0.1 s serial against a second of start-up: here
+    assert decide_workers(None, 10, cost=0.01) == decide_workers("auto", 10, cost=0.01) == 1
+    # 10 calls of 5 s: every core
+    assert decide_workers(None, 10, cost=5.0) == cores
+    # the boundary is the prediction: serial s = n c; parallel = start + ceil(n / cores) c + n dispatch
+    n, c = 10, 1.0
+    parallel = engine.STARTUP_S + -(-n // cores) * c + n * engine.DISPATCH_S
+    assert (decide_workers(None, n, cost=c) == cores) == (parallel <= engine.PAYS * n * c)
+    # with a warm pool, start-up costs nothing: 10 calls of 50 ms go parallel
+    monkeypatch.setattr(executors, "warm_pools", lambda: {cores})
+    assert decide_workers(None, 10, cost=0.05) == cores
+    assert decide_workers(None, 1, cost=100.0) == 1  # one call: nothing to share
+    with pytest.raises(SceneError, match="`cost`"):
+        decide_workers(None, 3, cost=float("nan"))
+
+
+@pytest.mark.skipif((os.cpu_count() or 1) < 2, reason="needs 2 cores")
+def test_auto_times_the_first_call_here_and_says_where_the_rest_ran(monkeypatch):
+    monkeypatch.setattr(executors, "warm_pools", lambda: set())
+    report = {}
+    got = {o.index: o.value for o in run_calls(sweep_fixtures.pid_call, [(x,) for x in range(4)], report=report)}
+    assert report["executor"].startswith("call 0 in-process (") and report["executor"].endswith("in-process")
+    assert set(got.values()) == {os.getpid()}  # cheap calls: all here
+    report = {}
+    got = {o.index: o.value for o in run_calls(sweep_fixtures.pid_call, [(x,) for x in range(4)], cost=60.0,
+                                               report=report)}
+    assert report["executor"] == f"local processes ({min(4, os.cpu_count())})"  # told they are costly
+    assert os.getpid() not in set(got.values())
+
+
+@pytest.mark.skipif((os.cpu_count() or 1) < 2, reason="needs 2 cores")
+def test_local_workers_stay_warm_for_the_next_ensemble():
+    first = set(map_calls(sweep_fixtures.pid_call, [{"x": x} for x in range(6)], workers=2))
+    assert executors.warm_pools() >= {2}
+    again = set(map_calls(sweep_fixtures.pid_call, [{"x": x} for x in range(6)], workers=2))
+    assert os.getpid() not in first and again <= first  # the same processes, not new ones

@@ -74,6 +74,7 @@ class ModalEvents:
                                np.concatenate([self.g.c1, np.zeros_like(self.g.c1)]))
         #: rigorous bound on |d⁴g/dtau⁴| per row: sum of |b|·|lam|⁴
         self.bound4 = t.event_shapes_abs @ (np.abs(phase.coef) * np.abs(lam) ** 4)
+        self._points = {}  # row -> its closed form at one time (the root search asks repeatedly)
 
     def __len__(self):
         return self.kind.size
@@ -86,6 +87,12 @@ class ModalEvents:
 
     def point(self, r):
         """``f(t) -> (g, dg, d2g)`` of row ``r`` at one time, in closed form."""
+        f = self._points.get(r)
+        if f is None:
+            f = self._points[r] = self._point(r)
+        return f
+
+    def _point(self, r):
         lam, b, c0, c1 = self.g.scalar(r)
         M = np.vstack([b, b * lam, b * lam * lam])
 

@@ -305,12 +305,20 @@ def link_force(links: np.ndarray, x: np.ndarray) -> np.ndarray:
     With springs and positions it is the spring force; with dampers and
     velocities the damper force. Walls sit at 0 and never move.
     """
-    tension = links.reshape((-1,) + (1,) * (np.ndim(x) - 1)) * link_extension(x)
+    tension = link_extension(x)
+    tension *= links if tension.ndim == 1 else links.reshape((-1,) + (1,) * (tension.ndim - 1))
     return tension[1:] - tension[:-1]
 
 
 def link_extension(x: np.ndarray) -> np.ndarray:
-    """Extension (m) or extension rate of each of the n+1 links for positions ``x`` (n, ...)."""
+    """Extension (m) or extension rate of each of the n+1 links for positions ``x`` (n, ...).
+
+    The differences of ``x`` padded with the walls' zeros (what ``np.diff`` of the padded array
+    gives, bit for bit, in three slice operations: this runs at every switch and sample)."""
     x = np.asarray(x, dtype=float)
-    pad = np.zeros((1,) + x.shape[1:])
-    return np.diff(np.concatenate([pad, x, pad]), axis=0)
+    n = x.shape[0]
+    out = np.empty((n + 1,) + x.shape[1:])
+    out[0] = x[0]
+    np.subtract(x[1:], x[:-1], out=out[1:n])
+    out[n] = 0.0 - x[n - 1]
+    return out

@@ -99,6 +99,19 @@ def positive_int(text: str) -> int:
     return _checked(lambda name, value: check_int(name, value, minimum=1, maximum=None), int, text)
 
 
+def workers(text: str) -> int | None:
+    """An argparse type: ``auto`` (None: decided by cost,
+    :func:`asperity2d.sweep.engine.decide_workers`) or an integer >= 1."""
+    if text.strip().lower() == "auto":
+        return None
+    return positive_int(text)
+
+
+#: The help of every ``--workers`` option.
+WORKERS_HELP = ("local worker processes: auto (the default: in this process when the runs are "
+                "too cheap to pay for starting workers, else every core) or N")
+
+
 def load_script(path):
     """Import a scene script as a module (registered in ``sys.modules``, so worker processes
     can pickle its functions). The file must be a readable Python text file; what the

@@ -22,7 +22,9 @@ import warnings
 
 from ..errors import SceneError, SimulationError
 from . import asperity, basins, belt, sweep
-from .args import MAX_RUNS, PLOT_SUFFIXES, PROG, Parser, Subcommands, fail, positive_float, positive_int
+from .args import MAX_RUNS, PLOT_SUFFIXES, PROG, WORKERS_HELP, Parser, Subcommands, fail, positive_float
+from .args import positive_int
+from .args import workers as workers_arg
 
 __all__ = ["main", "build_parser", "Parser", "PROG", "PLOT_SUFFIXES", "fail", "positive_float",
            "positive_int"]
@@ -101,7 +103,7 @@ def build_parser() -> Parser:
                         "drive_force")
     p.add_argument("--variants", default="regular,random", help="comma-separated spacings")
     p.add_argument("--seeds", type=positive_int, default=20)
-    p.add_argument("--workers", type=positive_int, default=1)
+    p.add_argument("--workers", type=workers_arg, default=None, help=WORKERS_HELP)
     p.add_argument("--scheduler", help="a Dask scheduler address, or 'local' to start one")
     p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                    help="make_scene argument shared by every variant (repeatable)")
@@ -160,7 +162,7 @@ def _add_belt(subparsers) -> None:
     p.add_argument("--y-range", default="-0.5,0.5", help="LO,HI of the second")
     p.add_argument("--grid", default="41", help="points per axis: N or NX,NY")
     p.add_argument("--store", help="sweep store directory (default: <output>.runs)")
-    p.add_argument("--workers", type=positive_int, help="local worker processes")
+    p.add_argument("--workers", type=workers_arg, default=None, help=WORKERS_HELP)
     p.add_argument("--scheduler", help="Dask scheduler address, or 'local'")
     p.add_argument("--rtol", type=positive_float, default=1e-6, help="relative tolerance of the limit-cycle test")
     _max_runs(p)
@@ -186,8 +188,7 @@ def _add_sweep(subparsers) -> None:
     p = sub.add_parser("run", help="run the unfinished runs of a study (.toml or .py)")
     p.add_argument("study", help="study file: .toml, or .py defining STUDY")
     p.add_argument("--store", required=True, help="results directory of the study")
-    p.add_argument("--workers", type=positive_int, default=None,
-                   help="local worker processes (default: CPU count; 1 = in-process)")
+    p.add_argument("--workers", type=workers_arg, default=None, help=WORKERS_HELP)
     p.add_argument("--scheduler", default=None,
                    help="Dask scheduler address tcp://host:port, or 'local' for a LocalCluster")
     p.add_argument("--retry-failed", action="store_true", help="re-run runs recorded as failed")

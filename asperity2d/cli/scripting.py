@@ -15,7 +15,7 @@ import os
 from pathlib import Path
 
 from .._io import output_dir, print_json, write_json, writing
-from .args import Parser
+from .args import WORKERS_HELP, Parser, workers
 
 
 def parser(description: str) -> argparse.ArgumentParser:
@@ -39,14 +39,17 @@ def study_args(description: str, argv, *, default_seeds: int, minimum_seeds: int
     p = parser(description)
     p.add_argument("--seeds", type=int, default=None,
                    help=f"seeds per random variant (default {default_seeds}, quick {quick_seeds})")
-    p.add_argument("--workers", type=int, default=min(2, os.cpu_count() or 1))
+    add_workers(p)
     args = p.parse_args(argv)
     args.seeds = args.seeds or (quick_seeds if args.quick else default_seeds)
     if args.seeds < minimum_seeds:
         p.error(f"`seeds` must be >= {minimum_seeds}, got {args.seeds}")
-    if args.workers < 1:
-        p.error(f"`workers` must be >= 1, got {args.workers}")
     return args
+
+
+def add_workers(p) -> None:
+    """``--workers auto|N`` (``args.workers``: None for auto, decided by cost, or N >= 1)."""
+    p.add_argument("--workers", type=workers, default=None, help=WORKERS_HELP)
 
 
 def out_dir(args, script_file: str) -> Path:

@@ -6,6 +6,15 @@ slider's columns and the lower asperities' displacements and contacts), checks a
 that the run has not diverged (kinetic energy against what the scene held and was given;
 overlap), fills the SI view that stop conditions and observers see, and hands the record out in
 SI (:meth:`Recorder.arrays`). :mod:`asperity2d.run` sees only SI values.
+
+What a sample costs. Each sample is written once, in SI, into fixed-size blocks (never a
+doubling array, never converted again at the end): the slider's eleven :data:`COLUMNS` are
+88 B (float64), and -- unless the run is told not to keep them (``lower=False``) -- each lower
+asperity adds 17 B (``lower_dx`` and ``lower_dy`` float64, ``lower_contact`` bool), so the
+default 16-asperity scene costs 360 B a sample. :meth:`Recorder.arrays` hands out views of the
+blocks; only a record that spans several blocks is joined once, block by block, each freed as
+it is copied (peak: the record plus one block). A run streamed to disk (``sink``) writes each
+full block out and reuses it, so its memory does not grow with its length.
 """
 
 from __future__ import annotations
@@ -24,24 +33,62 @@ ENERGY_FACTOR = 10.0
 #: The slider's recorded columns, in the order of :attr:`Recorder._cols`.
 COLUMNS = ("t", "x", "v", "y", "vy", "drive_x", "drive_force", "normal_force", "friction_force",
            "tangential_force", "contact_count")
+#: A block of the record holds at most this many bytes (its samples: this over the bytes per
+#: sample), except a run's first block, which holds up to :data:`FIRST_BLOCK_BYTES` when the run
+#: says how many samples it will take (one block, no join, for most runs).
+BLOCK_BYTES = 4 << 20
+FIRST_BLOCK_BYTES = 64 << 20
+#: Samples of the first block when the run does not say how many it will take.
+FIRST_BLOCK = 256
+
+
+class _Block:
+    """``capacity`` samples of the record, SI: the slider's columns (one row each) and, with
+    ``lower``, the lower asperities' displacements and contacts (one row per asperity)."""
+
+    __slots__ = ("cols", "dx", "dy", "contact", "size")
+
+    def __init__(self, capacity: int, n_lower: int, lower: bool):
+        self.cols = np.empty((len(COLUMNS), capacity))
+        n = n_lower if lower else 0
+        self.dx, self.dy = np.empty((n, capacity)), np.empty((n, capacity))
+        self.contact = np.empty((n, capacity), dtype=bool)
+        self.size = 0
+
+    @property
+    def capacity(self) -> int:
+        return self.cols.shape[1]
 
 
 class Recorder:
-    """Samples of ``engine``'s state (internal units) and the divergence guard's books.
+    """Samples of ``engine``'s state (SI) and the divergence guard's books (internal units).
 
     :attr:`max_overlap` and :attr:`max_drift` are the largest overlap and track drift seen at
-    the samples (base lengths); :attr:`size` the number of samples.
+    the samples (base lengths); :attr:`size` the number of samples. ``lower=False`` keeps only
+    the slider's columns (the lower asperities' arrays then have no samples). ``sink``, if
+    given, receives every full block (``sink.write(cols, dx, dy, contact)``, SI arrays with
+    one sample per column) and the block is reused: the record lives on disk, not here.
     """
 
-    def __init__(self, engine):
+    def __init__(self, engine, *, lower: bool = True, sink=None):
         self.engine = engine
+        self.lower = bool(lower)
+        self.sink = sink
         self.reset()
+
+    @property
+    def bytes_per_sample(self) -> int:
+        """Memory one sample takes (B): 88 for the slider's columns, 17 per lower asperity
+        when they are kept."""
+        n = self.engine.scene.lower.count if self.lower else 0
+        return 8 * len(COLUMNS) + 17 * n
 
     def reset(self) -> None:
         """An empty record and fresh books (a fork starts here)."""
-        n = self.engine.scene.lower.count
-        self._cols = np.empty((len(COLUMNS), 64))
-        self._lower = np.empty((3, n, 64))
+        u, e = self.engine.units, self.engine
+        self._blocks: list[_Block] = []
+        self._hint: int | None = None  # samples the run said it will take (sizes the first block)
+        self._si = (e.dt, u.length, u.velocity, u.force)  # time, length, velocity, force
         self.size = 0
         self._last_sampled_step = -1
         self.max_overlap = 0.0
@@ -135,17 +182,60 @@ class Recorder:
         if layout.fixed_slider:
             drift = max(drift, abs(sy - layout.slider_y_track))
         self.max_drift = max(self.max_drift, drift)
-        i = self.size
-        if i == self._cols.shape[1]:
-            self._cols = np.concatenate([self._cols, np.empty_like(self._cols)], axis=1)
-            self._lower = np.concatenate([self._lower, np.empty_like(self._lower)], axis=2)
+        block = self._blocks[-1] if self._blocks else None
+        if block is None or block.size == block.capacity:
+            block = self._new_block()
+        i = block.size
         drive_x = e.drive.position(e.step_count, e.dt_internal) if e.drive.spring else math.nan
-        self._cols[:, i] = (e.step_count, sx, svx, sy, svy, drive_x, drive_force, fy, -fx, ft, count)
-        self._lower[0, :, i] = dx
-        self._lower[1, :, i] = lower[:, 1]
-        self._lower[2, :, i] = arbiters.touched(len(dx))
-        self.size = i + 1
+        # SI once, here: the same products the record was always scaled by (bit for bit)
+        st, sl, sv, sf = self._si
+        block.cols[:, i] = (e.step_count * st, sx * sl, svx * sv, sy * sl, svy * sv, drive_x * sl,
+                            drive_force * sf, fy * sf, -fx * sf, ft * sf, float(count))
+        if self.lower:
+            np.multiply(dx, sl, out=block.dx[:, i])
+            np.multiply(lower[:, 1], sl, out=block.dy[:, i])
+            block.contact[:, i] = arbiters.touched(len(dx))
+        block.size = i + 1
+        self.size += 1
         self._last_sampled_step = e.step_count
+
+    def reserve(self, samples: int) -> None:
+        """The run is about to take up to ``samples`` more samples: a record that has no block
+        yet gets one that holds them all, up to :data:`FIRST_BLOCK_BYTES` (a streamed record:
+        :data:`BLOCK_BYTES`), so most runs record into one block and are never joined."""
+        if not self._blocks:
+            self._hint = max(1, int(samples))
+
+    def _new_block(self) -> _Block:
+        """The block the next sample goes into: a streamed record writes its full block out and
+        reuses it; a record in memory keeps it and starts another."""
+        per = self.bytes_per_sample
+        if self.sink is not None:
+            if self._blocks:
+                self._flush()
+                return self._blocks[-1]
+            cap = BLOCK_BYTES // per
+            if self._hint is not None:
+                cap = min(cap, self._hint)
+        elif self._blocks:
+            cap = max(FIRST_BLOCK, BLOCK_BYTES // per)
+        elif self._hint is not None:
+            cap = min(self._hint, FIRST_BLOCK_BYTES // per)
+        else:
+            cap = FIRST_BLOCK
+        block = _Block(max(1, cap), self.engine.scene.lower.count, self.lower)
+        self._blocks.append(block)
+        return block
+
+    def _flush(self) -> None:
+        """Hand the samples not yet written to the sink (a streamed record) and empty the block."""
+        if self.sink is None or not self._blocks:
+            return
+        block = self._blocks[-1]
+        m = block.size
+        if m:
+            self.sink.write(block.cols[:, :m], block.dx[:, :m], block.dy[:, :m], block.contact[:, :m])
+        block.size = 0
 
     def probe(self, probe) -> None:
         """Fill ``probe`` (:class:`asperity2d.run.Probe`) with the current state, SI."""
@@ -164,15 +254,50 @@ class Recorder:
 
     def arrays(self, start: int = 0) -> dict[str, np.ndarray]:
         """The samples from ``start`` on, SI: the :data:`COLUMNS` (s, m, m/s, N, count) and
-        ``lower_dx``, ``lower_dy`` (m), ``lower_contact`` (bool), each lower asperity a row."""
-        e, m = self.engine, self.size
-        u = e.units
-        c = self._cols[:, start:m]
-        scale = {"t": e.dt, "x": u.length, "v": u.velocity, "y": u.length, "vy": u.velocity,
-                 "drive_x": u.length, "drive_force": u.force, "normal_force": u.force,
-                 "friction_force": u.force, "tangential_force": u.force, "contact_count": 1.0}
-        arrays = {name: c[j] * scale[name] for j, name in enumerate(COLUMNS)}
-        arrays.update(lower_dx=self._lower[0, :, start:m] * u.length,
-                      lower_dy=self._lower[1, :, start:m] * u.length,
-                      lower_contact=self._lower[2, :, start:m] > 0)
+        ``lower_dx``, ``lower_dy`` (m), ``lower_contact`` (bool), each lower asperity a row
+        (no samples without ``lower``). Read-only views of the record, not copies (a streamed
+        record: :meth:`flush` first, then read the file)."""
+        if self.sink is not None:
+            raise RuntimeError("a streamed record is read from its file (flush, then load it)")
+        block = self._join()
+        m = self.size
+        n = self.engine.scene.lower.count
+        if block is None:
+            block = _Block(0, n, self.lower)
+        arrays = {name: block.cols[j, start:m] for j, name in enumerate(COLUMNS)}
+        if self.lower:
+            arrays.update(lower_dx=block.dx[:, start:m], lower_dy=block.dy[:, start:m],
+                          lower_contact=block.contact[:, start:m])
+        else:  # not recorded: no samples
+            arrays.update(lower_dx=np.empty((n, 0)), lower_dy=np.empty((n, 0)),
+                          lower_contact=np.empty((n, 0), dtype=bool))
+        for a in arrays.values():
+            a.flags.writeable = False  # shared with the record: a later result() must not see edits
         return arrays
+
+    def flush(self) -> None:
+        """Write every sample taken so far to the sink (a streamed record)."""
+        self._flush()
+
+    def _join(self) -> _Block | None:
+        """The record as one block: joined (block by block, each freed once copied) if it
+        spans several; later samples go to a new block."""
+        blocks = self._blocks
+        if len(blocks) <= 1:
+            return blocks[0] if blocks else None
+        n = self.engine.scene.lower.count
+        joined = _Block(self.size, n, self.lower)
+        j = 0
+        while blocks:
+            block = blocks.pop(0)
+            m = block.size
+            joined.cols[:, j:j + m] = block.cols[:, :m]
+            if self.lower:
+                joined.dx[:, j:j + m] = block.dx[:, :m]
+                joined.dy[:, j:j + m] = block.dy[:, :m]
+                joined.contact[:, j:j + m] = block.contact[:, :m]
+            j += m
+            del block
+        joined.size = j
+        blocks.append(joined)
+        return joined

@@ -39,7 +39,7 @@ from .._validate import check_int, count_seeds, show
 from ..builders import make_scene
 from ..errors import SceneError
 from ..scene import Scene
-from ..sweep.engine import run_calls
+from ..sweep.engine import is_auto, run_calls
 from ..sweep.progress import Progress
 from .measures import MEASURES, measure_label  # noqa: F401  (the named measures live there)
 
@@ -154,7 +154,7 @@ class Comparison:
 
 # -- running it -------------------------------------------------------------------------------------
 def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[int], *,
-            base: dict | None = None, progress: bool = True, workers: int = 1,
+            base: dict | None = None, progress: bool = True, workers: int | str | None = None,
             scheduler: str | None = None) -> Comparison:
     """Measure every variant on every seed.
 
@@ -174,7 +174,10 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
         Show a progress bar.
     workers, scheduler
         As for :func:`asperity2d.sweep.run_study`: ``workers`` local processes
-        (1: in this process), or a Dask ``scheduler`` address (``"local"``
+        (1: in this process; default None or ``"auto"``: decided by what the first
+        run costs, :func:`asperity2d.sweep.engine.decide_workers` -- serial for a
+        small comparison, every core for a large one; always this process for a
+        measure that cannot be pickled), or a Dask ``scheduler`` address (``"local"``
         starts one). The values do not depend on them.
     """
     if isinstance(measure, str):
@@ -195,13 +198,16 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
     seeds = tuple(check_int("seeds", s, minimum=0, maximum=2**63 - 1) for s in seeds)
     if "seed" in base or any("seed" in (kw or {}) for kw in variants.values()):
         raise SceneError("`variants` and `base` must not set `seed` (it comes from `seeds`)")
-    workers = check_int("workers", workers, minimum=1, maximum=1024)
-    if workers > 1 or scheduler is not None:
+    workers = None if is_auto(workers) else check_int("workers", workers, minimum=1, maximum=1024)
+    if workers != 1 or scheduler is not None:
         try:
             pickle.dumps(measure)
         except Exception as exc:
-            raise SceneError(f"`measure` must be picklable (a module-level function) to run in worker "
-                             f"processes ({exc})") from None
+            if workers is None and scheduler is None:
+                workers = 1  # auto: a measure that cannot travel to a worker runs here
+            else:
+                raise SceneError(f"`measure` must be picklable (a module-level function) to run in "
+                                 f"worker processes ({exc})") from None
     # Build every scene first: bad arguments fail here, before any run starts.
     jobs, slots = [], {}
     for name, kw in variants.items():

@@ -104,6 +104,8 @@ class Stage:
                  exaggeration: float | None = None, frames=None, arrows: bool = True):
         if camera not in CAMERAS:
             raise SceneError(f"`camera` must be one of {', '.join(map(repr, CAMERAS))}, got {camera!r}")
+        if hasattr(result, "require_lower"):  # a Result (the notebook's scene drawing is not one)
+            result.require_lower("drawing the scene")
         scene = result.scene
         self.result, self.width, self.max_height, self.camera = result, int(width), int(height), camera
         self.arrows = arrows

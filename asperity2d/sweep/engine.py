@@ -31,7 +31,13 @@ own exception as it arrives (a :class:`CallFailed` when it did not come back: a 
 exception that does not pickle), with a note naming the call, and cancel the rest.
 
 Runs are deterministic given their arguments, so the executor never changes the values.
-How many local workers an ensemble gets is decided in one place, :func:`decide_workers`.
+How many local workers an ensemble gets is decided in one place, :func:`decide_workers`: as
+many as asked, or (``workers=None``, the default, or ``"auto"``) from what the calls cost --
+in this process when parallel would not pay for starting workers, every core when it would.
+What a call costs is measured, not guessed: without a ``cost`` estimate and without a warm
+pool, the first call runs here (a pilot) and its time decides for the rest. Local workers are
+kept warm for the life of the process (:func:`asperity2d.sweep.executors.shared_pool`), so only
+the first parallel ensemble of a process pays for starting them.
 """
 
 from __future__ import annotations
@@ -39,12 +45,29 @@ from __future__ import annotations
 import math
 import os
 import pickle
+import threading
 import time
 import traceback
 from dataclasses import dataclass, field
 from typing import Any, Callable, Iterator, Mapping, Sequence
 
 from ..errors import SceneError
+
+#: Wall time (s) to start a pool of spawned workers and import, in each, what the package's
+#: calls need (the interpreter, NumPy, SciPy, pymunk, asperity2d): measured ~0.6-1.0 s on the
+#: project's 2-core machine under load (0.3 s of it the interpreter alone); a warm pool costs 0.
+STARTUP_S = 1.0
+#: Wall time (s) per call of sending it to a warm worker and its result back (pickling a scene
+#: and a float: ~1 ms measured).
+DISPATCH_S = 2e-3
+#: Parallel is chosen when its predicted wall time is at most this fraction of serial's (a
+#: margin for a shared machine, whose second core is not always free).
+PAYS = 0.8
+#: A first call (the pilot) still running after this many seconds is costly enough that the
+#: rest will likely go to workers: they are started then, beside it, so their start-up is
+#: hidden behind the pilot instead of added after it (a pool that turns out not to pay stays
+#: warm for the process's next ensemble).
+SPECULATE_AFTER = 0.25
 
 
 class CallFailed(RuntimeError):
@@ -96,49 +119,95 @@ def guarded(fn: Callable, args: tuple) -> tuple:
     return "done", value, None, None, time.perf_counter() - start, None
 
 
-def decide_workers(workers: int | None, calls: int) -> int:
+def is_auto(workers) -> bool:
+    """True for the worker count that is decided by cost: None or ``"auto"``."""
+    return workers is None or (isinstance(workers, str) and workers == "auto")
+
+
+def decide_workers(workers: int | str | None, calls: int, *, cost: float | None = None) -> int:
     """Local worker processes for an ensemble of ``calls`` calls: the one place this is decided.
 
-    ``workers`` as given (an int >= 1), or every core (``os.cpu_count()``) when None; never
-    more than there are calls (a pool of idle workers costs their start-up and nothing else).
+    ``workers`` as given (an int >= 1; never more than there are calls: a pool of idle workers
+    costs their start-up and nothing else), or, for ``None`` / ``"auto"``, from ``cost``, the
+    wall time (s) of one call: every core (``os.cpu_count()``) when the predicted parallel wall
+    time -- :data:`STARTUP_S` unless a warm pool of that many workers is running, plus the
+    calls in rounds of one per worker, plus :data:`DISPATCH_S` per call -- is at most
+    :data:`PAYS` of the serial time, else 1 (this process). Without a ``cost``: every core.
     """
-    if workers is None:
-        workers = os.cpu_count() or 1
-    elif isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
-        raise SceneError(f"`workers` must be an int >= 1, got {workers!r}")
-    return max(1, min(workers, calls))
+    if not is_auto(workers):
+        if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
+            raise SceneError(f"`workers` must be an int >= 1 or 'auto', got {workers!r}")
+        return max(1, min(workers, calls))
+    from .executors import warm_pools
+
+    cores = max(1, min(os.cpu_count() or 1, calls))
+    if cores == 1 or cost is None:
+        return cores
+    if not (isinstance(cost, (int, float)) and math.isfinite(cost) and cost >= 0):
+        raise SceneError(f"`cost` must be a finite time >= 0 (s), got {cost!r}")
+    start = 0.0 if cores in warm_pools() else STARTUP_S
+    serial = calls * cost
+    parallel = start + math.ceil(calls / cores) * cost + calls * DISPATCH_S
+    return cores if parallel <= PAYS * serial else 1
 
 
-def run_calls(fn: Callable, calls: Sequence[tuple], *, workers: int | None = 1,
-              scheduler: str | None = None, executor=None) -> Iterator[Outcome]:
+def run_calls(fn: Callable, calls: Sequence[tuple], *, workers: int | str | None = None,
+              scheduler: str | None = None, executor=None, cost: float | None = None,
+              report: dict | None = None) -> Iterator[Outcome]:
     """``fn(*args)`` for every ``args`` in ``calls``; yield an :class:`Outcome` per call as it
     completes (the module docstring's failure contract).
 
-    ``workers`` local processes (1: in this process; None: every core, see
-    :func:`decide_workers`), or a Dask ``scheduler`` address (``"local"`` starts a
-    ``LocalCluster`` of ``workers`` processes; a running cluster has its own, so ``workers``
-    stays at its default), or an open ``executor`` (kept open). ``fn``
-    must be a module-level function to run in worker processes.
+    ``workers`` local processes (1: in this process; None or ``"auto"``, the default: decided
+    by :func:`decide_workers` from ``cost``, the wall time (s) of one call if the caller knows
+    it, else from the first call, run here), or a Dask ``scheduler`` address (``"local"``
+    starts a ``LocalCluster`` of ``workers`` processes, every core when auto; a running cluster
+    has its own), or an open ``executor`` (kept open). ``fn`` must be a module-level function
+    to run in worker processes. ``report``, if given, receives ``"executor"``: where the calls
+    ran, in words.
     """
-    from .executors import check_executor_args, make_executor
+    from .executors import LocalExecutor, check_executor_args, make_executor, warm_pools
 
     calls = list(calls)
-    if executor is not None and (workers not in (None, 1) or scheduler is not None):
+    if executor is not None and (not is_auto(workers) or scheduler is not None):
         raise SceneError("`executor` excludes `workers` and `scheduler`")
-    if scheduler not in (None, "local") and workers == 1:
-        workers = None  # the default; a running cluster has its own workers
+    if is_auto(workers):
+        workers = None
+    else:
+        decide_workers(workers, 1)  # validates
     check_executor_args(workers=workers, scheduler=scheduler)
+    if report is not None:
+        report["executor"] = "none"
     if not calls:
         return
     jobs = [(fn, tuple(args)) for args in calls]
-    owned = executor is None
-    if owned:
-        n = workers if scheduler is not None else decide_workers(workers, len(calls))
-        executor = make_executor(workers=n, scheduler=scheduler)
+    owned, first, pilot = executor is None, 0, ""
+    if owned and scheduler is not None:
+        executor = make_executor(workers=workers, scheduler=scheduler)
+    elif owned:
+        cores = min(os.cpu_count() or 1, len(jobs))
+        if workers is None and cost is None and cores > 1 and cores not in warm_pools():
+            # what a call costs is measured: the first runs here, and its time decides the rest
+            from .executors import shared_pool
+
+            early = threading.Timer(SPECULATE_AFTER, shared_pool, args=(cores,))
+            early.daemon = True
+            early.start()
+            try:
+                status, value, error, tb, wall, exc = guarded(*jobs[0])
+            finally:
+                early.cancel()
+                early.join()
+            first, cost = 1, wall
+            pilot = f"call 0 in-process ({wall:.3g} s), then "
+            yield Outcome(0, status, value, error, tb, wall, exc)
+        n = decide_workers(workers, len(jobs) - first, cost=cost) if len(jobs) > first else 1
+        executor = LocalExecutor(workers=n)
+    if report is not None:
+        report["executor"] = pilot + executor.description
     try:
-        for index, result in executor.map_unordered(guarded, jobs):
+        for index, result in executor.map_unordered(guarded, jobs[first:]):
             status, value, error, tb, wall, exc = result
-            yield Outcome(index, status, value, error, tb, wall, exc)
+            yield Outcome(index + first, status, value, error, tb, wall, exc)
     finally:
         if owned:
             executor.close()
@@ -148,11 +217,12 @@ def _call(fn: Callable, kwargs: Mapping[str, Any]) -> Any:
     return fn(**kwargs)
 
 
-def map_calls(fn: Callable, kwargs_list: Sequence[Mapping[str, Any]], *, workers: int | None = 1,
-              scheduler: str | None = None) -> list:
-    """``[fn(**kw) for kw in kwargs_list]`` on the engine (in-process, local processes or Dask),
-    returned in order. A failed call raises its own exception here (:meth:`Outcome.raise_failure`,
-    noting which call), on every executor; the calls not yet finished are cancelled."""
+def map_calls(fn: Callable, kwargs_list: Sequence[Mapping[str, Any]], *,
+              workers: int | str | None = None, scheduler: str | None = None) -> list:
+    """``[fn(**kw) for kw in kwargs_list]`` on the engine (in-process, local processes or Dask;
+    ``workers`` as for :func:`run_calls`, decided by cost by default), returned in order. A
+    failed call raises its own exception here (:meth:`Outcome.raise_failure`, noting which
+    call), on every executor; the calls not yet finished are cancelled."""
     out: list = [None] * len(kwargs_list)
     for outcome in run_calls(_call, [(fn, dict(kw)) for kw in kwargs_list], workers=workers,
                              scheduler=scheduler):

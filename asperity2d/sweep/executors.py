@@ -13,16 +13,28 @@ handles each result as it arrives, so nothing waits on anything but the calls.
 the study's run function by its dotted path, calls it and checks what it
 returned. Runs are deterministic given their seed, so the executor never
 changes the numbers.
+
+Local worker processes live as long as the process that started them (one warm pool per worker
+count, :func:`shared_pool`: a spawned worker pays ~0.3 s of CPU to start and more to import
+what its calls need, so an ensemble after the first pays neither) and no longer: each worker
+asks the kernel to kill it when its parent dies (Linux ``prctl(PR_SET_PDEATHSIG)``) and watches
+its parent besides (a thread that exits the worker once it has been re-parented), so a sweep
+killed with SIGKILL leaves no worker behind; the resource tracker that multiprocessing started
+exits with them (its pipe closes when its last writer is gone).
 """
 
 from __future__ import annotations
 
+import atexit
 import concurrent.futures as cf
 import importlib
 import multiprocessing
 import os
 import math
+import re
 import sys
+import threading
+import time
 import traceback
 import uuid
 from functools import lru_cache
@@ -90,6 +102,82 @@ def _check_main_importable() -> None:
         )
 
 
+# -- the warm pools ----------------------------------------------------------------------------
+#: How often a worker checks that its parent is alive (s), besides the kernel's death signal.
+WATCH_INTERVAL = 0.2
+_PR_SET_PDEATHSIG = 1
+_pools: dict[int, cf.ProcessPoolExecutor] = {}
+_pools_lock = threading.Lock()
+
+
+def _die_with(parent: int, death_signal: bool) -> None:
+    """Worker initializer: exit as soon as process ``parent`` is gone.
+
+    ``death_signal``: ask the kernel for SIGKILL when the parent dies (Linux; the signal follows
+    the *thread* that spawned the worker, so the pool asks for it only when it spawns every
+    worker from the main thread at once). Always: a daemon thread that polls ``os.getppid()``
+    (a worker is re-parented when its parent dies) and exits the worker.
+    """
+    if death_signal and sys.platform.startswith("linux"):
+        try:
+            import ctypes
+            import signal
+
+            libc = ctypes.CDLL(None, use_errno=True)
+            libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+        except (OSError, AttributeError):  # pragma: no cover - no prctl: the watchdog remains
+            pass
+    if os.getppid() != parent:  # the parent died before the signal was asked for
+        os._exit(1)
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            time.sleep(WATCH_INTERVAL)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="asperity2d-parent-watch", daemon=True).start()
+
+
+def shared_pool(workers: int) -> cf.ProcessPoolExecutor:
+    """The process's pool of ``workers`` spawned workers, started on first use and kept warm
+    until the process exits (or the pool breaks: :func:`discard_pool`)."""
+    with _pools_lock:
+        pool = _pools.get(workers)
+        if pool is not None:
+            return pool
+        # spawn: workers start clean (no inherited threads, RNGs or engine state)
+        main = threading.current_thread() is threading.main_thread()
+        launch = getattr(cf.ProcessPoolExecutor, "_launch_processes", None)
+        pool = cf.ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("spawn"),
+                                      initializer=_die_with, initargs=(os.getpid(), main and launch is not None))
+        if main and launch is not None:
+            launch(pool)  # every worker now, from this thread (the death signal follows it)
+        _pools[workers] = pool
+        return pool
+
+
+def warm_pools() -> set[int]:
+    """The worker counts of the pools this process keeps warm (empty: none is running)."""
+    with _pools_lock:
+        return set(_pools)
+
+
+def discard_pool(pool: cf.ProcessPoolExecutor | None = None) -> None:
+    """Shut down ``pool`` (every pool if None) and forget it: a broken pool, or the process's
+    exit (registered with :mod:`atexit`). Calls queued in it are cancelled."""
+    with _pools_lock:
+        chosen = [(n, p) for n, p in _pools.items() if pool is None or p is pool]
+        for n, _ in chosen:
+            del _pools[n]
+    if pool is not None and not chosen:
+        chosen = [(0, pool)]
+    for _, p in chosen:
+        p.shutdown(wait=True, cancel_futures=True)
+
+
+atexit.register(discard_pool)
+
+
 #: A local pool that breaks this many times in a row, no call finishing in between, is given up:
 #: every call left fails with the error (a script without an ``if __name__ == "__main__":``
 #: guard, a worker that cannot start).
@@ -97,7 +185,8 @@ MAX_BREAKS = 3
 
 
 class LocalExecutor:
-    """Runs on this machine: in-process for one worker, else a process pool.
+    """Runs on this machine: in-process for one worker, else the process's warm pool of that
+    many workers (:func:`shared_pool`).
 
     Parameters
     ----------
@@ -132,7 +221,6 @@ class LocalExecutor:
         # saying which call killed it. The calls lost that way are run again one at a time in a
         # new pool: an innocent one finishes, the culprit breaks the pool alone and fails.
         suspects: list[tuple[int, tuple]] = []
-        breaks = 0  # pools broken in a row with no call finished in between
 
         def fill() -> None:
             while len(in_flight) < (1 if suspects else window):
@@ -141,6 +229,14 @@ class LocalExecutor:
                     return
                 in_flight[self._start().submit(fn, *nxt[1])] = nxt
 
+        try:
+            yield from self._drain(fn, in_flight, fill, suspects, pending)
+        finally:  # stopped early (a failure raised by the caller, Ctrl-C): drop what is queued
+            for future in in_flight:
+                future.cancel()
+
+    def _drain(self, fn, in_flight, fill, suspects, pending):
+        breaks = 0  # pools broken in a row with no call finished in between
         fill()
         while in_flight:
             done, _ = cf.wait(in_flight, return_when=cf.FIRST_COMPLETED)
@@ -158,7 +254,7 @@ class LocalExecutor:
             if cause is not None:
                 lost += in_flight.values()
                 in_flight.clear()
-                self.close()
+                self._discard()
                 breaks += 1
                 if breaks >= MAX_BREAKS:  # the pool itself cannot run: every call left fails
                     for index, _ in [*lost, *suspects, *pending]:
@@ -172,16 +268,18 @@ class LocalExecutor:
 
     def _start(self) -> cf.ProcessPoolExecutor:
         if self._pool is None:
-            # spawn: workers start clean (no inherited threads, RNGs or engine state)
-            self._pool = cf.ProcessPoolExecutor(
-                max_workers=self.workers, mp_context=multiprocessing.get_context("spawn")
-            )
+            self._pool = shared_pool(self.workers)
         return self._pool
 
-    def close(self) -> None:
+    def _discard(self) -> None:
+        """The pool broke: shut it down; the next call starts a new one."""
         if self._pool is not None:
-            self._pool.shutdown(wait=True, cancel_futures=True)
+            discard_pool(self._pool)
             self._pool = None
+
+    def close(self) -> None:
+        """Let go of the pool; it stays warm for the process's next ensemble."""
+        self._pool = None
 
     def __enter__(self) -> "LocalExecutor":
         return self
@@ -229,11 +327,11 @@ class DaskExecutor:
         else:
             address = scheduler
         try:
-            # connect timeout: dask config `distributed.comm.timeouts.connect`
-            self._client = distributed.Client(address, set_as_default=False)
-        except (OSError, TimeoutError) as exc:
+            self._client = distributed.Client(address, set_as_default=False, timeout=CONNECT_TIMEOUT)
+        except (OSError, TimeoutError, ValueError) as exc:
             self._close_cluster()
-            raise SceneError(f"`scheduler` {scheduler!r} could not be reached: {exc}") from None
+            raise SceneError(f"`scheduler` {scheduler!r} could not be reached within "
+                             f"{CONNECT_TIMEOUT:g} s: {exc}") from None
 
     @property
     def description(self) -> str:
@@ -297,14 +395,32 @@ class DaskExecutor:
         self.close()
 
 
+#: A Dask scheduler address: ``[scheme://]host:port`` (the schemes Dask's TCP-like transports
+#: use; IPv6 hosts in brackets), or ``inproc://...``.
+_ADDRESS = re.compile(r"^(?:(?:tcp|tls|ucx|ws|wss)://)?(?:\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9_.-]+):[0-9]{1,5}$"
+                      r"|^inproc://\S+$")
+#: Seconds to wait for a Dask scheduler to answer before giving up (a cluster on a network
+#: answers in milliseconds; a wrong address should fail fast, in one line).
+CONNECT_TIMEOUT = 5.0
+
+
+def check_scheduler(scheduler) -> None:
+    """Refuse a ``scheduler`` that is neither ``"local"`` nor an address (SceneError naming it),
+    before anything is imported or started."""
+    if not isinstance(scheduler, str) or not scheduler:
+        raise SceneError(f"`scheduler` must be an address or 'local', got {scheduler!r}")
+    if scheduler != "local" and not _ADDRESS.match(scheduler):
+        raise SceneError(f"`scheduler` must be 'local' or a Dask scheduler address like "
+                         f"tcp://host:8786, got {scheduler!r}")
+
+
 def check_executor_args(*, workers: int | None = None, scheduler: str | None = None) -> None:
     """Validate ``workers`` / ``scheduler`` without starting anything (SceneError if bad)."""
     if workers is not None:
         _check_workers(workers)
     if scheduler is None:
         return
-    if not isinstance(scheduler, str) or not scheduler:
-        raise SceneError(f"`scheduler` must be an address or 'local', got {scheduler!r}")
+    check_scheduler(scheduler)
     if scheduler != "local" and workers is not None:
         raise SceneError("`workers` applies only to scheduler='local'; a cluster has its own")
 

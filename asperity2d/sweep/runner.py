@@ -19,9 +19,8 @@ from typing import Iterator
 
 from .._validate import check_runs
 from ..errors import SceneError
-from .engine import decide_workers, run_calls
-from .executors import (DaskExecutor, LocalExecutor, check_executor_args, execute_run, jobs_for,
-                        make_executor, resolve_run)
+from .engine import is_auto, run_calls
+from .executors import DaskExecutor, LocalExecutor, check_executor_args, execute_run, jobs_for, resolve_run
 from .progress import Progress
 from .record import RunRecord
 from .store import ResultStore
@@ -89,7 +88,7 @@ def run_study(
     study: Study | str | os.PathLike,
     *,
     store: str | os.PathLike | ResultStore,
-    workers: int | None = None,
+    workers: int | str | None = None,
     scheduler: str | None = None,
     progress: bool = True,
     retry_failed: bool = False,
@@ -104,9 +103,12 @@ def run_study(
         The study, or a ``.toml`` / ``.py`` file describing it.
     store : path or ResultStore
         The study's results directory (created if missing).
-    workers : int, optional
-        Local worker processes (default ``os.cpu_count()``; 1 = in-process),
-        or the size of the cluster for ``scheduler="local"``.
+    workers : int or "auto", optional
+        Local worker processes (1 = in-process), or the size of the cluster for
+        ``scheduler="local"``. Default (None or ``"auto"``): decided by what a run costs
+        (:func:`asperity2d.sweep.engine.decide_workers`): the median time of the runs this
+        store already holds, else the first run's, timed in this process -- serial when
+        starting workers would not pay, every core when it would.
     scheduler : str, optional
         Dask scheduler address ``"tcp://host:port"``, or ``"local"`` to start a
         ``LocalCluster``. Default: the local process pool.
@@ -121,8 +123,9 @@ def run_study(
         Refuse (``SceneError``, before any run starts) a study of more runs (grid points x
         seeds) than this; default :data:`asperity2d._validate.MAX_RUNS` (100,000).
     """
-    if executor is not None and (workers is not None or scheduler is not None):
+    if executor is not None and (not is_auto(workers) or scheduler is not None):
         raise SceneError("`executor` excludes `workers` and `scheduler`")
+    workers = None if is_auto(workers) else workers
     if not isinstance(study, Study):
         study = load_study(study)
     check_runs(len(study), max_runs, study_size(study))
@@ -140,21 +143,22 @@ def run_study(
         done = sum(r.status == "done" for r in finished.values())
         failed = len(finished) - done
         executed: list[str] = []
-        owned = executor is None
-        if owned and todo:
-            n = workers if scheduler is not None else decide_workers(workers, len(todo))
-            executor = make_executor(workers=n, scheduler=scheduler)
-        elif owned:
-            executor = None
-        description = executor.description if executor else "none"
+        # what a run costs, from the runs this store already timed (None: the engine times one)
+        walls = sorted(r.wall_time for r in finished.values() if r.status == "done" and r.wall_time >= 0)
+        cost = walls[len(walls) // 2] if walls else None
+        report = {"executor": executor.description if executor is not None else
+                  ("local processes (decided by cost)" if workers is None and scheduler is None else
+                   f"dask ({scheduler})" if scheduler is not None else f"local processes ({workers})")}
         bar = None
         try:
-            store.begin_session(study, executor=description)
+            store.begin_session(study, executor=report["executor"] if todo else "none")
             bar = Progress(total=len(specs), done=done, failed=failed, label=study.name,
                            enabled=progress)
             if todo:
                 jobs = jobs_for(study.run, todo, study.quantities)
-                for outcome in run_calls(execute_run, jobs, executor=executor):
+                where = {"executor": executor} if executor is not None else \
+                    {"workers": workers, "scheduler": scheduler, "cost": cost}
+                for outcome in run_calls(execute_run, jobs, report=report, **where):
                     record = RunRecord.from_outcome(todo[outcome.index], study.run, outcome)
                     store.write_run(record)
                     executed.append(record.key)
@@ -162,8 +166,6 @@ def run_study(
         finally:
             if bar is not None:
                 bar.close()
-            if owned and executor is not None:
-                executor.close()
     return SweepSummary(
         study=study.name,
         store=str(store.path),
@@ -174,5 +176,5 @@ def run_study(
         skipped=len(finished),
         executed=tuple(executed),
         wall_time=time.perf_counter() - start,
-        executor=description,
+        executor=report["executor"] if todo else "none",
     )
