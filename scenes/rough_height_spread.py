@@ -43,7 +43,7 @@ import math
 import numpy as np
 
 from asperity2d import stats
-from asperity2d.scene import SEED_000, kinetic_default
+from asperity2d.scene import OOTEN_DEFAULTS, kinetic_default
 from asperity2d.cli import scripting
 from asperity2d.studies.claims import HOLDS, UNTESTABLE, claim, judge, verdict_line
 from asperity2d.studies.rough import rough_run, spearman, trend_claim
@@ -57,7 +57,7 @@ QUICK_SIZE = dict(lower_count=3, upper_count=1, drive_velocity=100.0)  # a smoke
 SETUPS = {"free": {"track": "free"}, "fixed": {"track": "fixed", "interference": 0.125e-6}}
 QUANTITIES = ("critical_force_N", "mean_stick_force_N", "touched_fraction", "max_contacts",
               "steepest_touched_flank_deg", "steepest_upper_flank_deg", "breakaway_angle_deg")
-LOAD, MU_K = SEED_000["normal_load"], kinetic_default(SEED_000["mu_static"])  # N; the free slider's
+LOAD, MU_K = OOTEN_DEFAULTS["normal_load"], kinetic_default(OOTEN_DEFAULTS["mu_static"])  # N; the free slider's
 ALPHA = 0.05
 
 

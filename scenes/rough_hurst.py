@@ -39,7 +39,7 @@ import math
 import numpy as np
 
 from asperity2d import stats
-from asperity2d.scene import SEED_000, kinetic_default
+from asperity2d.scene import OOTEN_DEFAULTS, kinetic_default
 from asperity2d.cli import scripting
 from asperity2d.studies.claims import UNTESTABLE, claim, verdict_line
 from asperity2d.studies.rough import self_affine_run, spearman, trend_claim
@@ -55,7 +55,7 @@ SETUPS = {"free": {"track": "free", "normal_load": 1e-3}, "fixed": {"track": "fi
 SLIDER, QUICK_SLIDER = dict(upper_count=3), dict(upper_count=1, drive_velocity=100.0)
 QUANTITIES = ("critical_force_N", "mean_stick_force_N", "lower_count", "rms_slope", "touched_count",
               "above_level_fraction", "steepest_touched_flank_deg", "breakaway_angle_deg", "max_contacts")
-MU_K = kinetic_default(SEED_000["mu_static"])
+MU_K = kinetic_default(OOTEN_DEFAULTS["mu_static"])
 ALPHA = 0.05
 
 
