@@ -29,6 +29,7 @@ whichever applies.
 
 from __future__ import annotations
 
+import gc
 import os
 
 import numpy as np
@@ -201,6 +202,13 @@ def _probe() -> str | None:
             calls.read_bodies()
             out.append(store[:4].tolist())
             reads.append(out)
+            # Tear the probe scene down now, in order: left to the cycle collector, a Space can
+            # be freed after its bodies at whatever allocation triggers a collection, and
+            # Chipmunk's cpSpaceFree then touches freed bodies (a segfault seen in spawned
+            # sweep workers importing the engine).
+            space.remove(box, body, floor)
+            del calls, setter, space, floor, body, box
+            gc.collect()
         if reads[0] != reads[1]:
             return "its direct calls do not agree with pymunk's public API on a probe scene"
     except Exception as exc:  # noqa: BLE001 - any missing or changed internal means: do not use it
