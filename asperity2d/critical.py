@@ -1,12 +1,12 @@
 """Critical force: the smallest constant drive force that carries the slider across.
 
-Seed 000's Working Model runs pushed the slider with a constant force; it
+Ooten's Working Model runs pushed the slider with a constant force; it
 either stopped on a flank or ran away. The boundary between the two is the
 critical force, found here by bisection over constant-force runs, each stopped
 as soon as the slider is stuck or has passed the last lower apex. Three starts:
 
 * ``start="rest"`` (default): the top surface at rest *on* the bottom one, as
-  the seed describes it ("the force required to move the top surface over the
+  Ooten describes it ("the force required to move the top surface over the
   bottom surface"; its abstract's breakaway force): the slider over the
   surface (on the fixed track its track is lowered into place), every tip
   settled against its flank by a gentle push (1 % of the flank-law

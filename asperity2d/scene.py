@@ -92,16 +92,6 @@ OOTEN_PARAMETERS = (
 OOTEN_DEFAULTS = {p.name: p.default for p in OOTEN_PARAMETERS}
 
 
-def __getattr__(name: str):
-    if name == "SEED_000":  # the name before 0.2.0; "seed" now means a random seed only
-        import warnings
-
-        warnings.warn("asperity2d.scene.SEED_000 is deprecated: use OOTEN_DEFAULTS",
-                      DeprecationWarning, stacklevel=2)
-        return OOTEN_DEFAULTS
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
 _FULL = Profile.from_angle("full", base=OOTEN_DEFAULTS["base"], flank_angle=OOTEN_DEFAULTS["flank_angle"])
 
 
@@ -112,7 +102,7 @@ def kinetic_default(mu_static: float) -> float:
 
 @dataclass(frozen=True)
 class LowerSurface(SurfaceGeometry):
-    """Asperities on vertical spring-damper tracks (seed 000 figures 5, 7, 8).
+    """Asperities on vertical spring-damper tracks (Ooten's figures 5, 7, 8).
 
     Every asperity has ``profile``'s shape unless ``shapes`` (a
     :class:`~asperity2d.shapes.Shapes` record) gives each its own height,
@@ -129,7 +119,7 @@ class LowerSurface(SurfaceGeometry):
     ``travel_down`` and ``travel_up`` (m) limit each track below / above the
     rest position (default: the (tallest) asperity height).
 
-    ``lateral_stiffness`` (N/m) turns the tracks into seed 000's MATLAB
+    ``lateral_stiffness`` (N/m) turns the tracks into Ooten's MATLAB
     lattice (its figure 14, equations 9-18): the peaks then move in x and y,
     each held by its vertical spring to ground and joined to its neighbours
     and the two walls by horizontal springs: n + 1 values (wall-peak 1,
@@ -195,7 +185,7 @@ class LowerSurface(SurfaceGeometry):
 
     @property
     def is_lattice(self) -> bool:
-        """True when the peaks move in x too (seed 000's MATLAB model)."""
+        """True when the peaks move in x too (Ooten's MATLAB model)."""
         return self.lateral_stiffness is not None
 
     def tips(self) -> np.ndarray:
@@ -215,7 +205,7 @@ class LowerSurface(SurfaceGeometry):
 class Slider(SurfaceGeometry):
     """The upper body carrying its own asperities, on a horizontal track.
 
-    ``track="fixed"`` (seed 000's Working Model set-up): held at a fixed height
+    ``track="fixed"`` (Ooten's Working Model set-up): held at a fixed height
     such that its deepest tip reaches ``interference`` (m, default a quarter
     of its profile's height) below the rest height of the highest lower tip
     (with varied heights: the tallest lower summit; with equal ones, every

@@ -1,8 +1,14 @@
-"""The asperity stick-slip spectrum: regular against random spacing, and a drive-preload scan.
+"""The spectrum of asperity stick-slip: regular against random spacing
+===================================================================
+
+From E. Ooten, *Precision Motion Control at Low Velocities in the Presence of
+Friction* (senior thesis, Texas A&M University, 1997-98).
+
+The asperity stick-slip spectrum: regular against random spacing, and a drive-preload scan.
 
 Run: ``python scenes/asperity_spectrum.py [--quick] [--workers N] [-o DIR] [--json]``.
 
-Seed 000's set-up on the fixed-height track (``make_scene(track="fixed")``)
+Ooten's set-up on the fixed-height track (``make_scene(track="fixed")``)
 with a spring drive, at two drive stiffnesses: the default 3 720 N/m over
 120 lower asperities (the slider slips several pitches at a time, so a run
 needs many asperities to show several cycles) and a tenfold stiffer
@@ -50,7 +56,7 @@ def line_fraction(sp, f_pitch, harmonics=5):
 
 
 def main(argv=None) -> int:
-    p = scripting.parser(__doc__.splitlines()[0])
+    p = scripting.parser(scripting.title(__doc__))
     p.add_argument("--workers", type=int, default=min(2, os.cpu_count() or 1))
     args = p.parse_args(argv)
     out = scripting.out_dir(args, __file__)

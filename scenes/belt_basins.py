@@ -1,4 +1,11 @@
-"""Seed 001's 3-DOF base case (Table 2): initial-condition basins, stability, and its sound.
+"""Basins of the three-mass chain: a transient, and chaos beside a cycle
+=====================================================================
+
+From the thesis *Vibration Analysis of Multi Degree of Freedom Self-excited
+Systems* (no author named in the copy used here), called the multi-DOF belt
+thesis below.
+
+The multi-DOF belt thesis' 3-DOF base case (Table 2): initial-condition basins, stability, and its sound.
 
 Run: ``python scenes/belt_basins.py [--quick] [--grid N] [--workers N] [-o DIR] [--json]``
 (also ``asperity2d run scenes/belt_basins.py -- ...``).
@@ -75,7 +82,7 @@ def basin_summary(bm) -> dict:
 
 
 def main(argv=None) -> int:
-    p = scripting.parser(__doc__.splitlines()[0])
+    p = scripting.parser(scripting.title(__doc__))
     p.add_argument("--grid", type=int, default=None, help="points per axis (default 60, quick 3)")
     p.add_argument("--workers", type=int, default=min(2, os.cpu_count() or 1))
     args = p.parse_args(argv)

@@ -1,4 +1,11 @@
-"""Contacts that open: separation, mode-coupling flutter and squeal on the moving belt.
+"""Contacts that open: separation, mode-coupling flutter and squeal
+================================================================
+
+From the thesis *Vibration Analysis of Multi Degree of Freedom Self-excited
+Systems* (no author named in the copy used here), called the multi-DOF belt
+thesis below.
+
+Contacts that open: separation, mode-coupling flutter and squeal on the moving belt.
 
 Run: ``python scenes/belt_contact.py [--quick] [-o DIR] [--json] [--workers N]``.
 
@@ -53,7 +60,7 @@ INCLINED = ((10.0, 135.0),)
 
 
 def main(argv=None) -> int:
-    p = scripting.parser(__doc__.splitlines()[0])
+    p = scripting.parser(scripting.title(__doc__))
     p.add_argument("--workers", type=int, default=1, help="processes for the regime map")
     args = p.parse_args(argv)
     if args.workers < 1:
@@ -151,7 +158,7 @@ def main(argv=None) -> int:
                            .growth_rate for k in ks])
     plots.append(str(plot_opening(rows, out / "thesis_opening.png", curves=curves)))
     opened = [r for r in rows if r["openings"]]
-    claims.append(claim("the thesis chain with normal compliance loses contact only where its steady sliding is "
+    claims.append(claim("the multi-DOF belt thesis' 3-DOF chain with normal compliance loses contact only where its steady sliding is "
                         "unstable", all(r["growth_rate"] > 0 for r in opened),
                         {"opened": len(opened), "runs": len(rows),
                          "growth_rates_where_opened": [r["growth_rate"] for r in opened],
@@ -159,7 +166,7 @@ def main(argv=None) -> int:
                         "every run whose contact opens has a growing mode (max Re lambda > 0) in steady sliding"))
     flat = normal_force_without_coupling(stiff=not quick)  # quick: the rigid contact (tests cover the stiff one)
     summary["without_coupling"] = flat
-    claims.append(claim("without an inclined spring a normal contact never opens on the thesis presets (N = m g)",
+    claims.append(claim("without an inclined spring a normal contact never opens on the multi-DOF belt thesis' presets (N = m g)",
                         flat["openings"] == 0 and flat["max_relative_departure"] <= 1e-12, flat,
                         "no opening and |N - m g| <= 1e-12 m g on every preset (rigid and stiff compliant contacts)"))
     lines.append(f"thesis chain + normal compliance: contact opened in {len(opened)} of {len(rows)} runs, at k_c = "

@@ -1,4 +1,11 @@
-"""Seed 001 parameter studies on the 3-DOF chain (Tables 3-7, Figures 6-14).
+"""Parameter studies of the three-mass chain (Tables 3-7)
+======================================================
+
+From the thesis *Vibration Analysis of Multi Degree of Freedom Self-excited
+Systems* (no author named in the copy used here), called the multi-DOF belt
+thesis below.
+
+The multi-DOF belt thesis parameter studies on the 3-DOF chain (Tables 3-7, Figures 6-14).
 
 Run: ``python scenes/belt_parameters.py [--quick] [--only stiffness|damping|mass|speed|friction]``.
 The per-table scripts ``belt_stiffness.py`` ... call this with ``--only``.

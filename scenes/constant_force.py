@@ -1,8 +1,14 @@
-"""Constant-force slider (Working Model's set-up, seed 000 figures 10 and 12).
+"""A constant force: the slider stops on a flank or runs away
+==========================================================
+
+From E. Ooten, *Precision Motion Control at Low Velocities in the Presence of
+Friction* (senior thesis, Texas A&M University, 1997-98).
+
+Constant-force slider (Working Model's set-up, Ooten's figures 10 and 12).
 
 With a constant push the slider never shows stick-slip: it either stops on a
 flank or runs away. This script finds the critical force by bisection and runs
-just below and just above it, writing the position traces (the seed's
+just below and just above it, writing the position traces (Ooten's
 figure 10 analogue), a GIF of the run that passes, and summary.json.
 
     python scenes/constant_force.py        # or: asperity2d run scenes/constant_force.py
@@ -22,7 +28,7 @@ def build_scene(quick: bool = False, **overrides):
 
 
 def main(argv=None) -> int:
-    args = scripting.parser(__doc__.splitlines()[0]).parse_args(argv)
+    args = scripting.parser(scripting.title(__doc__)).parse_args(argv)
     out = scripting.out_dir(args, __file__)
     scene = build_scene(args.quick)
     bracket = critical_force_bracket(scene, rel_tol=0.01)

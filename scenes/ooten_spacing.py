@@ -1,13 +1,19 @@
-"""Seed 000 figure 11: regular vs random asperity spacing, on the fixed track and the free slider.
+"""Regular against random spacing (Ooten's figure 11)
+==================================================
 
-Three variants (seed 000's three Working Model runs): regular/regular, random
+From E. Ooten, *Precision Motion Control at Low Velocities in the Presence of
+Friction* (senior thesis, Texas A&M University, 1997-98).
+
+Ooten's figure 11: regular vs random asperity spacing, on the fixed track and the free slider.
+
+Three variants (Ooten's three Working Model runs): regular/regular, random
 upper on a regular lower surface ("random-upper"), random on both surfaces
 ("random"). For each, over ``--seeds`` seeds (regular spacing does not depend
 on the seed and is measured once):
 
 * critical force from rest (the headline): the smallest constant force that
   moves the slider, at rest on the surface with every tip against its flank,
-  over the whole surface -- the seed's "force required to move the top
+  over the whole surface -- Ooten's "force required to move the top
   surface over the bottom surface";
 * critical force with a run-up: the same force applied a tenth of a base
   before the surface, so the slider meets the first flank with momentum;
@@ -21,7 +27,7 @@ Each random variant is tested against the regular value with a one-sample
 Wilcoxon signed-rank test (one-sided, "lower"); "random on both is the
 smallest" with a paired Wilcoxon test of random/random against random-upper
 (same seed). A verdict "holds" needs p < 0.01 in the claimed direction. Both
-set-ups are run: seed 000's fixed-height track (default) and the free slider
+set-ups are run: Ooten's fixed-height track (default) and the free slider
 under a normal load.
 
     python scenes/ooten_spacing.py [--seeds 20] [--workers 2]
@@ -68,7 +74,7 @@ def measure_setup(setup: str, *, size: dict, seeds: list[int], workers: int) -> 
 
 
 def claims_for(setup: str, comparisons: dict[str, Comparison]) -> list[dict]:
-    """Seed-000 figure-11 claims for one set-up, with numbers and tests."""
+    """Ooten's figure 11 claims for one set-up, with numbers and tests."""
     out = []
     for name, comparison in comparisons.items():
         label = measure_label(name)
@@ -91,7 +97,7 @@ def claims_for(setup: str, comparisons: dict[str, Comparison]) -> list[dict]:
 
 
 def main(argv=None) -> int:
-    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=20, minimum_seeds=2)
+    args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=20, minimum_seeds=2)
     out = scripting.out_dir(args, __file__)
     size = studies.QUICK_SIZE if args.quick else studies.STUDY_SIZE
     seeds = list(range(args.seeds))

@@ -1,6 +1,12 @@
-"""Quickstart: a stick-slip run as a GIF, then "does random spacing lower the breakaway force?".
+"""Quickstart: a stick-slip run, then regular against random spacing
+=================================================================
 
-Everything on seed 000's own Working Model set-up (the package default): 16
+From E. Ooten, *Precision Motion Control at Low Velocities in the Presence of
+Friction* (senior thesis, Texas A&M University, 1997-98).
+
+Quickstart: a stick-slip run as a GIF, then "does random spacing lower the breakaway force?".
+
+Everything on Ooten's own Working Model set-up (the package default): 16
 regular lower asperities on spring-damper tracks, a slider with 4 tips on a
 fixed-height horizontal track.
 
@@ -8,7 +14,7 @@ fixed-height horizontal track.
    surface: it sticks and slips. Writes ``run.gif`` (the scene with its
    meters, slips in slow motion), ``run.html`` (the same run in an
    interactive player: open it in a browser) and ``timeseries.png``.
-2. Regular against random spacing (both surfaces random, seed 000 figure
+2. Regular against random spacing (both surfaces random, Ooten's figure
    11) over ``--seeds`` seeds, two measures of the force that breaks the
    slider loose: the critical force from rest (the smallest constant force
    that moves the slider, at rest on the surface, all the way across) and
@@ -42,7 +48,7 @@ def verdict(comparison, setup: str) -> dict:
 
 
 def main(argv=None) -> int:
-    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=10, minimum_seeds=2)
+    args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=10, minimum_seeds=2)
     out = scripting.out_dir(args, __file__)
     size = {"lower_count": 8, "upper_count": 3} if args.quick else {}
 
@@ -75,12 +81,12 @@ def main(argv=None) -> int:
             verdicts[setup, name] = record
 
     lines = [
-        f"stick-slip run on seed 000's set-up ({scene.lower.count} regular lower asperities, a slider with "
+        f"stick-slip run on Ooten's set-up ({scene.lower.count} regular lower asperities, a slider with "
         f"{scene.slider.count} tips on a fixed-height track, spring drive): {len(events)} stick-slip events; "
         f"the peak stick force {summary['peak_stick_force_N'] * 1e3:.1f} mN is the flank law for all "
         f"{scene.slider.count} tips at once ({all_tips * 1e3:.1f} mN) -> {out / 'run.gif'}, {out / 'run.html'}",
         f"Does random spacing lower the force that breaks the slider loose? {args.seeds} seeds, "
-        f"fixed track (seed 000's set-up); the free slider under a 10 mN load beside it:",
+        f"fixed track (Ooten's set-up); the free slider under a 10 mN load beside it:",
     ]
     for name in MEASURES:
         fixed, free = verdicts["fixed", name], verdicts["free", name]

@@ -1,6 +1,9 @@
-"""Which asperities carry load: the fraction touched over a pass against the fixed track's height.
+"""Which asperities carry load on a rough surface
+==============================================
 
-A Greenwood-Williamson question on seed 000's fixed track. The lower surface
+Which asperities carry load: the fraction touched over a pass against the fixed track's height.
+
+A Greenwood-Williamson question on Ooten's fixed track. The lower surface
 has 24 asperities on a 1 µm base at regular 1.25 µm pitch, their heights drawn
 about 0.5 µm with standard deviation 0.1 µm (Gaussian, and uniform with the
 same mean and spread); the slider carries one 45° tip and runs on a fixed
@@ -145,7 +148,7 @@ def plot(table: dict, path) -> None:
 
 
 def main(argv=None) -> int:
-    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=6, minimum_seeds=1,
+    args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=6, minimum_seeds=1,
                                 quick_seeds=1)
     out = scripting.out_dir(args, __file__)
     size, levels = (QUICK_SIZE, QUICK_LEVELS) if args.quick else (SIZE, LEVELS)

@@ -1,6 +1,9 @@
-"""Critical force and mean stick force against the spread of the asperity heights (issue 14).
+"""Forces against the spread of the asperity heights
+=================================================
 
-Seed 000's surfaces (10 lower / 3 upper 45° full triangles on a 1 µm base,
+Critical force and mean stick force against the spread of the asperity heights (issue 14).
+
+Ooten's surfaces (10 lower / 3 upper 45° full triangles on a 1 µm base,
 1.25 µm pitch, Table 1 steel) with Gaussian random heights on both surfaces:
 every asperity keeps its 1 µm base and gets its own height about 0.5 µm with
 standard deviation sigma, so sigma / base = 0 (today's surfaces) to 0.2; the
@@ -157,7 +160,7 @@ def plot(results: dict, path) -> None:
 
 
 def main(argv=None) -> int:
-    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=8, minimum_seeds=1,
+    args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=8, minimum_seeds=1,
                                 quick_seeds=1)
     out = scripting.out_dir(args, __file__)
     spreads, size = (QUICK_SPREADS, QUICK_SIZE) if args.quick else (SPREADS, SIZE)

@@ -1,11 +1,14 @@
-"""Critical force and mean stick force against the Hurst exponent H at fixed rms height (issue 14).
+"""Forces against the Hurst exponent of a self-affine surface
+==========================================================
+
+Critical force and mean stick force against the Hurst exponent H at fixed rms height (issue 14).
 
 The lower surface is a self-affine profile (``asperity2d.surface.self_affine_profile``,
 one realisation per seed): 16 µm long, 2048 points, rms height 0.15 µm, power
 between the wavelengths 4 µm (a roll-off plateau above) and 0.25 µm, H = 0.3
 to 0.9; its summits of prominence >= 10 % of the rms height become the lower
 asperities (``make_scene(lower_surface=profile)``, Table 1 stiffness and mass
-for all). The slider carries seed 000's three 45° triangles (1 µm base,
+for all). The slider carries Ooten's three 45° triangles (1 µm base,
 1.25 µm pitch). Both set-ups: the free slider under 1 mN, and a fixed track
 whose deepest upper tip runs one rms height (0.15 µm) above the profile's
 mean line (a fixed separation of the mean planes, as in Greenwood-Williamson),
@@ -123,7 +126,7 @@ def plot(results: dict, path) -> None:
 
 
 def main(argv=None) -> int:
-    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=5, minimum_seeds=1,
+    args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=5, minimum_seeds=1,
                                 quick_seeds=1)
     out = scripting.out_dir(args, __file__)
     hursts, profile, slider = ((QUICK_HURSTS, QUICK_PROFILE, QUICK_SLIDER) if args.quick

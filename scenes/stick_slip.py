@@ -1,9 +1,15 @@
-"""Spring-driven slider on regular asperities: stick-slip (seed 000, figure 13 drive).
+"""Stick-slip under a spring drive
+===============================
 
-Seed 000's Working Model set-up (the slider on a fixed-height track, its tips
+From E. Ooten, *Precision Motion Control at Low Velocities in the Presence of
+Friction* (senior thesis, Texas A&M University, 1997-98).
+
+Spring-driven slider on regular asperities: stick-slip (Ooten's thesis, figure 13 drive).
+
+Ooten's Working Model set-up (the slider on a fixed-height track, its tips
 a quarter of the asperity height into the lower surface), pulled by a spring
 whose far end moves at constant speed. The drive force builds while the
-slider sticks and drops when it slips: the sawtooth seed 000 could not get
+slider sticks and drops when it slips: the sawtooth Ooten's thesis could not get
 from a constant force in Working Model. On a regular surface every tip meets
 its lower asperity at once, so the largest stick force of the pass is the
 quasi-static flank law for all of them together: n k delta tan(45 deg + atan
@@ -28,7 +34,7 @@ def build_scene(quick: bool = False, **overrides):
 
 
 def main(argv=None) -> int:
-    args = scripting.parser(__doc__.splitlines()[0]).parse_args(argv)
+    args = scripting.parser(scripting.title(__doc__)).parse_args(argv)
     out = scripting.out_dir(args, __file__)
     scene = build_scene(args.quick)
     result = a.simulate(scene)

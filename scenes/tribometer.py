@@ -1,4 +1,10 @@
-"""Virtual tribometer on Table 1 steel asperities: the emergent friction law and its fits.
+"""A virtual tribometer: the friction law that emerges from asperities
+===================================================================
+
+From E. Ooten, *Precision Motion Control at Low Velocities in the Presence of
+Friction* (senior thesis, Texas A&M University, 1997-98).
+
+Virtual tribometer on Table 1 steel asperities: the emergent friction law and its fits.
 
 Velocity-controlled sliding (stiff drive) at a ladder of speeds over four
 decades, both directions; pre-sliding reversal loops from rest; fits of
@@ -108,7 +114,7 @@ def _period_plot(periods, path):
 
 
 def _macroscopic_chain(law, out) -> dict:
-    """Seed 001's 3-DOF chain (Table 2, from rest) with the asperity-measured law.
+    """The multi-DOF belt thesis' 3-DOF chain (Table 2, from rest) with the asperity-measured law.
 
     Written as a chain file (``asperity2d belt <file>`` runs it again), read
     back through the same loader, solved exactly and plotted.
@@ -121,7 +127,7 @@ def _macroscopic_chain(law, out) -> dict:
     from asperity2d.renderers.belt import plot_chain
 
     chain = {k: v for k, v in presets.preset("table2-3dof-rest", t_end=120.0).items() if k not in ("mu_s", "mu_k")}
-    lines = ["# seed 001 Table 2 chain (from rest) with friction measured on the asperities"]
+    lines = ["# the multi-DOF belt thesis Table 2 chain (from rest) with friction measured on the asperities"]
     lines += [f"{key} = {json.dumps(value)}" for key, value in chain.items()]
     lines += ["", "[friction]", *(f"{key} = {json.dumps(value)}" for key, value in law.to_dict().items())]
     path = atomic_write_text(out / "asperity_law_chain.toml", "\n".join(lines) + "\n")
@@ -137,7 +143,7 @@ def _ratio(value: float) -> str:
 
 
 def main(argv=None) -> int:
-    args = scripting.parser(__doc__.splitlines()[0]).parse_args(argv)
+    args = scripting.parser(scripting.title(__doc__)).parse_args(argv)
     out = scripting.out_dir(args, __file__)
     scene = tb.make_tribometer_scene()
     velocities = (3.0, 30.0, 300.0) if args.quick else (0.1, 0.3, 1.0, 3.0, 10.0, 30.0, 100.0, 300.0, 1000.0)

@@ -6,8 +6,6 @@ so a parameter without a unit or a meaning would be a hole in the reference.
 
 import inspect
 
-import pytest
-
 import asperity2d as a
 from asperity2d import builders, scene
 
@@ -38,9 +36,3 @@ def test_ooten_defaults_are_the_records_and_the_dataclass_defaults():
     assert scene.OOTEN_DEFAULTS == {p.name: p.default for p in scene.OOTEN_PARAMETERS}
     assert a.make_scene().replace(name="") == a.Scene()
     assert a.Scene().lower.stiffness == (scene.OOTEN_DEFAULTS["stiffness"],) * 16
-
-
-def test_old_name_still_works_and_says_it_is_deprecated():
-    with pytest.warns(DeprecationWarning, match="OOTEN_DEFAULTS"):
-        old = scene.SEED_000
-    assert old is scene.OOTEN_DEFAULTS

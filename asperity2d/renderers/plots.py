@@ -190,7 +190,7 @@ def plot_comparison(comparison, path: str | os.PathLike, *, reference: float | N
 
 
 def plot_positions(results, labels, path: str | os.PathLike, *, dpi: int = 120) -> Path:
-    """Slider position against time for several runs on one axis (seed 000 figure 10 style).
+    """Slider position against time for several runs on one axis (Ooten's figure 10 style).
 
     Plateaus are where a slider stopped on a flank. Units: µs and µm.
     """
@@ -206,7 +206,7 @@ def plot_positions(results, labels, path: str | os.PathLike, *, dpi: int = 120) 
 
 
 def plot_position_velocity(result, path, *, title: str = "", dpi: int = 120):
-    """Seed 000 figure 17 analogue: slider position (µm) and velocity (m/s) against time (µs).
+    """Ooten's figure 17 analogue: slider position (µm) and velocity (m/s) against time (µs).
 
     The velocity panel shows the collision spikes where the slider hits a
     lower flank.
