@@ -96,7 +96,7 @@ def stick_slip_events(result, *, stick_speed: float | None = None, slip_speed: f
     result : Result
         A run (spring drive for the defaults; any drive with explicit values).
     stick_speed : float, optional
-        |v| below this (m/s) is stick. Default: 0.5 x the drive velocity.
+        abs(v) below this (m/s) is stick. Default: 0.5 x the drive velocity.
     slip_speed : float, optional
         v above this (m/s) is slip. Default: 3 x the drive velocity (a
         frictionless slider released from rest peaks at 2 V).
@@ -339,7 +339,7 @@ class ContactStates:
     """How the slider touched the lower surface over a run, in the belt chains' three states (SI).
 
     ``fractions``: time fractions {"separated", "sliding", "sticking"} (sum 1): no contact; contact
-    with |v| >= ``stick_speed``; contact with |v| < ``stick_speed`` (the lower surface does not move
+    with abs(v) >= ``stick_speed``; contact with abs(v) < ``stick_speed`` (the lower surface does not move
     along x, so v is the slip velocity). ``hops``: contact lost and regained (complete airborne
     intervals); ``passes``: slider travel over the span of the lower tips; ``hops_per_pass``;
     ``touching`` (T,): lower asperities touching at each sample; ``touching_mean`` its time

@@ -17,6 +17,7 @@ from typing import Callable, Iterable
 
 import numpy as np
 
+from ._format import si
 from ._validate import check_finite, check_int, check_positive
 from ._version import __version__
 from .engine import PYMUNK_VERSION, Engine
@@ -75,7 +76,7 @@ class Passed:
 
 
 class Stuck:
-    """Stop when |v| stays below ``speed`` (m/s) for ``dwell`` seconds.
+    """Stop when abs(v) stays below ``speed`` (m/s) for ``dwell`` seconds.
 
     It remembers when the slider became slow; :meth:`reset` (called by the run
     at the start of every :meth:`Run.advance`) forgets it, so one instance can
@@ -340,7 +341,7 @@ class Run:
                     hit = next((s for s in stops if s(probe)), None)
                     if hit is not None:
                         self.status = getattr(hit, "name", type(hit).__name__)
-                        self.message = f"stop condition {self.status!r} met at t = {probe.t:.6g} s"
+                        self.message = f"stop condition {self.status!r} met at t = {si(probe.t, 's', 4)}"
                         break
         finally:
             bar.close()

@@ -71,7 +71,7 @@ if os.environ.get("ASPERITY2D_DOCS_INTERSPHINX", "0") != "1":
 sphinx_gallery_conf = {
     "examples_dirs": str(ROOT / "scenes"),
     "gallery_dirs": "auto_scenes",
-    "filename_pattern": r".*\.py$",  # run every script, not only plot_*.py
+    "filename_pattern": os.environ.get("ASPERITY2D_DOCS_PATTERN", r".*\.py$"),  # every script, not only plot_*.py
     "ignore_pattern": r"(__init__|make_measured_profile)\.py$",  # scenes/data/ builds a data file
     "within_subsection_order": "FileNameSortKey",
     "reset_argv": gallery.arguments,

@@ -13,6 +13,7 @@ Run: ``python scenes/belt_2dof.py [--quick] [--out DIR]``; writes plots and ``be
 import numpy as np
 
 from asperity2d.studies import mdof_belt as S
+from asperity2d.cli import scripting
 
 
 def study(quick):
@@ -59,4 +60,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

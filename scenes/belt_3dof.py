@@ -11,6 +11,7 @@ Run: ``python scenes/belt_3dof.py [--quick] [--out DIR]``; writes plots and ``be
 """
 
 from asperity2d.studies import mdof_belt as S
+from asperity2d.cli import scripting
 
 
 def study(quick):
@@ -47,4 +48,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

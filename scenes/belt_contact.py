@@ -245,4 +245,4 @@ def _belt_row(name, states):
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

@@ -18,6 +18,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import belt_parameters  # noqa: E402
+from asperity2d.cli import scripting  # noqa: E402
 
 
 def main(argv=None) -> int:
@@ -25,4 +26,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

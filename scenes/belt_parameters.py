@@ -15,6 +15,7 @@ import numpy as np
 
 from asperity2d.studies import mdof_belt as S
 from asperity2d.studies.claims import claim
+from asperity2d.cli import scripting
 
 DEC = lambda v: bool(np.all(np.diff(v) < 0))  # noqa: E731
 INC = lambda v: bool(np.all(np.diff(v) > 0))  # noqa: E731
@@ -92,4 +93,4 @@ def main(argv=None, only=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

@@ -121,4 +121,4 @@ def plot_trends(summary, path):
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

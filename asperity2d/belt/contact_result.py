@@ -63,7 +63,7 @@ class ContactResult(BeltResult):
             self.belt_work - self.friction_dissipation - self.damper_dissipation - self.impact_dissipation)
 
     def energy_balance_error(self) -> float:
-        """max |residual| over the largest energy flow or store (dimensionless)."""
+        """max abs(residual) over the largest energy flow or store (dimensionless)."""
         scale = max(np.max(np.abs(a)) for a in (self.belt_work, self.friction_dissipation, self.damper_dissipation,
                                                 self.impact_dissipation, self.stored_energy))
         return float(np.max(np.abs(self.energy_residual)) / max(scale, 1e-300))

@@ -118,7 +118,7 @@ class BeltResult:
         )
 
     def energy_balance_error(self) -> float:
-        """max |residual| over the largest energy flow or store (dimensionless)."""
+        """max abs(residual) over the largest energy flow or store (dimensionless)."""
         scale = max(
             np.max(np.abs(a))
             for a in (self.belt_work, self.friction_dissipation, self.damper_dissipation, self.stored_energy)

@@ -13,6 +13,8 @@ import math
 from pathlib import Path
 
 from .. import _io
+from .._format import lines as text_lines
+from .._format import si
 from .args import PLOT_SUFFIXES, load_script
 from ..errors import SceneError
 
@@ -107,7 +109,7 @@ def run(args) -> int:
         with _io.argument("--output"), _io.writing("--output", output):
             render_result(result, output)
     summary = result.summary()
-    _emit(args, summary, [f"{k}: {v}" for k, v in summary.items()])
+    _emit(args, summary, text_lines(summary))
     return 0
 
 
@@ -151,8 +153,8 @@ def analyze(args) -> int:
         from ..belt.regime import classify
 
         summary["regime"] = classify(result)
-        lines = [f"{k}: {v}" for k, v in summary.items() if k != "masses"]
-        lines += [f"mass {m['mass']}: {m['sticks']} sticks, stuck {m['stuck_s']:.6g} s "
+        lines = text_lines({k: v for k, v in summary.items() if k != "masses"})
+        lines += [f"mass {m['mass']}: {m['sticks']} sticks, stuck {si(m['stuck_s'], 's', 4)} "
                   f"({m['stuck_fraction']:.1%}), {m['slip_starts']} stick-to-slip transitions"
                   for m in summary["masses"]]
         _emit(args, summary, lines)
@@ -164,7 +166,7 @@ def analyze(args) -> int:
         summary["breakaway_force_N"] = breakaway_force(result)
     except SceneError:  # constant-force drive, or no stick-to-slip transition
         summary["breakaway_force_N"] = None
-    _emit(args, summary, [f"{k}: {v}" for k, v in summary.items()])
+    _emit(args, summary, text_lines(summary))
     return 0
 
 
@@ -195,7 +197,9 @@ def critical(args) -> int:
     bracket = critical_force_bracket(scene, rel_tol=args.rel_tol)
     summary = {"critical_force_N": bracket.value, "stops_N": bracket.stops,
                "passes_N": bracket.passes, "runs": bracket.runs}
-    _emit(args, summary, [f"{k}: {v}" for k, v in summary.items()])
+    _emit(args, summary, [f"critical force {si(bracket.value, 'N', 4)}: the slider stops at "
+                          f"{si(bracket.stops, 'N', 4)} and passes at {si(bracket.passes, 'N', 4)} "
+                          f"({bracket.runs} runs, bisection to {100 * args.rel_tol:g} %)"])
     return 0
 
 
@@ -213,6 +217,14 @@ def _parse_set(items: list[str]) -> dict:
         except tomllib.TOMLDecodeError:
             out[key.strip()] = text
     return out
+
+
+#: Units of the named measures that are not forces (N): issue 25's travel is a distance.
+_MEASURE_UNITS = {"travel": "m"}
+
+
+def _measure_unit(name: str) -> str:
+    return _MEASURE_UNITS.get(name, "N")
 
 
 def compare(args) -> int:
@@ -245,8 +257,10 @@ def compare(args) -> int:
     if len(names) >= 2:
         summary["mann_whitney_p"] = {f"{names[0]} vs {other}": comparison.mann_whitney(names[0], other)
                                      for other in names[1:]}
-    lines = [f"{name}: mean {s['mean']:.5g}, 95 % CI [{s['ci_low']:.5g}, {s['ci_high']:.5g}] (n = {s['n']})"
-             for name, s in stats.items()]
+    label, unit = measure_label(comparison.measure), _measure_unit(comparison.measure)
+    lines = [f"{label}, {len(comparison.seeds)} seeds:"]
+    lines += [f"  {name}: mean {si(s['mean'], unit, 4)}, 95 % CI [{si(s['ci_low'], unit, 4)}, "
+              f"{si(s['ci_high'], unit, 4)}] (n = {s['n']})" for name, s in stats.items()]
     lines += [f"Mann-Whitney U {pair}: p = {p:.3g}" for pair, p in summary.get("mann_whitney_p", {}).items()]
     if "regular" in names:  # each other spacing against regular, in words
         from ..studies import claims

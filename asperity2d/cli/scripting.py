@@ -32,6 +32,18 @@ def title(doc: str | None) -> str:
     return ""
 
 
+def run(main) -> None:
+    """Run a script's ``main()`` as a program: exit with its status if it is not 0.
+
+    A script ends with ``if __name__ == "__main__": scripting.run(main)``. Success returns
+    normally rather than raising ``SystemExit(0)``, so a host that runs the script in its own
+    process -- the documentation's gallery -- carries on after it.
+    """
+    status = main()
+    if status:
+        raise SystemExit(status)
+
+
 def parser(description: str) -> argparse.ArgumentParser:
     """The common arguments of a scene script; ``p.error(message)`` reports a bad value."""
     p = Parser(description=description)

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 
-from .._format import number, si
+from .._format import split_unit, value
 
 HOLDS, FAILS, UNTESTABLE = "holds", "does not hold", "not testable with so few seeds"
 
@@ -75,31 +75,16 @@ def verdict_line(record: dict) -> str:
     return f"{setup}{record['claim']}: {record['verdict']}" + (f" ({detail})" if detail else "")
 
 
-#: Key suffixes of claim numbers and the SI unit they carry (``critical_force_N`` is in N).
-UNIT_SUFFIXES = (("_N_per_m", "N/m"), ("_m_per_s", "m/s"), ("_per_s", "1/s"), ("_Hz", "Hz"),
-                 ("_deg", "°"), ("_kg", "kg"), ("_J", "J"), ("_N", "N"), ("_m", "m"), ("_s", "s"))
-
-
-def _value_text(value, unit: str | None, key: str) -> str:
-    if isinstance(value, bool) or value is None or isinstance(value, str):
-        return {True: "yes", False: "no", None: "n/a"}.get(value, value) if not isinstance(value, str) else value
-    if isinstance(value, int):
-        return str(value)
-    if isinstance(value, float):
-        if not math.isfinite(value):
-            return "n/a"
-        if unit:
-            return si(value, unit, 3)
-        if key.startswith("p_") or key.endswith("_p") or key == "p":
-            return f"{value:.2g}"
-        return number(value, 3) if 1e-3 <= abs(value) < 1e6 or value == 0 else f"{value:.3g}"
-    return str(value)
+def _value_text(x, unit: str | None, key: str) -> str:
+    if isinstance(x, float) and math.isfinite(x) and not unit and (key.startswith("p_") or key.endswith("_p")):
+        return f"{x:.2g}"  # a p-value: two significant digits
+    return value(x, unit, 3)
 
 
 def numbers_text(numbers, *, limit: int = 8, _key: str = "") -> str:
     """Claim numbers in plain words and engineering units, for a table cell or a printed line.
 
-    Keys say their unit by suffix (:data:`UNIT_SUFFIXES`: ``critical_force_N`` -> "critical
+    Keys say their unit by suffix (:data:`asperity2d._format.UNIT_SUFFIXES`: ``critical_force_N`` -> "critical
     force 4.32 mN"); p-values get two significant digits, other numbers three; nested records
     are bracketed, lists show their first ``limit`` items. Numbers from
     :func:`asperity2d.stats.versus_reference` read as :func:`effect` does.
@@ -108,21 +93,17 @@ def numbers_text(numbers, *, limit: int = 8, _key: str = "") -> str:
         if "p_wilcoxon" in numbers and "relative_difference" in numbers:
             return effect(numbers)
         parts = []
-        for key, value in list(numbers.items())[:limit]:
-            unit = next((u for suffix, u in UNIT_SUFFIXES if str(key).endswith(suffix)), None)
-            name = str(key)
-            if unit:
-                name = name[: -len(next(s for s, u in UNIT_SUFFIXES if name.endswith(s)))]
-            name = name.replace("_", " ")
-            if isinstance(value, dict):
-                parts.append(f"{name}: ({numbers_text(value, limit=limit, _key=str(key))})")
-            elif isinstance(value, (list, tuple)):
+        for key, item in list(numbers.items())[:limit]:
+            name, unit = split_unit(key)
+            if isinstance(item, dict):
+                parts.append(f"{name}: ({numbers_text(item, limit=limit, _key=str(key))})")
+            elif isinstance(item, (list, tuple)):
                 shown = [_value_text(v, unit, str(key)) if not isinstance(v, (dict, list, tuple))
-                         else numbers_text(v, limit=limit) for v in value[:limit]]
-                more = f", … ({len(value)} in all)" if len(value) > limit else ""
+                         else numbers_text(v, limit=limit) for v in item[:limit]]
+                more = f", … ({len(item)} in all)" if len(item) > limit else ""
                 parts.append(f"{name} [{', '.join(shown)}{more}]")
             else:
-                parts.append(f"{name} {_value_text(value, unit, str(key))}")
+                parts.append(f"{name} {_value_text(item, unit, str(key))}")
         more = f"; … ({len(numbers) - limit} more)" if len(numbers) > limit else ""
         return "; ".join(parts) + more
     if isinstance(numbers, (list, tuple)):

@@ -239,6 +239,10 @@ API = (
 )
 
 
+#: Names left out of the reference: the renderers' dispatch tables (implementation, not use).
+HIDDEN = {"asperity2d.renderers": {"RENDERERS", "DRAWERS"}}
+
+
 def public_names(module) -> list[str]:
     import inspect
 
@@ -247,7 +251,7 @@ def public_names(module) -> list[str]:
         names = [n for n, o in vars(module).items() if not n.startswith("_") and (
             ((inspect.isclass(o) or inspect.isfunction(o)) and getattr(o, "__module__", "") == module.__name__)
             or (n.isupper() and not inspect.ismodule(o)))]
-    return [n for n in names if n != "__version__"]
+    return [n for n in names if n != "__version__" and n not in HIDDEN.get(module.__name__, ())]
 
 
 def write_api(app) -> None:
