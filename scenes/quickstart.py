@@ -31,6 +31,7 @@ from __future__ import annotations
 import math
 
 import asperity2d as a
+from asperity2d._format import si
 from asperity2d.cli import scripting
 from asperity2d.experiments.compare import measure_label
 from asperity2d.renderers.plots import plot_comparison
@@ -83,10 +84,10 @@ def main(argv=None) -> int:
     lines = [
         f"stick-slip run on Ooten's set-up ({scene.lower.count} regular lower asperities, a slider with "
         f"{scene.slider.count} tips on a fixed-height track, spring drive): {len(events)} stick-slip events; "
-        f"the peak stick force {summary['peak_stick_force_N'] * 1e3:.1f} mN is the flank law for all "
-        f"{scene.slider.count} tips at once ({all_tips * 1e3:.1f} mN) -> {out / 'run.gif'}, {out / 'run.html'}",
+        f"the peak stick force {si(summary['peak_stick_force_N'], 'N')} is the flank law for all "
+        f"{scene.slider.count} tips at once ({si(all_tips, 'N')}) -> {out / 'run.gif'}, {out / 'run.html'}",
         f"Does random spacing lower the force that breaks the slider loose? {args.seeds} seeds, "
-        f"fixed track (Ooten's set-up); the free slider under a 10 mN load beside it:",
+        f"Ooten's fixed track; the free slider under a 10 mN load beside it:",
     ]
     for name in MEASURES:
         fixed, free = verdicts["fixed", name], verdicts["free", name]

@@ -264,6 +264,7 @@ def write_api(app) -> None:
     index = ["API reference", "=============", "",
              "Generated from the docstrings (numpydoc style) of every public name. Quantities are SI "
              "unless a docstring says otherwise.", "", ".. toctree::", "   :maxdepth: 1", ""]
+    expected = set()
     for name, title, what in API:
         module = importlib.import_module(name)
         index.append(f"   {name}")
@@ -283,8 +284,12 @@ def write_api(app) -> None:
             lines += [".. currentmodule:: " + group_name, "", ".. autosummary::", "   :toctree: generated",
                       "   :nosignatures:", ""]
             lines += [f"   {n}" for n in members] + [""]
+            expected.update(f"{group_name}.{n}.rst" for n in members)
         _write_if_changed(out / f"{name}.rst", "\n".join(lines) + "\n")
     _write_if_changed(out / "index.rst", "\n".join(index) + "\n")
+    for stale in (out / "generated").glob("*.rst"):  # a name no longer public loses its page
+        if stale.name not in expected:
+            stale.unlink()
 
 
 def _is_submodule(module, name: str) -> bool:

@@ -59,6 +59,7 @@ def reset(gallery_conf, fname, when=None) -> None:
         shutil.rmtree(out, ignore_errors=True)
         out.mkdir(parents=True, exist_ok=True)
         _SEEN.pop(str(out), None)
+        _SEEN.pop(str(out) + "#claims", None)
 
 
 _SEEN: dict[str, set[str]] = {}
@@ -86,8 +87,8 @@ def scene_outputs(block, block_vars, gallery_conf) -> str:
             target = Path(next(paths)).with_suffix(path.suffix.lower())
             shutil.copyfile(path, target)
             images.append(target)
-        else:
-            target = Path(next(paths)).with_name(f"sphx_glr_{out.name}_{path.name}")
+        else:  # not an image: beside them, without taking a number sphinx-gallery checks for
+            target = Path(paths.image_path).with_name(f"sphx_glr_{out.name}_{path.name}")
             shutil.copyfile(path, target)
             downloads.append((path, target))
     rst = ""
@@ -100,7 +101,32 @@ def scene_outputs(block, block_vars, gallery_conf) -> str:
             f"{' (the interactive player: open it in a browser)' if original.suffix == '.html' else ''}"
             f"{' (a sound: the friction force, heard)' if original.suffix == '.wav' else ''}\n"
             for original, target in downloads) + "\n"
+    claims = _claims(out) if not _SEEN.get(str(out) + "#claims") else []
+    if claims:
+        from asperity_docs import claims_table_lines
+
+        _SEEN[str(out) + "#claims"] = {"shown"}
+        rst += ("\n\n.. rubric:: The claims of this quick run\n\n"
+                "Few seeds and small scenes: a verdict here is a smoke test, not a result. The "
+                "full-size verdicts are in :doc:`/studies/index`.\n\n"
+                + "\n".join(claims_table_lines(claims)) + "\n")
     return rst
+
+
+def _claims(out: Path) -> list[dict]:
+    """The claim records the script wrote (its summary.json, or a belt study's <name>.json)."""
+    import json
+
+    paths = [out / "summary.json"] if (out / "summary.json").exists() else sorted(out.glob("*.json"))
+    found = []
+    for path in paths:
+        try:
+            data = json.loads(path.read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            continue
+        if isinstance(data, dict) and isinstance(data.get("claims"), list):
+            found += data["claims"]
+    return found
 
 
 def _caption(image: Path, new: list[Path], images: list[Path]) -> str:
