@@ -34,6 +34,7 @@ import os
 
 import numpy as np
 
+from asperity2d._format import si
 from asperity2d import make_scene, simulate
 from asperity2d.dynamics import signal, spectrum
 from asperity2d.dynamics.asperity_basins import WINDOW, asperity_basins, classify_asperity
@@ -108,9 +109,10 @@ def main(argv=None) -> int:
         fr = row["friction_force"]
         lines.append(f"{name}: dominant {fr['dominant_over_pitch_frequency']:.4f} V/pitch (bin "
                      f"{fr['resolution_over_pitch_frequency']:.3f}), line fraction {fr['line_fraction']:.2f}, "
-                     f"slips {row['slip_events_in_window']} -> {row['class']}, "
-                     f"{row['pitches_per_cycle']:.3g} pitches/cycle")
-    lines.append(f"preload scan {list(preloads)} N: {summary['preload_scan']['classes']}")
+                     f"slips {row['slip_events_in_window']} -> {row['class']}"
+                     + (f", {row['pitches_per_cycle']:.3g} pitches/cycle" if row['pitches_per_cycle'] == row['pitches_per_cycle'] else ""))
+    lines.append("drive preload scan: " + ", ".join(
+        f"{si(p, 'N', 3, trim=True)} -> {c}" for p, c in zip(preloads, summary["preload_scan"]["classes"])))
     return scripting.finish(args, summary, out, lines)
 
 

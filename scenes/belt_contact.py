@@ -169,9 +169,10 @@ def main(argv=None) -> int:
     claims.append(claim("without an inclined spring a normal contact never opens on the multi-DOF belt thesis' presets (N = m g)",
                         flat["openings"] == 0 and flat["max_relative_departure"] <= 1e-12, flat,
                         "no opening and |N - m g| <= 1e-12 m g on every preset (rigid and stiff compliant contacts)"))
-    lines.append(f"thesis chain + normal compliance: contact opened in {len(opened)} of {len(rows)} runs, at k_c = "
-                 f"{sorted({r['contact_stiffness'] for r in opened})} N/m; without coupling N stays m g to "
-                 f"{flat['max_relative_departure']:.1e}")
+    stiffnesses = ", ".join(f"{k:g}" for k in sorted({r["contact_stiffness"] for r in opened}))
+    lines.append(f"the multi-DOF belt thesis' chain + normal compliance: contact opened in {len(opened)} of "
+                 f"{len(rows)} runs" + (f", at k_c = {stiffnesses} N/m" if opened else "")
+                 + f"; without coupling N stays m g to {flat['max_relative_departure']:.1e} of it")
 
     # 4. the three states, both models ------------------------------------------------------------
     scene = a.make_scene(track="free", **({"lower_count": 8, "upper_count": 2} if quick else {}))

@@ -48,8 +48,11 @@ def main(argv=None) -> int:
         summary["plots"] = [str(plot_regime_map(smap, args.out / "regime_stribeck.png")),
                             str(plot_regime_map(tmap, args.out / "regime_table2.png"))]
     write_json(args.out / "regime_map.json", summary)
-    for name, m in (("stribeck 1-DOF", smap), ("table 2 3-DOF", tmap)):
-        print(name, m.to_dict()["counts"])
+    for name, m in (("a mass on a Stribeck belt (belt speed x damping)", smap),
+                    ("the Table 2 chain (belt speed x stiffness)", tmap)):
+        counts = m.to_dict()["counts"]
+        total = sum(counts.values()) or 1
+        print(f"{name}: " + ", ".join(f"{k} {v} ({100 * v / total:.0f} %)" for k, v in counts.items() if v))
     return 0
 
 

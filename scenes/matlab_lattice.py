@@ -31,6 +31,7 @@ from __future__ import annotations
 import numpy as np
 
 import asperity2d as a
+from asperity2d._format import si
 from asperity2d.cli import scripting
 from asperity2d.experiments.quasistatic import SEED_DRIVE_VELOCITY
 from asperity2d.renderers.plots import plot_position_velocity
@@ -109,8 +110,8 @@ def main(argv=None) -> int:
         "max_lateral_peak_displacement_m": float(np.max(np.abs(result.lower_dx))),
         "lateral_stiffness_matrix_N_per_m": scene.lower.lateral_stiffness_matrix().tolist(),
     }
-    lines = [f"{scene.name}: {result.status} after {result.t[-1]:.3g} s",
-             f"contact cases: {' -> '.join(cases)} (seed Table 2: none, 1, none, 2, none, 3, none)"]
+    lines = [f"{scene.name}: {result.status} after {si(result.t[-1], 's', 3)}",
+             f"contact cases: {' -> '.join(cases)} (Ooten's Table 2: none, 1, none, 2, none, 3, none)"]
     lines += [f"peak {i + 1}: contact " + ", ".join(f"{s * 1e9:.1f}-{e * 1e9:.1f} ns" for s, e in eps)
               for i, eps in enumerate(episodes)]
     lines.append(f"largest sideways push of a peak: {summary['max_lateral_peak_displacement_m'] * 1e9:.1f} nm")

@@ -24,6 +24,7 @@ from __future__ import annotations
 import math
 
 import asperity2d as a
+from asperity2d._format import si
 from asperity2d.cli import scripting
 
 
@@ -53,7 +54,7 @@ def main(argv=None) -> int:
     summary = {**result.summary(), "first_breakaway_force_N": breakaway_force(result),
                "peak_stick_force_N": peak_stick_force(result), "mean_stick_force_N": mean_stick_force(result),
                "flank_law_all_tips_N": all_tips, "events": stats}
-    lines = [f"{scene.name}: {result.status} after {result.t[-1]:.3g} s, {stats['count']} stick-slip events",
+    lines = [f"{scene.name}: {result.status} after {si(result.t[-1], 's', 3)}, {stats['count']} stick-slip events",
              f"first breakaway (front tip entering) {summary['first_breakaway_force_N'] * 1e3:.4g} mN",
              f"peak stick force over the pass {summary['peak_stick_force_N'] * 1e3:.4g} mN "
              f"(flank law for all {scene.slider.count} tips at once, n k delta tan(45 deg + atan mu_s) = "

@@ -22,6 +22,7 @@ from __future__ import annotations
 import numpy as np
 
 import asperity2d as a
+from asperity2d._format import si
 from asperity2d.belt.period import belt_period
 from asperity2d.friction import fits as ft
 from asperity2d.cli import scripting
@@ -167,8 +168,8 @@ def main(argv=None) -> int:
                "fits": {k: f.as_dict() for k, f in fits.items()}, "energy": energy,
                "stick_slip": periods, "macroscopic_chain": chain,
                "force_limit_at_zero_N": [float(curve.force[low - 1]), float(curve.force[low])]}
-    lines = [f"steady friction at +-{abs(curve.velocity[low]):g} m/s: {curve.force[low - 1]:.3g} / "
-             f"{curve.force[low]:.3g} N; breakaway {mu_s:.3g} L over {loops.breakaway_displacement():.2g} m",
+    lines = [f"steady friction at +-{abs(curve.velocity[low]):g} m/s: {si(curve.force[low - 1], 'N', 3)} / "
+             f"{si(curve.force[low], 'N', 3)}; breakaway {mu_s:.3g} L over {si(loops.breakaway_displacement(), 'm', 2)}",
              *(f"{k}: relative RMS {f.relative_rms:.2%} on {f.points} points" for k, f in fits.items()),
              f"energy balance error {energy['balance_error']:.2%}",
              f"stick-slip law from the cycles at {cal['stiffness_N_per_m']:g} N/m: mu_s {cal['mu_s']:.3f}, "
