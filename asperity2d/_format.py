@@ -60,7 +60,8 @@ def si(value: float, unit: str = "", digits: int = 3, *, trim: bool = False) -> 
     base, shift = _base(unit)
     scaled = value * 10.0**shift
     e = exponent(scaled)
-    mantissa = scaled / 10.0**e
+    # round to `digits` significant digits first: 9.99987 is "10.00", not "10.000"
+    mantissa = float(f"{scaled / 10.0**e:.{digits - 1}e}")
     decimals = max(0, digits - 1 - math.floor(math.log10(abs(mantissa))))
     text = f"{mantissa:.{decimals}f}"
     if abs(float(text)) >= 1000 and e < _HIGH:  # 999.96 -> "1000": one prefix up
@@ -122,6 +123,8 @@ def value(x, unit: str | None = None, digits: int = 4) -> str:
             return f"{number(100 * x, digits - 1)} %" if x else "0 %"
         if unit:
             return si(x, unit, digits)
+        if x.is_integer() and abs(x) < 1e6:  # a count stored as a float
+            return str(int(x))
         return number(x, digits) if 1e-3 <= abs(x) < 1e6 or x == 0 else f"{x:.{digits - 1}e}"
     return str(x)
 

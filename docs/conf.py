@@ -18,6 +18,9 @@ from pathlib import Path
 DOCS = Path(__file__).resolve().parent
 ROOT = DOCS.parent
 sys.path.insert(0, str(DOCS / "_ext"))
+# The scene scripts' progress bars (tqdm, on stderr) would fill the gallery's captured output:
+# off for the build and the processes it starts (the printed summaries stay).
+os.environ["TQDM_DISABLE"] = "1"
 
 import asperity2d  # noqa: E402
 import gallery  # noqa: E402  (docs/_ext/gallery.py: arguments and output scraper of the scenes)

@@ -21,6 +21,8 @@ n k delta tan(45 deg + atan mu_s) (the peak stick force of a spring-driven pass
 reaches it), but the critical force from rest, a force applied at once, is a
 dynamic threshold well below it with no closed form: the ratio is printed.
 
+Run::
+
     python scenes/constant_force.py        # or: asperity2d run scenes/constant_force.py
 """
 

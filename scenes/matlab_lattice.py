@@ -23,6 +23,8 @@ rigid-body contacts, and the JSON lists the contact episodes per peak.
 Steel values of Table 1 (45 deg flanks, height 0.5 um for a 1 um base), drive
 sped up from Ooten's 5e-3 m/s (the factor is reported).
 
+Run::
+
     python scenes/matlab_lattice.py        # or: asperity2d run scenes/matlab_lattice.py
 """
 

@@ -25,6 +25,8 @@ per set-up: random spacing lowers the mean force drop per slip, one-sample
 Wilcoxon signed-rank test of the random passes against the regular value,
 one-sided (lower), holds if p < 0.01 and the change is at least 1 % (:func:`asperity2d.studies.claims.judge`).
 
+Run::
+
     python scenes/micro_spacing.py [--seeds 10] [--workers 2]
 """
 

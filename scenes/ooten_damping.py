@@ -29,6 +29,8 @@ decide the travel. A slider that neither passes
 nor comes to rest (it rattles in a valley: elastic impacts return it) is
 counted where the time limit finds it; ``reach`` is the farthest it got.
 
+Run::
+
     python scenes/ooten_damping.py [--seeds 20] [--workers 2]
 """
 

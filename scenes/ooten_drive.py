@@ -24,6 +24,8 @@ period -- what stick-slip under a constant force would need. Momentary stops
 (bounces off a flank) are counted separately. Writes the
 positions plot (seed figure 10 style), the spring run's time series and a GIF.
 
+Run::
+
     python scenes/ooten_drive.py
 """
 

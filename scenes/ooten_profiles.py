@@ -35,6 +35,8 @@ half triangles (``half_shape="full-base"``: the full base and flank angle,
 twice the height), which cannot fall through. ``--quick`` runs the first
 friction pair only.
 
+Run::
+
     python scenes/ooten_profiles.py [--seeds 10] [--workers 2]
 """
 

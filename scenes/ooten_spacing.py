@@ -30,6 +30,8 @@ smallest" with a paired Wilcoxon test of random/random against random-upper
 set-ups are run: Ooten's fixed-height track (default) and the free slider
 under a normal load.
 
+Run::
+
     python scenes/ooten_spacing.py [--seeds 20] [--workers 2]
 """
 

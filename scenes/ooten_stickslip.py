@@ -23,6 +23,8 @@ slip carried the slider across) has no force drop and counts as missing.
 Whether the verdict changes with the drive stiffness is reported as
 ``drive_dependent``.
 
+Run::
+
     python scenes/ooten_stickslip.py [--seeds 10] [--workers 2]
 """
 

@@ -21,6 +21,8 @@ Outputs: ``profile_asperities.png`` (whole trace), ``profile_zoom.png``
 (first 10 µm), ``spectrum.png``, ``asperities.json`` (the record), and
 ``summary.json``.
 
+Run::
+
     python scenes/profile_asperities.py [--quick] [--json] [-o DIR] [--profile FILE --unit um]
 """
 

@@ -4,9 +4,7 @@
 From E. Ooten, *Precision Motion Control at Low Velocities in the Presence of
 Friction* (senior thesis, Texas A&M University, 1997-98).
 
-Quickstart: a stick-slip run as a GIF, then "does random spacing lower the breakaway force?".
-
-Everything on Ooten's own Working Model set-up (the package default): 16
+The package's main job, on Ooten's own Working Model set-up (the package default): 16
 regular lower asperities on spring-damper tracks, a slider with 4 tips on a
 fixed-height horizontal track.
 
@@ -22,6 +20,8 @@ fixed-height horizontal track.
    one-sided Wilcoxon test against the regular value (holds if p < 0.01
    and the change is at least 1 %, twice the model's force resolution),
    on the fixed track and, beside it, on the free slider under a 10 mN load.
+
+Run::
 
     python scenes/quickstart.py [--seeds 10] [--workers 2]
 """

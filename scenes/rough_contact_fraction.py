@@ -36,6 +36,8 @@ Claims tested:
 ``--quick`` is a smoke test (6 asperities, two levels, one seed, a 5x faster
 drive), not a measurement.
 
+Run::
+
     python scenes/rough_contact_fraction.py [--quick] [--seeds 6] [--workers 2] [--json] [-o DIR]
 """
 

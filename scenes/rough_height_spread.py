@@ -36,6 +36,8 @@ Sanity counts in the summary: runs in which an upper tip reached the guard
 floor or a lower asperity the bottom of its track (both must be 0), and runs
 that did not pass.
 
+Run::
+
     python scenes/rough_height_spread.py [--quick] [--seeds 8] [--workers 2] [--json] [-o DIR]
 """
 

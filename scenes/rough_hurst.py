@@ -32,6 +32,8 @@ A fixed-track run whose track would lie above every summit is left out
 ``--quick`` is a smoke test (a 5 µm profile, H = 0.3 and 0.9, one seed, one
 upper tip, a 5x faster drive), not a measurement.
 
+Run::
+
     python scenes/rough_hurst.py [--quick] [--seeds 5] [--workers 2] [--json] [-o DIR]
 """
 

@@ -27,6 +27,8 @@ fixed-track pass touched and the track height), ``fixed_run.png`` and
 ``fixed_run.gif`` (the fixed-track pass), ``summary.json``. ``--quick`` uses
 the first 8 µm of the trace and a 5x faster drive (a smoke test).
 
+Run::
+
     python scenes/rough_measured.py [--quick] [--no-gif] [--json] [-o DIR]
 """
 

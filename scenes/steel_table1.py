@@ -31,6 +31,8 @@ production speed-up ``--factor`` (default x2000, the one the micro-scale
 studies use) and its changes shrink down the ladder. ``--quick``: the free
 slider only, on 6 lower asperities, with the ladder x8000, x4000, x2000.
 
+Run::
+
     python scenes/steel_table1.py [--json] [--factor A] [--real-time]
 """
 

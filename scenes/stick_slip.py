@@ -16,6 +16,8 @@ quasi-static flank law for all of them together: n k delta tan(45 deg + atan
 mu_s) (n tips, track stiffness k, interference delta). Writes a GIF, a
 time-series plot and summary.json.
 
+Run::
+
     python scenes/stick_slip.py            # or: asperity2d run scenes/stick_slip.py
 """
 

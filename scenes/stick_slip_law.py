@@ -25,6 +25,8 @@ its mean period. Then:
 The scene is the free slider under load only: a friction law is a force per
 unit normal load, which a fixed-height track does not have.
 
+Run::
+
     python scenes/stick_slip_law.py [--seeds 8] [--workers 2] [--quick]
 """
 

@@ -14,6 +14,8 @@ soft drive spring (stick-slip): a static/kinetic law fitted to the cycles at
 held-out drive stiffnesses and speeds; the steady-sliding Stribeck law is
 run too, to show why it cannot.
 
+Run::
+
     python scenes/tribometer.py [--quick] [--json]
 """
 

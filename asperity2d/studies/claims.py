@@ -92,6 +92,16 @@ def numbers_text(numbers, *, limit: int = 8, _key: str = "") -> str:
     if isinstance(numbers, dict):
         if "p_wilcoxon" in numbers and "relative_difference" in numbers:
             return effect(numbers)
+        if "thesis" in numbers and "computed" in numbers:  # a source's number or trend, and ours
+            rest = {k: v for k, v in numbers.items() if k not in ("thesis", "computed", "relative_difference", "unit")}
+            computed = numbers["computed"]
+            if isinstance(computed, dict):
+                computed = ", ".join(f"{k}: {value(v, numbers.get('unit') or None, 3)}" for k, v in computed.items())
+            text = ("" if numbers["thesis"] == "trend" else f"source {numbers['thesis']}; ") + f"computed {computed}"
+            rel = numbers.get("relative_difference")
+            if isinstance(rel, float) and math.isfinite(rel):
+                text += f" ({100 * rel:+.2g} %)"
+            return text + (f"; {numbers_text(rest, limit=limit)}" if rest else "")
         parts = []
         for key, item in list(numbers.items())[:limit]:
             name, unit = split_unit(key)

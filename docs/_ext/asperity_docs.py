@@ -42,6 +42,7 @@ def cell(text) -> str:
     """Plain text for a list-table cell: backticked names as literals, no stray markup."""
     text = str(text).replace("\\", "\\\\").replace("*", "\\*").replace("|", "\\|")
     text = re.sub(r"(?<!`)`([^`]+)`(?!`)", r"``\1``", text)
+    text = re.sub(r'(?<![`\w])"([\w. -]+)"(?![`\w])', r'``"\1"``', text)  # quoted choices as code
     return " ".join(text.split()) or "\\ "
 
 
@@ -149,7 +150,7 @@ class ValidationTable(_Generated):
 SETUPS = {"fixed": "Ooten's fixed track", "free": "free slider"}
 
 
-def claim_rows(claims: list[dict], *, setup: str | None = None) -> list[list[str]]:
+def claim_rows(claims: list[dict], *, setup: str | None = None, setups: bool = True) -> list[list[str]]:
     from asperity2d.studies.claims import numbers_text
 
     rows = []
@@ -158,14 +159,19 @@ def claim_rows(claims: list[dict], *, setup: str | None = None) -> list[list[str
             continue
         verdict = record["verdict"]
         shown = f"**{verdict}**" if verdict == "holds" else verdict
-        rows.append([cell(record["claim"]), cell(SETUPS.get(record.get("setup"), record.get("setup") or "—")),
-                     shown, cell(numbers_text(record.get("numbers", {}))), cell(record.get("test", ""))])
+        row = [cell(record["claim"])]
+        if setups:
+            row.append(cell(SETUPS.get(record.get("setup"), record.get("setup") or "—")))
+        rows.append(row + [shown, cell(numbers_text(record.get("numbers", {}))), cell(record.get("test", ""))])
     return rows
 
 
 def claims_table_lines(claims: list[dict], *, setup: str | None = None) -> list[str]:
-    return list_table(["claim", "set-up", "verdict", "what was measured", "test"], claim_rows(claims, setup=setup),
-                      widths="28 10 9 33 20", cls="claims-table")
+    """A claims table; the set-up column only when some claim has one (the asperity studies)."""
+    setups = any(record.get("setup") for record in claims)
+    header = ["claim"] + (["set-up"] if setups else []) + ["verdict", "what was measured", "test"]
+    return list_table(header, claim_rows(claims, setup=setup, setups=setups),
+                      widths="28 10 9 33 20" if setups else "30 10 38 22", cls="claims-table")
 
 
 class ClaimsTable(_Generated):
