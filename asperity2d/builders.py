@@ -189,7 +189,8 @@ def make_scene(*, spacing: str = "regular", seed: int = 0, profile: str = "full"
     on a fixed-height horizontal track; ``track="free"`` puts it on the
     surface under ``normal_load`` instead (the free slider under a load).
     Every keyword, with its unit, default and meaning, is in the parameter
-    table of the documentation (generated from :data:`PARAMETERS`).
+    table of the documentation (:doc:`/parameters`, generated from
+    :data:`asperity2d.builders.PARAMETERS`).
 
     Parameters
     ----------
@@ -210,8 +211,9 @@ def make_scene(*, spacing: str = "regular", seed: int = 0, profile: str = "full"
         Spring whose far end moves at ``drive_velocity`` (stick-slip), or a
         constant ``drive_force``.
     **overrides
-        Any key of :data:`DEFAULTS` (see :data:`PARAMETERS` for units and
-        meanings); an unknown key raises :class:`SceneError`.
+        Any key of :data:`asperity2d.builders.DEFAULTS` (see
+        :data:`asperity2d.builders.PARAMETERS` for units and meanings); an
+        unknown key raises :class:`~asperity2d.SceneError`.
 
     Returns
     -------

@@ -73,7 +73,7 @@ def plot_summary(summary, path: str | Path) -> Path:
     axes[0].set_title(f"{summary.study}: mean and {summary.confidence:.0%} CI per variant")
     axes[0].legend(loc="best", fontsize="small")
     if numeric:
-        axes[-1].set_xlabel(varying[0])
+        axes[-1].set_xlabel(_axis(varying[0], [])[0])
     else:
         axes[-1].set_xticks(xs, [f"{lab}\n(n={d})" for lab, (d, _) in zip(labels, summary.counts)],
                             rotation=20 if len(xs) > 4 else 0, fontsize="small")
