@@ -60,7 +60,8 @@ def si(value: float, unit: str = "", digits: int = 3, *, trim: bool = False) -> 
     base, shift = _base(unit)
     scaled = value * 10.0**shift
     e = exponent(scaled)
-    mantissa = scaled / 10.0**e
+    # round to `digits` significant digits first: 9.99987 is "10.00", not "10.000"
+    mantissa = float(f"{scaled / 10.0**e:.{digits - 1}e}")
     decimals = max(0, digits - 1 - math.floor(math.log10(abs(mantissa))))
     text = f"{mantissa:.{decimals}f}"
     if abs(float(text)) >= 1000 and e < _HIGH:  # 999.96 -> "1000": one prefix up
@@ -81,4 +82,69 @@ def number(value: float, digits: int = 3) -> str:
     return f"{value:.{decimals}f}"
 
 
-__all__ = ["PREFIXES", "exponent", "number", "prefixed", "si"]
+#: Key suffixes of summaries and claim numbers, and the SI unit each says its value is in
+#: (``critical_force_N`` is in N, ``stuck_fraction`` a fraction shown in percent).
+UNIT_SUFFIXES = (("_N_per_m", "N/m"), ("_m_per_s", "m/s"), ("_per_s", "1/s"), ("_Hz", "Hz"),
+                 ("_deg", "°"), ("_kg", "kg"), ("_J", "J"), ("_N", "N"), ("_m", "m"), ("_s", "s"),
+                 ("_fraction", "%"))
+
+
+#: Keys whose unit no suffix says: :func:`asperity2d.analysis.event_statistics`' (JSON names kept).
+NAMED_UNITS = {"force_drop_mean": "N", "force_drop_std": "N", "slip_distance_mean": "m",
+               "stick_duration_mean": "s", "stick_duration_std": "s", "interval_mean": "s"}
+
+
+def split_unit(key: str) -> tuple[str, str | None]:
+    """``("critical force", "N")`` from ``"critical_force_N"``: the plain name and the unit its
+    suffix names (None without one)."""
+    key = str(key)
+    if key in NAMED_UNITS:
+        return key.replace("_", " "), NAMED_UNITS[key]
+    for suffix, unit in UNIT_SUFFIXES:
+        if key.endswith(suffix) and len(key) > len(suffix):
+            name = key[: -len(suffix)] + (" fraction" if unit == "%" else "")
+            return name.replace("_", " "), unit
+    return key.replace("_", " "), None
+
+
+def value(x, unit: str | None = None, digits: int = 4) -> str:
+    """One value for text output: SI prefixes for a float with a unit, ``digits`` significant
+    digits for a plain float, percent for a fraction, yes / no, "n/a" for None and NaN."""
+    if x is None:
+        return "n/a"
+    if isinstance(x, bool):
+        return "yes" if x else "no"
+    if isinstance(x, int):
+        return str(x)
+    if isinstance(x, float):
+        if not math.isfinite(x):
+            return "n/a" if math.isnan(x) else str(x)
+        if unit == "%":
+            return f"{number(100 * x, digits - 1)} %" if x else "0 %"
+        if unit:
+            return si(x, unit, digits)
+        if x.is_integer() and abs(x) < 1e6:  # a count stored as a float
+            return str(int(x))
+        return number(x, digits) if 1e-3 <= abs(x) < 1e6 or x == 0 else f"{x:.{digits - 1}e}"
+    return str(x)
+
+
+def lines(summary: dict, *, indent: str = "", digits: int = 4) -> list[str]:
+    """``summary`` as "name: value" lines in engineering units (units from the keys' suffixes,
+    :func:`split_unit`); nested dicts indented below their name, lists inline."""
+    out = []
+    for key, x in summary.items():
+        name, unit = split_unit(key)
+        if isinstance(x, dict):
+            out.append(f"{indent}{name}:")
+            out += lines(x, indent=indent + "  ", digits=digits)
+        elif isinstance(x, (list, tuple)):
+            shown = ", ".join(value(v, unit, digits) if not isinstance(v, (list, tuple, dict)) else str(v)
+                              for v in x[:8])
+            out.append(f"{indent}{name}: {shown}{', ...' if len(x) > 8 else ''}")
+        else:
+            out.append(f"{indent}{name}: {value(x, unit, digits)}")
+    return out
+
+
+__all__ = ["NAMED_UNITS", "PREFIXES", "UNIT_SUFFIXES", "exponent", "lines", "number", "prefixed", "si", "split_unit", "value"]

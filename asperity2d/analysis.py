@@ -6,7 +6,7 @@ simulates. :func:`synthetic_stick_slip` is a seeded generator of a spring-driven
 stick–slip series whose true events are known (in the spirit of ruptures'
 ``pw_constant``), used to test the detector.
 
-Segmentation (seed 000's stick–slip: the slider stops, the drive spring loads
+Segmentation (Ooten's stick–slip: the slider stops, the drive spring loads
 it, it breaks away and slips): a sample is *stick* when the slider is nearly at
 rest, ``|v| < stick_speed``, and *slip* when it moves clearly faster than the
 drive, ``v > slip_speed``; in between the previous state holds (hysteresis).
@@ -106,7 +106,7 @@ def stick_slip_events(result, *, stick_speed: float | None = None, slip_speed: f
     result : Result
         A run (spring drive for the defaults; any drive with explicit values).
     stick_speed : float, optional
-        |v| below this (m/s) is stick. Default: 0.5 x the drive velocity.
+        abs(v) below this (m/s) is stick. Default: 0.5 x the drive velocity.
     slip_speed : float, optional
         v above this (m/s) is slip. Default: 3 x the drive velocity (a
         frictionless slider released from rest peaks at 2 V).
@@ -232,7 +232,7 @@ def breakaway_force(result, *, stick_speed: float | None = None, slip_speed: flo
 
     The keyword arguments are those of :func:`stick_slip_events`. A free
     slider under load L on 45° flanks and regular spacing breaks away at the
-    quasi-static L tan(45° + atan mu_s). On seed 000's fixed track the first
+    quasi-static L tan(45° + atan mu_s). On Ooten's fixed track the first
     breakaway is the front tip entering the surface alone, the same for every
     spacing: see :func:`peak_stick_force` and :func:`mean_stick_force` for the
     engaged slider.
@@ -262,7 +262,7 @@ def peak_stick_force(result, *, stick_speed: float | None = None, slip_speed: fl
     """Largest drive force (N) at a stick-to-slip transition over the run: the force that
     breaks the slider loose at its worst position on the surface.
 
-    On seed 000's fixed track the first breakaway (:func:`breakaway_force`)
+    On Ooten's fixed track the first breakaway (:func:`breakaway_force`)
     happens while only the front tip has entered the surface; this is the
     measure of the engaged slider. On a regular surface all n tips meet their
     lower asperities at once and it is the quasi-static flank law for all of
@@ -367,7 +367,7 @@ class ContactStates:
     """How the slider touched the lower surface over a run, in the belt chains' three states (SI).
 
     ``fractions``: time fractions {"separated", "sliding", "sticking"} (sum 1): no contact; contact
-    with |v| >= ``stick_speed``; contact with |v| < ``stick_speed`` (the lower surface does not move
+    with abs(v) >= ``stick_speed``; contact with abs(v) < ``stick_speed`` (the lower surface does not move
     along x, so v is the slip velocity). ``hops``: contact lost and regained (complete airborne
     intervals); ``passes``: slider travel over the span of the lower tips; ``hops_per_pass``;
     ``touching`` (T,): lower asperities touching at each sample; ``touching_mean`` its time

@@ -5,9 +5,12 @@ random heights are reproducible from ``seed`` (each surface gets independent
 streams derived from it with ``numpy.random.SeedSequence``: the spacings from
 ``generate_state(2)`` as always, the heights from its two spawned children).
 A surface can also be a measured or generated profile (``lower_surface`` /
-``upper_surface``, see :mod:`asperity2d.surface.source`). :data:`DEFAULTS` lists every
-parameter it accepts; its values come from :data:`asperity2d.scene.SEED_000`,
-the same table the dataclasses use, so ``make_scene()`` builds ``Scene()``.
+``upper_surface``, see :mod:`asperity2d.surface.source`). :data:`PARAMETERS`
+lists every parameter it accepts with its default, unit and meaning (the
+documentation's parameter table is generated from it) and :data:`DEFAULTS`
+is its dict; Ooten's fixed track comes from
+:data:`asperity2d.scene.OOTEN_PARAMETERS`, the same records the dataclasses
+use, so ``make_scene()`` builds ``Scene()``.
 Every argument is checked (type, finiteness, range) before any arithmetic,
 whether or not the chosen drive or spacing uses it; an unknown one raises
 :class:`SceneError` with the closest known name, and two that contradict each
@@ -24,48 +27,84 @@ from ._validate import (check_choice, check_finite, check_int, check_nonnegative
                         check_text, is_real, per_item, show)
 from .errors import SceneError
 from .geometry import KINDS, Profile, RandomSpacing, RegularSpacing, half_of
-from .scene import (SEED_000, ConstantForce, Contact, LowerSurface, Scene, Slider, SpringDrive,
-                    kinetic_default)
+from .scene import (OOTEN_PARAMETERS, ConstantForce, Contact, LowerSurface, Parameter, Scene, Slider,
+                    SpringDrive, kinetic_default)
 from .surface.asperities import Asperities
 from .surface.heights import DISTRIBUTIONS, random_shapes
 from .surface.read import UNITS
 from .surface.source import check_heights, label, lower_material, surface_asperities, surface_spec
 from .units import MIN_LENGTH_RATIO, Units, check_scales
 
-#: Every override make_scene accepts, with its default (None: derived, see make_scene).
-DEFAULTS = {
-    **SEED_000,
-    "height": None,  # m; instead of flank_angle
-    "half_shape": "apex-cut",  # half triangles: "apex-cut" (seed 000 fig. 9) or "full-base"
-    "lower_pitch": None, "upper_pitch": None,  # m, default `pitch`
-    "min_gap": 0.0,  # m, random spacing
-    "lower_spacing": None, "upper_spacing": None,  # "regular" | "random"; default from `spacing`
-    "lower_profile": None, "upper_profile": None,  # "full" | "half" | "flat"; default from `profile`
-    "damping": None,  # N s/m; instead of damping_ratio
-    "travel_down": None, "travel_up": None,  # m, default the asperity height
-    "lateral_stiffness": None,  # N/m: seed 000's MATLAB lattice (peaks move in x too)
-    "lateral_damping": 0.0,
-    "interference": None,  # m, fixed track; default a quarter of the asperity height
-    "mu": None,  # sets both coefficients
-    "mu_kinetic": None,  # default: two thirds of mu_static
-    "slip_distance": None, "stick_speed": None,
-    "restitution": 0.0,  # contact elasticity in [0, 1]: 0 inelastic impacts, 1 no impact loss
-    "drive_damping": 0.0,
-    "drive_preload": 0.0,  # N, initial spring force
-    "gravity": 0.0,  # m/s^2; negligible at the micrometre scale
-    "name": "",
-    # random heights (m): the std of each asperity's height about `height` (or the flank_angle's)
-    "height_std": None, "lower_height_std": None, "upper_height_std": None,
-    "height_distribution": "gaussian",  # or "uniform"
-    # rough surfaces from profiles (asperity2d.surface.source)
-    "lower_surface": None, "upper_surface": None,  # SurfaceProfile, (x, z), (n, 2), path, Asperities
-    "surface_unit": None,  # "m" | "mm" | "um" | "nm" of a profile file's columns
-    "min_prominence": None,  # m, default 0.1 x the profile's rms height
-    "min_width": 0.0,  # m, width at half prominence
-    "surface_detrend": True,  # remove the profile's least-squares line first
-    "modulus": None,  # Pa: stiffness K = 2 E b per profile asperity (seed 000 Table 1)
-    "density": None,  # kg/m^3: mass rho b^2 h / 3 per profile asperity (Appendix A)
-}
+#: make_scene's named keywords before the overrides, with their defaults (the signature's).
+KEYWORDS = (
+    Parameter("spacing", "regular", "-", 'spacing of both surfaces: "regular", "random", '
+              '"random-upper" (Ooten\'s random upper / regular lower case) or "random-lower"'),
+    Parameter("seed", 0, "1", "random seed of the random spacings and heights (each surface gets "
+              "its own streams derived from it)"),
+    Parameter("profile", "full", "-", 'asperity shape of both surfaces: "full" triangles, "half" '
+              "triangles (Ooten's figure 9) or \"flat\" blocks"),
+    Parameter("drive", "spring", "-", '"spring": a spring whose far end moves at `drive_velocity` '
+              '(stick-slip); "force": a constant `drive_force`'),
+)
+
+_P = Parameter
+#: Every override make_scene accepts: Ooten's fixed track (:data:`asperity2d.scene.OOTEN_PARAMETERS`)
+#: and the parameters it leaves at a derived value or off. A default of None is derived from
+#: the others, as each meaning says.
+PARAMETERS = OOTEN_PARAMETERS + (
+    _P("height", None, "m", "asperity height, instead of `flank_angle` (default: from the angle)"),
+    _P("half_shape", "apex-cut", "-", 'half triangles: "apex-cut" (Ooten\'s figure 9: the full '
+       'triangle cut through its apex, half the base) or "full-base" (the whole base, twice as tall)'),
+    _P("lower_pitch", None, "m", "pitch of the lower surface (default `pitch`)"),
+    _P("upper_pitch", None, "m", "pitch of the slider's tips (default `pitch`)"),
+    _P("min_gap", 0.0, "m", "smallest gap between neighbouring asperities under random spacing"),
+    _P("lower_spacing", None, "-", '"regular" or "random" for the lower surface (default from `spacing`)'),
+    _P("upper_spacing", None, "-", '"regular" or "random" for the slider (default from `spacing`)'),
+    _P("lower_profile", None, "-", '"full", "half" or "flat" for the lower surface (default `profile`)'),
+    _P("upper_profile", None, "-", '"full", "half" or "flat" for the slider (default `profile`)'),
+    _P("damping", None, "N s/m", "damping of each lower track, instead of `damping_ratio`; one "
+       "value or one per asperity"),
+    _P("travel_down", None, "m", "how far a lower asperity can move below its rest height before "
+       "it hits a stop (default its height)"),
+    _P("travel_up", None, "m", "how far it can move above its rest height (default its height)"),
+    _P("lateral_stiffness", None, "N/m", "horizontal springs between neighbouring lower peaks and "
+       "the walls: Ooten's MATLAB lattice (n + 1 values or one); default none (vertical tracks only)"),
+    _P("lateral_damping", 0.0, "N s/m", "dampers in parallel with `lateral_stiffness`"),
+    _P("interference", None, "m", "fixed track: how far the deepest tip reaches below the highest "
+       "lower tip (default a quarter of the asperity height)"),
+    _P("mu", None, "1", "sets `mu_static` and `mu_kinetic` to one value"),
+    _P("mu_kinetic", None, "1", "kinetic friction coefficient (default two thirds of `mu_static`)"),
+    _P("slip_distance", None, "m", "how far a stuck contact must slide without pause before it "
+       "drops from `mu_static` to `mu_kinetic` (default 0.1 % of the base)"),
+    _P("stick_speed", None, "m/s", "slip speed below which a sliding contact sticks again "
+       "(default 1e-4 of base × natural frequency)"),
+    _P("restitution", 0.0, "1", "contact elasticity in [0, 1]: 0 inelastic impacts, 1 no impact loss"),
+    _P("drive_damping", 0.0, "N s/m", "damper in parallel with the drive spring"),
+    _P("drive_preload", 0.0, "N", "the drive spring's force at the start"),
+    _P("gravity", 0.0, "m/s²", "gravitational acceleration (negligible at the micrometre scale)"),
+    _P("name", "", "-", "a label for the scene (default built from spacing, profile, drive, track "
+       "and seed)"),
+    _P("height_std", None, "m", "random heights: standard deviation of each asperity's height "
+       "about the nominal one, on both surfaces (default none: equal heights)"),
+    _P("lower_height_std", None, "m", "the same for the lower surface only"),
+    _P("upper_height_std", None, "m", "the same for the slider only"),
+    _P("height_distribution", "gaussian", "-", 'distribution of random heights: "gaussian" or "uniform"'),
+    _P("lower_surface", None, "-", "a rough lower surface from a profile: a SurfaceProfile, (x, z) "
+       "arrays in m, an (n, 2) array, a file path or an Asperities record"),
+    _P("upper_surface", None, "-", "the same for the slider (turned face down)"),
+    _P("surface_unit", None, "-", 'unit of a profile file\'s columns: "m", "mm", "um" or "nm" '
+       "(default: what the file states)"),
+    _P("min_prominence", None, "m", "smallest summit prominence a profile asperity needs "
+       "(default 0.1 × the profile's rms height)"),
+    _P("min_width", 0.0, "m", "smallest summit width at half prominence"),
+    _P("surface_detrend", True, "-", "remove the profile's least-squares line first"),
+    _P("modulus", None, "Pa", "profile asperities: stiffness from Young's modulus, K = 2 E b "
+       "(Ooten's Table 1 rule)"),
+    _P("density", None, "kg/m³", "profile asperities: mass ρ b² h / 3 from the density"),
+)
+del _P
+#: Every override make_scene accepts, with its default (None: derived, see :data:`PARAMETERS`).
+DEFAULTS = {p.name: p.default for p in PARAMETERS}
 
 SPACINGS = ("regular", "random", "random-upper", "random-lower")
 HALF_SHAPES = ("apex-cut", "full-base")
@@ -144,15 +183,19 @@ def make_scene(*, spacing: str = "regular", seed: int = 0, profile: str = "full"
                drive: str = "spring", **overrides) -> Scene:
     """Build a scene from named physical parameters (SI units).
 
-    The defaults are seed 000's Working Model set-up (:data:`SEED_000`): 16
-    lower and 4 upper 45° full triangles, Table 1 steel, the slider on a
-    fixed-height horizontal track; ``track="free"`` puts it on the surface
-    under ``normal_load`` instead.
+    The defaults are Ooten's fixed track, the Working Model set-up of E.
+    Ooten's thesis (:data:`asperity2d.scene.OOTEN_DEFAULTS`): 16 lower and 4
+    upper 45° full triangles, steel asperities (Ooten's Table 1), the slider
+    on a fixed-height horizontal track; ``track="free"`` puts it on the
+    surface under ``normal_load`` instead (the free slider under a load).
+    Every keyword, with its unit, default and meaning, is in the parameter
+    table of the documentation (:doc:`/parameters`, generated from
+    :data:`asperity2d.builders.PARAMETERS`).
 
     Parameters
     ----------
     spacing : {"regular", "random", "random-upper", "random-lower"}
-        Spacing of both surfaces; ``"random-upper"`` is seed 000's random
+        Spacing of both surfaces; ``"random-upper"`` is Ooten's random
         upper / regular lower case. ``lower_spacing`` / ``upper_spacing``
         override each surface.
     seed : int
@@ -160,7 +203,7 @@ def make_scene(*, spacing: str = "regular", seed: int = 0, profile: str = "full"
         independent streams derived from it).
     profile : {"full", "half", "flat"}
         Asperity shape of both surfaces (``lower_profile`` / ``upper_profile``
-        override each). ``"half"`` is seed 000 figure 9's half triangle: the
+        override each). ``"half"`` is Ooten's figure 9 half triangle: the
         full triangle of ``base`` and ``flank_angle`` cut through its apex
         (same height and flank, half the base); ``half_shape="full-base"``
         keeps the whole base instead (twice the height at the same angle).
@@ -168,11 +211,23 @@ def make_scene(*, spacing: str = "regular", seed: int = 0, profile: str = "full"
         Spring whose far end moves at ``drive_velocity`` (stick-slip), or a
         constant ``drive_force``.
     **overrides
-        Any key of :data:`DEFAULTS`; an unknown key raises :class:`SceneError`.
+        Any key of :data:`asperity2d.builders.DEFAULTS` (see
+        :data:`asperity2d.builders.PARAMETERS` for units and meanings); an
+        unknown key raises :class:`~asperity2d.SceneError`.
 
-    Rough surfaces
-    --------------
-    ``height_std`` (m; ``lower_height_std`` / ``upper_height_std`` override
+    Returns
+    -------
+    Scene
+        The validated scene (SI units).
+
+    Raises
+    ------
+    SceneError
+        An unknown, mistyped, out-of-range or contradictory parameter, named.
+
+    Notes
+    -----
+    Rough surfaces: ``height_std`` (m; ``lower_height_std`` / ``upper_height_std`` override
     each surface) gives every asperity its own height, drawn about the
     profile's height (``height`` or the ``flank_angle``'s) from
     ``height_distribution`` ("gaussian" or "uniform"), on the same base (so

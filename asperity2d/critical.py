@@ -1,12 +1,12 @@
 """Critical force: the smallest constant drive force that carries the slider across.
 
-Seed 000's Working Model runs pushed the slider with a constant force; it
+Ooten's Working Model runs pushed the slider with a constant force; it
 either stopped on a flank or ran away. The boundary between the two is the
 critical force, found here by bisection over constant-force runs, each stopped
 as soon as the slider is stuck or has passed the last lower apex. Three starts:
 
 * ``start="rest"`` (default): the top surface at rest *on* the bottom one, as
-  the seed describes it ("the force required to move the top surface over the
+  Ooten describes it ("the force required to move the top surface over the
   bottom surface"; its abstract's breakaway force): the slider over the
   surface (on the fixed track its track is lowered into place), every tip
   settled against its flank by a gentle push (1 % of the flank-law
@@ -146,7 +146,7 @@ def settled_run(scene: Scene, *, start: str = "rest", dt: float | None = None, i
         x0 = run.engine.slider_state()[0]
         run.settle(push=push)
         # The gentle push, slowed by the settling damping, may not carry the slider across a
-        # wide valley within one settling phase: at mu <= 0.2 on seed 000's 10/3 fixed track it
+        # wide valley within one settling phase: at mu <= 0.2 on Ooten's 10/3 fixed track it
         # stopped 0.2-0.5 um short of the flanks, so "from rest" was partly a run-up (0.42-0.79
         # x the step-load law). Push again until a tip rests against a flank -- but no farther
         # than two mean pitches: on a rough surface whose only asperity tall enough to reach the

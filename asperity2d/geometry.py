@@ -1,19 +1,19 @@
 """Asperity profiles and surface spacings (pure, seeded, SI units).
 
-Conventions (seed 000, figures 5-9): the lower surface lies on y = 0 with its
+Conventions (Ooten's thesis, figures 5-9): the lower surface lies on y = 0 with its
 asperities pointing up; the slider's asperities hang below its underside and
 point down; the slider moves towards +x. A spacing gives the x of every
 asperity's *tip* (apex); an asperity's shape is its height and the horizontal
 runs of its two flanks from the tip: ``left`` (towards -x) and ``right``.
 
 * ``full`` triangle: isosceles, left = right = base / 2.
-* ``half`` triangle (seed 000 figure 9): a right triangle with one vertical
+* ``half`` triangle (Ooten's figure 9): a right triangle with one vertical
   face through the tip. The lower one rises towards the oncoming slider
   (sloped flank on the -x side, vertical face at +x); the upper one is its
   mirror image (sloped flank leading on the +x side, vertical face at its
   back). Once an upper tip passes a lower tip, the lower peak springs back up
   behind the upper vertical face and cannot push the slider on.
-  :func:`half_of` cuts a full triangle through its apex as the seed draws it:
+  :func:`half_of` cuts a full triangle through its apex as Ooten's figure 9 draws it:
   same height, same flank, half the base.
 * ``flat``: a rectangle (a flat block or surface, for Coulomb checks) whose
   contact-face edges are rounded off (:data:`FLAT_EDGE`); its "tip" is the
@@ -55,7 +55,7 @@ class Profile:
         run of its one sloped flank.
     height : float
         Height from base to tip (m). See :meth:`from_angle` to give the flank
-        angle instead (angle and height are separate parameters: seed 000's
+        angle instead (angle and height are separate parameters: Ooten's
         1.5 µm tip on a 1 µm base is inconsistent with 45° flanks).
     """
 
@@ -134,7 +134,7 @@ def outline(kind: str, left: float, right: float, height: float, level: float, *
 
 
 def half_of(full: Profile) -> Profile:
-    """Seed 000 figure 9: the full triangle ``full`` cut through its apex (same height and
+    """Ooten's figure 9: the full triangle ``full`` cut through its apex (same height and
     flank, half the base, one vertical face)."""
     if full.kind != "full":
         raise SceneError(f"`profile` must be a full triangle to be cut in half, got {full.kind!r}")

@@ -22,6 +22,7 @@ from typing import Any
 
 import numpy as np
 
+from ._format import si
 from ._io import FileError, atomic_write, check_format, load_npz, save_npz
 from .errors import SceneError
 from .scene import Scene
@@ -160,7 +161,7 @@ class Result:
 
     def __repr__(self) -> str:
         return (
-            f"Result({len(self.t)} samples, t_end={self.t[-1] if len(self.t) else 0:.4g} s, "
+            f"Result({len(self.t)} samples, t_end={si(self.t[-1] if len(self.t) else 0.0, 's', 4)}, "
             f"status={self.status!r})"
         )
 

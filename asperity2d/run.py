@@ -18,6 +18,7 @@ from typing import Callable, Iterable
 
 import numpy as np
 
+from ._format import si
 from ._validate import check_finite, check_int, check_positive
 from ._version import __version__
 from .engine import PYMUNK_VERSION, Engine
@@ -41,7 +42,7 @@ COARSEST_DAMPER_DT_FRACTION = 0.5
 ENERGY_TOLERANCE = 1e-6
 #: Default step budget of one run (settling included): about 5 minutes at N = 16.
 MAX_STEPS = 10_000_000
-#: Up to this many asperities (both surfaces: seed 000's 16 + 4) a step counts as one in the
+#: Up to this many asperities (both surfaces: Ooten's 16 + 4) a step counts as one in the
 #: budget; a larger scene's step counts as its asperity count over this (see :func:`step_cost`).
 COST_ASPERITIES = 20
 
@@ -82,7 +83,7 @@ class Passed:
 
 
 class Stuck:
-    """Stop when |v| stays below ``speed`` (m/s) for ``dwell`` seconds.
+    """Stop when abs(v) stays below ``speed`` (m/s) for ``dwell`` seconds.
 
     It remembers when the slider became slow; :meth:`reset` (called by the run
     at the start of every :meth:`Run.advance`) forgets it, so one instance can
@@ -393,7 +394,7 @@ class Run:
                     hit = next((s for s in stops if s(probe)), None)
                     if hit is not None:
                         self.status = getattr(hit, "name", type(hit).__name__)
-                        self.message = f"stop condition {self.status!r} met at t = {probe.t:.6g} s"
+                        self.message = f"stop condition {self.status!r} met at t = {si(probe.t, 's', 4)}"
                         break
         finally:
             bar.close()

@@ -1,7 +1,8 @@
 """Scene specification: frozen, validated dataclasses in SI units.
 
 A :class:`Scene` is pure data; it round-trips through plain dicts (JSON,
-TOML). :data:`SEED_000` holds seed 000's Working Model set-up, the defaults of
+TOML). :data:`OOTEN_DEFAULTS` holds Ooten's fixed track (the Working Model
+set-up of E. Ooten's thesis, see :data:`OOTEN_PARAMETERS`), the defaults of
 both these dataclasses and :func:`asperity2d.make_scene` (in
 :mod:`asperity2d.builders`), so ``Scene()`` and ``make_scene()`` build the
 same scene. Nothing here touches pymunk.
@@ -25,35 +26,78 @@ from .shapes import Shapes, SurfaceGeometry, check_substrate
 TRACKS = ("free", "fixed")
 #: How far (fraction of the slider's tip depth) a slider lying on the guard floor still reaches
 #: above the lower asperities' bases (:attr:`Scene.floor`): well above the collision slop (1e-3
-#: base) and below every free slider's tips in ordinary contact (on seed 000's random spacing
+#: base) and below every free slider's tips in ordinary contact (on Ooten's random spacing
 #: the deepest tip in a valley, 0.25 um plus the springs' give, stays above -0.4 um).
 FLOOR_OVERLAP = 0.1
 
-#: Seed 000's Working Model set-up (its figures 5-8 and Table 1): 45° full
-#: triangles on a 1 µm base, steel asperity mass and stiffness, lightly damped
-#: tracks (figure 8), the slider on a fixed-height horizontal track ("the top
-#: surface was constrained to move on a horizontal track") with its tips a
-#: quarter of the asperity height into the lower surface, pulled through a
-#: spring. The drive speed is the quasi-static limit at this scale (see
-#: :mod:`asperity2d.experiments.quasistatic`).
-SEED_000 = {
-    "base": 1e-6,  # m, Table 1
-    "flank_angle": 45.0,  # degrees
-    "lower_count": 16,
-    "upper_count": 4,
-    "pitch": 1.25e-6,  # m, both surfaces
-    "mass": 2.88e-16,  # kg per lower asperity, Table 1
-    "stiffness": 37_200.0,  # N/m, Table 1
-    "damping_ratio": 0.1,  # c / (2 sqrt(k m)), figure 8's dampers
-    "slider_mass": 2.88e-15,  # kg
-    "track": "fixed",
-    "normal_load": 0.01,  # N, the free slider's load (track="free")
-    "mu_static": 0.3,
-    "drive_stiffness": 3_720.0,  # N/m
-    "drive_velocity": 20.0,  # m/s = 1.8e-3 x omega x base: quasi-static
-    "drive_force": 0.02,  # N, a constant-force drive
-}
-_FULL = Profile.from_angle("full", base=SEED_000["base"], flank_angle=SEED_000["flank_angle"])
+@dataclass(frozen=True)
+class Parameter:
+    """One keyword of :func:`asperity2d.make_scene`: its default, SI unit and meaning.
+
+    The records are the single source of the defaults: :data:`OOTEN_DEFAULTS`
+    and :data:`asperity2d.builders.DEFAULTS` are built from them, and the
+    documentation's parameter table is generated from them.
+
+    Parameters
+    ----------
+    name : str
+        The keyword, as ``make_scene`` and a TOML scene spell it.
+    default : object
+        Its default value (``None``: derived from other parameters, as
+        ``meaning`` says).
+    unit : str
+        The SI unit of the value; ``"1"`` for a pure number, ``"-"`` for a
+        choice, a text, a flag or a file.
+    meaning : str
+        What it is, in a sentence.
+    """
+
+    name: str
+    default: object
+    unit: str
+    meaning: str
+
+
+#: Ooten's fixed track: the Working Model set-up of E. Ooten's thesis (*Precision Motion Control
+#: at Low Velocities in the Presence of Friction*, Texas A&M, 1997-98; its figures 5-8 and Table
+#: 1): 45° full triangles on a 1 µm base, steel asperity mass and stiffness, lightly damped
+#: tracks (figure 8), the slider on a fixed-height horizontal track ("the top surface was
+#: constrained to move on a horizontal track") with its tips a quarter of the asperity height
+#: into the lower surface, pulled through a spring. The drive speed is the quasi-static limit at
+#: this scale (see :mod:`asperity2d.experiments.quasistatic`). These are the defaults of the
+#: dataclasses below and of :func:`asperity2d.make_scene`.
+OOTEN_PARAMETERS = (
+    Parameter("base", 1e-6, "m", "base width of every triangular asperity (Ooten's Table 1)"),
+    Parameter("flank_angle", 45.0, "°", "flank angle of the triangles above the horizontal "
+              "(sets their height on the given base; give `height` instead to set it directly)"),
+    Parameter("lower_count", 16, "1", "number of lower asperities, each on its own vertical "
+              "spring-damper track"),
+    Parameter("upper_count", 4, "1", "number of asperities (tips) the slider carries"),
+    Parameter("pitch", 1.25e-6, "m", "centre-to-centre spacing of the asperities on both surfaces "
+              "(the mean spacing when random)"),
+    Parameter("mass", 2.88e-16, "kg", "mass of each lower asperity (Ooten's Table 1, steel); one "
+              "value or one per asperity"),
+    Parameter("stiffness", 37_200.0, "N/m", "stiffness of each lower asperity's vertical track "
+              "spring (Ooten's Table 1, steel); one value or one per asperity"),
+    Parameter("damping_ratio", 0.1, "1", "damping of each lower track as a fraction of its "
+              "critical damping 2√(k m) (Ooten's figure 8 dampers)"),
+    Parameter("slider_mass", 2.88e-15, "kg", "mass of the slider with all its tips"),
+    Parameter("track", "fixed", "-", '"fixed": the slider runs at a fixed height (Ooten\'s fixed '
+              'track); "free": it rides the surface pressed down by `normal_load` (the free slider '
+              'under a load)'),
+    Parameter("normal_load", 0.01, "N", "downward load on the slider (used with track=\"free\")"),
+    Parameter("mu_static", 0.3, "1", "static friction coefficient of every asperity contact"),
+    Parameter("drive_stiffness", 3_720.0, "N/m", "stiffness of the drive spring (spring drive)"),
+    Parameter("drive_velocity", 20.0, "m/s", "speed of the drive spring's far end (spring drive): "
+              "1.8e-3 of ω × base, the quasi-static limit at this scale"),
+    Parameter("drive_force", 0.02, "N", "the constant horizontal force on the slider "
+              '(drive="force")'),
+)
+#: Ooten's fixed track as a dict: parameter name -> default (from :data:`OOTEN_PARAMETERS`).
+OOTEN_DEFAULTS = {p.name: p.default for p in OOTEN_PARAMETERS}
+
+
+_FULL = Profile.from_angle("full", base=OOTEN_DEFAULTS["base"], flank_angle=OOTEN_DEFAULTS["flank_angle"])
 
 
 def kinetic_default(mu_static: float) -> float:
@@ -63,7 +107,7 @@ def kinetic_default(mu_static: float) -> float:
 
 @dataclass(frozen=True)
 class LowerSurface(SurfaceGeometry):
-    """Asperities on vertical spring-damper tracks (seed 000 figures 5, 7, 8).
+    """Asperities on vertical spring-damper tracks (Ooten's figures 5, 7, 8).
 
     Every asperity has ``profile``'s shape unless ``shapes`` (a
     :class:`~asperity2d.shapes.Shapes` record) gives each its own height,
@@ -80,7 +124,7 @@ class LowerSurface(SurfaceGeometry):
     ``travel_down`` and ``travel_up`` (m) limit each track below / above the
     rest position (default: the (tallest) asperity height).
 
-    ``lateral_stiffness`` (N/m) turns the tracks into seed 000's MATLAB
+    ``lateral_stiffness`` (N/m) turns the tracks into Ooten's MATLAB
     lattice (its figure 14, equations 9-18): the peaks then move in x and y,
     each held by its vertical spring to ground and joined to its neighbours
     and the two walls by horizontal springs: n + 1 values (wall-peak 1,
@@ -91,11 +135,11 @@ class LowerSurface(SurfaceGeometry):
 
     profile: Profile = field(default_factory=lambda: _FULL)
     spacing: Spacing = field(default_factory=lambda: RegularSpacing(
-        count=SEED_000["lower_count"], pitch=SEED_000["pitch"]))
-    mass: float | tuple[float, ...] = SEED_000["mass"]
-    stiffness: float | tuple[float, ...] = SEED_000["stiffness"]
+        count=OOTEN_DEFAULTS["lower_count"], pitch=OOTEN_DEFAULTS["pitch"]))
+    mass: float | tuple[float, ...] = OOTEN_DEFAULTS["mass"]
+    stiffness: float | tuple[float, ...] = OOTEN_DEFAULTS["stiffness"]
     damping: float | tuple[float, ...] | None = None
-    damping_ratio: float = SEED_000["damping_ratio"]
+    damping_ratio: float = OOTEN_DEFAULTS["damping_ratio"]
     travel_down: float | None = None
     travel_up: float | None = None
     lateral_stiffness: float | tuple[float, ...] | None = None
@@ -146,7 +190,7 @@ class LowerSurface(SurfaceGeometry):
 
     @property
     def is_lattice(self) -> bool:
-        """True when the peaks move in x too (seed 000's MATLAB model)."""
+        """True when the peaks move in x too (Ooten's MATLAB model)."""
         return self.lateral_stiffness is not None
 
     def tips(self) -> np.ndarray:
@@ -166,7 +210,7 @@ class LowerSurface(SurfaceGeometry):
 class Slider(SurfaceGeometry):
     """The upper body carrying its own asperities, on a horizontal track.
 
-    ``track="fixed"`` (seed 000's Working Model set-up): held at a fixed height
+    ``track="fixed"`` (Ooten's Working Model set-up): held at a fixed height
     such that its deepest tip reaches ``interference`` (m, default a quarter
     of its profile's height) below the rest height of the highest lower tip
     (with varied heights: the tallest lower summit; with equal ones, every
@@ -179,10 +223,10 @@ class Slider(SurfaceGeometry):
 
     profile: Profile = field(default_factory=lambda: _FULL)
     spacing: Spacing = field(default_factory=lambda: RegularSpacing(
-        count=SEED_000["upper_count"], pitch=SEED_000["pitch"]))
-    mass: float = SEED_000["slider_mass"]
-    track: str = SEED_000["track"]
-    normal_load: float = SEED_000["normal_load"]
+        count=OOTEN_DEFAULTS["upper_count"], pitch=OOTEN_DEFAULTS["pitch"]))
+    mass: float = OOTEN_DEFAULTS["slider_mass"]
+    track: str = OOTEN_DEFAULTS["track"]
+    normal_load: float = OOTEN_DEFAULTS["normal_load"]
     interference: float | None = None
     shapes: Shapes | None = None
 
@@ -212,7 +256,7 @@ class Slider(SurfaceGeometry):
 class ConstantForce:
     """A constant horizontal force on the slider (N), as in Working Model."""
 
-    force: float = SEED_000["drive_force"]
+    force: float = OOTEN_DEFAULTS["drive_force"]
 
     def __post_init__(self):
         object.__setattr__(self, "force", check_finite("drive_force", self.force))
@@ -226,8 +270,8 @@ class SpringDrive:
     (N, default 0: unstretched).
     """
 
-    stiffness: float = SEED_000["drive_stiffness"]
-    velocity: float = SEED_000["drive_velocity"]
+    stiffness: float = OOTEN_DEFAULTS["drive_stiffness"]
+    velocity: float = OOTEN_DEFAULTS["drive_velocity"]
     damping: float = 0.0
     preload: float = 0.0
 
@@ -261,7 +305,7 @@ class Contact:
     kinetic energy; 1 loses nothing.
     """
 
-    mu_static: float = SEED_000["mu_static"]
+    mu_static: float = OOTEN_DEFAULTS["mu_static"]
     mu_kinetic: float | None = None
     slip_distance: float | None = None
     stick_speed: float | None = None

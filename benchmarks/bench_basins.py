@@ -1,4 +1,4 @@
-"""Basin-map benchmark: the cost of one grid point of seed 001's 3-DOF base case, and of the map.
+"""Basin-map benchmark: the cost of one grid point of the multi-DOF belt thesis' 3-DOF base case, and of the map.
 
 Run ``python benchmarks/bench_basins.py [--quick]``; ``run(quick=False) -> dict``.
 

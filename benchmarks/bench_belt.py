@@ -3,7 +3,7 @@
     OPENBLAS_NUM_THREADS=1 python benchmarks/bench_belt.py [--quick] [--no-save]
 
 Every figure is measured (never extrapolated) as CPU time (``time.process_time``),
-median of interleaved repeats, on seed 001's Table 2 3-DOF base case
+median of interleaved repeats, on the multi-DOF belt thesis' Table 2 3-DOF base case
 (``presets.preset("table2-3dof")``, 2001 output samples):
 
 1. speed at 10 s and 1000 s against (a) the fastest honest ``solve_ivp`` we could write

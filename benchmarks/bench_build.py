@@ -2,7 +2,7 @@
 
     python benchmarks/bench_build.py [--quick] [--json]     (or: run_all.py --only build)
 
-For N = 1,000, 10,000 and 100,000 lower asperities (4 upper tips, seed 000's fixed-track
+For N = 1,000, 10,000 and 100,000 lower asperities (4 upper tips, Ooten's fixed-track
 set-up): CPU time (``time.process_time``) of ``Run(scene)`` -- scaling, checks, building the
 space --, of 20 steps, and of freeing the run (``gc.collect`` after the last reference goes).
 One measurement each (a build is seconds, not microseconds; the machine may be shared, so

@@ -1,10 +1,10 @@
-"""A run of 1e8 steps in bounded memory: the steel scene at seed 000's real drive speed, streamed.
+"""A run of 1e8 steps in bounded memory: the steel scene at Ooten's real drive speed, streamed.
 
     python benchmarks/bench_long_run.py [--quick] [--steps N] [--json]
 
 The scene is ``scenes/steel_table1.py``'s free set-up exactly as that script builds it
 (``build_scene(setup="free")``: Table 1 steel, 8 lower / 4 upper asperities, the slider under
-4 mN, the 3,720 N/m drive spring) with the drive at seed 000's own 5e-3 m/s instead of the
+4 mN, the 3,720 N/m drive spring) with the drive at Ooten's own 5e-3 m/s instead of the
 script's x2000 (1.8e7 steps per micrometre of drive travel). It runs
 ``simulate(scene, duration=N dt, record_every=100, record_to=DIR, max_steps=...)`` in a fresh
 process, so the resident memory measured is the run's alone:
@@ -77,7 +77,7 @@ def child(steps: int, directory: str) -> dict:
     disk = sum(f.stat().st_size for f in Path(directory).iterdir())
     rss = [r for _, r in trace]
     return {
-        "scene": "scenes/steel_table1.py build_scene(setup='free'), drive 5e-3 m/s (seed 000, real time)",
+        "scene": "scenes/steel_table1.py build_scene(setup='free'), drive 5e-3 m/s (Ooten's thesis, real time)",
         "steps": result.meta["steps"], "settle_time_s": result.meta["settle_time"], "dt_s": dt,
         "record_every": RECORD_EVERY, "samples": len(result), "bytes_on_disk": disk,
         "status": result.status, "wall_s": wall, "cpu_s": cpu, "us_per_step_cpu": 1e6 * cpu / steps,

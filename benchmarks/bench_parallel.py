@@ -12,7 +12,7 @@ machine's load hits both sides), wall time of a fresh process (``time.perf_count
   of spawned workers per comparison) against this code (``--workers auto``: the first run
   timed here, one warm pool for the process). Target: now / before <= 0.6.
 * **a 20-seed comparison**, ``asperity2d compare --seeds 20`` (the command line's default
-  measure, the critical force from rest, regular against random spacing on seed 000's
+  measure, the critical force from rest, regular against random spacing on Ooten's
   16/4 scene) with ``--workers 1``, ``--workers 2`` and the default ``auto``.
   Target: workers 1 / workers 2 >= 1.7.
 

@@ -1,10 +1,10 @@
-"""Steel (seed 000 Table 1) scene: CPU time per micrometre of drive travel, measured.
+"""Steel (Ooten's thesis Table 1) scene: CPU time per micrometre of drive travel, measured.
 
     python benchmarks/bench_steel.py [--quick] [--json]
 
 Both set-ups exactly as ``scenes/steel_table1.py`` runs them (``build_scene(setup=...)``:
 the fixed track with 24 lower / 4 upper asperities, the free slider with 8 / 4 under 4 mN;
-the drive at x2000 of seed 000's 5e-3 m/s). Only the stepping is timed (``Run.advance``, CPU
+the drive at x2000 of Ooten's 5e-3 m/s). Only the stepping is timed (``Run.advance``, CPU
 time): the space is built, settled and driven into contact before the clock starts; then a
 fork of that run is advanced until the drive's far end has moved one whole micrometre (9,044
 steps), three times, median and range. Nothing is extrapolated: the seed's real drive speed

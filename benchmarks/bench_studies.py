@@ -19,7 +19,7 @@ The previous code settled a free slider again in every bisection run and
 measured the seed-independent regular scene once per seed.
 
 Both set-ups: the free slider (the previous default, where settling cost
-57-59 % of a critical force) and seed 000's fixed track (the new default).
+57-59 % of a critical force) and Ooten's fixed track (the new default).
 Target (issue 13): at least 2.5x faster.
 """
 

@@ -1,8 +1,14 @@
-"""The asperity stick-slip spectrum: regular against random spacing, and a drive-preload scan.
+"""The spectrum of asperity stick-slip: regular against random spacing
+===================================================================
+
+From E. Ooten, *Precision Motion Control at Low Velocities in the Presence of
+Friction* (senior thesis, Texas A&M University, 1997-98).
+
+The asperity stick-slip spectrum: regular against random spacing, and a drive-preload scan.
 
 Run: ``python scenes/asperity_spectrum.py [--quick] [--workers auto|N] [-o DIR] [--json]``.
 
-Seed 000's set-up on the fixed-height track (``make_scene(track="fixed")``)
+Ooten's set-up on the fixed-height track (``make_scene(track="fixed")``)
 with a spring drive, at two drive stiffnesses: the default 3 720 N/m over
 120 lower asperities (the slider slips several pitches at a time, so a run
 needs many asperities to show several cycles) and a tenfold stiffer
@@ -27,6 +33,7 @@ import itertools
 
 import numpy as np
 
+from asperity2d._format import si
 from asperity2d import make_scene, simulate
 from asperity2d.dynamics import signal, spectrum
 from asperity2d.dynamics.asperity_basins import WINDOW, asperity_basins, classify_asperity
@@ -49,7 +56,7 @@ def line_fraction(sp, f_pitch, harmonics=5):
 
 
 def main(argv=None) -> int:
-    p = scripting.parser(__doc__.splitlines()[0])
+    p = scripting.parser(scripting.title(__doc__))
     scripting.add_workers(p)
     args = p.parse_args(argv)
     out = scripting.out_dir(args, __file__)
@@ -101,11 +108,12 @@ def main(argv=None) -> int:
         fr = row["friction_force"]
         lines.append(f"{name}: dominant {fr['dominant_over_pitch_frequency']:.4f} V/pitch (bin "
                      f"{fr['resolution_over_pitch_frequency']:.3f}), line fraction {fr['line_fraction']:.2f}, "
-                     f"slips {row['slip_events_in_window']} -> {row['class']}, "
-                     f"{row['pitches_per_cycle']:.3g} pitches/cycle")
-    lines.append(f"preload scan {list(preloads)} N: {summary['preload_scan']['classes']}")
+                     f"slips {row['slip_events_in_window']} -> {row['class']}"
+                     + (f", {row['pitches_per_cycle']:.3g} pitches/cycle" if row['pitches_per_cycle'] == row['pitches_per_cycle'] else ""))
+    lines.append("drive preload scan: " + ", ".join(
+        f"{si(p, 'N', 3, trim=True)} -> {c}" for p, c in zip(preloads, summary["preload_scan"]["classes"])))
     return scripting.finish(args, summary, out, lines)
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

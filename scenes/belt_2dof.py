@@ -1,4 +1,11 @@
-"""Seed 001, 2-DOF (Table 1, eq 3.3, Figures 3-4): free vibration and Coulomb friction on a still surface.
+"""Two masses on a belt: free vibration and Coulomb decay
+======================================================
+
+From the thesis *Vibration Analysis of Multi Degree of Freedom Self-excited
+Systems* (no author named in the copy used here), called the multi-DOF belt
+thesis below.
+
+The multi-DOF belt thesis, 2-DOF (Table 1, eq 3.3, Figures 3-4): free vibration and Coulomb friction on a still surface.
 
 Run: ``python scenes/belt_2dof.py [--quick] [--out DIR]``; writes plots and ``belt_2dof.json``.
 """
@@ -6,6 +13,7 @@ Run: ``python scenes/belt_2dof.py [--quick] [--out DIR]``; writes plots and ``be
 import numpy as np
 
 from asperity2d.studies import mdof_belt as S
+from asperity2d.cli import scripting
 
 
 def study(quick):
@@ -41,7 +49,7 @@ def study(quick):
             "0.01 m/s variant is reported under table1_belt_variant).",
             "Table 1 lists M3 and K4 for a 2-DOF system.",
             "Appendix A labels f2 (mu0 = 0) 'With Friction'.",
-            "The thesis uses one coefficient mu0 (sign() friction): mu_s = mu_k = mu0 here.",
+            "The multi-DOF belt thesis uses one coefficient mu0 (sign() friction): mu_s = mu_k = mu0 here.",
         ],
     }
     return summary, {"free": free, "friction_still": fric}
@@ -52,4 +60,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

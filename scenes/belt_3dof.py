@@ -1,9 +1,17 @@
-"""Seed 001, 3-DOF base case (Table 2, eq 3.12, Figure 5): stick times of the three masses.
+"""Three masses on a belt: the base case's stick times
+===================================================
+
+From the thesis *Vibration Analysis of Multi Degree of Freedom Self-excited
+Systems* (no author named in the copy used here), called the multi-DOF belt
+thesis below.
+
+The multi-DOF belt thesis, 3-DOF base case (Table 2, eq 3.12, Figure 5): stick times of the three masses.
 
 Run: ``python scenes/belt_3dof.py [--quick] [--out DIR]``; writes plots and ``belt_3dof.json``.
 """
 
 from asperity2d.studies import mdof_belt as S
+from asperity2d.cli import scripting
 
 
 def study(quick):
@@ -29,7 +37,7 @@ def study(quick):
             "Appendix B starts from rest (y0 = 0) while the text gives eq 3.12; both are reported.",
             "Fig 5's caption lists K1..K3 and C1..C3 for a 4-spring, 4-damper chain.",
             "Damping is given in N.m/s; the unit of a viscous coefficient is N.s/m.",
-            "The thesis uses one coefficient mu0 (sign() friction): mu_s = mu_k = mu0 here.",
+            "The multi-DOF belt thesis uses one coefficient mu0 (sign() friction): mu_s = mu_k = mu0 here.",
         ],
     }
     return summary, {"base": base}
@@ -40,4 +48,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

@@ -1,4 +1,11 @@
-"""Contacts that open: separation, mode-coupling flutter and squeal on the moving belt.
+"""Contacts that open: separation, mode-coupling flutter and squeal
+================================================================
+
+From the thesis *Vibration Analysis of Multi Degree of Freedom Self-excited
+Systems* (no author named in the copy used here), called the multi-DOF belt
+thesis below.
+
+Contacts that open: separation, mode-coupling flutter and squeal on the moving belt.
 
 Run: ``python scenes/belt_contact.py [--quick] [-o DIR] [--json] [--workers auto|N]``.
 
@@ -53,7 +60,7 @@ INCLINED = ((10.0, 135.0),)
 
 
 def main(argv=None) -> int:
-    p = scripting.parser(__doc__.splitlines()[0])
+    p = scripting.parser(scripting.title(__doc__))
     scripting.add_workers(p)
     args = p.parse_args(argv)
     out = scripting.out_dir(args, __file__)
@@ -149,7 +156,7 @@ def main(argv=None) -> int:
                            .growth_rate for k in ks])
     plots.append(str(plot_opening(rows, out / "thesis_opening.png", curves=curves)))
     opened = [r for r in rows if r["openings"]]
-    claims.append(claim("the thesis chain with normal compliance loses contact only where its steady sliding is "
+    claims.append(claim("the multi-DOF belt thesis' 3-DOF chain with normal compliance loses contact only where its steady sliding is "
                         "unstable", all(r["growth_rate"] > 0 for r in opened),
                         {"opened": len(opened), "runs": len(rows),
                          "growth_rates_where_opened": [r["growth_rate"] for r in opened],
@@ -157,12 +164,13 @@ def main(argv=None) -> int:
                         "every run whose contact opens has a growing mode (max Re lambda > 0) in steady sliding"))
     flat = normal_force_without_coupling(stiff=not quick)  # quick: the rigid contact (tests cover the stiff one)
     summary["without_coupling"] = flat
-    claims.append(claim("without an inclined spring a normal contact never opens on the thesis presets (N = m g)",
+    claims.append(claim("without an inclined spring a normal contact never opens on the multi-DOF belt thesis' presets (N = m g)",
                         flat["openings"] == 0 and flat["max_relative_departure"] <= 1e-12, flat,
                         "no opening and |N - m g| <= 1e-12 m g on every preset (rigid and stiff compliant contacts)"))
-    lines.append(f"thesis chain + normal compliance: contact opened in {len(opened)} of {len(rows)} runs, at k_c = "
-                 f"{sorted({r['contact_stiffness'] for r in opened})} N/m; without coupling N stays m g to "
-                 f"{flat['max_relative_departure']:.1e}")
+    stiffnesses = ", ".join(f"{k:g}" for k in sorted({r["contact_stiffness"] for r in opened}))
+    lines.append(f"the multi-DOF belt thesis' chain + normal compliance: contact opened in {len(opened)} of "
+                 f"{len(rows)} runs" + (f", at k_c = {stiffnesses} N/m" if opened else "")
+                 + f"; without coupling N stays m g to {flat['max_relative_departure']:.1e} of it")
 
     # 4. the three states, both models ------------------------------------------------------------
     scene = a.make_scene(track="free", **({"lower_count": 8, "upper_count": 2} if quick else {}))
@@ -236,4 +244,4 @@ def _belt_row(name, states):
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

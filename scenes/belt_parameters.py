@@ -1,4 +1,11 @@
-"""Seed 001 parameter studies on the 3-DOF chain (Tables 3-7, Figures 6-14).
+"""Parameter studies of the three-mass chain (Tables 3-7)
+======================================================
+
+From the thesis *Vibration Analysis of Multi Degree of Freedom Self-excited
+Systems* (no author named in the copy used here), called the multi-DOF belt
+thesis below.
+
+The multi-DOF belt thesis parameter studies on the 3-DOF chain (Tables 3-7, Figures 6-14).
 
 Run: ``python scenes/belt_parameters.py [--quick] [--only stiffness|damping|mass|speed|friction]``.
 The per-table scripts ``belt_stiffness.py`` ... call this with ``--only``.
@@ -8,6 +15,7 @@ import numpy as np
 
 from asperity2d.studies import mdof_belt as S
 from asperity2d.studies.claims import claim
+from asperity2d.cli import scripting
 
 DEC = lambda v: bool(np.all(np.diff(v) < 0))  # noqa: E731
 INC = lambda v: bool(np.all(np.diff(v) > 0))  # noqa: E731
@@ -85,4 +93,4 @@ def main(argv=None, only=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

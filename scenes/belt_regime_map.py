@@ -1,4 +1,11 @@
-"""Regime maps: belt speed x damping for a mass on a Stribeck belt, belt speed x stiffness for Table 2.
+"""Regime maps: where a belt chain sticks, slips or slides steadily
+================================================================
+
+From the thesis *Vibration Analysis of Multi Degree of Freedom Self-excited
+Systems* (no author named in the copy used here), called the multi-DOF belt
+thesis below.
+
+Regime maps: belt speed x damping for a mass on a Stribeck belt, belt speed x stiffness for Table 2.
 
 Run: ``python scenes/belt_regime_map.py [--quick] [--out DIR]``; writes two maps and ``regime_map.json``.
 The Stribeck map carries the linear stability boundary c + N·mu'(v) = 0.
@@ -14,11 +21,13 @@ from asperity2d.belt.presets import preset
 from asperity2d.belt.regime import regime_map
 from asperity2d.studies.mdof_belt import renders
 from asperity2d.friction import Stribeck
+from asperity2d.cli import scripting
 
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="belt_regime_map", description=__doc__)
     parser.add_argument("--quick", action="store_true", help="coarse 3x3 grids, no plots")
+    parser.add_argument("--plots", action="store_true", help="write the plots with --quick too")
     parser.add_argument("-o", "--out", type=Path, default=None,
                         help="output directory (default renders/belt in the working directory)")
     args = parser.parse_args(argv)
@@ -33,16 +42,19 @@ def main(argv=None) -> int:
     summary = {"stribeck_1dof": {**smap.to_dict(), "law": law.to_dict(),
                                  "boundary": "steady sliding linearly unstable where c < -N mu'(v_belt)"},
                "table2_3dof": tmap.to_dict()}
-    if not args.quick:
+    if not args.quick or args.plots:
         from asperity2d.renderers.belt import plot_regime_map
 
         summary["plots"] = [str(plot_regime_map(smap, args.out / "regime_stribeck.png")),
                             str(plot_regime_map(tmap, args.out / "regime_table2.png"))]
     write_json(args.out / "regime_map.json", summary)
-    for name, m in (("stribeck 1-DOF", smap), ("table 2 3-DOF", tmap)):
-        print(name, m.to_dict()["counts"])
+    for name, m in (("a mass on a Stribeck belt (belt speed x damping)", smap),
+                    ("the Table 2 chain (belt speed x stiffness)", tmap)):
+        counts = m.to_dict()["counts"]
+        total = sum(counts.values()) or 1
+        print(f"{name}: " + ", ".join(f"{k} {v} ({100 * v / total:.0f} %)" for k, v in counts.items() if v))
     return 0
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

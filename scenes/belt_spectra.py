@@ -1,8 +1,15 @@
-"""Spectra of seed 001's 3-DOF chain across belt speed: where the stick-slip sawtooth goes.
+"""Spectra of the three-mass chain across belt speed
+=================================================
+
+From the thesis *Vibration Analysis of Multi Degree of Freedom Self-excited
+Systems* (no author named in the copy used here), called the multi-DOF belt
+thesis below.
+
+Spectra of the multi-DOF belt thesis' 3-DOF chain across belt speed: where the stick-slip sawtooth goes.
 
 Run: ``python scenes/belt_spectra.py [--quick] [-o DIR] [--json]``.
 
-Seed 001 (Figures 5, 12, 13) sees stick-slip at 0.1 m/s fade as the belt
+The multi-DOF belt thesis (Figures 5, 12, 13) sees stick-slip at 0.1 m/s fade as the belt
 speeds up, into "quasi-harmonic oscillation with a constant amplitude and
 period" at 0.7 m/s. For every belt speed this script runs the Table 2 chain
 from eq 3.12 with the exact solver and measures mass 1's displacement
@@ -50,7 +57,7 @@ def measure(result, a, b):
 
 
 def main(argv=None) -> int:
-    args = scripting.parser(__doc__.splitlines()[0]).parse_args(argv)
+    args = scripting.parser(scripting.title(__doc__)).parse_args(argv)
     out = scripting.out_dir(args, __file__)
     speeds = QUICK_SPEEDS if args.quick else SPEEDS
     t_end = 40.0 if args.quick else 400.0
@@ -114,4 +121,4 @@ def plot_trends(summary, path):
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

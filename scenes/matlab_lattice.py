@@ -1,4 +1,10 @@
-"""Seed 000's MATLAB contact model (figures 13-17, Appendix B) as rigid bodies.
+"""Ooten's MATLAB contact model as rigid bodies
+============================================
+
+From E. Ooten, *Precision Motion Control at Low Velocities in the Presence of
+Friction* (senior thesis, Texas A&M University, 1997-98).
+
+Ooten's MATLAB contact model (figures 13-17, Appendix B) as rigid bodies.
 
 The lower surface is a lattice: each peak (mass, no rotation) hangs on a
 vertical spring to ground and is joined to its neighbours and to the two walls
@@ -11,11 +17,13 @@ displacements they act along x with the stiffness matrix of
 to 1e-11). The slider is a single peak of mass M on a horizontal track,
 pulled by a spring whose far end moves at V0 (figure 13).
 
-The seed scripted its "contact cases" (Table 2: no contact, contact with peak
+Ooten scripted its "contact cases" (Table 2: no contact, contact with peak
 1, no contact, peak 2, ...) as if-branches; here they come out of the
 rigid-body contacts, and the JSON lists the contact episodes per peak.
 Steel values of Table 1 (45 deg flanks, height 0.5 um for a 1 um base), drive
-sped up from the seed's 5e-3 m/s (the factor is reported).
+sped up from Ooten's 5e-3 m/s (the factor is reported).
+
+Run::
 
     python scenes/matlab_lattice.py        # or: asperity2d run scenes/matlab_lattice.py
 """
@@ -25,13 +33,14 @@ from __future__ import annotations
 import numpy as np
 
 import asperity2d as a
+from asperity2d._format import si
 from asperity2d.cli import scripting
 from asperity2d.experiments.quasistatic import SEED_DRIVE_VELOCITY
 from asperity2d.renderers.plots import plot_position_velocity
 
-K = 37_200.0  # N/m, seed 000 Table 1 (all springs)
-MASS = 2.88e-16  # kg, seed 000 Table 1 (all peaks and the slider)
-DRIVE_VELOCITY = 20.0  # m/s = 4000 x the seed's 5e-3 m/s
+K = 37_200.0  # N/m, Ooten's Table 1 (all springs)
+MASS = 2.88e-16  # kg, Ooten's Table 1 (all peaks and the slider)
+DRIVE_VELOCITY = 20.0  # m/s = 4000 x Ooten's 5e-3 m/s
 
 
 def build_scene(quick: bool = False, **overrides):
@@ -65,7 +74,7 @@ def contact_episodes(result, *, merge_gap: float = 0.0) -> list[list[tuple[float
 
 
 def contact_cases(episodes, t_end: float) -> list[str]:
-    """The sequence of contact cases (seed 000 Table 2): "none" or "peak i", in time order."""
+    """The sequence of contact cases (Ooten's Table 2): "none" or "peak i", in time order."""
     marks = sorted((s, e, i + 1) for i, eps in enumerate(episodes) for s, e in eps)
     cases, t = [], 0.0
     for start, end, peak in marks:
@@ -79,7 +88,7 @@ def contact_cases(episodes, t_end: float) -> list[str]:
 
 
 def main(argv=None) -> int:
-    args = scripting.parser(__doc__.splitlines()[0]).parse_args(argv)
+    args = scripting.parser(scripting.title(__doc__)).parse_args(argv)
     out = scripting.out_dir(args, __file__)
     scene = build_scene(args.quick)
     result = a.simulate(scene, record_every=2)
@@ -103,8 +112,8 @@ def main(argv=None) -> int:
         "max_lateral_peak_displacement_m": float(np.max(np.abs(result.lower_dx))),
         "lateral_stiffness_matrix_N_per_m": scene.lower.lateral_stiffness_matrix().tolist(),
     }
-    lines = [f"{scene.name}: {result.status} after {result.t[-1]:.3g} s",
-             f"contact cases: {' -> '.join(cases)} (seed Table 2: none, 1, none, 2, none, 3, none)"]
+    lines = [f"{scene.name}: {result.status} after {si(result.t[-1], 's', 3)}",
+             f"contact cases: {' -> '.join(cases)} (Ooten's Table 2: none, 1, none, 2, none, 3, none)"]
     lines += [f"peak {i + 1}: contact " + ", ".join(f"{s * 1e9:.1f}-{e * 1e9:.1f} ns" for s, e in eps)
               for i, eps in enumerate(episodes)]
     lines.append(f"largest sideways push of a peak: {summary['max_lateral_peak_displacement_m'] * 1e9:.1f} nm")
@@ -112,4 +121,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

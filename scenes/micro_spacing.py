@@ -1,8 +1,14 @@
-"""Regular vs random spacing at the micro scale (seed 000 abstract, Table 1 steel).
+"""Regular against random spacing on steel micro-asperities
+========================================================
+
+From E. Ooten, *Precision Motion Control at Low Velocities in the Presence of
+Friction* (senior thesis, Texas A&M University, 1997-98).
+
+Regular vs random spacing at the micro scale (Ooten's abstract, Table 1 steel).
 
 Table 1 steel asperities (1 µm base, 45° flanks), 14 lower and 4 upper, a
 spring drive accelerated x2000 (10 m/s; converged, see ``steel_table1.py``),
-on both set-ups: seed 000's fixed-height track (tips 0.125 µm into the lower
+on both set-ups: Ooten's fixed-height track (tips 0.125 µm into the lower
 surface) first, then the free slider under 4 mN (1 mN per tip). Regular
 spacing (measured once: it does not depend on the seed) against random
 spacing on both surfaces over seeds, measuring per spring-driven pass:
@@ -18,6 +24,8 @@ Claim (abstract: "regularity enhances stick-slip, randomness reduces it"),
 per set-up: random spacing lowers the mean force drop per slip, one-sample
 Wilcoxon signed-rank test of the random passes against the regular value,
 one-sided (lower), holds if p < 0.01 and the change is at least 1 % (:func:`asperity2d.studies.claims.judge`).
+
+Run::
 
     python scenes/micro_spacing.py [--seeds 10] [--workers auto|N]
 """
@@ -88,13 +96,13 @@ def run_setup(setup: str, seeds: list[int], *, quick: bool, workers: int | None)
 
 
 def main(argv=None) -> int:
-    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=10, minimum_seeds=2)
+    args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=10, minimum_seeds=2)
     out = scripting.out_dir(args, __file__)
     seeds = list(range(args.seeds))
     summary = {"seeds": len(seeds), "acceleration_factor": FACTOR, "setups": SETUPS, "alpha": ALPHA,
                "table1": TABLE1, "results": {}, "claims": []}
     lines = []
-    for setup in SETUPS:  # fixed first: the seed's set-up
+    for setup in SETUPS:  # fixed first: Ooten's set-up
         comparisons = run_setup(setup, seeds, quick=args.quick, workers=args.workers)
         results = {}
         for q, (label, unit) in QUANTITIES.items():
@@ -131,4 +139,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

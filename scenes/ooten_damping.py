@@ -1,4 +1,10 @@
-"""Seed 000 figure 12: damped vs undamped lower asperities (undamped travels farther), and why.
+"""Damped against undamped asperities (Ooten's figure 12)
+======================================================
+
+From E. Ooten, *Precision Motion Control at Low Velocities in the Presence of
+Friction* (senior thesis, Texas A&M University, 1997-98).
+
+Ooten's figure 12: damped vs undamped lower asperities (undamped travels farther), and why.
 
 Random spacing on both surfaces. For every seed the critical constant force of
 the damped scene (lower springs at damping ratio 0.1, the package default;
@@ -6,7 +12,7 @@ inelastic contacts) is bisected; then a constant force of 0.9 x that value
 pushes three scenes: ``damped``; ``undamped``, the track dampers off (damping
 ratio 0); and ``elastic``, the dampers off and contact restitution 1 (no
 impact loss either): the two readings of "undamped". Reported per set-up (free
-slider under load; seed 000's fixed-height track) and per reading: each
+slider under load; Ooten's fixed-height track) and per reading: each
 slider's travel from its start to where it stopped (m; a slider that passes the
 whole surface stops counting there), the fraction of seeds in which it went
 farther than the damped one, and a paired Wilcoxon signed-rank test of the
@@ -22,6 +28,8 @@ included) is what the damped one lost in the channels that differ: those
 decide the travel. A slider that neither passes
 nor comes to rest (it rattles in a valley: elastic impacts return it) is
 counted where the time limit finds it; ``reach`` is the farthest it got.
+
+Run::
 
     python scenes/ooten_damping.py [--seeds 20] [--workers auto|N]
 """
@@ -145,7 +153,7 @@ def plot_shares(summary: dict, path) -> None:
 
 
 def main(argv=None) -> int:
-    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=20, minimum_seeds=1)
+    args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=20, minimum_seeds=1)
     n_seeds = args.seeds
     out = scripting.out_dir(args, __file__)
     size = studies.QUICK_SIZE if args.quick else studies.STUDY_SIZE
@@ -182,4 +190,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

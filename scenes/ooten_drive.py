@@ -1,6 +1,12 @@
-"""Seed 000: constant force vs spring drive (Working Model's constant push never gave stick-slip).
+"""Constant force against a spring drive (Ooten's Working Model runs)
+==================================================================
 
-Regular spacing, full 45° triangles, both set-ups (seed 000's fixed-height
+From E. Ooten, *Precision Motion Control at Low Velocities in the Presence of
+Friction* (senior thesis, Texas A&M University, 1997-98).
+
+Ooten's thesis: constant force vs spring drive (Working Model's constant push never gave stick-slip).
+
+Regular spacing, full 45° triangles, both set-ups (Ooten's fixed-height
 track first, then the free slider under load). The critical force from rest
 is bisected (the slider at rest on the surface, every tip against its flank:
 :func:`asperity2d.critical_force`); the slider is then pushed from that same
@@ -17,6 +23,8 @@ a stop (speed below 1 % of it) lasting at least the scene's slowest natural
 period -- what stick-slip under a constant force would need. Momentary stops
 (bounces off a flank) are counted separately. Writes the
 positions plot (seed figure 10 style), the spring run's time series and a GIF.
+
+Run::
 
     python scenes/ooten_drive.py
 """
@@ -97,7 +105,7 @@ def run_setup(setup: str, size: dict) -> tuple[dict, dict, list[dict]]:
 
 
 def main(argv=None) -> int:
-    args = scripting.parser(__doc__.splitlines()[0]).parse_args(argv)
+    args = scripting.parser(scripting.title(__doc__)).parse_args(argv)
     out = scripting.out_dir(args, __file__)
     size = studies.QUICK_SIZE if args.quick else studies.STUDY_SIZE
     summary = {"size": size, "setups": studies.SETUPS, "results": {}, "claims": []}
@@ -121,10 +129,10 @@ def main(argv=None) -> int:
                      f"{spring['peak_stick_force_N'] * 1e3:.3g} mN, mean stick force "
                      f"{spring['mean_stick_force_N'] * 1e3:.3g} mN, mean force drop {ev['force_drop_mean'] * 1e3:.3g} mN")
         lines += [claims_module.verdict_line(c) for c in claims]
-        if setup == "fixed" and not args.no_gif:  # the seed's own set-up
+        if setup == "fixed" and not args.no_gif:  # Ooten's own set-up
             a.render(runs["spring"], out / "spring_fixed.gif", frames=args.frames or (30 if args.quick else 120))
     return scripting.finish(args, summary, out, lines)
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

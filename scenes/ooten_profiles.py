@@ -1,10 +1,16 @@
-"""Seed 000 figures 9-10: full vs half triangles (half triangles need a larger force).
+"""Full against half triangles (Ooten's figures 9-10)
+==================================================
 
-A half triangle is the seed's: the full triangle cut through its apex (same
+From E. Ooten, *Precision Motion Control at Low Velocities in the Presence of
+Friction* (senior thesis, Texas A&M University, 1997-98).
+
+Ooten's figures 9-10: full vs half triangles (half triangles need a larger force).
+
+A half triangle is Ooten's: the full triangle cut through its apex (same
 height and 45° flank, half the base, one vertical face). Both surfaces carry
 the same profile with every tip in the same place (regular pitch, or the same
 random draws: see ``HALF``); on the fixed track the tips run the same 0.125 µm
-into the lower surface. The seed's explanation: with full triangles
+into the lower surface. Ooten's explanation: with full triangles
 the lower spring's restoring force pushes the slider on along the back flank
 once a tip is past an apex; a half triangle's vertical back face loses
 contact. Each set-up is run with static > kinetic friction (mu_s 0.3, mu_k
@@ -35,6 +41,8 @@ half triangles (``half_shape="full-base"``: the full base and flank angle,
 twice the height), which cannot fall through. ``--quick`` runs the first
 friction pair only.
 
+Run::
+
     python scenes/ooten_profiles.py [--seeds 24] [--workers auto|N]
 """
 
@@ -58,7 +66,7 @@ from asperity2d.sweep.engine import map_calls
 ALPHA = 0.01
 FRICTIONS = {"mu_s > mu_k": {"mu_static": 0.3, "mu_kinetic": 0.2},
              "mu_s = mu_k": {"mu_static": 0.3, "mu_kinetic": 0.3}}
-#: The seed's half triangle. Random gaps are drawn as base + min_gap + U x 2 (pitch - base -
+#: Ooten's half triangle. Random gaps are drawn as base + min_gap + U x 2 (pitch - base -
 #: min_gap): with half the base, ``min_gap`` = half a base keeps every tip where the full
 #: triangles' are (same seed, same U), so random spacing is as irregular for both profiles
 #: (without it the half-triangle surfaces would be three times as irregular).
@@ -287,7 +295,7 @@ def figure10(size: dict, seed: int, force_fraction: float, path) -> dict:
 
 
 def main(argv=None) -> int:
-    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=24, minimum_seeds=2)
+    args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=24, minimum_seeds=2)
     out = scripting.out_dir(args, __file__)
     size = studies.QUICK_SIZE if args.quick else studies.STUDY_SIZE
     seeds = list(range(args.seeds))
@@ -295,7 +303,7 @@ def main(argv=None) -> int:
                "alpha": ALPHA, "results": {}, "mechanism": {}, "claims": []}
     check_same_tips(size)
     lines = []
-    for setup in studies.SETUPS:  # fixed first: the seed's set-up
+    for setup in studies.SETUPS:  # fixed first: Ooten's set-up
         results = {}
         pairs = list(FRICTIONS)[:1] if args.quick or setup == "free" else list(FRICTIONS)
         for friction in pairs:
@@ -335,4 +343,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

@@ -1,13 +1,21 @@
-"""Seed 000 figure 11: regular vs random asperity spacing, on the fixed track and the free slider.
+"""Regular against random spacing (Ooten's figure 11)
+==================================================
 
-Three variants (seed 000's three Working Model runs): regular/regular, random
+From E. Ooten, *Precision Motion Control at Low Velocities in the Presence of
+Friction* (senior thesis, Texas A&M University, 1997-98).
+
+Ooten's figure 11: regular vs random asperity spacing, on the fixed track and the free slider.
+
+Three variants (Ooten's three Working Model runs): regular/regular, random
 upper on a regular lower surface ("random-upper"), random on both surfaces
 ("random"). Every named measure (:mod:`asperity2d.experiments.measures`) of
 every scene, over ``--seeds`` seeds (regular spacing does not depend on the
 seed and is measured once):
 
 * critical force from rest (the headline): the smallest constant force that
-  carries the slider, at rest on the surface, across -- a step load;
+  carries the slider, at rest on the surface with every tip against its
+  flank, across the whole surface -- a step load; Ooten's "force required to
+  move the top surface over the bottom surface";
 * critical force with a run-up: the same force applied a tenth of a base
   before the surface (a momentum threshold);
 * quasi-static breakaway: a slowly ramped force from rest (the barrier);
@@ -21,7 +29,11 @@ Wilcoxon signed-rank test (one-sided, "lower"); "random on both is the
 smallest" with a paired Wilcoxon test of random/random against random-upper
 (same seed). A verdict "holds" needs p < 0.01 in the claimed direction and a
 change of at least 1 %. Every claim states its effect as a ratio with the
-Hodges-Lehmann 95 % interval of the per-seed ratios (:func:`asperity2d.stats.relative_effect`).
+Hodges-Lehmann 95 % interval of the per-seed ratios
+(:func:`asperity2d.stats.relative_effect`). Both set-ups are run: Ooten's
+fixed-height track (default) and the free slider under a normal load.
+
+Run::
 
     python scenes/ooten_spacing.py [--seeds 24] [--workers auto|N]
 """
@@ -82,7 +94,7 @@ def with_effect(numbers: dict, values, reference) -> dict:
 
 
 def claims_for(setup: str, found: dict[str, Comparison]) -> list[dict]:
-    """Seed-000 figure-11 claims for one set-up, with numbers, effect sizes and tests."""
+    """Ooten's figure 11 claims for one set-up, with numbers, effect sizes and tests."""
     out = []
     for name, comparison in found.items():
         label = measure_label(name)
@@ -120,7 +132,7 @@ def bands(rows: dict) -> dict:
 
 
 def main(argv=None) -> int:
-    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=24, minimum_seeds=2)
+    args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=24, minimum_seeds=2)
     out = scripting.out_dir(args, __file__)
     size = studies.QUICK_SIZE if args.quick else studies.STUDY_SIZE
     passes = 1 if args.quick else 5  # --quick: a smoke test (one pass, no slow ramp)
@@ -152,4 +164,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

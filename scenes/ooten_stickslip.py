@@ -1,9 +1,15 @@
-"""Seed 000 abstract: regular asperities enhance stick-slip, random ones reduce or remove it.
+"""Does regularity enhance stick-slip? (Ooten's abstract)
+======================================================
+
+From E. Ooten, *Precision Motion Control at Low Velocities in the Presence of
+Friction* (senior thesis, Texas A&M University, 1997-98).
+
+Ooten's abstract: regular asperities enhance stick-slip, random ones reduce or remove it.
 
 Spring-driven passes over regular/regular and random/random surfaces at three
 drive-spring stiffnesses spanning a decade (default 1 176, 3 720 and
 11 760 N/m: the package default x 10^-0.5, 1, 10^0.5), for both set-ups
-(seed 000's fixed-height track first, then the free slider under load). Per
+(Ooten's fixed-height track first, then the free slider under load). Per
 run (:func:`asperity2d.studies.ooten.spring_pass_run`): the number of
 stick-slip events, the stick-slip amplitude -- the mean force drop per slip
 (N) -- the spread of the drops (std, N) and the regularity of the events
@@ -16,6 +22,8 @@ signed-rank test over the random seeds, one-sided "lower"; holds if p < 0.01,
 slip carried the slider across) has no force drop and counts as missing.
 Whether the verdict changes with the drive stiffness is reported as
 ``drive_dependent``.
+
+Run::
 
     python scenes/ooten_stickslip.py [--seeds 20] [--workers auto|N]
 """
@@ -62,7 +70,7 @@ def plot_amplitudes(results: dict, path) -> None:
 
 
 def main(argv=None) -> int:
-    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=20, minimum_seeds=2)
+    args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=20, minimum_seeds=2)
     n_seeds = args.seeds
     out = scripting.out_dir(args, __file__)
     size = studies.QUICK_SIZE if args.quick else studies.STUDY_SIZE
@@ -121,4 +129,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

@@ -1,4 +1,7 @@
-"""A measured-style surface profile turned into triangular asperities, with its statistics.
+"""A measured-style profile turned into asperities
+===============================================
+
+A measured-style surface profile turned into triangular asperities, with its statistics.
 
 Reads ``scenes/data/measured_style_profile.csv`` (a SYNTHETIC self-affine
 trace with instrument-like noise and tilt, made by
@@ -9,14 +12,16 @@ ones are few and smeared by the window) and 0.2 µm (above the noise floor);
 the recipe asked for H = 0.8 between 10 µm and 0.1 µm. The summits with prominence
 >= 20 nm (ten times the noise) and width at half prominence >= 0.1 µm become
 triangular asperities by the rule of :mod:`asperity2d.surface.asperities`;
-track stiffness from seed 000 Table 1's rule K = 2 E b with its printed
+track stiffness from Ooten's Table 1's rule K = 2 E b with its printed
 E = 1.86e10 Pa (37,200 N/m at b = 1 µm, the package default), mass from the
-Appendix A pyramid rho b^2 h / 3 with steel's 7850 kg/m^3 (the seed's
+Appendix A pyramid rho b^2 h / 3 with steel's 7850 kg/m^3 (Ooten's
 printed 8 kg/m^3 is a thousand times low).
 
 Outputs: ``profile_asperities.png`` (whole trace), ``profile_zoom.png``
 (first 10 µm), ``spectrum.png``, ``asperities.json`` (the record), and
 ``summary.json``.
+
+Run::
 
     python scenes/profile_asperities.py [--quick] [--json] [-o DIR] [--profile FILE --unit um]
 """
@@ -36,7 +41,7 @@ from asperity2d.renderers import surface as surface_plots
 DATA = Path(__file__).resolve().parent / "data" / "measured_style_profile.csv"
 MIN_PROMINENCE = 20e-9  # m: ten times the 2 nm rms noise of the shipped trace
 MIN_WIDTH = 0.1e-6  # m, width at half prominence
-MODULUS = 1.86e10  # Pa, seed 000 Table 1 as printed
+MODULUS = 1.86e10  # Pa, Ooten's Table 1 as printed
 DENSITY = 7850.0  # kg/m^3, steel
 SHORTEST_FIT_WAVELENGTH = 0.2e-6  # m
 
@@ -47,7 +52,7 @@ def _stats(values: np.ndarray) -> dict:
 
 
 def main(argv=None) -> int:
-    p = scripting.parser(__doc__.splitlines()[0])
+    p = scripting.parser(scripting.title(__doc__))
     p.add_argument("--profile", default=str(DATA), help="two-column x, z file (or instrument file)")
     p.add_argument("--unit", default="um", help="length unit of the file's columns")
     p.add_argument("--min-prominence", type=float, default=MIN_PROMINENCE, help="m")
@@ -80,8 +85,8 @@ def main(argv=None) -> int:
                   "q_max_rad_per_m": fit.q_max, "points": fit.points,
                   "recipe_value": 0.8 if Path(args.profile) == DATA else None},
         "rule": {"min_prominence_m": args.min_prominence, "min_width_m": args.min_width,
-                 "stiffness": "K = 2 E b (seed 000 Table 1)", "modulus_Pa": MODULUS,
-                 "mass": "rho b^2 h / 3 (seed 000 Appendix A pyramid)", "density_kg_m3": DENSITY},
+                 "stiffness": "K = 2 E b (Ooten's Table 1)", "modulus_Pa": MODULUS,
+                 "mass": "rho b^2 h / 3 (Ooten's Appendix A pyramid)", "density_kg_m3": DENSITY},
         "asperities": {"count": a.count, "absorbed": a.absorbed, "trimmed": a.trimmed,
                        "base_m": _stats(a.bases), "height_m": _stats(a.heights),
                        "summit_m": _stats(a.summits), "left_angle_deg": _stats(a.left_angles),
@@ -104,4 +109,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

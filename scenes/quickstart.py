@@ -1,6 +1,10 @@
-"""Quickstart: a stick-slip run as a GIF, then "does random spacing lower the breakaway force?".
+"""Quickstart: a stick-slip run, then regular against random spacing
+=================================================================
 
-Everything on seed 000's own Working Model set-up (the package default): 16
+From E. Ooten, *Precision Motion Control at Low Velocities in the Presence of
+Friction* (senior thesis, Texas A&M University, 1997-98).
+
+The package's main job, on Ooten's own Working Model set-up (the package default): 16
 regular lower asperities on spring-damper tracks, a slider with 4 tips on a
 fixed-height horizontal track.
 
@@ -8,7 +12,7 @@ fixed-height horizontal track.
    surface: it sticks and slips. Writes ``run.gif`` (the scene with its
    meters, slips in slow motion), ``run.html`` (the same run in an
    interactive player: open it in a browser) and ``timeseries.png``.
-2. Regular against random spacing (both surfaces random, seed 000 figure
+2. Regular against random spacing (both surfaces random, Ooten's figure
    11) over ``--seeds`` seeds, two measures of the force that breaks the
    slider loose: the critical force from rest (the smallest constant force
    that moves the slider, at rest on the surface, all the way across) and
@@ -20,6 +24,8 @@ fixed-height horizontal track.
    95 % interval, on the fixed track and, beside it, on the free slider
    under a 10 mN load.
 
+Run::
+
     python scenes/quickstart.py [--seeds 8] [--workers auto|N]
 """
 
@@ -28,6 +34,7 @@ from __future__ import annotations
 import math
 
 import asperity2d as a
+from asperity2d._format import si
 from asperity2d.cli import scripting
 from asperity2d.experiments.measures import measure_label
 from asperity2d.renderers.plots import plot_comparison
@@ -47,7 +54,7 @@ def verdict(comparison, setup: str) -> dict:
 
 
 def main(argv=None) -> int:
-    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=8, minimum_seeds=2)
+    args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=8, minimum_seeds=2)
     out = scripting.out_dir(args, __file__)
     size = {"lower_count": 8, "upper_count": 3} if args.quick else {}
 
@@ -80,12 +87,12 @@ def main(argv=None) -> int:
             verdicts[setup, name] = record
 
     lines = [
-        f"stick-slip run on seed 000's set-up ({scene.lower.count} regular lower asperities, a slider with "
+        f"stick-slip run on Ooten's set-up ({scene.lower.count} regular lower asperities, a slider with "
         f"{scene.slider.count} tips on a fixed-height track, spring drive): {len(events)} stick-slip events; "
-        f"the peak stick force {summary['peak_stick_force_N'] * 1e3:.1f} mN is the flank law for all "
-        f"{scene.slider.count} tips at once ({all_tips * 1e3:.1f} mN) -> {out / 'run.gif'}, {out / 'run.html'}",
+        f"the peak stick force {si(summary['peak_stick_force_N'], 'N')} is the flank law for all "
+        f"{scene.slider.count} tips at once ({si(all_tips, 'N')}) -> {out / 'run.gif'}, {out / 'run.html'}",
         f"Does random spacing lower the force that breaks the slider loose? {args.seeds} seeds, "
-        f"fixed track (seed 000's set-up); the free slider under a 10 mN load beside it:",
+        f"Ooten's fixed track; the free slider under a 10 mN load beside it:",
     ]
     for name in MEASURES:
         fixed, free = verdicts["fixed", name], verdicts["free", name]
@@ -95,4 +102,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

@@ -1,6 +1,9 @@
-"""Which asperities carry load: the fraction touched over a pass against the fixed track's height.
+"""Which asperities carry load on a rough surface
+==============================================
 
-A Greenwood-Williamson question on seed 000's fixed track. The lower surface
+Which asperities carry load: the fraction touched over a pass against the fixed track's height.
+
+A Greenwood-Williamson question on Ooten's fixed track. The lower surface
 has 24 asperities on a 1 µm base at regular 1.25 µm pitch, their heights drawn
 about 0.5 µm with standard deviation 0.1 µm (Gaussian, and uniform with the
 same mean and spread); the slider carries one 45° tip and runs on a fixed
@@ -32,6 +35,8 @@ Claims tested:
 
 ``--quick`` is a smoke test (6 asperities, two levels, one seed, a 5x faster
 drive), not a measurement.
+
+Run::
 
     python scenes/rough_contact_fraction.py [--quick] [--seeds 6] [--workers auto|N] [--json] [-o DIR]
 """
@@ -145,7 +150,7 @@ def plot(table: dict, path) -> None:
 
 
 def main(argv=None) -> int:
-    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=6, minimum_seeds=1,
+    args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=6, minimum_seeds=1,
                                 quick_seeds=1)
     out = scripting.out_dir(args, __file__)
     size, levels = (QUICK_SIZE, QUICK_LEVELS) if args.quick else (SIZE, LEVELS)
@@ -173,4 +178,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

@@ -1,6 +1,9 @@
-"""Critical force and mean stick force against the spread of the asperity heights (issue 14).
+"""Forces against the spread of the asperity heights
+=================================================
 
-Seed 000's surfaces (10 lower / 3 upper 45° full triangles on a 1 µm base,
+Critical force and mean stick force against the spread of the asperity heights (issue 14).
+
+Ooten's surfaces (10 lower / 3 upper 45° full triangles on a 1 µm base,
 1.25 µm pitch, Table 1 steel) with Gaussian random heights on both surfaces:
 every asperity keeps its 1 µm base and gets its own height about 0.5 µm with
 standard deviation sigma, so sigma / base = 0 (today's surfaces) to 0.2; the
@@ -33,6 +36,8 @@ Sanity counts in the summary: runs in which an upper tip reached the guard
 floor or a lower asperity the bottom of its track (both must be 0), and runs
 that did not pass.
 
+Run::
+
     python scenes/rough_height_spread.py [--quick] [--seeds 8] [--workers auto|N] [--json] [-o DIR]
 """
 
@@ -43,7 +48,7 @@ import math
 import numpy as np
 
 from asperity2d import stats
-from asperity2d.scene import SEED_000, kinetic_default
+from asperity2d.scene import OOTEN_DEFAULTS, kinetic_default
 from asperity2d.cli import scripting
 from asperity2d.studies.claims import HOLDS, UNTESTABLE, claim, judge, verdict_line
 from asperity2d.studies.rough import rough_run, spearman, trend_claim
@@ -57,7 +62,7 @@ QUICK_SIZE = dict(lower_count=3, upper_count=1, drive_velocity=100.0)  # a smoke
 SETUPS = {"free": {"track": "free"}, "fixed": {"track": "fixed", "interference": 0.125e-6}}
 QUANTITIES = ("critical_force_N", "mean_stick_force_N", "touched_fraction", "max_contacts",
               "steepest_touched_flank_deg", "steepest_upper_flank_deg", "breakaway_angle_deg")
-LOAD, MU_K = SEED_000["normal_load"], kinetic_default(SEED_000["mu_static"])  # N; the free slider's
+LOAD, MU_K = OOTEN_DEFAULTS["normal_load"], kinetic_default(OOTEN_DEFAULTS["mu_static"])  # N; the free slider's
 ALPHA = 0.05
 
 
@@ -157,7 +162,7 @@ def plot(results: dict, path) -> None:
 
 
 def main(argv=None) -> int:
-    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=8, minimum_seeds=1,
+    args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=8, minimum_seeds=1,
                                 quick_seeds=1)
     out = scripting.out_dir(args, __file__)
     spreads, size = (QUICK_SPREADS, QUICK_SIZE) if args.quick else (SPREADS, SIZE)
@@ -184,4 +189,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

@@ -1,11 +1,14 @@
-"""Critical force and mean stick force against the Hurst exponent H at fixed rms height (issue 14).
+"""Forces against the Hurst exponent of a self-affine surface
+==========================================================
+
+Critical force and mean stick force against the Hurst exponent H at fixed rms height (issue 14).
 
 The lower surface is a self-affine profile (``asperity2d.surface.self_affine_profile``,
 one realisation per seed): 16 µm long, 2048 points, rms height 0.15 µm, power
 between the wavelengths 4 µm (a roll-off plateau above) and 0.25 µm, H = 0.3
 to 0.9; its summits of prominence >= 10 % of the rms height become the lower
 asperities (``make_scene(lower_surface=profile)``, Table 1 stiffness and mass
-for all). The slider carries seed 000's three 45° triangles (1 µm base,
+for all). The slider carries Ooten's three 45° triangles (1 µm base,
 1.25 µm pitch). Both set-ups: the free slider under 1 mN, and a fixed track
 whose deepest upper tip runs one rms height (0.15 µm) above the profile's
 mean line (a fixed separation of the mean planes, as in Greenwood-Williamson),
@@ -29,6 +32,8 @@ A fixed-track run whose track would lie above every summit is left out
 ``--quick`` is a smoke test (a 5 µm profile, H = 0.3 and 0.9, one seed, one
 upper tip, a 5x faster drive), not a measurement.
 
+Run::
+
     python scenes/rough_hurst.py [--quick] [--seeds 5] [--workers auto|N] [--json] [-o DIR]
 """
 
@@ -39,7 +44,7 @@ import math
 import numpy as np
 
 from asperity2d import stats
-from asperity2d.scene import SEED_000, kinetic_default
+from asperity2d.scene import OOTEN_DEFAULTS, kinetic_default
 from asperity2d.cli import scripting
 from asperity2d.studies.claims import UNTESTABLE, claim, verdict_line
 from asperity2d.studies.rough import self_affine_run, spearman, trend_claim
@@ -55,7 +60,7 @@ SETUPS = {"free": {"track": "free", "normal_load": 1e-3}, "fixed": {"track": "fi
 SLIDER, QUICK_SLIDER = dict(upper_count=3), dict(upper_count=1, drive_velocity=100.0)
 QUANTITIES = ("critical_force_N", "mean_stick_force_N", "lower_count", "rms_slope", "touched_count",
               "above_level_fraction", "steepest_touched_flank_deg", "breakaway_angle_deg", "max_contacts")
-MU_K = kinetic_default(SEED_000["mu_static"])
+MU_K = kinetic_default(OOTEN_DEFAULTS["mu_static"])
 ALPHA = 0.05
 
 
@@ -123,7 +128,7 @@ def plot(results: dict, path) -> None:
 
 
 def main(argv=None) -> int:
-    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=5, minimum_seeds=1,
+    args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=5, minimum_seeds=1,
                                 quick_seeds=1)
     out = scripting.out_dir(args, __file__)
     hursts, profile, slider = ((QUICK_HURSTS, QUICK_PROFILE, QUICK_SLIDER) if args.quick
@@ -152,4 +157,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

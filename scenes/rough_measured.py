@@ -1,4 +1,7 @@
-"""A scene built from the shipped measured-style profile file, run on both set-ups (issue 14).
+"""A scene from a measured-style profile, on both set-ups
+======================================================
+
+A scene built from the shipped measured-style profile file, run on both set-ups (issue 14).
 
 ``scenes/data/measured_style_profile.csv`` is SYNTHETIC: a self-affine trace
 (H = 0.8, rms 0.15 µm, 50 µm, 4096 points) with instrument-like noise, tilt and
@@ -7,7 +10,7 @@ measurement. ``make_scene(lower_surface=<that file>)`` reads it in the unit
 the file states (µm), removes the tilt, and turns every summit of prominence
 >= 10 % of the rms height into a triangular lower asperity with its own
 height, flanks and base level (Table 1 stiffness and mass for all). The
-slider carries seed 000's four 45° triangles (1 µm base, 1.25 µm pitch).
+slider carries Ooten's four 45° triangles (1 µm base, 1.25 µm pitch).
 
 * fixed track: the deepest upper tip runs one rms height above the profile's
   mean line, or 5 % of the rms height above the profile's rigid valley floor
@@ -23,6 +26,8 @@ Outputs: ``profile_touched.png`` (the profile, its asperities, the ones the
 fixed-track pass touched and the track height), ``fixed_run.png`` and
 ``fixed_run.gif`` (the fixed-track pass), ``summary.json``. ``--quick`` uses
 the first 8 µm of the trace and a 5x faster drive (a smoke test).
+
+Run::
 
     python scenes/rough_measured.py [--quick] [--no-gif] [--json] [-o DIR]
 """
@@ -70,7 +75,7 @@ def load(quick: bool) -> surface.SurfaceProfile:
 
 
 def main(argv=None) -> int:
-    args = scripting.parser(__doc__.splitlines()[0]).parse_args(argv)
+    args = scripting.parser(scripting.title(__doc__)).parse_args(argv)
     out = scripting.out_dir(args, __file__)
     profile = load(args.quick)
     slider = dict(SLIDER, **({"drive_velocity": 100.0} if args.quick else {}))
@@ -137,4 +142,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

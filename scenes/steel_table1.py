@@ -1,13 +1,19 @@
-"""Seed 000 Table 1 steel micro-asperities, spring-driven, with the quasi-static speed-up shown to converge.
+"""Steel micro-asperities (Ooten's Table 1) and the quasi-static speed-up
+======================================================================
+
+From E. Ooten, *Precision Motion Control at Low Velocities in the Presence of
+Friction* (senior thesis, Texas A&M University, 1997-98).
+
+Ooten's Table 1 steel micro-asperities, spring-driven, with the quasi-static speed-up shown to converge.
 
 Table 1: base 1 µm, asperity mass 2.88e-16 kg, spring stiffness 37,200 N/m
-(omega = 1.14e10 rad/s), drive 5e-3 m/s. Geometry fix: the seed's MATLAB
+(omega = 1.14e10 rad/s), drive 5e-3 m/s. Geometry fix: Ooten's MATLAB
 code puts a 1.5 µm tip on a 1 µm base with 45° flanks, which is
 inconsistent (45° flanks on a 1 µm base rise 0.5 µm); we keep the 45° flank
 angle and use the consistent 0.5 µm height.
 
 Both set-ups, regular spacing, 4 upper tips, the default 3,720 N/m drive
-spring: seed 000's fixed-height track first (tips 0.125 µm into the lower
+spring: Ooten's fixed-height track first (tips 0.125 µm into the lower
 surface; 24 lower asperities, as each slip runs ~9 pitches), then the free
 slider under 1 mN per tip (8 lower asperities). The package default load,
 2.5 mN per 1-µm tip, is 625 MPa mean pressure over Table 1's 4e-12 m²
@@ -24,6 +30,8 @@ means every quantity is within ``--tolerance`` of the slowest rung at the
 production speed-up ``--factor`` (default x2000, the one the micro-scale
 studies use) and its changes shrink down the ladder. ``--quick``: the free
 slider only, on 6 lower asperities, with the ladder x8000, x4000, x2000.
+
+Run::
 
     python scenes/steel_table1.py [--json] [--factor A] [--real-time]
 """
@@ -65,7 +73,7 @@ def _line(name: str, q: dict, factors) -> str:
 
 
 def main(argv=None) -> int:
-    p = scripting.parser(__doc__.splitlines()[0])
+    p = scripting.parser(scripting.title(__doc__))
     p.add_argument("--factor", type=float, default=FACTOR, help="production speed-up (drive / 5e-3 m/s)")
     p.add_argument("--tolerance", type=float, default=qs.TOLERANCE)
     p.add_argument("--real-time", action="store_true", help="also time the unaccelerated drive")
@@ -119,4 +127,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

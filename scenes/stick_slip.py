@@ -1,14 +1,22 @@
-"""Spring-driven slider on regular asperities: stick-slip (seed 000, figure 13 drive).
+"""Stick-slip under a spring drive
+===============================
 
-Seed 000's Working Model set-up (the slider on a fixed-height track, its tips
+From E. Ooten, *Precision Motion Control at Low Velocities in the Presence of
+Friction* (senior thesis, Texas A&M University, 1997-98).
+
+Spring-driven slider on regular asperities: stick-slip (Ooten's thesis, figure 13 drive).
+
+Ooten's Working Model set-up (the slider on a fixed-height track, its tips
 a quarter of the asperity height into the lower surface), pulled by a spring
 whose far end moves at constant speed. The drive force builds while the
-slider sticks and drops when it slips: the sawtooth seed 000 could not get
+slider sticks and drops when it slips: the sawtooth Ooten's thesis could not get
 from a constant force in Working Model. On a regular surface every tip meets
 its lower asperity at once, so the largest stick force of the pass is the
 quasi-static flank law for all of them together: n k delta tan(45 deg + atan
 mu_s) (n tips, track stiffness k, interference delta). Writes a GIF, a
 time-series plot and summary.json.
+
+Run::
 
     python scenes/stick_slip.py            # or: asperity2d run scenes/stick_slip.py
 """
@@ -18,6 +26,7 @@ from __future__ import annotations
 import math
 
 import asperity2d as a
+from asperity2d._format import si
 from asperity2d.cli import scripting
 
 
@@ -28,7 +37,7 @@ def build_scene(quick: bool = False, **overrides):
 
 
 def main(argv=None) -> int:
-    args = scripting.parser(__doc__.splitlines()[0]).parse_args(argv)
+    args = scripting.parser(scripting.title(__doc__)).parse_args(argv)
     out = scripting.out_dir(args, __file__)
     scene = build_scene(args.quick)
     result = a.simulate(scene)
@@ -47,7 +56,7 @@ def main(argv=None) -> int:
     summary = {**result.summary(), "first_breakaway_force_N": breakaway_force(result),
                "peak_stick_force_N": peak_stick_force(result), "mean_stick_force_N": mean_stick_force(result),
                "flank_law_all_tips_N": all_tips, "events": stats}
-    lines = [f"{scene.name}: {result.status} after {result.t[-1]:.3g} s, {stats['count']} stick-slip events",
+    lines = [f"{scene.name}: {result.status} after {si(result.t[-1], 's', 3)}, {stats['count']} stick-slip events",
              f"first breakaway (front tip entering) {summary['first_breakaway_force_N'] * 1e3:.4g} mN",
              f"peak stick force over the pass {summary['peak_stick_force_N'] * 1e3:.4g} mN "
              f"(flank law for all {scene.slider.count} tips at once, n k delta tan(45 deg + atan mu_s) = "
@@ -56,4 +65,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

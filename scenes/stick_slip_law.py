@@ -1,8 +1,14 @@
-"""The stick-slip friction law of regular and random surfaces (Table 1 steel, belt-solver check).
+"""The stick-slip friction law of regular and random surfaces
+==========================================================
+
+From E. Ooten, *Precision Motion Control at Low Velocities in the Presence of
+Friction* (senior thesis, Texas A&M University, 1997-98).
+
+The stick-slip friction law of regular and random surfaces (Table 1 steel, belt-solver check).
 
 The tribometer's asperities (Table 1 steel, two tips at 1 mN) on a 1000 N/m
 drive spring at 10 m/s: the regular surface, and random surfaces (both
-surfaces random, seed 000's case) over seeds. For every run, the
+surfaces random, Ooten's case) over seeds. For every run, the
 static/kinetic law of its stick-slip cycles (``fitting.fit_stick_slip``) and
 its mean period. Then:
 
@@ -11,13 +17,15 @@ its mean period. Then:
   stick-slip period of every held-out seed. The law of the regular surface
   is run against them too.
 * **the emergent static/kinetic gap** mu_s - mu_k (per unit normal load) of
-  the random surfaces against the regular one: seed 000's abstract
+  the random surfaces against the regular one: Ooten's abstract
   ("randomness reduces stick-slip") read as "random spacing lowers the gap",
   one-sample Wilcoxon over seeds against the regular value, one-sided
   (lower), holds if p < 0.01 and the change is at least 1 % (:func:`asperity2d.studies.claims.judge`).
 
 The scene is the free slider under load only: a friction law is a force per
 unit normal load, which a fixed-height track does not have.
+
+Run::
 
     python scenes/stick_slip_law.py [--seeds 8] [--workers auto|N] [--quick]
 """
@@ -93,7 +101,7 @@ def _plot(table, path):
 
 
 def main(argv=None) -> int:
-    args = scripting.study_args(__doc__.splitlines()[0], argv, default_seeds=8, minimum_seeds=4,
+    args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=8, minimum_seeds=4,
                                 quick_seeds=4)
     out = scripting.out_dir(args, __file__)
     count = 24 if args.quick else LOWER_COUNT
@@ -150,4 +158,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

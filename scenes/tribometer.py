@@ -1,4 +1,10 @@
-"""Virtual tribometer on Table 1 steel asperities: the emergent friction law and its fits.
+"""A virtual tribometer: the friction law that emerges from asperities
+===================================================================
+
+From E. Ooten, *Precision Motion Control at Low Velocities in the Presence of
+Friction* (senior thesis, Texas A&M University, 1997-98).
+
+Virtual tribometer on Table 1 steel asperities: the emergent friction law and its fits.
 
 Velocity-controlled sliding (stiff drive) at a ladder of speeds over four
 decades, both directions; pre-sliding reversal loops from rest; fits of
@@ -8,6 +14,8 @@ soft drive spring (stick-slip): a static/kinetic law fitted to the cycles at
 held-out drive stiffnesses and speeds; the steady-sliding Stribeck law is
 run too, to show why it cannot.
 
+Run::
+
     python scenes/tribometer.py [--quick] [--json]
 """
 
@@ -16,6 +24,7 @@ from __future__ import annotations
 import numpy as np
 
 import asperity2d as a
+from asperity2d._format import si
 from asperity2d.belt.period import belt_period
 from asperity2d.friction import fits as ft
 from asperity2d.cli import scripting
@@ -108,7 +117,7 @@ def _period_plot(periods, path):
 
 
 def _macroscopic_chain(law, out) -> dict:
-    """Seed 001's 3-DOF chain (Table 2, from rest) with the asperity-measured law.
+    """The multi-DOF belt thesis' 3-DOF chain (Table 2, from rest) with the asperity-measured law.
 
     Written as a chain file (``asperity2d belt <file>`` runs it again), read
     back through the same loader, solved exactly and plotted.
@@ -121,7 +130,7 @@ def _macroscopic_chain(law, out) -> dict:
     from asperity2d.renderers.belt import plot_chain
 
     chain = {k: v for k, v in presets.preset("table2-3dof-rest", t_end=120.0).items() if k not in ("mu_s", "mu_k")}
-    lines = ["# seed 001 Table 2 chain (from rest) with friction measured on the asperities"]
+    lines = ["# the multi-DOF belt thesis Table 2 chain (from rest) with friction measured on the asperities"]
     lines += [f"{key} = {json.dumps(value)}" for key, value in chain.items()]
     lines += ["", "[friction]", *(f"{key} = {json.dumps(value)}" for key, value in law.to_dict().items())]
     path = atomic_write_text(out / "asperity_law_chain.toml", "\n".join(lines) + "\n")
@@ -137,7 +146,7 @@ def _ratio(value: float) -> str:
 
 
 def main(argv=None) -> int:
-    args = scripting.parser(__doc__.splitlines()[0]).parse_args(argv)
+    args = scripting.parser(scripting.title(__doc__)).parse_args(argv)
     out = scripting.out_dir(args, __file__)
     scene = tb.make_tribometer_scene()
     velocities = (3.0, 30.0, 300.0) if args.quick else (0.1, 0.3, 1.0, 3.0, 10.0, 30.0, 100.0, 300.0, 1000.0)
@@ -161,8 +170,8 @@ def main(argv=None) -> int:
                "fits": {k: f.as_dict() for k, f in fits.items()}, "energy": energy,
                "stick_slip": periods, "macroscopic_chain": chain,
                "force_limit_at_zero_N": [float(curve.force[low - 1]), float(curve.force[low])]}
-    lines = [f"steady friction at +-{abs(curve.velocity[low]):g} m/s: {curve.force[low - 1]:.3g} / "
-             f"{curve.force[low]:.3g} N; breakaway {mu_s:.3g} L over {loops.breakaway_displacement():.2g} m",
+    lines = [f"steady friction at +-{abs(curve.velocity[low]):g} m/s: {si(curve.force[low - 1], 'N', 3)} / "
+             f"{si(curve.force[low], 'N', 3)}; breakaway {mu_s:.3g} L over {si(loops.breakaway_displacement(), 'm', 2)}",
              *(f"{k}: relative RMS {f.relative_rms:.2%} on {f.points} points" for k, f in fits.items()),
              f"energy balance error {energy['balance_error']:.2%}",
              f"stick-slip law from the cycles at {cal['stiffness_N_per_m']:g} N/m: mu_s {cal['mu_s']:.3f}, "
@@ -177,4 +186,4 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    scripting.run(main)

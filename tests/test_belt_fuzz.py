@@ -162,7 +162,7 @@ def test_a_mode_contradicted_below_resolution_is_turned_round():
 @pytest.mark.parametrize("x1, v1", [(0.26949152542372873, -0.559322033898305),
                                     (0.24915254237288137, -0.07118644067796609)])
 def test_a_short_slip_from_belt_speed_is_not_missed(x1, v1):
-    # found by the seed-001 basin map (2 of 3,600 points ran into the 60 s CPU limit): mass 1
+    # found by the multi-DOF belt thesis' basin map (2 of 3,600 points ran into the 60 s CPU limit): mass 1
     # at belt speed is pushed 4e-4 over its Coulomb limit, slips forwards for ~1 ms and comes
     # back -- between two of the 31 samples of the first scan interval, so the slip was judged
     # contradicted, turned round, and the two modes alternated at one instant 1e6 times. Now the

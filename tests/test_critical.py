@@ -94,7 +94,7 @@ def test_what_the_check_cannot_see_is_what_its_window_and_step_say(island):
 
 @pytest.fixture(scope="module")
 def undamped_run_up():
-    """Seed 000's regular fixed track (6 lower, 3 upper) without track dampers, from the run-up:
+    """Ooten's regular fixed track (6 lower, 3 upper) without track dampers, from the run-up:
     the slider arrives with momentum and the lower asperities ring, so whether a force passes
     depends on the phase it meets (on the 10/3 scene a 0.1 % grid shows passing and stopping
     alternating from 0.99 to 1.05 x the smallest passing force)."""

@@ -1,7 +1,7 @@
 """Energy books of the asperity engine close: every channel metered (asperity2d/engine/energy.py).
 
 Undamped, frictionless runs on both set-ups (free slider under a normal load;
-seed 000's fixed-height track) with both drives. Small scenes (3 lower, 1
+Ooten's fixed-height track) with both drives. Small scenes (3 lower, 1
 upper asperity) at 2.5 x the default drive speed keep the default run fast:
 the module costs about 7 s of CPU.
 """

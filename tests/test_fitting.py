@@ -142,7 +142,7 @@ def test_stick_slip_cycles_needs_cycles():
 def test_pooled_law_of_random_surfaces_predicts_a_held_out_seed(calibration_run):
     """A law pooled over two random surfaces predicts a third seed's mean period.
 
-    Random spacing on both surfaces (seed 000's case), 1000 N/m at 10 m/s.
+    Random spacing on both surfaces (Ooten's case), 1000 N/m at 10 m/s.
     Tolerance 10 %: each seed's own law gives its period within 5 % (the
     Coulomb reduction, as on the regular surface), and mu_k varies by about
     +-5 % from seed to seed (1.00-1.09 L over 8 seeds), which a pooled law

@@ -1,4 +1,4 @@
-"""Seed 000's MATLAB contact model: lower peaks free in x and y, joined by horizontal springs."""
+"""Ooten's MATLAB contact model: lower peaks free in x and y, joined by horizontal springs."""
 
 import numpy as np
 import pytest
@@ -31,7 +31,7 @@ def test_lattice_small_displacement_stiffness_matches_the_spring_matrix():
 
 
 def test_contact_cases_come_from_the_rigid_body_contacts():
-    """The slider tip meets the peaks one after another (seed 000 Table 2), unscripted."""
+    """The slider tip meets the peaks one after another (Ooten's thesis Table 2), unscripted."""
     scene = a.make_scene(lower_count=3, upper_count=1, track="fixed", lateral_stiffness=K,
                          slider_mass=2.88e-16, drive_stiffness=K, drive_velocity=20.0)
     result = a.simulate(scene)
@@ -56,7 +56,7 @@ def test_matlab_lattice_script_reproduces_the_seed_contact_cases(tmp_path, capsy
     script = load_script(Path(__file__).resolve().parent.parent / "scenes" / "matlab_lattice.py")
     assert script.main(["--json", "--frames", "5", "-o", str(tmp_path)]) == 0
     summary = json.loads(capsys.readouterr().out)
-    # seed 000 Table 2: cases 1-7 for three peaks, here from the contacts themselves
+    # Ooten's thesis Table 2: cases 1-7 for three peaks, here from the contacts themselves
     assert summary["contact_cases"] == ["none", "peak 1", "none", "peak 2", "none", "peak 3", "none"]
     assert summary["status"] == "passed"
     assert (tmp_path / "figure17.png").stat().st_size > 0 and (tmp_path / "run.gif").stat().st_size > 0

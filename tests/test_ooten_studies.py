@@ -1,6 +1,6 @@
 """The Ooten study scripts (scenes/ooten_*.py) and the user's headline claim.
 
-Default run: the headline -- on seed 000's own set-up (the default scene: fixed-height track)
+Default run: the headline -- on Ooten's own set-up (the default scene: fixed-height track)
 random spacing lowers the critical force from rest and the peak stick force (the mean of the
 named measure's passes), on 7 seeds picked by a rule (``numpy.random.SeedSequence`` of a fixed
 entropy, none of the README's), with a one-sided Wilcoxon test and a Hodges-Lehmann interval;
@@ -156,7 +156,7 @@ HEADLINE_SEEDS = rule_seeds(HEADLINE_ENTROPY, 7)  # 7: the exact one-sided signe
 @pytest.fixture(scope="module")
 def headline():
     """Critical force from rest and peak stick force (the mean of the named measure's three
-    passes), regular against random spacing on both surfaces, seed 000's default set-up."""
+    passes), regular against random spacing on both surfaces, Ooten's default set-up."""
     assert a.make_scene().slider.track == "fixed"  # the default scene is the seed's set-up
     both = {k: VARIANTS[k] for k in ("regular", "random")}
     return {name: a.compare(name, both, HEADLINE_SEEDS, progress=False, workers=2,

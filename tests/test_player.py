@@ -28,7 +28,7 @@ def run(stick_slip_run):
 
 @pytest.fixture(scope="module")
 def main_run():
-    """The main job's run (scenes/quickstart.py): seed 000's default scene, 12,210 samples."""
+    """The main job's run (scenes/quickstart.py): Ooten's default scene, 12,210 samples."""
     return a.simulate(a.make_scene())
 
 

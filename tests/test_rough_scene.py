@@ -32,7 +32,7 @@ def same_run(one, two, duration=1e-7):
 # -- every height equal: bit-identical to the uniform scene ---------------------------
 
 @pytest.mark.parametrize("kwargs", [
-    dict(SMALL),  # seed 000's fixed track
+    dict(SMALL),  # Ooten's fixed track
     dict(SMALL, track="free", spacing="random", seed=3),
     dict(SMALL, profile="half", spacing="random", seed=5),
 ], ids=["fixed-regular", "free-random", "fixed-half-random"])
@@ -166,7 +166,7 @@ def test_known_triangles_become_the_scenes_asperities(tmp_path):
 def test_profile_surface_material_rules_and_defaults():
     x, z = triangle_profile(KNOWN["apex"], KNOWN["left"], KNOWN["right"], KNOWN["height"])
     plain = a.make_scene(lower_surface=(x, z), surface_detrend=False)
-    assert plain.lower.stiffness == (a.scene.SEED_000["stiffness"],) * 4
+    assert plain.lower.stiffness == (a.scene.OOTEN_DEFAULTS["stiffness"],) * 4
     steel = a.make_scene(lower_surface=(x, z), surface_detrend=False, modulus=1.86e10, density=7850.0)
     bases = np.asarray(plain.lower.shapes.bases)
     np.testing.assert_allclose(steel.lower.stiffness, 2 * 1.86e10 * bases, rtol=1e-12)

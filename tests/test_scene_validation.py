@@ -98,7 +98,7 @@ def test_cli_bad_input_as_a_subprocess_has_no_traceback(tmp_path):
 
 
 def test_the_dataclass_defaults_are_the_builders_defaults():
-    # one source of truth (scene.SEED_000): Scene() and make_scene() build the same scene;
+    # one source of truth (scene.OOTEN_DEFAULTS): Scene() and make_scene() build the same scene;
     # only the builder names it after its arguments
     import dataclasses
 

@@ -1,4 +1,4 @@
-"""Seed 000 Table 1 steel scene: overlap, constraint drift, and the quasi-static convergence ladder.
+"""Ooten's thesis Table 1 steel scene: overlap, constraint drift, and the quasi-static convergence ladder.
 
 Default run: the ladder's arithmetic against a closed form (~0 s), the
 script's quick ladder (free slider, x8000 / x4000 / x2000, 6 lower

@@ -107,7 +107,7 @@ def test_noise_below_the_prominence_threshold_leaves_the_triangles_alone():
     np.testing.assert_allclose(found.apex_x, apex, atol=0.01 * (left + right).min())
 
 
-def test_material_rules_reproduce_seed_000_table_1_and_appendix_a():
+def test_material_rules_reproduce_ootens_table_1_and_appendix_a():
     # Table 1: b = 1 um, E = 1.86e10 Pa -> 37,200 N/m.
     assert table1_stiffness([1e-6], 1.86e10)[0] == pytest.approx(37_200.0, rel=1e-12)
     # Appendix A: six pyramids in a cube, V = b^3 / 6 for the 45-degree pyramid (h = b / 2).

@@ -14,7 +14,7 @@ def test_belt_chain_study_runs_through_the_sweep(tmp_path):
     table = ResultStore(tmp_path / "store").table()
     assert (table["energy_balance_error"] < 1e-8).all()
     slow, fast = table[table["v_belt"] == 0.1], table[table["v_belt"] == 0.7]
-    # seed 001: a faster belt sticks less and swings wider
+    # the multi-DOF belt thesis: a faster belt sticks less and swings wider
     assert fast["total_stick_s"].mean() < slow["total_stick_s"].mean()
     assert fast["amplitude_m"].mean() > slow["amplitude_m"].mean()
     # seeds perturb the initial conditions: different seeds, different runs

@@ -79,7 +79,7 @@ def test_report_json_stats_and_figure(store_dir, tmp_path, capsys):
     assert cmp_peak["parameter"] == "amplitude" and cmp_peak["n_a"] == cmp_peak["n_b"] == 5
     assert cmp_peak["p_value"] == pytest.approx(ref.pvalue)
     assert main(["report", str(store_dir)]) == 0  # text form, default figure path
-    assert "Mann-Whitney p=" in capsys.readouterr().out
+    assert "Mann-Whitney U test p = " in capsys.readouterr().out
     assert (store_dir / "summary.png").is_file()
 
 

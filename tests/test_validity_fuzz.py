@@ -1,7 +1,7 @@
 """A physical-validity fuzzer (issue 27): no returned run is physically impossible.
 
 Hypothesis draws valid but extreme scenes -- every physical parameter log-uniform over six
-decades about seed 000's value (loads, forces, preloads, masses, stiffnesses, pitches), either
+decades about Ooten's value (loads, forces, preloads, masses, stiffnesses, pitches), either
 track, every profile and spacing, now and then an ``unsafe_dt`` step of up to three periods and
 an energy meter -- and runs each for at most a few thousand steps. Each example must either
 raise ``SceneError`` / ``SimulationError`` with one line of message, or return a result that,

@@ -1,4 +1,4 @@
-"""Lumped chains of masses on a moving belt with exact stick/slip switching (seed 001).
+"""Lumped chains of masses on a moving belt with exact stick/slip switching (the multi-DOF belt thesis).
 
 ``simulate_chain(...) -> BeltResult`` is the entry point; ``presets`` holds the
 thesis' parameter tables; ``regime`` classifies runs (steady sliding,

@@ -161,8 +161,8 @@ class MinimalModel:
         """The belt speed V* (m/s) that decides which nonlinearity a growing flutter meets first.
 
         The unstable mode grows as a·w·exp(lambda·t) (w its eigenvector over (x, y, x', y')): the
-        slip velocity x' - V reaches zero (stick) when a·|w_x'| = V, the contact force
-        N = N* - k_c·y reaches zero (separation) when a·k_c·|w_y| = N*. Below V* = N*·|w_x'|/(k_c·|w_y|)
+        slip velocity x' - V reaches zero (stick) when a·abs(w_x') = V, the contact force
+        N = N* - k_c·y reaches zero (separation) when a·k_c·abs(w_y) = N*. Below V* = N*·abs(w_x')/(k_c·abs(w_y))
         the oscillation sticks first, above it the contact opens first. NaN below mu_crit (nothing grows).
         """
         if self.growth_rate(mu) <= 0:

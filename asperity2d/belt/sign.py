@@ -1,6 +1,6 @@
-"""The thesis' method: raw sign() friction through an adaptive ODE solver.
+"""The multi-DOF belt thesis' method: raw sign() friction through an adaptive ODE solver.
 
-Seed 001 integrates f_i = -mu0·m_i·g·sign(v_i - v_belt) with MATLAB's
+The multi-DOF belt thesis integrates f_i = -mu0·m_i·g·sign(v_i - v_belt) with MATLAB's
 ``ode113`` (default AbsTol 1e-6, used here when ``atol`` is None). Here the same right-hand side goes through ``solve_ivp``
 (LSODA by default, DOP853 also accepted). sign(0) = 0 as in MATLAB. There is
 no static friction: the stick phase is represented by the solver chattering

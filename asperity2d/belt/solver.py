@@ -82,7 +82,7 @@ def simulate_chain(
     phases for a constant belt speed with Coulomb / static-kinetic friction,
     ``solve_ivp`` (``integrator``, ``rtol``, ``atol``) phases with the same
     stick logic otherwise, a smooth stiff ODE for Dahl / LuGre.
-    ``method="sign"``: the thesis' raw sign() friction through an adaptive
+    ``method="sign"``: the multi-DOF belt thesis' raw sign() friction through an adaptive
     solver (chatter included).
 
     Output is sampled at ``t_eval`` (s) or ``n_samples`` uniform times, plus

@@ -138,9 +138,9 @@ class ChainSpec:
     # -- scales -----------------------------------------------------------
     @cached_property
     def rate_bound(self) -> float:
-        """Upper bound (1/s) on |lambda| of every mode of every segment of the chain.
+        """Upper bound (1/s) on abs(lambda) of every mode of every segment of the chain.
 
-        For lambda²·M + lambda·C + K singular, |lambda| <= c' + sqrt(k') with c', k' the
+        For lambda²·M + lambda·C + K singular, abs(lambda) <= c' + sqrt(k') with c', k' the
         spectral radii of M⁻¹C and M⁻¹K, each bounded by its largest row sum
         2·max((c_i + c_i+1)/m_i) (Gershgorin). Zero for a chain with no links.
         """
@@ -150,7 +150,7 @@ class ChainSpec:
 
     @cached_property
     def fastest_rate(self) -> float:
-        """max |lambda| (1/s) of the whole chain slipping (an O(n³) eigenvalue problem; cached)."""
+        """max abs(lambda) (1/s) of the whole chain slipping (an O(n³) eigenvalue problem; cached)."""
         n = self.n
         A = np.zeros((2 * n, 2 * n))
         A[:n, n:] = np.eye(n)

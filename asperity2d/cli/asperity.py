@@ -13,6 +13,8 @@ import math
 from pathlib import Path
 
 from .. import _io
+from .._format import lines as text_lines
+from .._format import si
 from .args import PLOT_SUFFIXES, check_runs, load_script
 from ..errors import SceneError
 
@@ -108,7 +110,7 @@ def run(args) -> int:
         with _io.argument("--output"), _io.writing("--output", output):
             render_result(result, output)
     summary = result.summary()
-    _emit(args, summary, [f"{k}: {v}" for k, v in summary.items()])
+    _emit(args, summary, text_lines(summary))
     return 0
 
 
@@ -152,8 +154,8 @@ def analyze(args) -> int:
         from ..belt.regime import classify
 
         summary["regime"] = classify(result)
-        lines = [f"{k}: {v}" for k, v in summary.items() if k != "masses"]
-        lines += [f"mass {m['mass']}: {m['sticks']} sticks, stuck {m['stuck_s']:.6g} s "
+        lines = text_lines({k: v for k, v in summary.items() if k != "masses"})
+        lines += [f"mass {m['mass']}: {m['sticks']} sticks, stuck {si(m['stuck_s'], 's', 4)} "
                   f"({m['stuck_fraction']:.1%}), {m['slip_starts']} stick-to-slip transitions"
                   for m in summary["masses"]]
         _emit(args, summary, lines)
@@ -165,7 +167,7 @@ def analyze(args) -> int:
         summary["breakaway_force_N"] = breakaway_force(result)
     except SceneError:  # constant-force drive, or no stick-to-slip transition
         summary["breakaway_force_N"] = None
-    _emit(args, summary, [f"{k}: {v}" for k, v in summary.items()])
+    _emit(args, summary, text_lines(summary))
     return 0
 
 
@@ -197,7 +199,13 @@ def critical(args) -> int:
     summary = {"critical_force_N": bracket.value, "stops_N": bracket.stops,
                "passes_N": bracket.passes, "runs": bracket.runs, "monotone": bracket.monotone,
                "band_N": list(bracket.band) if bracket.band else None}
-    _emit(args, summary, [f"{k}: {v}" for k, v in summary.items()])
+    text = (f"critical force {si(bracket.value, 'N', 4)}: the slider stops at {si(bracket.stops, 'N', 4)} "
+            f"and passes at {si(bracket.passes, 'N', 4)} ({bracket.runs} runs, bisection to "
+            f"{100 * args.rel_tol:g} %)")
+    if bracket.band:
+        text += (f"; passing is not monotone in the force between {si(bracket.band[0], 'N', 4)} and "
+                 f"{si(bracket.band[1], 'N', 4)}: the value is the smallest force seen to pass")
+    _emit(args, summary, [text])
     return 0
 
 
@@ -215,6 +223,14 @@ def _parse_set(items: list[str]) -> dict:
         except tomllib.TOMLDecodeError:
             out[key.strip()] = text
     return out
+
+
+#: Units of the named measures that are not forces (N): issue 25's travel is a distance.
+_MEASURE_UNITS = {"travel": "m"}
+
+
+def _measure_unit(name: str) -> str:
+    return _MEASURE_UNITS.get(name, "N")
 
 
 def compare(args) -> int:
@@ -254,8 +270,10 @@ def compare(args) -> int:
     if len(names) >= 2:
         summary["mann_whitney_p"] = {f"{names[0]} vs {other}": comparison.mann_whitney(names[0], other)
                                      for other in names[1:]}
-    lines = [f"{name}: mean {s['mean']:.5g}, 95 % CI [{s['ci_low']:.5g}, {s['ci_high']:.5g}] (n = {s['n']})"
-             for name, s in stats.items()]
+    label, unit = measure_label(comparison.measure), _measure_unit(comparison.measure)
+    lines = [f"{label}, {len(comparison.seeds)} seeds:"]
+    lines += [f"  {name}: mean {si(s['mean'], unit, 4)}, 95 % CI [{si(s['ci_low'], unit, 4)}, "
+              f"{si(s['ci_high'], unit, 4)}] (n = {s['n']})" for name, s in stats.items()]
     lines += [f"Mann-Whitney U {pair}: p = {p:.3g}" for pair, p in summary.get("mann_whitney_p", {}).items()]
     if "regular" in names:  # each other spacing against regular, in words
         from ..studies import claims

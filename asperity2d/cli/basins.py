@@ -23,6 +23,13 @@ from ..errors import SceneError
 from .args import check_runs
 
 PLOTS = (".png", ".svg", ".pdf")
+#: Length of every run of a preset's map when ``--t-end`` is not given (s). The presets keep the
+#: multi-DOF belt thesis' own windows (10 s for the 3-DOF chains), which see only the base case's
+#: transient: a 10 s map calls most points irregular, a 100 s map (scenes/belt_basins.py, the
+#: documented findings) finds most of them at rest. A chain file's own ``t_end`` is kept.
+PRESET_T_END = 100.0
+#: Samples per second of a preset's runs (the classifier reads velocities over the last quarter).
+PRESET_RATE = 20.0
 
 
 def _numbers(text: str, name: str, cast=float) -> list:
@@ -57,6 +64,10 @@ def run(args) -> int:
     chain, source = _chain(args)
     if args.t_end is not None:
         chain["t_end"] = args.t_end
+    elif args.preset:
+        chain["t_end"] = PRESET_T_END
+    if args.preset:
+        chain["n_samples"] = min(int(PRESET_RATE * chain["t_end"]) + 1, 100_001)
     grid = _numbers(args.grid, "grid", int)
     nx, ny = (grid[0], grid[0]) if len(grid) == 1 else grid if len(grid) == 2 else (0, 0)
     if nx < 1 or ny < 1:
@@ -80,7 +91,8 @@ def run(args) -> int:
     if args.json:
         print_json(summary)
     else:
-        counts = ", ".join(f"{k} {v}" for k, v in summary["counts"].items() if v)
+        total = sum(summary["counts"].values()) or 1
+        counts = ", ".join(f"{k} {v} ({100 * v / total:.1f} %)" for k, v in summary["counts"].items() if v)
         print(f"{source}: {nx} x {ny} basin map over t_end = {summary['t_end_s']:g} s: {counts}; "
               f"wrote {picture} and {summary['summary']} (runs in {store})")
     return 0

@@ -104,8 +104,12 @@ def run(args) -> int:
     if args.json:
         _io.print_json(summary)
     else:
-        print(f"{summary['source']}: {result!r}, regime {summary['regime']}, "
-              f"energy balance error {summary['energy_balance_error']:.2e}" + (f", wrote {written}" if written else ""))
+        from .._format import si
+
+        sticks = ", ".join(f"mass {i + 1}: {len(per)} sticks" for i, per in enumerate(result.stick_intervals))
+        print(f"{summary['source']}: {result.n} masses over {si(summary['t_end'], 's', 3, trim=True)}, "
+              f"{summary['events']} events, regime {summary['regime']} ({sticks}); energy books close "
+              f"to {summary['energy_balance_error']:.1e}" + (f"; wrote {written}" if written else ""))
     return 0
 
 

@@ -127,7 +127,7 @@ def _max_runs(p) -> None:
 def _belt_common() -> Parser:
     """The options ``belt`` (a chain run) and ``belt basins`` share."""
     common = Parser(add_help=False)
-    common.add_argument("--preset", help="named preset from the thesis tables (see --list-presets)")
+    common.add_argument("--preset", help="named preset from the tables of the multi-DOF belt thesis (see --list-presets)")
     common.add_argument("--t-end", type=positive_float, help="override the duration (s)")
     _json_flag(common)
     return common
@@ -152,7 +152,10 @@ def _add_belt(subparsers) -> None:
 
     p = sub.add_parser("basins", help="initial-condition basin map of a chain (resumable)",
                        description="An initial-condition basin map of a chain: the map, a JSON summary "
-                                   "beside it and a resumable sweep store.", parents=[common])
+                                   "beside it and a resumable sweep store. Each run of a preset lasts "
+                                   "--t-end (default 100 s: the presets' own 10 s window of the thesis "
+                                   "sees only the transient); a chain file keeps its own t_end.",
+                       parents=[common])
     p.add_argument("-o", "--output", help="basin map (.png, .svg, .pdf; default basins.png)")
     p.add_argument("--chain-file", help="TOML chain file (instead of --preset)")
     p.add_argument("--x", default="x1", help="first coordinate: x1..xn (m) or v1..vn (m/s)")

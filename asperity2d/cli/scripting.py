@@ -18,6 +18,32 @@ from .._io import output_dir, print_json, write_json, writing
 from .args import WORKERS_HELP, Parser, workers
 
 
+def title(doc: str | None) -> str:
+    """A script's one-line description for its ``--help``: the title of its docstring.
+
+    Scene scripts open with a reStructuredText title (the documentation's gallery shows them),
+    so the first line that is not blank and not an underline; "" when the docstring is empty
+    (the gallery runs scripts with ``__doc__`` cleared).
+    """
+    for line in (doc or "").splitlines():
+        text = line.strip()
+        if text and set(text) - set("=-~^"):
+            return text
+    return ""
+
+
+def run(main) -> None:
+    """Run a script's ``main()`` as a program: exit with its status if it is not 0.
+
+    A script ends with ``if __name__ == "__main__": scripting.run(main)``. Success returns
+    normally rather than raising ``SystemExit(0)``, so a host that runs the script in its own
+    process -- the documentation's gallery -- carries on after it.
+    """
+    status = main()
+    if status:
+        raise SystemExit(status)
+
+
 def parser(description: str) -> argparse.ArgumentParser:
     """The common arguments of a scene script; ``p.error(message)`` reports a bad value."""
     p = Parser(description=description)

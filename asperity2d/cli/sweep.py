@@ -18,8 +18,11 @@ import sys
 from .. import _io
 
 
-def _fmt(x) -> str:
-    return "nan" if x is None or (isinstance(x, float) and not math.isfinite(x)) else f"{x:.6g}"
+def _fmt(x, unit: str | None = None) -> str:
+    """A statistic in engineering units (4 significant digits); "n/a" when undefined."""
+    from .._format import value
+
+    return value(None if x is None else float(x), unit)
 
 
 def _store(path):
@@ -67,6 +70,7 @@ def _cmd_status(args) -> int:
 
 
 def _cmd_report(args) -> int:
+    from .._format import split_unit
     from ..renderers.sweep import plot_summary
     from ..sweep.report import summarize
     from ..sweep.study import variant_label
@@ -88,11 +92,13 @@ def _cmd_report(args) -> int:
         print(f"  {variant_label(variant)}  (done {done}, failed {failed})")
         for q in summary.quantities:
             s = summary.stat(variant, q)
-            print(f"    {q}: n={s.n} mean={_fmt(s.mean)} std={_fmt(s.std)} "
-                  f"CI=[{_fmt(s.ci_low)}, {_fmt(s.ci_high)}]")
+            name, unit = split_unit(q)
+            print(f"    {name}: mean {_fmt(s.mean, unit)}, std {_fmt(s.std, unit)}, "
+                  f"{level} CI [{_fmt(s.ci_low, unit)}, {_fmt(s.ci_high, unit)}] (n = {s.n})")
     for c in summary.comparisons:
-        print(f"  Mann-Whitney U {c.quantity}, {c.parameter}: {variant_label(c.variant_a)} vs "
-              f"{variant_label(c.variant_b)}: Mann-Whitney p={_fmt(c.p_value)}")
+        p_value = "n/a" if c.p_value is None or not math.isfinite(c.p_value) else f"{c.p_value:.2g}"
+        print(f"  {split_unit(c.quantity)[0]}, {variant_label(c.variant_a)} against "
+              f"{variant_label(c.variant_b)}: Mann-Whitney U test p = {p_value}")
     print(f"figure: {figure}" if figure else "figure: none (no finished runs)")
     return 0
 

@@ -1,4 +1,4 @@
-"""Non-linear time-series analysis for both models (seed 001's aims).
+"""Non-linear time-series analysis for both models (the multi-DOF belt thesis' aims).
 
 * :mod:`.signals`  -- a named series out of a ``Result`` / ``BeltResult``; uniform resampling
 * :mod:`.spectrum` -- power spectrum (Welch / periodogram), dominant frequency, harmonics, THD

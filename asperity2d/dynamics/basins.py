@@ -2,7 +2,7 @@
 
 **Belt chains** (:func:`chain_basins`): a grid over two coordinates of the
 initial state, named ``"x1"``..``"xn"`` (m) and ``"v1"``..``"vn"`` (m/s),
-1-based like the thesis' x_1, x_2, x_3; the other coordinates keep the
+1-based like the multi-DOF belt thesis' x_1, x_2, x_3; the other coordinates keep the
 chain's ``x0`` / ``v0``. Every grid point is one run of the exact solver,
 classified by :func:`classify_chain` on the last half of the run:
 

@@ -33,7 +33,7 @@ class Cycle:
     the run when not periodic; unit of the signal); ``t_start`` (s, first
     section crossing from which the repetition holds); ``repeats`` (periods
     observed from ``t_start``); ``mismatch`` (largest relative distance
-    |P_{k+n} - P_k| checked, or the smallest over n when not periodic);
+    abs(P_{k+n} - P_k) checked, or the smallest over n when not periodic);
     ``crossings`` (section points used); ``section`` (what the plane was);
     ``message``.
     """

@@ -68,7 +68,7 @@ class Floquet:
     ``multipliers`` (complex, by decreasing modulus, the trivial one
     included); ``trivial`` (the one nearest 1); ``period`` (s) and
     ``multiplicity`` of the cycle; ``t_point`` (s) and ``state`` (x_1..x_n m,
-    v_1..v_n m/s) of the base point; ``closure`` (|Φ_T(s) - s| over the state
+    v_1..v_n m/s) of the base point; ``closure`` (abs(Φ_T(s) - s) over the state
     scale: how exactly s lies on the cycle); ``step``; ``convergence``
     (largest multiplier change from ``step`` to ``step/10``); ``zero``
     (multipliers below max(1e-8, 10·convergence): stick-phase collapses); ``stuck_masses``

@@ -86,7 +86,7 @@ def resample(t, y, *, dt: float | None = None) -> tuple[np.ndarray, np.ndarray]:
     ``dt`` defaults to the median sample spacing, which for belt results is
     the solver's uniform spacing (event times only add extra samples).
     Repeated times (an event sample that coincides with a uniform one) keep
-    the last value. Linear interpolation errs by at most dt²/8 · max|y''|;
+    the last value. Linear interpolation errs by at most dt²/8 · max abs(y'');
     for exact values on a uniform grid run the belt solver with
     ``include_events=False`` instead.
     """

@@ -337,7 +337,7 @@ class ContactWork:
     velocity over the step (the work that changes its kinetic energy
     exactly). ``pushing_J``: positive work of contacts pushing the slider on
     towards +x while it moves that way -- a lower spring's restoring force
-    through a full triangle's back flank once a tip is past an apex (seed 000
+    through a full triangle's back flank once a tip is past an apex (Ooten's thesis
     figure 9); ``rebound_J``: positive work of contacts throwing it back
     (towards -x, while it moves back: bounces off flanks); ``resisting_J``:
     the work taken by contacts opposing its motion (tips climbing flanks,

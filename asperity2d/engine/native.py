@@ -8,7 +8,7 @@ pymunk's public API each call also pays for its Python bookkeeping:
 queued for removal or post-step callbacks (the adapter adds and removes
 nothing while it steps), ``Body.force`` goes through an attribute-type
 wrapper, and each ``pymunk.batch`` read builds a new ``pmBatchedData``.
-Measured on seed 000's 16/4 scene (a ~18 us Chipmunk step), that
+Measured on Ooten's 16/4 scene (a ~18 us Chipmunk step), that
 bookkeeping was ~3 us for the step and force and ~1.5 us for each batch read. :class:`Native` holds the raw handles of one space and
 makes the same C calls directly: the numbers are bit-identical (the same C
 functions on the same data; ``tests/test_engine_native.py`` checks it

@@ -2,7 +2,7 @@
 
 :func:`build` turns a :class:`~asperity2d.scene.Scene` into a :class:`Layout`: the
 ``pymunk.Space`` in internal units (:mod:`asperity2d.units`) and where everything
-is in it. Bodies (seed 000 figures 5-8, DESIGN.md section 5):
+is in it. Bodies (Ooten's figures 5-8, DESIGN.md section 5):
 
 * each lower asperity is ``Body(m, inf)`` (it cannot rotate) on a vertical
   ``GrooveJoint`` (its track, limited to the travel) with a vertical

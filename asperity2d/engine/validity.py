@@ -43,7 +43,7 @@ from ..errors import SceneError, SimulationError
 
 #: Largest displacement in one step, as a fraction of the smallest feature a body could
 #: collide with (on a fixed track: the width of the window in which an upper tip overlaps a
-#: lower one, a quarter of the base for seed 000's 45° triangles at a quarter height's
+#: lower one, a quarter of the base for Ooten's 45° triangles at a quarter height's
 #: interference). A step of a whole window can skip a contact entirely. Measured over the
 #: whole default test suite (every scene script, study and fuzzed scene): at most 0.55 of it
 #: (a constant force of 2.5x the default on 4 asperities, whose pass time still agrees with

@@ -1,6 +1,6 @@
 """Compare scene variants over seeds: one measured number per (variant, seed), and statistics.
 
-Seed 000's comparisons (regular against random spacing, full against half
+Ooten's comparisons (regular against random spacing, full against half
 triangles, damped against undamped) as a study::
 
     comparison = compare("critical", {"regular": {"spacing": "regular"},

@@ -133,7 +133,7 @@ def stick_forces(scene: Scene, *, passes: int = PASSES, dt: float | None = None)
 
 #: The ramp: the force rises from 0 to the flank-law estimate in this many slowest periods
 #: (then on at the same rate), and again at half the rate; the rate is halved until the two
-#: agree within RATE_TOL, up to MAX_RAMP_PERIODS. Measured on seed 000's 10/3 scenes: the
+#: agree within RATE_TOL, up to MAX_RAMP_PERIODS. Measured on Ooten's 10/3 scenes: the
 #: regular fixed track converges from above 100 periods (25.17, 25.56, 25.59 mN at 50, 100,
 #: 200), the free slider wanders +-1.6 % up to 200 and settles within 0.3 % from 400.
 RAMP_PERIODS = 100.0
@@ -141,7 +141,7 @@ MAX_RAMP_PERIODS = 1600.0
 RATE_TOL = 0.005
 #: Breakaway: the slider has moved this fraction of the lower surface's mean pitch from where it
 #: rested. Not a speed: while the force rises, single contacts let go in micro-slips that reach
-#: 30 m/s for a fraction of a nanosecond (1 % of sqrt(F base / M) on seed 000's scenes), which a
+#: 30 m/s for a fraction of a nanosecond (1 % of sqrt(F base / M) on Ooten's scenes), which a
 #: speed test took for a breakaway at 0.2-0.7 x the barrier (measured); before breaking loose
 #: the slider creeps at most the interference's run up a flank (0.125 um of a 1.25 um pitch).
 BREAKAWAY_PITCHES = 0.5
@@ -239,7 +239,7 @@ def quasi_static_breakaway(scene: Scene, *, start: str = "rest", ramp_periods: f
 
 def travel_under_force(scene: Scene, *, force: float | None = None, start: str = "run-up",
                        dt: float | None = None) -> tuple[float, str]:
-    """Seed 000 figure 10: how far (m) a constant ``force`` (N; default the scene's own
+    """Ooten's figure 10: how far (m) a constant ``force`` (N; default the scene's own
     constant drive force) carries the slider from ``start`` before it is stuck for good,
     and how the run ended (``"stuck"``, ``"passed"``: the whole surface, or ``"time limit"``).
 

@@ -1,6 +1,6 @@
 """Quasi-static acceleration of slow drives, with its convergence shown on a ladder of speed-ups.
 
-Seed 000's steel drive, 5e-3 m/s, is 4.4e-7 of base x omega: stepping it in
+Ooten's steel drive, 5e-3 m/s, is 4.4e-7 of base x omega: stepping it in
 real time costs ~1.8e7 steps per micrometre. Stick-slip at such a speed is
 quasi-static: the stick phase is a slow elastic loading and the slip a fast
 event whose course should not depend on the loading rate. So a run may drive
@@ -34,7 +34,7 @@ from .._validate import check_positive
 from ..errors import SceneError
 from ..scene import Scene, SpringDrive
 
-#: Seed 000's drive speed (m/s), the reference of the acceleration factor.
+#: Ooten's drive speed (m/s), the reference of the acceleration factor.
 SEED_DRIVE_VELOCITY = 5e-3
 #: Default tolerance of the convergence check (relative error against the slowest rung).
 TOLERANCE = 0.02

@@ -213,7 +213,7 @@ def energy_window(scene: Scene, *, velocity: float, pitches: int = 2, transient_
 
     Returns the meter's report plus ``distance_m`` (slider travel),
     ``friction_times_distance_J`` (exact time-mean contact friction force x
-    distance) and ``balance_error`` = |F·d - (dissipated + stored change)| /
+    distance) and ``balance_error`` = abs(F·d - (dissipated + stored change)) /
     (F·d). The two differ from the meter's exact balance (drive work =
     dissipated + stored change) only by the slider's momentum change and
     the drive spring's stretch change over the window.

@@ -105,7 +105,7 @@ def law_from_dict(record: dict) -> FrictionLaw:
 
 @dataclass(frozen=True)
 class Coulomb(FrictionLaw):
-    """Coulomb friction: |F| = mu·N while sliding, at most mu·N while stuck (mu dimensionless)."""
+    """Coulomb friction: abs(F) = mu·N while sliding, at most mu·N while stuck (mu dimensionless)."""
 
     mu: float
     piecewise_constant = True
@@ -173,7 +173,7 @@ class CoulombViscous(FrictionLaw):
 
 @dataclass(frozen=True)
 class Stribeck(FrictionLaw):
-    """Stribeck curve: F/N = [mu_k + (mu_s - mu_k)·exp(-|v/v_s|^delta)]·sign(v) + sigma2·v.
+    """Stribeck curve: F/N = [mu_k + (mu_s - mu_k)·exp(-abs(v/v_s)^delta)]·sign(v) + sigma2·v.
 
     ``v_s`` (m/s) is the Stribeck velocity, ``delta`` the shape exponent,
     ``sigma2`` (s/m) the viscous term per unit normal load. The curve falls
@@ -218,7 +218,7 @@ class Stribeck(FrictionLaw):
 
 @dataclass(frozen=True)
 class Dahl(FrictionLaw):
-    """Dahl model: F/N = sigma0·z, dz/dt = v - sigma0·|v|·z/mu.
+    """Dahl model: F/N = sigma0·z, dz/dt = v - sigma0·abs(v)·z/mu.
 
     ``sigma0`` (1/m) is the pre-sliding stiffness per unit normal load, ``mu``
     the Coulomb level reached in steady sliding (z -> mu·sign(v)/sigma0).
@@ -252,7 +252,7 @@ class Dahl(FrictionLaw):
 
 @dataclass(frozen=True)
 class LuGre(FrictionLaw):
-    """LuGre model: F/N = sigma0·z + sigma1·dz/dt + sigma2·v, dz/dt = v - sigma0·|v|·z/g(v).
+    """LuGre model: F/N = sigma0·z + sigma1·dz/dt + sigma2·v, dz/dt = v - sigma0·abs(v)·z/g(v).
 
     g(v) = mu_k + (mu_s - mu_k)·exp(-(v/v_s)^2): the steady state is the
     :class:`Stribeck` curve with delta = 2. ``sigma0`` in 1/m, ``sigma1`` and

@@ -162,7 +162,7 @@ def plot_contact_run(result, path, *, t_window=None, title: str = ""):
 
 
 def plot_opening(rows, path, *, curves=None, title: str = ""):
-    """The thesis chain with normal compliance: growth rate of steady sliding against the contact stiffness;
+    """The multi-DOF belt thesis' chain with normal compliance: growth rate of steady sliding against the contact stiffness;
     markers are simulated runs (one marker shape per belt speed), filled where the contact opened. ``curves``
     maps mu to (k_c values, growth rates) drawn as lines (the linearisation on a fine grid)."""
     fig, (ax,) = figure(1, width=7, height=4, sharex=False)

@@ -4,7 +4,7 @@
 :class:`~asperity2d.renderers.stage.Stage` (same ``shapes`` / ``paint`` /
 ``paint_static`` interface, used by the same animation and player code).
 
-What is drawn (seed 001's figure 1): two walls; between them the n masses as
+What is drawn (the multi-DOF belt thesis' figure 1): two walls; between them the n masses as
 blocks standing on the belt, joined wall-mass-...-mass-wall by the n + 1
 springs (zig-zags, upper half) and dampers (dash-pots, lower half; a link
 with zero stiffness and damping is not drawn); the belt as a band whose

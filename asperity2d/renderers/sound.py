@@ -1,6 +1,6 @@
 """The sound of a run: a WAV file of one signal, and its spectrogram beside it.
 
-Friction vibrations are rarely audible as simulated: seed 001's belt chains
+Friction vibrations are rarely audible as simulated: the multi-DOF belt thesis' belt chains
 ring at ~0.5-1 Hz, the asperity slider's stick-slip at MHz. A **time-scale
 factor** s maps simulated time t to playback time t/s, so every simulated
 frequency f is heard at s·f; by default s puts the signal's dominant

@@ -1,4 +1,4 @@
-"""Seed 001's studies: masses on a moving belt (the ``scenes/belt_*.py`` scripts).
+"""The multi-DOF belt thesis' studies: masses on a moving belt (the ``scenes/belt_*.py`` scripts).
 
 Every quantitative statement of the thesis becomes a claim record
 (:mod:`asperity2d.studies.claims`) whose numbers hold the thesis' value and the
@@ -10,11 +10,13 @@ computed one, judged by a criterion fixed before looking at the numbers
 from __future__ import annotations
 
 import argparse
+import math
 import os
 from pathlib import Path
 
 import numpy as np
 
+from .._format import si
 from .._io import write_json
 from ..belt import presets, regime, simulate_chain
 from ..belt.presets import preset
@@ -25,7 +27,7 @@ REL_TOL = 0.05
 
 
 def renders() -> Path:
-    """The default output directory of the seed-001 scripts: ``belt`` under
+    """The default output directory of the belt-chain scripts: ``belt`` under
     ``$ASPERITY2D_RENDERS`` (the scene scripts' output root) or ``renders/belt`` in the
     working directory -- never inside the installed package."""
     return Path(os.environ.get("ASPERITY2D_RENDERS", Path.cwd() / "renders")) / "belt"
@@ -37,9 +39,12 @@ def run(name: str, *, quick: bool = False, **overrides):
 
 
 def number_claim(text, thesis_value, computed, unit="s", rel_tol=REL_TOL):
-    """A number read off the thesis against the computed one."""
+    """A number read off the thesis against the computed one (``numbers``: both as text in
+    engineering units, and the relative difference at full precision)."""
     ok = abs(computed - thesis_value) <= rel_tol * abs(thesis_value)
-    return claim(text, ok, numbers={"thesis": f"{thesis_value} {unit}", "computed": f"{computed:.6g} {unit}"},
+    rel = (computed - thesis_value) / thesis_value if thesis_value and math.isfinite(computed) else math.nan
+    return claim(text, ok, numbers={"thesis": si(thesis_value, unit, 3, trim=True),
+                                    "computed": si(computed, unit, 3), "relative_difference": rel},
                  test=f"|computed - thesis| <= {rel_tol:.0%} of thesis")
 
 
@@ -107,6 +112,7 @@ def cli(study, name: str, argv=None) -> int:
     """Common ``main``: parse --quick / --out, run ``study(quick) -> (summary, {label: result})``, write outputs."""
     parser = argparse.ArgumentParser(prog=f"belt_{name}", description=study.__doc__)
     parser.add_argument("--quick", action="store_true", help="fewer samples, no plots (for tests)")
+    parser.add_argument("--plots", action="store_true", help="write the plots with --quick too")
     parser.add_argument("-o", "--out", type=Path, default=None,
                         help="output directory (default renders/belt in the working directory)")
     args = parser.parse_args(argv)
@@ -114,7 +120,7 @@ def cli(study, name: str, argv=None) -> int:
     summary, results = study(args.quick)
     summary["solver"] = "asperity2d.belt exact event-driven (closed-form phases, brentq switches)"
     summary["verdict_rule"] = f"numbers read off the thesis' figures hold within {REL_TOL:.0%}; trends as stated"
-    if not args.quick:
+    if not args.quick or args.plots:
         from ..renderers.belt import plot_chain
 
         for label, result in results.items():
@@ -122,15 +128,20 @@ def cli(study, name: str, argv=None) -> int:
             summary.setdefault("plots", []).append(str(path))
     write_json(args.out / f"{name}.json", summary)
     for c in summary.get("claims", []):
-        print(f"[{c['verdict']:>13}] {c['claim']}: thesis {c['numbers']['thesis']}, "
-              f"computed {c['numbers']['computed']}")
+        n = c["numbers"]
+        computed = n["computed"]
+        if isinstance(computed, dict):  # a trend: one value per case, in the claim's unit
+            computed = ", ".join(f"{label}: {si(v, n['unit'], 3) if n.get('unit') else f'{v:.3g}'}"
+                                 for label, v in computed.items())
+        said = "" if n["thesis"] == "trend" else f"the thesis says {n['thesis']}, "
+        print(f"[{c['verdict']:>13}] {c['claim']}: {said}computed {computed}")
     print(f"wrote {args.out / (name + '.json')}")
     return 0
 
 
 def belt_chain_run(*, seed: int = 0, preset_name: str = "table2-3dof", ic_spread: float = 0.0,
                    **overrides) -> dict:
-    """Sweep run for a seed-001 belt chain: regime and stick-slip measures.
+    """Sweep run for a belt chain of the multi-DOF belt thesis: regime and stick-slip measures.
 
     ``preset_name`` is a :mod:`asperity2d.belt.presets` name; ``overrides``
     replace its ``simulate_chain`` arguments (``v_belt``, ``mu_s``, ...). With

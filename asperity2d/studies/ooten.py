@@ -1,4 +1,4 @@
-"""Seed 000's studies: the two slider set-ups, scene sizes and the sweep run functions.
+"""Ooten's studies: the two slider set-ups, scene sizes and the sweep run functions.
 
 The ``scenes/ooten_*`` scripts compare scene variants over seeds with
 :func:`asperity2d.compare` (its standard measures: critical force from rest
@@ -22,10 +22,10 @@ from ..critical import critical_force, critical_force_bracket, settled_run
 from ..scene import ConstantForce
 from ..run import default_dt, default_duration, default_stops, simulate
 
-#: Scene size of the seed-000 studies (lower / upper asperities) and the quick (test) size.
+#: Scene size of the Ooten studies (lower / upper asperities) and the quick (test) size.
 STUDY_SIZE = {"lower_count": 10, "upper_count": 3}
 QUICK_SIZE = {"lower_count": 4, "upper_count": 2}
-#: The two slider set-ups. ``fixed``: seed 000's Working Model set-up (the
+#: The two slider set-ups. ``fixed``: Ooten's Working Model set-up (the
 #: package default), a horizontal track at fixed height with the upper tips a
 #: quarter of a 45° full triangle's height (0.125 µm) below the lower tips'
 #: rest height, the same for full and half triangles so only the shape
@@ -77,7 +77,7 @@ def measures_run(*, seed: int = 0, passes: int = 5, starts: tuple = ("rest", "ru
 
 
 def travel_run(*, seed: int = 0, force: float, start: str = "run-up", **params) -> dict:
-    """Sweep run: seed 000 figure 10, how far a constant ``force`` (N) carries the slider of
+    """Sweep run: Ooten's figure 10, how far a constant ``force`` (N) carries the slider of
     ``make_scene(seed=seed, **params)`` from ``start``: ``travel_m`` and ``passed`` / ``stuck`` (1/0)."""
     from ..experiments.measures import travel_under_force
 
@@ -158,7 +158,7 @@ DAMPING_CHANNELS = ("drive_work", "stored_energy_change", "friction_work", "norm
 
 
 def damping_travel_run(*, seed: int = 0, factor: float = 0.9, **params) -> dict:
-    """Seed 000 figure 12: constant force ``factor`` x the damped critical force, damped vs undamped.
+    """Ooten's figure 12: constant force ``factor`` x the damped critical force, damped vs undamped.
 
     The critical force is bisected on the damped scene (``params`` as given);
     the same force then pushes three scenes: ``damped`` (as given),

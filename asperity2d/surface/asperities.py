@@ -29,7 +29,7 @@ The rule, step by step (``find_asperities``):
    elevation) and both flank angles, which set the wedge law
    tan(theta + atan mu), are kept; the height and base shrink by one factor.
 5. **Stiffness and mass** per asperity: one value for all, or from the
-   material (seed 000 Table 1 / Appendix A, see :func:`table1_stiffness`
+   material (Ooten's Table 1 / Appendix A, see :func:`table1_stiffness`
    and :func:`pyramid_mass`).
 """
 
@@ -170,10 +170,10 @@ def _is_number(value) -> bool:
 def table1_stiffness(bases, modulus: float) -> np.ndarray:
     """Track stiffness K = 2 E b (N/m) of asperities with base ``bases`` (m), modulus E (Pa).
 
-    Seed 000 Table 1 / Appendix A treats an asperity as a column of section
+    Ooten's Table 1 / Appendix A treats an asperity as a column of section
     A = 4 b^2 and modulus E, K = E A / l; its 37,200 N/m for b = 1 um and
-    E = 1.86e10 Pa needs l = 2 b (the seed does not state l), hence
-    K = E 4 b^2 / (2 b) = 2 E b. (The seed's E = 1.86e10 Pa for "30e6 psi"
+    E = 1.86e10 Pa needs l = 2 b (Ooten does not state l), hence
+    K = E 4 b^2 / (2 b) = 2 E b. (Ooten's E = 1.86e10 Pa for "30e6 psi"
     steel is itself off: 30e6 psi is 2.07e11 Pa.)
     """
     modulus = check_positive("modulus", modulus)
@@ -183,9 +183,9 @@ def table1_stiffness(bases, modulus: float) -> np.ndarray:
 def pyramid_mass(bases, heights, density: float) -> np.ndarray:
     """Mass rho b^2 h / 3 (kg) of a square pyramid of base side b and height h (m).
 
-    Seed 000 Appendix A: "six pyramids in a cube", V = b^3 / 6, the pyramid of
+    Ooten's Appendix A: "six pyramids in a cube", V = b^3 / 6, the pyramid of
     height b / 2 (a 45-degree asperity); b^2 h / 3 is the same pyramid for any
-    height. (The seed's printed V = 3.6e-17 m^3 for b = 1 um does not follow
+    height. (Ooten's printed V = 3.6e-17 m^3 for b = 1 um does not follow
     from its formula, which gives 1.67e-19 m^3; we use the formula.)
     """
     density = check_positive("density", density)

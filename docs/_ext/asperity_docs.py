@@ -1,0 +1,318 @@
+"""Tables generated from the code at build time, so the documentation never pastes a number.
+
+Directives (reStructuredText; in a MyST page wrap them in an ``{eval-rst}`` block):
+
+``.. parameter-table::``
+    every keyword of :func:`asperity2d.make_scene` with its default, unit and meaning, from
+    :data:`asperity2d.builders.KEYWORDS` and :data:`asperity2d.builders.PARAMETERS` (the single
+    source of the defaults).
+
+``.. validation-table::``
+    runs every closed-form check of :mod:`asperity2d.validation` (the ones the test suite runs)
+    and tabulates expected, measured, relative error and tolerance. A failing check is a build
+    warning, so a ``-W`` build fails on it.
+
+``.. claims-table:: NAME``
+    the claim records of a study's full-size run, from ``docs/data/claims/NAME.json``
+    (``docs/data/README.md`` says how those files are made). Options: ``:setup: fixed|free``
+    keeps one set-up's claims.
+
+``.. cli-help::``
+    ``asperity2d --help`` and every subcommand's help, from the command line's own parser.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from pathlib import Path
+
+from docutils import nodes
+from docutils.parsers.rst import Directive, directives
+from docutils.statemachine import StringList
+from sphinx.util import logging
+
+DOCS = Path(__file__).resolve().parent.parent
+CLAIMS = DOCS / "data" / "claims"
+logger = logging.getLogger(__name__)
+
+
+def cell(text) -> str:
+    """Plain text for a list-table cell: backticked names as literals, no stray markup."""
+    text = str(text).replace("\\", "\\\\").replace("*", "\\*").replace("|", "\\|")
+    text = re.sub(r"(?<!`)`([^`]+)`(?!`)", r"``\1``", text)
+    text = re.sub(r'(?<![`\w])"([\w. -]+)"(?![`\w])', r'``"\1"``', text)  # quoted choices as code
+    return " ".join(text.split()) or "\\ "
+
+
+def list_table(header: list[str], rows: list[list[str]], *, widths: str | None = None,
+               cls: str = "") -> list[str]:
+    lines = [".. list-table::", "   :header-rows: 1"]
+    if widths:
+        lines.append(f"   :widths: {widths}")
+    if cls:
+        lines.append(f"   :class: {cls}")
+    lines.append("")
+    for row in [header] + rows:
+        lines.append(f"   * - {row[0]}")
+        lines += [f"     - {c}" for c in row[1:]]
+    return lines + [""]
+
+
+class _Generated(Directive):
+    """A directive whose content is reST made by :meth:`lines`."""
+
+    has_content = False
+
+    def lines(self) -> list[str]:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def run(self):
+        container = nodes.container()
+        self.state.nested_parse(StringList(self.lines(), source=f"<{self.name}>"), self.content_offset,
+                                container)
+        return container.children
+
+
+# -- make_scene's parameters ------------------------------------------------------------------
+def default_text(record) -> str:
+    """A parameter's default as a reader writes it: SI prefixes, quotes on text, None as derived."""
+    from asperity2d._format import si
+
+    value = record.default
+    if value is None:
+        return "derived"
+    if isinstance(value, bool):
+        return f"``{value}``"
+    if isinstance(value, str):
+        return f'``"{value}"``' if value else '``""``'
+    if record.unit in ("1", "-"):
+        return f"{value:g}"
+    if record.unit == "°":
+        return f"{value:g}°"
+    return si(value, record.unit, 3, trim=True)
+
+
+class ParameterTable(_Generated):
+    def lines(self):
+        from asperity2d import builders
+
+        groups = (("make_scene's named keywords", builders.KEYWORDS),
+                  ("Ooten's fixed track (asperity2d.scene.OOTEN_PARAMETERS)",
+                   builders.PARAMETERS[:len(_ooten())]),
+                  ("everything else (asperity2d.builders.PARAMETERS)", builders.PARAMETERS[len(_ooten()):]))
+        rows = []
+        for title, records in groups:
+            rows.append([f"**{title}**", "\\ ", "\\ ", "\\ "])
+            rows += [[f"``{r.name}``", default_text(r), cell("—" if r.unit == "-" else r.unit), cell(r.meaning)]
+                     for r in records]
+        return list_table(["keyword", "default", "unit", "meaning"], rows, widths="18 12 8 62",
+                          cls="parameter-table")
+
+
+def _ooten():
+    from asperity2d.scene import OOTEN_PARAMETERS
+
+    return OOTEN_PARAMETERS
+
+
+# -- closed-form checks --------------------------------------------------------------------
+class ValidationTable(_Generated):
+    def lines(self):
+        import platform
+
+        import pymunk
+
+        import asperity2d
+        from asperity2d import validation
+
+        checks = validation.run_all()
+        rows, notes = [], []
+        for check_id, check in zip(validation.CHECKS, checks):
+            if not check.passed:
+                logger.warning(f"closed-form check {check_id!r} fails: {check.line()}", location=self.get_location())
+            rows.append([cell(check.name), cell(check.closed_form), cell(check.show(check.expected)),
+                         cell(check.show(check.measured)), f"{check.error:.1e}", f"{check.tolerance:.0e}",
+                         "✓" if check.passed else "**fails**"])
+            notes.append([cell(check.name), cell(check.why), cell(check.source)])
+        passed = sum(c.passed for c in checks)
+        head = [f"Measured when this page was built: {passed} of {len(checks)} checks within tolerance "
+                f"(asperity2d {asperity2d.__version__}, pymunk {pymunk.version}, Python "
+                f"{platform.python_version()}).", ""]
+        return (head + list_table(["check", "closed form", "expected", "measured", "relative error",
+                                   "tolerance", ""], rows, widths="30 22 11 11 9 8 4", cls="validation-table")
+                + [".. rubric:: Why each tolerance, and where each closed form comes from", ""]
+                + list_table(["check", "the tolerance, because", "source"], notes, widths="30 45 25"))
+
+
+# -- claim records -------------------------------------------------------------------------
+SETUPS = {"fixed": "Ooten's fixed track", "free": "free slider"}
+
+
+def claim_rows(claims: list[dict], *, setup: str | None = None, setups: bool = True) -> list[list[str]]:
+    from asperity2d.studies.claims import numbers_text
+
+    rows = []
+    for record in claims:
+        if setup and record.get("setup") not in (setup, None):
+            continue
+        verdict = record["verdict"]
+        shown = f"**{verdict}**" if verdict == "holds" else verdict
+        row = [cell(record["claim"])]
+        if setups:
+            row.append(cell(SETUPS.get(record.get("setup"), record.get("setup") or "—")))
+        rows.append(row + [shown, cell(numbers_text(record.get("numbers", {}))), cell(record.get("test", ""))])
+    return rows
+
+
+def claims_table_lines(claims: list[dict], *, setup: str | None = None) -> list[str]:
+    """A claims table; the set-up column only when some claim has one (the asperity studies)."""
+    setups = any(record.get("setup") for record in claims)
+    header = ["claim"] + (["set-up"] if setups else []) + ["verdict", "what was measured", "test"]
+    return list_table(header, claim_rows(claims, setup=setup, setups=setups),
+                      widths="28 10 9 33 20" if setups else "30 10 38 22", cls="claims-table")
+
+
+class ClaimsTable(_Generated):
+    required_arguments = 1
+    option_spec = {"setup": lambda s: directives.choice(s, tuple(SETUPS))}
+
+    def lines(self):
+        name = self.arguments[0]
+        path = CLAIMS / f"{name}.json"
+        if not path.exists():
+            return [".. admonition:: Full-size claim records not committed yet", "   :class: warning", "",
+                    f"   ``docs/data/claims/{name}.json`` does not exist: run ``python docs/data/collect_claims.py "
+                    f"{name}`` (see ``docs/data/README.md``). The quick run of the script in the gallery "
+                    "shows the same claims on a few seeds.", ""]
+        data = json.loads(path.read_text(encoding="utf-8"))
+        self.state.document.settings.record_dependencies.add(str(path))
+        lines = [f"*Full-size run:* ``{data['command']}`` at commit ``{data['commit']}`` ({data['date']}; "
+                 f"{_duration(data.get('cpu_s'))}).", ""]
+        return lines + claims_table_lines(data["claims"], setup=self.options.get("setup"))
+
+
+def _duration(cpu_s) -> str:
+    if cpu_s is None or not math.isfinite(cpu_s):
+        return "run time not recorded"
+    from asperity2d._format import si
+
+    return f"{si(cpu_s, 's', 2)} of CPU" if cpu_s < 120 else f"{cpu_s / 60:.0f} min of CPU"
+
+
+# -- the command line ------------------------------------------------------------------------
+class CliHelp(_Generated):
+    def lines(self):
+        import argparse
+
+        from asperity2d.cli.main import build_parser
+
+        parser = build_parser()
+        out = []
+
+        def walk(p: argparse.ArgumentParser, words: list[str]):
+            out.extend([f".. rubric:: {' '.join(words)}", "", ".. code-block:: text", ""])
+            out.extend("   " + line for line in p.format_help().splitlines())
+            out.append("")
+            for action in p._actions:
+                if isinstance(action, argparse._SubParsersAction):
+                    for name, sub in action.choices.items():
+                        walk(sub, words + [name])
+
+        walk(parser, ["asperity2d"])
+        return out
+
+
+# -- the API reference, generated from the packages' public names ------------------------------
+#: (module, title, what it holds): one page each. A module's public names are its ``__all__``, or
+#: else the classes, functions and upper-case data it defines; ``asperity2d.experiments`` lists
+#: every submodule it has (so a new one appears without editing this file).
+API = (
+    ("asperity2d", "asperity2d", "the model a user imports: scenes, runs, results, measures, pictures"),
+    ("asperity2d.scene", "asperity2d.scene", "the scene's parameter records and Ooten's fixed track"),
+    ("asperity2d.builders", "asperity2d.builders", "make_scene's parameter table"),
+    ("asperity2d.belt", "asperity2d.belt", "masses on a moving belt: the exact event-driven solver"),
+    ("asperity2d.belt.presets", "asperity2d.belt.presets", "the multi-DOF belt thesis' chains by name"),
+    ("asperity2d.friction", "asperity2d.friction", "friction laws for the belt chains"),
+    ("asperity2d.surface", "asperity2d.surface", "rough surfaces: profiles, statistics, asperities"),
+    ("asperity2d.dynamics", "asperity2d.dynamics", "spectra, sections, cycles, Floquet, Lyapunov, basins"),
+    ("asperity2d.experiments", "asperity2d.experiments", "measures and comparisons, tribometer, quasi-static runs"),
+    ("asperity2d.sweep", "asperity2d.sweep", "ensembles on local processes or Dask, the resumable store"),
+    ("asperity2d.renderers", "asperity2d.renderers", "pictures and sounds by file extension"),
+    ("asperity2d.stats", "asperity2d.stats", "statistics on plain numbers"),
+    ("asperity2d.validation", "asperity2d.validation", "closed-form checks of both models"),
+)
+
+
+#: Names left out of the reference: the renderers' dispatch tables (implementation, not use).
+HIDDEN = {"asperity2d.renderers": {"RENDERERS", "DRAWERS"}}
+
+
+def public_names(module) -> list[str]:
+    import inspect
+
+    names = getattr(module, "__all__", None)
+    if names is None:
+        names = [n for n, o in vars(module).items() if not n.startswith("_") and (
+            ((inspect.isclass(o) or inspect.isfunction(o)) and getattr(o, "__module__", "") == module.__name__)
+            or (n.isupper() and not inspect.ismodule(o)))]
+    return [n for n in names if n != "__version__" and n not in HIDDEN.get(module.__name__, ())]
+
+
+def write_api(app) -> None:
+    """Write ``docs/api/*.rst`` (autosummary pages) from the modules' public names."""
+    import importlib
+    import pkgutil
+
+    out = DOCS / "api"
+    out.mkdir(exist_ok=True)
+    index = ["API reference", "=============", "",
+             "Generated from the docstrings (numpydoc style) of every public name. Quantities are SI "
+             "unless a docstring says otherwise.", "", ".. toctree::", "   :maxdepth: 1", ""]
+    expected = set()
+    for name, title, what in API:
+        module = importlib.import_module(name)
+        index.append(f"   {name}")
+        lines = [title, "=" * len(title), "", f".. module:: {name}", "", what[0].upper() + what[1:] + ".",
+                 ""]
+        groups = [(name, module)]
+        if name == "asperity2d.experiments":
+            groups = [(f"{name}.{m.name}", importlib.import_module(f"{name}.{m.name}"))
+                      for m in pkgutil.iter_modules(module.__path__)]
+        for group_name, group in groups:
+            members = [n for n in public_names(group) if not _is_submodule(group, n)]
+            if group_name != name:
+                lines += [f"``{group_name}``", "-" * (len(group_name) + 4), ""]
+            first = (group.__doc__ or "").strip().split("\n\n")[0]
+            if first:
+                lines += [" ".join(first.split()), ""]
+            lines += [".. currentmodule:: " + group_name, "", ".. autosummary::", "   :toctree: generated",
+                      "   :nosignatures:", ""]
+            lines += [f"   {n}" for n in members] + [""]
+            expected.update(f"{group_name}.{n}.rst" for n in members)
+        _write_if_changed(out / f"{name}.rst", "\n".join(lines) + "\n")
+    _write_if_changed(out / "index.rst", "\n".join(index) + "\n")
+    for stale in (out / "generated").glob("*.rst"):  # a name no longer public loses its page
+        if stale.name not in expected:
+            stale.unlink()
+
+
+def _is_submodule(module, name: str) -> bool:
+    import inspect
+
+    return inspect.ismodule(getattr(module, name, None))
+
+
+def _write_if_changed(path: Path, text: str) -> None:
+    if not path.exists() or path.read_text(encoding="utf-8") != text:
+        path.write_text(text, encoding="utf-8")
+
+
+def setup(app):
+    app.connect("builder-inited", write_api)
+    app.add_directive("parameter-table", ParameterTable)
+    app.add_directive("validation-table", ValidationTable)
+    app.add_directive("claims-table", ClaimsTable)
+    app.add_directive("cli-help", CliHelp)
+    return {"version": "1", "parallel_read_safe": True, "parallel_write_safe": True}

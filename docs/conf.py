@@ -1,0 +1,108 @@
+"""Sphinx configuration of the asperity2d documentation.
+
+Build (warnings are errors; the gallery runs every scene script in its quick setting)::
+
+    pip install -e ".[docs]"
+    python -m sphinx -W --keep-going -b html docs docs/_build/html
+
+``ASPERITY2D_DOCS_GALLERY=0`` skips running the scene scripts (the gallery pages then show the
+code without outputs): for fast edits of the prose only.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+DOCS = Path(__file__).resolve().parent
+ROOT = DOCS.parent
+sys.path.insert(0, str(DOCS / "_ext"))
+# The scene scripts' progress bars (tqdm, on stderr) would fill the gallery's captured output:
+# off for the build and the processes it starts (the printed summaries stay).
+os.environ["TQDM_DISABLE"] = "1"
+
+import asperity2d  # noqa: E402
+import gallery  # noqa: E402  (docs/_ext/gallery.py: arguments and output scraper of the scenes)
+
+project = "asperity2d"
+author = "the asperity2d developers"
+copyright = "the asperity2d developers, MIT licence"  # noqa: A001 - Sphinx's name
+version = release = asperity2d.__version__
+
+extensions = [
+    "sphinx.ext.autodoc",
+    "sphinx.ext.autosummary",
+    "sphinx.ext.intersphinx",
+    "sphinx.ext.mathjax",
+    "numpydoc",
+    "myst_parser",
+    "sphinx_design",
+    "sphinx_gallery.gen_gallery",
+    "asperity_docs",  # docs/_ext/asperity_docs.py: the generated tables
+]
+
+source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
+root_doc = "index"
+exclude_patterns = ["_build", "data/README.md", "auto_scenes/*.ipynb", "auto_scenes/*.py",
+                    "auto_scenes/*.zip", "auto_scenes/*.json", "auto_scenes/*.md5"]
+myst_enable_extensions = ["colon_fence", "dollarmath", "deflist"]
+myst_heading_anchors = 3
+suppress_warnings = ["config.cache"]  # sphinx-gallery's callables in the config cannot be pickled
+
+# -- API reference ---------------------------------------------------------------------------
+autosummary_generate = True
+autosummary_imported_members = True
+autodoc_default_options = {"members": True, "inherited-members": False, "show-inheritance": False}
+autodoc_typehints = "none"  # numpydoc's parameter sections carry the types
+numpydoc_show_class_members = False
+numpydoc_class_members_toctree = False
+numpydoc_xref_param_type = False
+numpydoc_validation_checks = set()
+
+intersphinx_mapping = {
+    "python": ("https://docs.python.org/3", None),
+    "numpy": ("https://numpy.org/doc/stable", None),
+    "scipy": ("https://docs.scipy.org/doc/scipy", None),
+}
+intersphinx_disabled_reftypes = ["*"]  # no network: references resolve only when written explicitly
+intersphinx_timeout = 5
+if os.environ.get("ASPERITY2D_DOCS_INTERSPHINX", "0") != "1":
+    intersphinx_mapping = {}  # CI and this machine have no network beyond the package registries
+
+# -- the gallery of scene scripts ----------------------------------------------------------------
+sphinx_gallery_conf = {
+    "examples_dirs": str(ROOT / "scenes"),
+    "gallery_dirs": "auto_scenes",
+    "filename_pattern": os.environ.get("ASPERITY2D_DOCS_PATTERN", r".*\.py$"),  # every script, not only plot_*.py
+    "ignore_pattern": r"(__init__|make_measured_profile)\.py$",  # scenes/data/ builds a data file
+    "within_subsection_order": "FileNameSortKey",
+    "reset_argv": gallery.arguments,
+    "image_scrapers": (gallery.scene_outputs,),
+    "reset_modules": (gallery.reset,),
+    "plot_gallery": os.environ.get("ASPERITY2D_DOCS_GALLERY", "1") != "0",
+    "abort_on_example_error": False,
+    "only_warn_on_example_error": False,
+    "capture_repr": (),
+    "download_all_examples": False,
+    "show_memory": False,
+    "min_reported_time": 1,
+    "remove_config_comments": True,
+    "matplotlib_animations": False,
+    "parallel": int(os.environ.get("ASPERITY2D_DOCS_JOBS", "2")),
+}
+
+# -- HTML --------------------------------------------------------------------------------------
+html_theme = "pydata_sphinx_theme"
+html_title = f"asperity2d {release}"
+html_static_path = ["_static"]
+html_css_files = ["asperity2d.css"]
+html_theme_options = {
+    "navbar_align": "left",
+    "show_toc_level": 2,
+    "navigation_with_keys": False,
+    "footer_start": ["copyright"],
+    "footer_end": ["sphinx-version", "theme-version"],
+}
+html_show_sourcelink = False
+html_last_updated_fmt = None
