@@ -270,6 +270,7 @@ class ModalRows(ModalEvents):
         d = self.g.derivative()
         self._both = ModalForm(lam, np.vstack([self.g.B, d.B]), np.concatenate([self.g.c0, d.c0]),
                                np.concatenate([self.g.c1, d.c1]))
+        self._points = {}  # row -> its closed form at one time (ModalEvents.point's cache)
 
 
 class SampledRows:
