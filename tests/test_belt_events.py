@@ -32,7 +32,7 @@ def ode_phase(v_belt):
                                integrator="LSODA", max_events=1000, max_steps=10**7)
     atol = np.concatenate([_atol(spec, options.rtol, None), _work_atol(spec, options.rtol)])
     v0 = np.array([spec.belt_velocity(0.0), 0.35])
-    return OdePhase(spec, MODES, np.array(spec.x0), v0, 0.0, 0.05, options, atol, StepBudget(10**7))
+    return OdePhase(spec, MODES, np.array(spec.x0), v0, 0.0, 0.05, options, atol, StepBudget(options))
 
 
 def finite_difference(events, tau, h=1e-5):

@@ -51,7 +51,7 @@ def slipping(run, t):
 def test_every_slip_gets_frames_in_slow_motion_where_uniform_frames_give_few(run, movie_frames):
     movie, _ = movie_frames
     events = [e for e in a.stick_slip_events(run) if e.complete]
-    assert len(events) >= 3
+    assert len(events) >= 2  # the detector's count since issue 25 (slips that move 0.1 base)
     times, slow = movie.schedule.time, movie.schedule.slow
     uniform = schedule(run.t, slip_intervals(run), 90, timing="uniform").time
     ours = theirs = 0

@@ -86,7 +86,8 @@ def test_main_job_run_player_is_under_5_mb_and_written_in_under_2_s(main_run, tm
     elapsed = time.process_time() - start
     assert path.stat().st_size <= 5e6 and elapsed < 2.0
     data = embedded(path.read_text(encoding="utf-8"))
-    assert data["recorded"] == len(main_run.t) and len(data["events"]) == 5
+    assert data["recorded"] == len(main_run.t)
+    assert len(data["events"]) == len(a.stick_slip_events(main_run)) >= 3  # every event kept
 
 
 def test_chain_payload_and_page(tmp_path):

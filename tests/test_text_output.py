@@ -71,7 +71,7 @@ def test_compare_and_sweep_report_text(tmp_path, capsys):
                  "--set", "lower_count=4", "--set", "upper_count=1", "--workers", "1"]) == 0
     out = capsys.readouterr().out
     readable(out)
-    assert "critical force from rest, 2 seeds:" in out and " mN" in out
+    assert "critical force from rest (step load), 2 seeds:" in out and " mN" in out
     study = tmp_path / "study.toml"
     study.write_text('name = "t"\nrun = "asperity2d.studies.mdof_belt:belt_chain_run"\nseeds = 2\n'
                      '[grid]\nv_belt = [0.1, 0.4]\n[fixed]\npreset_name = "table2-3dof"\nic_spread = 0.02\n')

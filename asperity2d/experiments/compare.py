@@ -220,12 +220,18 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
             slots[name, j] = len(jobs)
             jobs.append((measure, scene, f"variant {name!r} with seed {seed}"))
     results: list = [None] * len(jobs)
+    failed = None  # the first failing run in (variant, seed) order, whichever finished first
     with Progress(total=len(jobs), enabled=progress, label="compare") as bar:
         for outcome in run_calls(_evaluate, jobs, workers=workers, scheduler=scheduler):
-            if not outcome.ok:  # the run's own exception, on every executor (the engine's contract)
-                outcome.raise_failure(jobs[outcome.index][2])
+            if not outcome.ok:
+                if failed is None or outcome.index < failed.index:
+                    failed = outcome
+                bar.update("failed")
+                continue
             results[outcome.index] = outcome.value
             bar.update("done" if math.isfinite(outcome.value) else "failed")
+    if failed is not None:  # the run's own exception, on every executor (the engine's contract)
+        failed.raise_failure(jobs[failed.index][2])
     values = {name: tuple(results[slots[name, j]] for j in range(len(seeds))) for name in variants}
     return Comparison(values=values, seeds=seeds, variants={k: dict(v or {}) for k, v in variants.items()},
                       base=base, measure=getattr(measure, "__name__", type(measure).__name__))
