@@ -1,7 +1,7 @@
 """The rough-surface studies (scenes/rough_*.py) on --quick settings: they run, write what they
 promise, and the exact claims hold even on the smallest scenes. The quick settings are smoke
 tests (one seed, tiny scenes, a faster drive); their statistical claims are not asserted here.
-Cost: about 25 s of CPU for the four scripts (one process each, ``--workers 1``)."""
+Cost: about 25 s of CPU for the four scripts (``--workers auto``: the second core where it pays)."""
 
 import numpy as np
 import pytest
@@ -11,7 +11,7 @@ from scene_scripts import SCENES, run_script
 
 
 def test_height_spread_study(tmp_path, capsys):
-    summary = run_script("rough_height_spread", tmp_path, capsys, "--workers", "1")
+    summary = run_script("rough_height_spread", tmp_path, capsys)
     for setup in ("free", "fixed"):
         numbers = summary["setups"][setup]
         assert set(numbers["per_spread"]) == {"0", "0.2"}
@@ -25,7 +25,7 @@ def test_height_spread_study(tmp_path, capsys):
 
 
 def test_contact_fraction_study_touches_exactly_the_summits_above_the_track(tmp_path, capsys):
-    summary = run_script("rough_contact_fraction", tmp_path, capsys, "--workers", "1")
+    summary = run_script("rough_contact_fraction", tmp_path, capsys)
     exact = summary["claims"][0]
     assert exact["verdict"] == "holds" and exact["numbers"]["mismatched"] == 0
     assert exact["numbers"]["realisations"] == 4
@@ -35,7 +35,7 @@ def test_contact_fraction_study_touches_exactly_the_summits_above_the_track(tmp_
 
 
 def test_hurst_study(tmp_path, capsys):
-    summary = run_script("rough_hurst", tmp_path, capsys, "--workers", "1")
+    summary = run_script("rough_hurst", tmp_path, capsys)
     free = summary["setups"]["free"]
     assert free["sanity"]["valid_runs"] == 2 and free["sanity"]["floor_touched_runs"] == 0
     slopes = [free["per_hurst"][h]["rms_slope"]["mean"] for h in ("0.3", "0.9")]

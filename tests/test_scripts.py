@@ -15,7 +15,7 @@ SCENES = Path(__file__).resolve().parent.parent / "scenes"
 @pytest.mark.parametrize("name, extra", [
     ("stick_slip", []),
     ("constant_force", []),
-    ("quickstart", ["--seeds", "2", "--workers", "1"]),
+    ("quickstart", ["--seeds", "2"]),  # --workers auto: the idle second core
 ])
 def test_script_writes_gif_with_requested_frames_and_summary(name, extra, tmp_path, capsys):
     module = load_script(SCENES / f"{name}.py")
