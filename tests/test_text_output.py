@@ -82,3 +82,16 @@ def test_compare_and_sweep_report_text(tmp_path, capsys):
     out = capsys.readouterr().out
     readable(out)
     assert "total stick: mean" in out and " s," in out
+
+
+def test_a_claims_effect_reads_its_numbers_back_from_json():
+    """A claim saved with a NaN interval (strict JSON: null) reads back without one, not a crash
+    (the docs' gallery renders claims from the scripts' summary.json)."""
+    from asperity2d import _io
+    from asperity2d.studies.claims import effect
+
+    numbers = {"relative_difference": -0.2, "ratio_hl": 0.8, "ratio_ci_low": float("nan"),
+               "ratio_ci_high": float("nan"), "below": 2, "n": 2, "p_wilcoxon": 0.25}
+    back = json.loads(_io.to_json(numbers))
+    assert back["ratio_ci_low"] is None
+    assert effect(back) == effect(numbers) == "-20 %, x0.8, 2/2 seeds below, Wilcoxon p = 0.25"

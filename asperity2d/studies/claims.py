@@ -62,8 +62,9 @@ def effect(numbers: dict) -> str:
         parts.append(f"{100 * rel:+.0f} %" if abs(rel) >= 0.095 else f"{100 * rel:+.1g} %")
     ratio = numbers.get("ratio_hl")
     if ratio is not None and math.isfinite(ratio):
-        low, high = numbers.get("ratio_ci_low", math.nan), numbers.get("ratio_ci_high", math.nan)
-        ci = f" [{low:.3g}, {high:.3g}]" if math.isfinite(low) and math.isfinite(high) else ""
+        low, high = numbers.get("ratio_ci_low"), numbers.get("ratio_ci_high")  # None: NaN read from JSON
+        ci = (f" [{low:.3g}, {high:.3g}]" if low is not None and high is not None
+              and math.isfinite(low) and math.isfinite(high) else "")
         parts.append(f"x{ratio:.3g}{ci}")
     if "below" in numbers and "n" in numbers:
         parts.append(f"{numbers['below']}/{numbers['n']} seeds below")
