@@ -85,13 +85,13 @@ OOTEN_PARAMETERS = (
     Parameter("track", "fixed", "-", '"fixed": the slider runs at a fixed height (Ooten\'s fixed '
               'track); "free": it rides the surface pressed down by `normal_load` (the free slider '
               'under a load)'),
-    Parameter("normal_load", 0.01, "N", "downward load on the slider (used with track=\"free\")"),
+    Parameter("normal_load", 0.01, "N", "downward load on the slider (used with `track=\"free\"`)"),
     Parameter("mu_static", 0.3, "1", "static friction coefficient of every asperity contact"),
     Parameter("drive_stiffness", 3_720.0, "N/m", "stiffness of the drive spring (spring drive)"),
     Parameter("drive_velocity", 20.0, "m/s", "speed of the drive spring's far end (spring drive): "
               "1.8e-3 of ω × base, the quasi-static limit at this scale"),
     Parameter("drive_force", 0.02, "N", "the constant horizontal force on the slider "
-              '(drive="force")'),
+              '(`drive="force"`)'),
 )
 #: Ooten's fixed track as a dict: parameter name -> default (from :data:`OOTEN_PARAMETERS`).
 OOTEN_DEFAULTS = {p.name: p.default for p in OOTEN_PARAMETERS}

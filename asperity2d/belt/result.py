@@ -137,7 +137,7 @@ class BeltResult:
                 self.spring_energy)
 
     def energy_balance_error(self) -> float:
-        """max |residual| over the largest energy flow or store (dimensionless). The stores are
+        """max abs(residual) over the largest energy flow or store (dimensionless). The stores are
         taken one by one (kinetic, springs, ...): their sum can cancel to rounding (a mass
         swinging on its spring against a preload holds E = 0 throughout), and a residual of
         1e-16 J over a total of 1e-16 J is not an error of 1."""
