@@ -9,9 +9,7 @@ that would run for hours fails the test instead of hanging it.
 from __future__ import annotations
 
 import json
-import signal
 import time
-from contextlib import contextmanager
 
 import numpy as np
 import pytest
@@ -19,29 +17,11 @@ import pytest
 import asperity2d as a
 from asperity2d import SceneError
 from asperity2d.cli import main
+from wall_clock import within
 
 CHAIN = ('masses = [1.0]\nsprings = [10.0, 0.0]\ndampers = [0.0, 0.0]\nmu_s = 0.3\nv_belt = 0.1\n'
          'x0 = [0.0]\nv0 = [0.0]\nt_end = 2.0\n')
 BOM = "\ufeff"
-
-
-class TooLong(Exception):
-    pass
-
-
-@contextmanager
-def within(seconds: float):
-    """Fail (TooLong) if the block runs longer than ``seconds`` of wall-clock time."""
-    def alarm(signum, frame):
-        raise TooLong(f"still running after {seconds} s")
-
-    old = signal.signal(signal.SIGALRM, alarm)
-    signal.setitimer(signal.ITIMER_REAL, seconds)
-    try:
-        yield
-    finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, old)
 
 
 def fill(argv, files):

@@ -177,8 +177,8 @@ def test_many_byte_strings_as_scene_and_chain_files(tmp_path, capsys, data):
 
 # -- every subcommand, with fuzzed options, each within a time budget (issue 27 item 6) -------------
 import os  # noqa: E402
-import signal  # noqa: E402
-from contextlib import contextmanager  # noqa: E402
+
+from wall_clock import within  # noqa: E402
 
 #: a command that computes is given tiny work; any case still running after this fails the test
 CASE_SECONDS = 60.0
@@ -221,20 +221,6 @@ COMMANDS = {
     "sweep export": (["sweep", "export", "{store}", "-o", "{root}/e.csv"], {"-o": OUTPUTS, "store": INPUTS}),
     "version": (["--version"], {}),
 }
-
-
-@contextmanager
-def _within(seconds):
-    def alarm(signum, frame):
-        raise AssertionError(f"still running after {seconds} s: past any budget")
-
-    old = signal.signal(signal.SIGALRM, alarm)
-    signal.setitimer(signal.ITIMER_REAL, seconds)
-    try:
-        yield
-    finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, old)
 
 
 @pytest.fixture(scope="module")
@@ -308,7 +294,7 @@ def _any_command_case(capsys, files, argv):
     here = os.getcwd()
     os.chdir(files["root"])  # a relative output such as `--store 0` lands in the test's folder
     try:
-        with _within(CASE_SECONDS):
+        with within(CASE_SECONDS):
             code = main(argv)
     finally:
         os.chdir(here)
