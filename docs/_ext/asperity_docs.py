@@ -260,8 +260,12 @@ def public_names(module) -> list[str]:
     return [n for n in names if n != "__version__" and n not in HIDDEN.get(module.__name__, ())]
 
 
-def write_api(app) -> None:
-    """Write ``docs/api/*.rst`` (autosummary pages) from the modules' public names."""
+def write_api(app, config=None) -> None:
+    """Write ``docs/api/*.rst`` (autosummary pages) from the modules' public names.
+
+    Runs on ``config-inited``: Sphinx lists the source files before ``builder-inited``, so pages
+    written later are not read on a clean checkout, and autosummary finds no stubs to generate.
+    """
     import importlib
     import pkgutil
 
@@ -310,7 +314,7 @@ def _write_if_changed(path: Path, text: str) -> None:
 
 
 def setup(app):
-    app.connect("builder-inited", write_api)
+    app.connect("config-inited", write_api)
     app.add_directive("parameter-table", ParameterTable)
     app.add_directive("validation-table", ValidationTable)
     app.add_directive("claims-table", ClaimsTable)
