@@ -59,11 +59,14 @@ def modal_work(phase, taus):
     """(3, T) work integrals of a closed-form phase at ``taus`` (s)."""
     t = phase.template
     power = phase.form(t.power_shapes, t.power_map, t.power_offset)
-    rates = phase.form(t.rate_shapes, t.rate_map, np.zeros(phase.spec.n + 1))
     work = np.empty((3, np.size(taus)))
     work[:2] = power.integral(taus)
     c = phase.spec.c
-    work[2] = square_integral(rates, c, taus) if c.any() else 0.0
+    if t.damped_links:
+        rates = phase.form(t.rate_shapes, t.rate_map, np.zeros(phase.spec.n + 1))
+        work[2] = square_integral(rates, c, taus)
+    else:
+        work[2] = 0.0
     return work
 
 

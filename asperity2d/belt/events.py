@@ -71,9 +71,9 @@ class ModalEvents:
         dB = scale_columns(self.g.B, lam)
         B = stack_rows(self.g.B, dB)
         self._both = ModalForm(lam, B, np.concatenate([self.g.c0, self.g.c1]),
-                               np.concatenate([self.g.c1, np.zeros_like(self.g.c1)]))
+                               np.concatenate([self.g.c1, np.zeros_like(self.g.c1)]), self.g.damped)
         #: rigorous bound on |d⁴g/dtau⁴| per row: sum of |b|·|lam|⁴
-        self.bound4 = t.event_shapes_abs @ (np.abs(phase.coef) * np.abs(lam) ** 4)
+        self.bound4 = t.event_shapes_abs @ (np.abs(phase.coef) * t.lam_abs4)
         self._points = {}  # row -> its closed form at one time (the root search asks repeatedly)
 
     def __len__(self):
@@ -94,7 +94,7 @@ class ModalEvents:
 
     def _point(self, r):
         lam, b, c0, c1 = self.g.scalar(r)
-        M = np.vstack([b, b * lam, b * lam * lam])
+        M = np.array([b, b * lam, b * lam * lam])
 
         def f(t):
             d0, d1, d2 = (M @ np.exp(lam * t)).real

@@ -33,17 +33,22 @@ class ModalForm:
     which NumPy does far faster than one complex product).
     """
 
-    __slots__ = ("lam", "B", "Br", "Bi", "c0", "c1")
+    __slots__ = ("lam", "B", "Br", "Bi", "c0", "c1", "damped")
 
-    def __init__(self, lam, B, c0, c1):
+    def __init__(self, lam, B, c0, c1, damped=None):
+        """``damped``: whether any ``lam`` has a real part (found from ``lam`` when None; the
+        solvers pass it from the mode pattern, which knows it once for all its phases)."""
         self.lam, self.B, self.c0, self.c1 = lam, B, c0, c1
         self.Br, self.Bi = B.real, B.imag
+        self.damped = damped
 
     def growth(self, tau):
         """(Re, Im) of exp(lam·tau), each (S, T)."""
         phase = np.multiply.outer(self.lam.imag, tau)
         cos, sin = np.cos(phase), np.sin(phase)
-        if np.any(self.lam.real):
+        if self.damped is None:
+            self.damped = bool(self.lam.real.any())
+        if self.damped:
             amp = np.exp(np.multiply.outer(self.lam.real, tau))
             cos *= amp
             sin *= amp
@@ -52,7 +57,13 @@ class ModalForm:
     def at(self, tau, growth=None) -> np.ndarray:
         """Values (R, T) at times ``tau`` (s, (T,)); ``growth`` reuses :meth:`growth` of the same times."""
         cos, sin = self.growth(tau) if growth is None else growth
-        return self.Br @ cos - self.Bi @ sin + self.c0[:, None] + np.multiply.outer(self.c1, tau)
+        # in place, in the order of Br@cos - Bi@sin + c0 + c1·tau (the same rounding): a long scan
+        # evaluates thousands of times at once, and each fresh (R, T) temporary costs page faults
+        out = self.Br @ cos
+        out -= self.Bi @ sin
+        out += self.c0[:, None]
+        out += np.multiply.outer(self.c1, tau)
+        return out
 
     def integral(self, tau) -> np.ndarray:
         """Integrals from 0 to ``tau`` (R, T) in closed form (every lam non-zero).
@@ -62,12 +73,21 @@ class ModalForm:
         """
         tau = np.asarray(tau, dtype=float)
         a, w = np.multiply.outer(self.lam.real, tau), np.multiply.outer(self.lam.imag, tau)
-        cos, sin = np.cos(w), np.sin(w)
-        re = np.expm1(a) * cos - 2.0 * np.sin(0.5 * w) ** 2  # Re(exp(lam tau) - 1)
-        im = np.exp(a) * sin
+        # in place, in the order of the formulas in the comments (the same rounding)
+        re = np.expm1(a)  # Re(exp(lam tau) - 1) = expm1(a)·cos(w) - 2·sin²(w/2)
+        re *= np.cos(w)
+        half = np.sin(0.5 * w)
+        np.square(half, out=half)
+        half *= 2.0
+        re -= half
+        im = np.exp(a)  # Im(exp(lam tau)) = exp(a)·sin(w)
+        im *= np.sin(w)
         Bl = scale_columns(self.B, 1.0 / self.lam)
-        return (Bl.real @ re - Bl.imag @ im + np.multiply.outer(self.c0, tau)
-                + np.multiply.outer(0.5 * self.c1, np.square(tau)))
+        out = Bl.real @ re  # Bl.real @ re - Bl.imag @ im + c0·tau + c1·tau²/2
+        out -= Bl.imag @ im
+        out += np.multiply.outer(self.c0, tau)
+        out += np.multiply.outer(0.5 * self.c1, np.square(tau))
+        return out
 
     def derivative(self) -> "ModalForm":
         """d/dtau of every row."""
@@ -142,11 +162,14 @@ def phi(z):
 
 
 def block_matrix(blocks, shape):
-    """Dense or CSR complex matrix of ``shape`` from (rows, cols, values) blocks."""
+    """Dense or CSR complex matrix of ``shape`` from (rows, cols, values) blocks.
+
+    ``rows`` and ``cols`` of each block are runs of consecutive indices (``lo + np.arange(L)``).
+    """
     if shape[1] <= SPARSE_ABOVE:
         out = np.zeros(shape, dtype=complex)
-        for rows, cols, values in blocks:
-            out[np.ix_(rows, cols)] = values
+        for rows, cols, values in blocks:  # slices: consecutive indices (np.ix_ costs 5x more)
+            out[rows[0] : rows[-1] + 1, cols[0] : cols[-1] + 1] = values
         return out
     sp = _sparse()
     if not blocks:

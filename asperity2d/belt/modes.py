@@ -44,10 +44,11 @@ def resolve_modes(spec, x, v, V, a_belt, previous, v_scale, touching=(), contrad
     rel = v - V
     at_belt = spec.frictional & (np.abs(rel) <= SWITCH_TOL * v_scale)
     modes = np.where(rel >= 0, 1, -1)  # off belt speed (frictionless masses never stick)
-    v_at = np.where(at_belt, V, v)  # the forces as if the masses at belt speed were stuck
+    any_at = bool(at_belt.any())
+    v_at = np.where(at_belt, V, v) if any_at else v  # the forces as if the masses at belt speed were stuck
     f_sd = link_force(spec.k, x) + link_force(spec.c, v_at)
     f_req = spec.m * a_belt - f_sd
-    if at_belt.any():
+    if any_at:
         tol = SWITCH_TOL * spec.limit_scale
         size = np.abs(f_req)
         outside = at_belt & (size > limit + tol)
@@ -64,9 +65,10 @@ def resolve_modes(spec, x, v, V, a_belt, previous, v_scale, touching=(), contrad
     for i in contradicted:
         if modes[i] == previous[i]:
             modes[i] = -previous[i] if previous[i] != 0 else (-int(np.sign(f_req[i])) or 1)
-    touched = np.zeros(spec.n, dtype=bool)
-    touched[list(touching)] = True
-    grazing = np.flatnonzero(touched & at_belt & (previous != 0) & (modes == previous))
-    snap = at_belt & ((modes != previous) | (modes == 0))
-    v[snap] = V
+    # (per mass in Python: `touching` holds a mass or two, and this runs at every switch)
+    grazing = np.array(sorted({int(i) for i in touching if at_belt[i] and previous[i] != 0 and modes[i] == previous[i]}),
+                       dtype=np.intp)
+    if any_at:
+        snap = at_belt & ((modes != previous) | (modes == 0))
+        v[snap] = V
     return modes, v, grazing
