@@ -97,8 +97,8 @@ class ModalEvents:
         M = np.array([b, b * lam, b * lam * lam])
 
         def f(t):
-            d0, d1, d2 = (M @ np.exp(lam * t)).real
-            return float(d0) + c0 + c1 * t, float(d1) + c1, float(d2)
+            d0, d1, d2 = (M @ np.exp(lam * t)).real.tolist()  # (plain floats: the search is scalar)
+            return d0 + c0 + c1 * t, d1 + c1, d2
 
         return f
 

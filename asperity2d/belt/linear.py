@@ -95,13 +95,15 @@ class Template:
         self.lam_abs4 = np.abs(self.lam) ** 4
         #: whether any mode decays or grows (Re lam != 0): undamped phases skip exp(Re lam·tau)
         self.damped = bool(self.lam.real.any())
-        #: whether any damper acts (else the damper loss is zero and its forms are not built)
-        self.damped_links = bool(spec.c.any())
+        #: the particular solution's (c0, c1) rows [x; v; a] of stuck masses, c0's x rows to be set to x0
+        self.c0_stuck = np.concatenate([np.zeros(n), np.full(n, self.V), np.zeros(n)])
+        self.c1_stuck = np.concatenate([np.full(n, self.V), np.zeros(2 * n)])
         #: per segment, the rows of its x and v in the state [x; v; a]
         self.segment_rows = [np.concatenate([lo + np.arange(hi - lo + 1), n + lo + np.arange(hi - lo + 1)])
                              for lo, hi, _ in self.runs]
         self.power_map, self.power_offset, self.rate_map = power_maps(spec, self.stuck, self.fric_slip, self.V)
-        self.power_shapes, self.rate_shapes = self.power_map @ self.shapes, self.rate_map @ self.shapes
+        self.power_shapes = self.power_map @ self.shapes
+        self.rate_shapes = None if self.rate_map is None else self.rate_map @ self.shapes
 
 
 class LinearPhase:
@@ -135,8 +137,8 @@ class LinearPhase:
         self.motion = None
         if template.exact:
             # stuck rows: x = x0 + V·tau, v = V, a = 0; segment rows: particular solution + modes
-            c0 = np.concatenate([self.x0, np.full(n, V), np.zeros(n)])
-            c1 = np.concatenate([np.full(n, V), np.zeros(2 * n)])
+            c0, c1 = template.c0_stuck.copy(), template.c1_stuck.copy()
+            c0[:n] = self.x0
             for seg, rows in zip(self.segments, template.segment_rows):
                 c0[rows], c1[rows] = seg.c0, seg.c1
             self.coef = np.concatenate([s.coef for s in self.segments]) if self.segments else np.zeros(0, complex)

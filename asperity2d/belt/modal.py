@@ -196,7 +196,7 @@ def linear_map(shape, entries):
 
 def stack_rows(a, b):
     """The rows of ``a`` then ``b`` (both dense or both sparse)."""
-    return np.vstack([a, b]) if isinstance(a, np.ndarray) else _sparse().vstack([a, b], format="csr")
+    return np.concatenate((a, b)) if isinstance(a, np.ndarray) else _sparse().vstack([a, b], format="csr")
 
 
 def _sparse():

@@ -64,6 +64,7 @@ class SegmentModes:
             self.exact = bool(w2[-1] > 0 and w2[0] > 1e-10 * w2[-1])
             if self.exact:
                 self.omega = np.sqrt(w2)
+                self.omega2 = self.omega**2
                 self.Phi = Q / root[:, None]  # mass-normalised: Phiᵀ M Phi = I
                 self.lam = 1j * self.omega
                 self.shapes = np.vstack([self.Phi, self.Phi * self.lam]).astype(complex)
@@ -91,8 +92,8 @@ class SegmentModes:
         L = self.L
         if self.undamped:
             Phi, omega = self.Phi, self.omega
-            beta = Phi @ ((Phi.T @ q) / omega**2)  # K⁻¹ = Phi·diag(1/omega²)·Phiᵀ
-            alpha = Phi @ ((Phi.T @ p) / omega**2)
+            beta = Phi @ ((Phi.T @ q) / self.omega2)  # K⁻¹ = Phi·diag(1/omega²)·Phiᵀ
+            alpha = Phi @ ((Phi.T @ p) / self.omega2)
             a = Phi.T @ (self.m * (y0[:L] - alpha))
             b = Phi.T @ (self.m * (y0[L:] - beta)) / omega
             coef = a - 1j * b
