@@ -46,7 +46,9 @@ def resolve_modes(spec, x, v, V, a_belt, previous, v_scale, touching=(), contrad
     modes = np.where(rel >= 0, 1, -1)  # off belt speed (frictionless masses never stick)
     any_at = bool(at_belt.any())
     v_at = np.where(at_belt, V, v) if any_at else v  # the forces as if the masses at belt speed were stuck
-    f_sd = link_force(spec.k, x) + link_force(spec.c, v_at)
+    f_sd = link_force(spec.k, x)
+    if spec.damped:  # (without dampers the term is a signed zero, which changes no mode: f_req is
+        f_sd = f_sd + link_force(spec.c, v_at)  # m·a_belt - f_sd, and a_belt is never -0.0)
     f_req = spec.m * a_belt - f_sd
     if any_at:
         tol = SWITCH_TOL * spec.limit_scale

@@ -25,6 +25,8 @@ form: the augmented system [y, tau, 1] is propagated by :class:`TaylorGrid`.
 
 from __future__ import annotations
 
+from functools import cached_property
+
 import numpy as np
 
 from .modal import cmatmul
@@ -52,10 +54,6 @@ class SegmentModes:
         K[off, off + 1] = K[off + 1, off] = -k[1:-1]
         C[off, off + 1] = C[off + 1, off] = -c[1:-1]
         self.K, self.C = K, C
-        self.A = A = np.zeros((2 * L, 2 * L))  # [[0, I], [-M⁻¹K, -M⁻¹C]] (np.block costs 10x more)
-        A[:L, L:] = np.eye(L)
-        A[L:, :L] = -K / m[:, None]
-        A[L:, L:] = -C / m[:, None]
         self.undamped = not c.any()
         if self.undamped:
             root = np.sqrt(m)
@@ -67,7 +65,7 @@ class SegmentModes:
                 self.omega2 = self.omega**2
                 self.Phi = Q / root[:, None]  # mass-normalised: Phiᵀ M Phi = I
                 self.lam = 1j * self.omega
-                self.shapes = np.vstack([self.Phi, self.Phi * self.lam]).astype(complex)
+                self.shapes = np.concatenate((self.Phi, self.Phi * self.lam))  # (complex: promoted)
             return
         lam, W = np.linalg.eig(self.A)
         self.rate = float(np.max(np.abs(lam)))
@@ -81,6 +79,17 @@ class SegmentModes:
             self.half_weight = np.where(lam.imag[self.half] > 0, 2.0, 1.0)
             self.lam = lam[self.half].astype(complex)
             self.shapes = W[:, self.half].astype(complex)
+
+    @cached_property
+    def A(self) -> np.ndarray:
+        """[[0, I], [-M⁻¹K, -M⁻¹C]] (1/s², 1/s), built when used: damped, unanchored or defective
+        segments (an undamped anchored one is solved from its symmetric eigenproblem)."""
+        L, m = self.L, self.m
+        A = np.zeros((2 * L, 2 * L))  # (np.block costs 10x more)
+        A[:L, L:] = np.eye(L)
+        A[L:, :L] = -self.K / m[:, None]
+        A[L:, L:] = -self.C / m[:, None]
+        return A
 
     def solve(self, y0, p, q):
         """(c0, c1, coef) of the motion from ``y0`` = [x0; v0] under forces p + q·tau (N, N/s).

@@ -220,6 +220,11 @@ class ChainSpec:
                    float(np.max(self.m)) * self.velocity_scale * self.velocity_scale, 1e-300)
 
     @cached_property
+    def damped(self) -> bool:
+        """True when any damper acts."""
+        return bool(self.c.any())
+
+    @cached_property
     def force_rows(self) -> tuple:
         """Per mass, :func:`force_row`: the (columns, coefficients) of its spring + damper force."""
         return tuple(_force_row(self, i) for i in range(self.n))
