@@ -22,7 +22,7 @@ from .backend import RawRun
 from .energy import modal_work, power_maps, quadrature_work
 from .events import event_map
 from .loop import event_loop
-from .modal import ModalForm, block_matrix, scale_columns
+from .modal import ModalForm, block_matrix, damped, scale_columns
 from .segment import Segment, SegmentModes
 from .spec import link_force
 
@@ -93,8 +93,8 @@ class Template:
         self.event_shapes_abs = abs(self.event_shapes)
         #: |lam|⁴ of the modes (the event functions' fourth-derivative bound, :class:`~.events.ModalEvents`)
         self.lam_abs4 = np.abs(self.lam) ** 4
-        #: whether any mode decays or grows (Re lam != 0): undamped phases skip exp(Re lam·tau)
-        self.damped = bool(self.lam.real.any())
+        #: whether any mode decays or grows (:func:`~.modal.damped`): undamped phases skip exp(Re lam·tau)
+        self.damped = damped(self.lam)
         #: the particular solution's (c0, c1) rows [x; v; a] of stuck masses, c0's x rows to be set to x0
         self.c0_stuck = np.concatenate([np.zeros(n), np.full(n, self.V), np.zeros(n)])
         self.c1_stuck = np.concatenate([np.full(n, self.V), np.zeros(2 * n)])

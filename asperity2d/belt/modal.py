@@ -36,8 +36,8 @@ class ModalForm:
     __slots__ = ("lam", "B", "Br", "Bi", "c0", "c1", "damped")
 
     def __init__(self, lam, B, c0, c1, damped=None):
-        """``damped``: whether any ``lam`` has a real part (found from ``lam`` when None; the
-        solvers pass it from the mode pattern, which knows it once for all its phases)."""
+        """``damped``: :func:`damped` of ``lam`` (found from ``lam`` when None; the solvers pass
+        it from the mode pattern, which knows it once for all its phases)."""
         self.lam, self.B, self.c0, self.c1 = lam, B, c0, c1
         self.Br, self.Bi = B.real, B.imag
         self.damped = damped
@@ -47,7 +47,7 @@ class ModalForm:
         phase = np.multiply.outer(self.lam.imag, tau)
         cos, sin = np.cos(phase), np.sin(phase)
         if self.damped is None:
-            self.damped = bool(self.lam.real.any())
+            self.damped = damped(self.lam)
         if self.damped:
             amp = np.exp(np.multiply.outer(self.lam.real, tau))
             cos *= amp
@@ -72,16 +72,26 @@ class ModalForm:
         difference of nearly equal numbers: short phases keep their relative accuracy.
         """
         tau = np.asarray(tau, dtype=float)
-        a, w = np.multiply.outer(self.lam.real, tau), np.multiply.outer(self.lam.imag, tau)
+        w = np.multiply.outer(self.lam.imag, tau)
         # in place, in the order of the formulas in the comments (the same rounding)
-        re = np.expm1(a)  # Re(exp(lam tau) - 1) = expm1(a)·cos(w) - 2·sin²(w/2)
-        re *= np.cos(w)
         half = np.sin(0.5 * w)
         np.square(half, out=half)
         half *= 2.0
-        re -= half
-        im = np.exp(a)  # Im(exp(lam tau)) = exp(a)·sin(w)
-        im *= np.sin(w)
+        if self.damped is None:
+            self.damped = damped(self.lam)
+        if self.damped:
+            a = np.multiply.outer(self.lam.real, tau)
+            re = np.expm1(a)  # Re(exp(lam tau) - 1) = expm1(a)·cos(w) - 2·sin²(w/2)
+            re *= np.cos(w)
+            re -= half
+            im = np.exp(a)  # Im(exp(lam tau)) = exp(a)·sin(w)
+            im *= np.sin(w)
+        else:
+            # Re lam = +0: a = +0·tau = +0 (tau >= 0), expm1(a)·cos(w) = ±0 and exp(a) = 1, so the
+            # same numbers are 0.0 - 2·sin²(w/2) (±0 - x = -x for x > 0; x = 0 only at w = 0,
+            # where cos = 1 and both give +0) and sin(w): no cos, exp or expm1 to evaluate
+            re = np.subtract(0.0, half, out=half)
+            im = np.sin(w)
         Bl = scale_columns(self.B, 1.0 / self.lam)
         out = Bl.real @ re  # Bl.real @ re - Bl.imag @ im + c0·tau + c1·tau²/2
         out -= Bl.imag @ im
@@ -106,6 +116,13 @@ class ModalForm:
             return self.lam[keep], b[keep], float(self.c0[r]), float(self.c1[r])
         lo, hi = self.B.indptr[r], self.B.indptr[r + 1]  # CSR row r, without fancy indexing
         return self.lam[self.B.indices[lo:hi]], self.B.data[lo:hi], float(self.c0[r]), float(self.c1[r])
+
+
+def damped(lam) -> bool:
+    """False only when every ``lam`` has real part +0.0 exactly (so that exp(lam·tau) = cos + i·sin
+    with no rounding of its own): a -0.0 counts as damped, which costs time, never bits."""
+    real = np.real(lam)
+    return bool(real.any() or np.signbit(real).any())
 
 
 def scale_columns(B, w):
