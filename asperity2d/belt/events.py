@@ -29,7 +29,8 @@ def event_rows(spec, modes):
     Frictionless masses have none (they never stick).
     """
     kind, mass = [], []
-    for i in np.flatnonzero(spec.frictional):
+    modes = np.asarray(modes).tolist()  # (plain ints: a new mode pattern's rows are built in Python)
+    for i in spec.frictional_masses:
         if modes[i] == 0:
             kind += [1, -1]
             mass += [i, i]
@@ -46,7 +47,8 @@ def event_map(spec, modes, V):
     f_scale = spec.limit_scale
     rows, cols, vals = [], [], []
     offset = np.empty(kind.size)
-    for r, (k, i) in enumerate(zip(kind, mass)):
+    modes = np.asarray(modes).tolist()
+    for r, (k, i) in enumerate(zip(kind.tolist(), mass.tolist())):
         if k == 0:  # s·(v_i - V)/v_scale
             s = modes[i] / v_scale
             rows.append(r), cols.append(n + i), vals.append(s)

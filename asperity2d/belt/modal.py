@@ -203,11 +203,19 @@ def linear_map(shape, entries):
     CSR beyond ``DENSE_MAP_WIDTH`` columns: the maps of a phase (event functions,
     powers) have a handful of non-zeros per row, so a dense product would cost R·C·S.
     """
-    r, c, v = (np.asarray(a) for a in entries)
     if shape[1] <= DENSE_MAP_WIDTH:
         out = np.zeros(shape)
-        np.add.at(out, (r.astype(int), c.astype(int)), v)
+        if len(entries[2]) <= 64:  # a few entries: in Python, summed in order from 0.0 as np.add.at does
+            total: dict = {}
+            for i, j, value in zip(*entries):
+                key = (int(i), int(j))
+                total[key] = total.get(key, 0.0) + float(value)
+            for key, value in total.items():
+                out[key] = value
+            return out
+        np.add.at(out, tuple(np.asarray(a).astype(int) for a in entries[:2]), np.asarray(entries[2]))
         return out
+    r, c, v = (np.asarray(a) for a in entries)
     return _sparse().csr_array((v.astype(float), (r.astype(int), c.astype(int))), shape=shape)
 
 

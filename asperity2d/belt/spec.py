@@ -220,6 +220,11 @@ class ChainSpec:
                    float(np.max(self.m)) * self.velocity_scale * self.velocity_scale, 1e-300)
 
     @cached_property
+    def frictional_masses(self) -> tuple:
+        """Indices (plain ints) of the masses that feel friction."""
+        return tuple(np.flatnonzero(self.frictional).tolist())
+
+    @cached_property
     def damped(self) -> bool:
         """True when any damper acts."""
         return bool(self.c.any())
