@@ -47,8 +47,10 @@ def resolve_modes(spec, x, v, V, a_belt, previous, v_scale, touching=(), contrad
     any_at = bool(at_belt.any())
     v_at = np.where(at_belt, V, v) if any_at else v  # the forces as if the masses at belt speed were stuck
     f_sd = link_force(spec.k, x)
-    if spec.damped:  # (without dampers the term is a signed zero, which changes no mode: f_req is
-        f_sd = f_sd + link_force(spec.c, v_at)  # m·a_belt - f_sd, and a_belt is never -0.0)
+    if spec.damped:
+        # (without dampers the damper force is a signed zero, which changes neither f_req =
+        # m·a_belt - f_sd, a_belt never being -0.0, nor any mode decided below)
+        f_sd = f_sd + link_force(spec.c, v_at)
     f_req = spec.m * a_belt - f_sd
     if any_at:
         tol = SWITCH_TOL * spec.limit_scale
@@ -68,8 +70,8 @@ def resolve_modes(spec, x, v, V, a_belt, previous, v_scale, touching=(), contrad
         if modes[i] == previous[i]:
             modes[i] = -previous[i] if previous[i] != 0 else (-int(np.sign(f_req[i])) or 1)
     # (per mass in Python: `touching` holds a mass or two, and this runs at every switch)
-    grazing = np.array(sorted({int(i) for i in touching if at_belt[i] and previous[i] != 0 and modes[i] == previous[i]}),
-                       dtype=np.intp)
+    grazed = {int(i) for i in touching if at_belt[i] and previous[i] != 0 and modes[i] == previous[i]}
+    grazing = np.array(sorted(grazed), dtype=np.intp)
     if any_at:
         snap = at_belt & ((modes != previous) | (modes == 0))
         v[snap] = V
