@@ -33,7 +33,7 @@ class ModalForm:
     which NumPy does far faster than one complex product).
     """
 
-    __slots__ = ("lam", "B", "Br", "Bi", "c0", "c1", "damped")
+    __slots__ = ("lam", "B", "Br", "Bi", "c0", "c1", "damped", "_offset")
 
     def __init__(self, lam, B, c0, c1, damped=None):
         """``damped``: :func:`damped` of ``lam`` (found from ``lam`` when None; the solvers pass
@@ -41,6 +41,7 @@ class ModalForm:
         self.lam, self.B, self.c0, self.c1 = lam, B, c0, c1
         self.Br, self.Bi = B.real, B.imag
         self.damped = damped
+        self._offset = None  # (see :meth:`at`)
 
     def growth(self, tau):
         """(Re, Im) of exp(lam·tau), each (S, T)."""
@@ -55,14 +56,23 @@ class ModalForm:
         return cos, sin
 
     def at(self, tau, growth=None) -> np.ndarray:
-        """Values (R, T) at times ``tau`` (s, (T,)); ``growth`` reuses :meth:`growth` of the same times."""
+        """Values (R, T) at times ``tau`` (s, (T,), >= 0 as every time from a phase start);
+        ``growth`` reuses :meth:`growth` of the same times."""
         cos, sin = self.growth(tau) if growth is None else growth
         # in place, in the order of Br@cos - Bi@sin + c0 + c1·tau (the same rounding): a long scan
         # evaluates thousands of times at once, and each fresh (R, T) temporary costs page faults
         out = self.Br @ cos
         out -= self.Bi @ sin
-        out += self.c0[:, None]
-        out += np.multiply.outer(self.c1, tau)
+        if self._offset is None:
+            # rows without a ramp (every c1 a signed zero: an all-slipping phase): c1·tau is c1
+            # itself for tau >= +0, and (y + c0) + z = y + (c0 + z) for a signed zero z, so one
+            # addition of c0 + c1 gives the same numbers
+            self._offset = False if self.c1.any() else (self.c0 + self.c1)[:, None]
+        if self._offset is False:
+            out += self.c0[:, None]
+            out += np.multiply.outer(self.c1, tau)
+        else:
+            out += self._offset
         return out
 
     def integral(self, tau) -> np.ndarray:
@@ -96,7 +106,11 @@ class ModalForm:
         out = Bl.real @ re  # Bl.real @ re - Bl.imag @ im + c0·tau + c1·tau²/2
         out -= Bl.imag @ im
         out += np.multiply.outer(self.c0, tau)
-        out += np.multiply.outer(0.5 * self.c1, np.square(tau))
+        half_c1 = 0.5 * self.c1
+        if half_c1.any():
+            out += np.multiply.outer(half_c1, np.square(tau))
+        else:  # signed zeros times tau² >= +0: themselves (no (R, T) product to form)
+            out += half_c1[:, None]
         return out
 
     def derivative(self) -> "ModalForm":
