@@ -65,6 +65,11 @@ def event_map(spec, modes, V):
 class ModalEvents:
     """Event functions of a closed-form phase as modal forms (maps cached in the phase's template)."""
 
+    #: the value at each time is computed on its own, the same numbers alone or among other times
+    #: (elementwise exp/cos/sin, and products of a strided B.real / B.imag or a CSR matrix, which
+    #: NumPy and SciPy sum term by term in order, never blocked by BLAS)
+    pointwise = True
+
     def __init__(self, phase):
         t = phase.template
         self.kind, self.mass = t.kind, t.mass
@@ -109,6 +114,8 @@ class SampledEvents:
     """Event functions evaluated from ``phase.evaluate`` (integrated or expm-propagated phases)."""
 
     bound4 = None
+    #: (integrators' dense output may evaluate many times as one matrix product)
+    pointwise = False
 
     def __init__(self, phase):
         self.phase, self.spec = phase, phase.spec

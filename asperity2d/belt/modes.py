@@ -40,7 +40,6 @@ def resolve_modes(spec, x, v, V, a_belt, previous, v_scale, touching=(), contrad
     """
     v = np.array(v, dtype=float)
     previous = np.asarray(previous, dtype=int)
-    limit = spec.static_limit
     rel = v - V
     at_belt = spec.frictional & (np.abs(rel) <= SWITCH_TOL * v_scale)
     modes = np.where(rel >= 0, 1, -1)  # off belt speed (frictionless masses never stick)
@@ -53,12 +52,13 @@ def resolve_modes(spec, x, v, V, a_belt, previous, v_scale, touching=(), contrad
         f_sd = f_sd + link_force(spec.c, v_at)
     f_req = spec.m * a_belt - f_sd
     if any_at:
-        tol = SWITCH_TOL * spec.limit_scale
+        above, below = spec.limit_band
         size = np.abs(f_req)
-        outside = at_belt & (size > limit + tol)
+        outside = at_belt & (size > above)
         modes[at_belt] = 0
-        modes[outside] = -np.sign(f_req[outside]).astype(int)
-        border = at_belt & ~outside & (size >= limit - tol)
+        if outside.any():
+            modes[outside] = -np.sign(f_req[outside]).astype(int)
+        border = at_belt & ~outside & (size >= below)
         if border.any():
             # at the static limit: compare the trend of the required force with the tentative modes
             a = (f_sd - modes * spec.kinetic_force) / spec.m

@@ -220,6 +220,14 @@ class ChainSpec:
                    float(np.max(self.m)) * self.velocity_scale * self.velocity_scale, 1e-300)
 
     @cached_property
+    def limit_band(self) -> tuple:
+        """Per mass, the static limit plus and minus the switching tolerance (N): (above, below)."""
+        from .finder import SWITCH_TOL  # (lazily: the spec does not need the solver to load)
+
+        tol = SWITCH_TOL * self.limit_scale
+        return self.static_limit + tol, self.static_limit - tol
+
+    @cached_property
     def frictional_masses(self) -> tuple:
         """Indices (plain ints) of the masses that feel friction."""
         return tuple(np.flatnonzero(self.frictional).tolist())
