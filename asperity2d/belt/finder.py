@@ -54,17 +54,23 @@ def find_event(events, horizon: float, step: float, chunk: int = 16):
     if len(events) == 0 or horizon <= 0:
         return None
     step = min(step, horizon)
-    g, d = events.values(np.array([0.0]))
-    opening = np.abs(g[:, 0]) <= SWITCH_TOL
-    t_prev, g_prev, d_prev, first = 0.0, g[:, 0], d[:, 0], True
+    if not events.pointwise:
+        g, d = events.values(np.array([0.0]))
+        opening = np.abs(g[:, 0]) <= SWITCH_TOL
+        g_prev, d_prev = g[:, 0], d[:, 0]
+    t_prev, first = 0.0, True
     while t_prev < horizon:
         taus = t_prev + step * np.arange(1, chunk + 1)
         taus = taus[taus < horizon * (1 - 4 * _EPS)]
         if taus.size < chunk:
             taus = np.append(taus, horizon)
-        g, d = events.values(taus)
         tg = np.concatenate([[t_prev], taus])
-        G, D = np.column_stack([g_prev, g]), np.column_stack([d_prev, d])
+        if first and events.pointwise:  # the start with the first chunk, in one evaluation
+            G, D = events.values(tg)
+            opening = np.abs(G[:, 0]) <= SWITCH_TOL
+        else:
+            g, d = events.values(taus)
+            G, D = np.concatenate((g_prev[:, None], g), axis=1), np.concatenate((d_prev[:, None], d), axis=1)
         flagged = _flags(G[:, :-1], G[:, 1:], D[:, :-1], D[:, 1:], np.diff(tg)[None, :], events.bound4)
         if first:
             flagged[:, 0] = _flags(G[:, 0], G[:, 1], D[:, 0], D[:, 1], tg[1], events.bound4, opening)
@@ -136,11 +142,28 @@ def _lower(ga, gb, da, db, h, bound4):
         else:
             error = h**4 / 384 * bound4
         return min(ga, gb) - 4 / 27 * h * (abs(da) + abs(db)) - error
+    if np.size(ga) <= 1024:  # few intervals: fewer NumPy calls win
+        if bound4 is None:
+            error = 1e-3 * (np.abs(ga) + np.abs(gb) + h * (np.abs(da) + np.abs(db)))
+        else:
+            error = h**4 / 384 * (bound4[:, None] if np.ndim(ga) == 2 else bound4)
+        return np.minimum(ga, gb) - 4 / 27 * h * (np.abs(da) + np.abs(db)) - error
+    # many: in place, each operation in the order of the formula above (the same rounding): a long
+    # phase screens thousands of intervals at once, and fresh temporaries cost page faults
+    slopes = np.abs(da)
+    slopes += np.abs(db)
     if bound4 is None:
-        error = 1e-3 * (np.abs(ga) + np.abs(gb) + h * (np.abs(da) + np.abs(db)))
+        error = np.abs(ga)
+        error += np.abs(gb)
+        error += h * slopes
+        error *= 1e-3
     else:
         error = h**4 / 384 * (bound4[:, None] if np.ndim(ga) == 2 else bound4)
-    return np.minimum(ga, gb) - 4 / 27 * h * (np.abs(da) + np.abs(db)) - error
+    slopes *= 4 / 27 * h
+    out = np.minimum(ga, gb)
+    out -= slopes
+    out -= error
+    return out
 
 
 def _row_event(events, r, a, b, ga, gb, da, db, opening, horizon):

@@ -22,7 +22,7 @@ from .backend import RawRun
 from .energy import modal_work, power_maps, quadrature_work
 from .events import event_map
 from .loop import event_loop
-from .modal import ModalForm, block_matrix, scale_columns
+from .modal import ModalForm, block_matrix, damped, scale_columns
 from .segment import Segment, SegmentModes
 from .spec import link_force
 
@@ -65,6 +65,7 @@ class Template:
         self.spec, self.V = spec, float(V)
         self.modes = np.asarray(modes)
         self.stuck = self.modes == 0
+        self.any_stuck = bool(self.stuck.any())
         #: kinetic force on each slipping mass (N): opposes the relative velocity
         self.fric_slip = -self.modes * spec.kinetic_force
         self.runs = []
@@ -90,8 +91,19 @@ class Template:
         self.kind, self.mass, self.event_map, self.event_offset = event_map(spec, self.modes, self.V)
         self.event_shapes = self.event_map @ self.shapes
         self.event_shapes_abs = abs(self.event_shapes)
+        #: |lam|⁴ of the modes (the event functions' fourth-derivative bound, :class:`~.events.ModalEvents`)
+        self.lam_abs4 = np.abs(self.lam) ** 4
+        #: whether any mode decays or grows (:func:`~.modal.damped`): undamped phases skip exp(Re lam·tau)
+        self.damped = damped(self.lam)
+        #: the particular solution's (c0, c1) rows [x; v; a] of stuck masses, c0's x rows to be set to x0
+        self.c0_stuck = np.concatenate([np.zeros(n), np.full(n, self.V), np.zeros(n)])
+        self.c1_stuck = np.concatenate([np.full(n, self.V), np.zeros(2 * n)])
+        #: per segment, the rows of its x and v in the state [x; v; a]
+        self.segment_rows = [np.concatenate([lo + np.arange(hi - lo + 1), n + lo + np.arange(hi - lo + 1)])
+                             for lo, hi, _ in self.runs]
         self.power_map, self.power_offset, self.rate_map = power_maps(spec, self.stuck, self.fric_slip, self.V)
-        self.power_shapes, self.rate_shapes = self.power_map @ self.shapes, self.rate_map @ self.shapes
+        self.power_shapes = self.power_map @ self.shapes
+        self.rate_shapes = None if self.rate_map is None else self.rate_map @ self.shapes
 
 
 class LinearPhase:
@@ -125,18 +137,17 @@ class LinearPhase:
         self.motion = None
         if template.exact:
             # stuck rows: x = x0 + V·tau, v = V, a = 0; segment rows: particular solution + modes
-            c0 = np.concatenate([self.x0, np.full(n, V), np.zeros(n)])
-            c1 = np.concatenate([np.full(n, V), np.zeros(2 * n)])
-            for seg in self.segments:
-                rows = np.concatenate([seg.lo + np.arange(seg.L), n + seg.lo + np.arange(seg.L)])
+            c0, c1 = template.c0_stuck.copy(), template.c1_stuck.copy()
+            c0[:n] = self.x0
+            for seg, rows in zip(self.segments, template.segment_rows):
                 c0[rows], c1[rows] = seg.c0, seg.c1
             self.coef = np.concatenate([s.coef for s in self.segments]) if self.segments else np.zeros(0, complex)
-            self.motion = ModalForm(template.lam, scale_columns(template.shapes, self.coef), c0, c1)
+            self.motion = ModalForm(template.lam, scale_columns(template.shapes, self.coef), c0, c1, template.damped)
 
     def form(self, shapes, rows_map, offset) -> ModalForm:
         """The modal form of ``rows_map @ [x; v; a] + offset`` given ``shapes = rows_map @ template.shapes``."""
         m = self.motion
-        return ModalForm(m.lam, scale_columns(shapes, self.coef), rows_map @ m.c0 + offset, rows_map @ m.c1)
+        return ModalForm(m.lam, scale_columns(shapes, self.coef), rows_map @ m.c0 + offset, rows_map @ m.c1, m.damped)
 
     def evaluate(self, tau):
         """Positions, velocities, accelerations (each (n, T)) at ``tau`` (s) after the phase start."""
@@ -175,7 +186,8 @@ class LinearPhase:
     def friction_force(self, x, v, a, tau):
         """Friction force on each mass (N): kinetic while slipping, the required static force while stuck."""
         f = np.repeat(self.fric_slip[:, None], np.size(tau), axis=1)
-        f[self.stuck] = -self.spring_damper_force(x, v)[self.stuck]
+        if self.template.any_stuck:  # (an all-slipping phase needs no spring forces)
+            f[self.stuck] = -self.spring_damper_force(x, v)[self.stuck]
         return f
 
     def spring_damper_force(self, x, v):

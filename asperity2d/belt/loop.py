@@ -99,7 +99,7 @@ def event_loop(spec, options, make_phase) -> RawRun:
 
 def _record(phase, taus, t0, length, work, rec):
     """Append samples at ``taus`` (s from the phase start); return the cumulative work (3,) and x, v at ``length``."""
-    x, v, fric, w = phase.sample(np.append(taus, length))
+    x, v, fric, w = phase.sample(np.concatenate((taus, [length])))
     w = work[:, None] + w
     m = taus.size
     if m:

@@ -33,26 +33,47 @@ class ModalForm:
     which NumPy does far faster than one complex product).
     """
 
-    __slots__ = ("lam", "B", "Br", "Bi", "c0", "c1")
+    __slots__ = ("lam", "B", "Br", "Bi", "c0", "c1", "damped", "_offset")
 
-    def __init__(self, lam, B, c0, c1):
+    def __init__(self, lam, B, c0, c1, damped=None):
+        """``damped``: :func:`damped` of ``lam`` (found from ``lam`` when None; the solvers pass
+        it from the mode pattern, which knows it once for all its phases)."""
         self.lam, self.B, self.c0, self.c1 = lam, B, c0, c1
         self.Br, self.Bi = B.real, B.imag
+        self.damped = damped
+        self._offset = None  # (see :meth:`at`)
 
     def growth(self, tau):
         """(Re, Im) of exp(lam·tau), each (S, T)."""
         phase = np.multiply.outer(self.lam.imag, tau)
         cos, sin = np.cos(phase), np.sin(phase)
-        if np.any(self.lam.real):
+        if self.damped is None:
+            self.damped = damped(self.lam)
+        if self.damped:
             amp = np.exp(np.multiply.outer(self.lam.real, tau))
             cos *= amp
             sin *= amp
         return cos, sin
 
     def at(self, tau, growth=None) -> np.ndarray:
-        """Values (R, T) at times ``tau`` (s, (T,)); ``growth`` reuses :meth:`growth` of the same times."""
+        """Values (R, T) at times ``tau`` (s, (T,), >= 0 as every time from a phase start);
+        ``growth`` reuses :meth:`growth` of the same times."""
         cos, sin = self.growth(tau) if growth is None else growth
-        return self.Br @ cos - self.Bi @ sin + self.c0[:, None] + np.multiply.outer(self.c1, tau)
+        # in place, in the order of Br@cos - Bi@sin + c0 + c1·tau (the same rounding): a long scan
+        # evaluates thousands of times at once, and each fresh (R, T) temporary costs page faults
+        out = self.Br @ cos
+        out -= self.Bi @ sin
+        if self._offset is None:
+            # rows without a ramp (every c1 a signed zero: an all-slipping phase): c1·tau is c1
+            # itself for tau >= +0, and (y + c0) + z = y + (c0 + z) for a signed zero z, so one
+            # addition of c0 + c1 gives the same numbers
+            self._offset = False if self.c1.any() else (self.c0 + self.c1)[:, None]
+        if self._offset is False:
+            out += self.c0[:, None]
+            out += np.multiply.outer(self.c1, tau)
+        else:
+            out += self._offset
+        return out
 
     def integral(self, tau) -> np.ndarray:
         """Integrals from 0 to ``tau`` (R, T) in closed form (every lam non-zero).
@@ -61,13 +82,36 @@ class ModalForm:
         difference of nearly equal numbers: short phases keep their relative accuracy.
         """
         tau = np.asarray(tau, dtype=float)
-        a, w = np.multiply.outer(self.lam.real, tau), np.multiply.outer(self.lam.imag, tau)
-        cos, sin = np.cos(w), np.sin(w)
-        re = np.expm1(a) * cos - 2.0 * np.sin(0.5 * w) ** 2  # Re(exp(lam tau) - 1)
-        im = np.exp(a) * sin
+        w = np.multiply.outer(self.lam.imag, tau)
+        # in place, in the order of the formulas in the comments (the same rounding)
+        half = np.sin(0.5 * w)
+        np.square(half, out=half)
+        half *= 2.0
+        if self.damped is None:
+            self.damped = damped(self.lam)
+        if self.damped:
+            a = np.multiply.outer(self.lam.real, tau)
+            re = np.expm1(a)  # Re(exp(lam tau) - 1) = expm1(a)·cos(w) - 2·sin²(w/2)
+            re *= np.cos(w)
+            re -= half
+            im = np.exp(a)  # Im(exp(lam tau)) = exp(a)·sin(w)
+            im *= np.sin(w)
+        else:
+            # Re lam = +0: a = +0·tau = +0 (tau >= 0), expm1(a)·cos(w) = ±0 and exp(a) = 1, so the
+            # same numbers are 0.0 - 2·sin²(w/2) (±0 - x = -x for x > 0; x = 0 only at w = 0,
+            # where cos = 1 and both give +0) and sin(w): no cos, exp or expm1 to evaluate
+            re = np.subtract(0.0, half, out=half)
+            im = np.sin(w)
         Bl = scale_columns(self.B, 1.0 / self.lam)
-        return (Bl.real @ re - Bl.imag @ im + np.multiply.outer(self.c0, tau)
-                + np.multiply.outer(0.5 * self.c1, np.square(tau)))
+        out = Bl.real @ re  # Bl.real @ re - Bl.imag @ im + c0·tau + c1·tau²/2
+        out -= Bl.imag @ im
+        out += np.multiply.outer(self.c0, tau)
+        half_c1 = 0.5 * self.c1
+        if half_c1.any():
+            out += np.multiply.outer(half_c1, np.square(tau))
+        else:  # signed zeros times tau² >= +0: themselves (no (R, T) product to form)
+            out += half_c1[:, None]
+        return out
 
     def derivative(self) -> "ModalForm":
         """d/dtau of every row."""
@@ -86,6 +130,13 @@ class ModalForm:
             return self.lam[keep], b[keep], float(self.c0[r]), float(self.c1[r])
         lo, hi = self.B.indptr[r], self.B.indptr[r + 1]  # CSR row r, without fancy indexing
         return self.lam[self.B.indices[lo:hi]], self.B.data[lo:hi], float(self.c0[r]), float(self.c1[r])
+
+
+def damped(lam) -> bool:
+    """False only when every ``lam`` has real part +0.0 exactly (so that exp(lam·tau) = cos + i·sin
+    with no rounding of its own): a -0.0 counts as damped, which costs time, never bits."""
+    real = np.real(lam)
+    return bool(real.any() or np.signbit(real).any())
 
 
 def scale_columns(B, w):
@@ -142,11 +193,14 @@ def phi(z):
 
 
 def block_matrix(blocks, shape):
-    """Dense or CSR complex matrix of ``shape`` from (rows, cols, values) blocks."""
+    """Dense or CSR complex matrix of ``shape`` from (rows, cols, values) blocks.
+
+    ``rows`` and ``cols`` of each block are runs of consecutive indices (``lo + np.arange(L)``).
+    """
     if shape[1] <= SPARSE_ABOVE:
         out = np.zeros(shape, dtype=complex)
-        for rows, cols, values in blocks:
-            out[np.ix_(rows, cols)] = values
+        for rows, cols, values in blocks:  # slices: consecutive indices (np.ix_ costs 5x more)
+            out[rows[0] : rows[-1] + 1, cols[0] : cols[-1] + 1] = values
         return out
     sp = _sparse()
     if not blocks:
@@ -163,17 +217,25 @@ def linear_map(shape, entries):
     CSR beyond ``DENSE_MAP_WIDTH`` columns: the maps of a phase (event functions,
     powers) have a handful of non-zeros per row, so a dense product would cost R·C·S.
     """
-    r, c, v = (np.asarray(a) for a in entries)
     if shape[1] <= DENSE_MAP_WIDTH:
         out = np.zeros(shape)
-        np.add.at(out, (r.astype(int), c.astype(int)), v)
+        if len(entries[2]) <= 64:  # a few entries: in Python, summed in order from 0.0 as np.add.at does
+            total: dict = {}
+            for i, j, value in zip(*entries):
+                key = (int(i), int(j))
+                total[key] = total.get(key, 0.0) + float(value)
+            for key, value in total.items():
+                out[key] = value
+            return out
+        np.add.at(out, tuple(np.asarray(a).astype(int) for a in entries[:2]), np.asarray(entries[2]))
         return out
+    r, c, v = (np.asarray(a) for a in entries)
     return _sparse().csr_array((v.astype(float), (r.astype(int), c.astype(int))), shape=shape)
 
 
 def stack_rows(a, b):
     """The rows of ``a`` then ``b`` (both dense or both sparse)."""
-    return np.vstack([a, b]) if isinstance(a, np.ndarray) else _sparse().vstack([a, b], format="csr")
+    return np.concatenate((a, b)) if isinstance(a, np.ndarray) else _sparse().vstack([a, b], format="csr")
 
 
 def _sparse():

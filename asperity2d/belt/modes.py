@@ -40,20 +40,25 @@ def resolve_modes(spec, x, v, V, a_belt, previous, v_scale, touching=(), contrad
     """
     v = np.array(v, dtype=float)
     previous = np.asarray(previous, dtype=int)
-    limit = spec.static_limit
     rel = v - V
     at_belt = spec.frictional & (np.abs(rel) <= SWITCH_TOL * v_scale)
     modes = np.where(rel >= 0, 1, -1)  # off belt speed (frictionless masses never stick)
-    v_at = np.where(at_belt, V, v)  # the forces as if the masses at belt speed were stuck
-    f_sd = link_force(spec.k, x) + link_force(spec.c, v_at)
+    any_at = bool(at_belt.any())
+    v_at = np.where(at_belt, V, v) if any_at else v  # the forces as if the masses at belt speed were stuck
+    f_sd = link_force(spec.k, x)
+    if spec.damped:
+        # (without dampers the damper force is a signed zero, which changes neither f_req =
+        # m·a_belt - f_sd, a_belt never being -0.0, nor any mode decided below)
+        f_sd = f_sd + link_force(spec.c, v_at)
     f_req = spec.m * a_belt - f_sd
-    if at_belt.any():
-        tol = SWITCH_TOL * spec.limit_scale
+    if any_at:
+        above, below = spec.limit_band
         size = np.abs(f_req)
-        outside = at_belt & (size > limit + tol)
+        outside = at_belt & (size > above)
         modes[at_belt] = 0
-        modes[outside] = -np.sign(f_req[outside]).astype(int)
-        border = at_belt & ~outside & (size >= limit - tol)
+        if outside.any():
+            modes[outside] = -np.sign(f_req[outside]).astype(int)
+        border = at_belt & ~outside & (size >= below)
         if border.any():
             # at the static limit: compare the trend of the required force with the tentative modes
             a = (f_sd - modes * spec.kinetic_force) / spec.m
@@ -64,9 +69,10 @@ def resolve_modes(spec, x, v, V, a_belt, previous, v_scale, touching=(), contrad
     for i in contradicted:
         if modes[i] == previous[i]:
             modes[i] = -previous[i] if previous[i] != 0 else (-int(np.sign(f_req[i])) or 1)
-    touched = np.zeros(spec.n, dtype=bool)
-    touched[list(touching)] = True
-    grazing = np.flatnonzero(touched & at_belt & (previous != 0) & (modes == previous))
-    snap = at_belt & ((modes != previous) | (modes == 0))
-    v[snap] = V
+    # (per mass in Python: `touching` holds a mass or two, and this runs at every switch)
+    grazed = {int(i) for i in touching if at_belt[i] and previous[i] != 0 and modes[i] == previous[i]}
+    grazing = np.array(sorted(grazed), dtype=np.intp)
+    if any_at:
+        snap = at_belt & ((modes != previous) | (modes == 0))
+        v[snap] = V
     return modes, v, grazing

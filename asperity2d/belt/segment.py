@@ -25,6 +25,8 @@ form: the augmented system [y, tau, 1] is propagated by :class:`TaylorGrid`.
 
 from __future__ import annotations
 
+from functools import cached_property
+
 import numpy as np
 
 from .modal import cmatmul
@@ -52,7 +54,6 @@ class SegmentModes:
         K[off, off + 1] = K[off + 1, off] = -k[1:-1]
         C[off, off + 1] = C[off + 1, off] = -c[1:-1]
         self.K, self.C = K, C
-        self.A = np.block([[np.zeros((L, L)), np.eye(L)], [-K / m[:, None], -C / m[:, None]]])
         self.undamped = not c.any()
         if self.undamped:
             root = np.sqrt(m)
@@ -61,9 +62,10 @@ class SegmentModes:
             self.exact = bool(w2[-1] > 0 and w2[0] > 1e-10 * w2[-1])
             if self.exact:
                 self.omega = np.sqrt(w2)
+                self.omega2 = self.omega**2
                 self.Phi = Q / root[:, None]  # mass-normalised: Phiᵀ M Phi = I
                 self.lam = 1j * self.omega
-                self.shapes = np.vstack([self.Phi, self.Phi * self.lam]).astype(complex)
+                self.shapes = np.concatenate((self.Phi, self.Phi * self.lam))  # (complex: promoted)
             return
         lam, W = np.linalg.eig(self.A)
         self.rate = float(np.max(np.abs(lam)))
@@ -78,6 +80,17 @@ class SegmentModes:
             self.lam = lam[self.half].astype(complex)
             self.shapes = W[:, self.half].astype(complex)
 
+    @cached_property
+    def A(self) -> np.ndarray:
+        """[[0, I], [-M⁻¹K, -M⁻¹C]] (1/s², 1/s), built when used: damped, unanchored or defective
+        segments (an undamped anchored one is solved from its symmetric eigenproblem)."""
+        L, m = self.L, self.m
+        A = np.zeros((2 * L, 2 * L))  # (np.block costs 10x more)
+        A[:L, L:] = np.eye(L)
+        A[L:, :L] = -self.K / m[:, None]
+        A[L:, L:] = -self.C / m[:, None]
+        return A
+
     def solve(self, y0, p, q):
         """(c0, c1, coef) of the motion from ``y0`` = [x0; v0] under forces p + q·tau (N, N/s).
 
@@ -88,8 +101,8 @@ class SegmentModes:
         L = self.L
         if self.undamped:
             Phi, omega = self.Phi, self.omega
-            beta = Phi @ ((Phi.T @ q) / omega**2)  # K⁻¹ = Phi·diag(1/omega²)·Phiᵀ
-            alpha = Phi @ ((Phi.T @ p) / omega**2)
+            beta = Phi @ ((Phi.T @ q) / self.omega2)  # K⁻¹ = Phi·diag(1/omega²)·Phiᵀ
+            alpha = Phi @ ((Phi.T @ p) / self.omega2)
             a = Phi.T @ (self.m * (y0[:L] - alpha))
             b = Phi.T @ (self.m * (y0[L:] - beta)) / omega
             coef = a - 1j * b
@@ -179,7 +192,10 @@ def _symmetric_tridiagonal_eig(d, e):
     """Eigenvalues (ascending) and orthonormal eigenvectors of the symmetric tridiagonal (d, e).
 
     LAPACK's MRRR driver costs O(L²); below 64 masses the dense solver wins on call overhead.
+    A single mass needs no solver: LAPACK returns its one entry and the eigenvector 1 too.
     """
+    if d.size == 1:
+        return d.copy(), np.ones((1, 1))
     if d.size <= 64:
         return np.linalg.eigh(np.diag(d) + np.diag(e, 1) + np.diag(e, -1))
     from scipy.linalg import eigh_tridiagonal  # lazily: keeps `import asperity2d.belt` free of SciPy

@@ -219,6 +219,29 @@ class ChainSpec:
         return max(self.force_scale * self.length_scale,
                    float(np.max(self.m)) * self.velocity_scale * self.velocity_scale, 1e-300)
 
+    @cached_property
+    def limit_band(self) -> tuple:
+        """Per mass, the static limit plus and minus the switching tolerance (N): (above, below)."""
+        from .finder import SWITCH_TOL  # (lazily: the spec does not need the solver to load)
+
+        tol = SWITCH_TOL * self.limit_scale
+        return self.static_limit + tol, self.static_limit - tol
+
+    @cached_property
+    def frictional_masses(self) -> tuple:
+        """Indices (plain ints) of the masses that feel friction."""
+        return tuple(np.flatnonzero(self.frictional).tolist())
+
+    @cached_property
+    def damped(self) -> bool:
+        """True when any damper acts."""
+        return bool(self.c.any())
+
+    @cached_property
+    def force_rows(self) -> tuple:
+        """Per mass, :func:`force_row`: the (columns, coefficients) of its spring + damper force."""
+        return tuple(_force_row(self, i) for i in range(self.n))
+
     # -- belt -------------------------------------------------------------
     def belt_velocity(self, t):
         """Belt speed (m/s) at time(s) ``t`` (s)."""
@@ -288,15 +311,20 @@ def force_row(spec, i: int):
     """(columns, coefficients) of the spring + damper force on mass ``i`` (N) over the state [x; v].
 
     F_i = k_i·x_i-1 - (k_i + k_i+1)·x_i + k_i+1·x_i+1 + (the same with c and v); column j is
-    x_j, column n + j is v_j; zero coefficients are left out.
+    x_j, column n + j is v_j; zero coefficients are left out. Tuples, cached per spec (every new
+    mode pattern of a run asks for them again).
     """
+    return spec.force_rows[i]
+
+
+def _force_row(spec, i: int):
     n, cols, coefs = spec.n, [], []
     for base, links in ((0, spec.k), (n, spec.c)):
         for j, coef in ((i - 1, links[i]), (i, -(links[i] + links[i + 1])), (i + 1, links[i + 1])):
             if 0 <= j < n and coef != 0:
                 cols.append(base + j)
                 coefs.append(float(coef))
-    return cols, coefs
+    return tuple(cols), tuple(coefs)
 
 
 def link_force(links: np.ndarray, x: np.ndarray) -> np.ndarray:
