@@ -68,12 +68,15 @@ class Recorder:
     the slider's columns (the lower asperities' arrays then have no samples). ``sink``, if
     given, receives every full block (``sink.write(cols, dx, dy, contact)``, SI arrays with
     one sample per column) and the block is reused: the record lives on disk, not here.
+    ``like``: the recorder of the run this one's engine was copied from (a fork), whose
+    validity checks' precomputed limits are reused.
     """
 
-    def __init__(self, engine, *, lower: bool = True, sink=None):
+    def __init__(self, engine, *, lower: bool = True, sink=None, like: "Recorder | None" = None):
         self.engine = engine
         self.lower = bool(lower)
         self.sink = sink
+        self._like = like
         self.reset()
 
     @property
@@ -94,7 +97,9 @@ class Recorder:
         self.max_overlap = 0.0
         self.max_drift = 0.0
         self._energy = None  # the divergence guard's books, opened at the first sample
-        self.validity = Validity(self.engine)  # the physical-validity checks, beside the guard
+        # the physical-validity checks, beside the guard (a fork's: from its parent's, ``like``)
+        like, self._like = self._like, None
+        self.validity = Validity(self.engine) if like is None else like.validity.fresh(self.engine)
 
     def _check_energy(self, rows: np.ndarray, drive_force: float) -> None:
         """Raise SimulationError if the bodies hold far more kinetic energy than the scene
