@@ -293,9 +293,9 @@ class Run:
                      duration=duration)
 
     # -- the record ---------------------------------------------------------
-    def _reset_record(self) -> None:
+    def _reset_record(self, like: Recorder | None = None) -> None:
         # the engine's recorder keeps the samples (SI) and the divergence guard (internal units)
-        self._record = Recorder(self.engine, lower=self.record_lower, sink=self._sink)
+        self._record = Recorder(self.engine, lower=self.record_lower, sink=self._sink, like=like)
 
     @property
     def max_overlap(self) -> float:
@@ -409,7 +409,7 @@ class Run:
         out._meter = None
         out._sink = None  # a fork keeps its record in memory
         out.extra_meta = {}
-        out._reset_record()
+        out._reset_record(like=self._record)
         return out
 
     def meter_energy(self) -> EnergyMeter:

@@ -90,6 +90,40 @@ def test_what_the_check_cannot_see_is_what_its_window_and_step_say(island):
     assert not any(island[0] <= f <= island[1] for f, _ in tried)
 
 
+@pytest.mark.parametrize("first", [-6, -3, -1, 0, 1, 4])
+def test_where_the_bracket_starts_changes_the_runs_not_the_answer(first):
+    """A monotone threshold: starting the bracket at any power of two of the estimate tries the
+    same powers of two on the way, so it ends on the same bracket and bisects to the same bits;
+    only the number of forces asked differs, by how far the start is from the threshold."""
+    threshold = 0.7312
+    reference = smallest_passing(lambda f: f >= threshold, 0.1)
+    test = Counting(lambda f: f >= threshold)
+    lo, hi, band, tried = smallest_passing(test, 0.1, first=first)
+    assert (lo, hi, band) == reference[:3]
+    assert test.asked[0] == 0.1 * 2.0 ** first
+    # 0.1 x 2**3 = 0.8 is the first power that passes, 0.4 the last that stops: the bracket asks
+    # every power from the start up to 0.8, or down to 0.4 (the reference, from 2**0: 4 asks)
+    asks = 4 - first if first < 3 else first - 1
+    assert len(tried) - len(reference[3]) == asks - 4
+
+
+def test_the_first_force_is_the_tracks_power_of_two_and_the_answer_the_one_from_the_estimate():
+    """The search on a fixed track from rest starts at a quarter of the flank-law estimate
+    (FIRST_POWER); it returns the very bits of the same search started at the estimate itself
+    (the forces of both are the estimate times powers of two), with fewer runs."""
+    from asperity2d.critical import FIRST_POWER, flank_estimate
+
+    scene = a.make_scene(drive="force", track="fixed", **SMALL)
+    bracket = critical_force_bracket(scene)
+    estimate = flank_estimate(scene)
+    assert bracket.tried[0][0] == estimate * 2.0 ** FIRST_POWER["fixed", "rest"] == estimate / 4
+    base = settled_run(scene, start="rest", dt=measure_dt(scene, "rest"))
+    lo, hi, band, tried = smallest_passing(lambda f: passes(base, f), estimate)  # from the estimate
+    assert tried[0][0] == estimate
+    assert (bracket.stops, bracket.passes, bracket.band) == (lo, hi, band)
+    assert bracket.runs < len(tried)
+
+
 # -- the physical non-monotone case ----------------------------------------------------------
 
 @pytest.fixture(scope="module")

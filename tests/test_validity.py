@@ -161,3 +161,23 @@ def test_an_unsafe_coarse_step_is_returned_marked_unsuccessful():
     assert not result.success and not result.checks["step_size"]["passed"]
     assert "WARNING: dt is 1.33 times the coarsest step that converges" in result.message
     assert result.summary()["checks"]["step_size"].startswith("failed")
+
+
+def test_a_fork_checks_its_own_run_with_its_parents_limits():
+    """A fork reuses the limits its parent's checks computed from the scene (Validity.fresh,
+    paid once rather than by each of a critical force's ~20 forks) but keeps books of its own:
+    they read the same as checks built anew for the fork's engine, after the same run."""
+    run = Run(a.make_scene(**SMALL))
+    run.advance(2e-7)  # over the first apexes (the slider leaves the surface by 0.6 us)
+    parent = run._record.validity
+    assert parent.crossings > 0 and parent.worst_step > 0  # books the forks must not inherit
+    fork, rebuilt = run.fork(), run.fork()
+    rebuilt._record.validity = Validity(rebuilt.engine)
+    assert fork._record.validity.engine is fork.engine
+    assert (fork._record.validity.crossings, fork._record.validity.worst_step) == (0, 0.0)
+    for r in (fork, rebuilt):
+        r.advance(4e-7)
+    assert fork._record.validity.crossings > 0
+    assert fork.result().checks == rebuilt.result().checks
+    assert (parent.crossings, parent.worst_step) == (run._record.validity.crossings,
+                                                     run._record.validity.worst_step)

@@ -36,6 +36,7 @@ microseconds per sample, against tens per step).
 from __future__ import annotations
 
 import math
+from bisect import bisect_right
 
 import numpy as np
 
@@ -62,6 +63,11 @@ FLOOR_TOLERANCE = 0.5
 #: A lower tip must stand this far (bases) above an upper tip's path for a crossing to be a
 #: certain touch (well above the collision slop of 1e-3 bases).
 CROSS_MARGIN = 1e-2
+#: The tunnelling check's filter (:meth:`Validity._clear_around`): at most this many (lower apex,
+#: upper tip) pairs are listed; an interval must clear each by this fraction of the positions'
+#: magnitude (float64 sums are within ~1e-16 of it) to skip the exact check.
+EVENTS = 1_000_000
+EVENT_MARGIN = 1e-9
 
 
 # -- features and speeds (internal units: length = the lower profile's base) ---------------------
@@ -179,17 +185,56 @@ class Validity:
         for name, surface in (("lower_slope", scene.lower), ("upper_slope", scene.slider)):
             shapes = surface.shape_set()
             setattr(self, name, 0.5 * shapes.bases / np.asarray(shapes.heights))
+        self.limit_l = min(self.limit_x, self.limit_y)
+        # plain-Python copies for the per-sample checks (a few asperities: cheaper than NumPy's
+        # per-call overhead; the same IEEE operations, so the same outcomes and worst values)
+        self._apex = apex.tolist()
+        self._offsets = list(enumerate(layout.upper_apex.tolist()))
+        # The slider positions at which some upper tip is over some lower apex, sorted (up to
+        # EVENTS of them): between two of them no tip passes an apex, so a sample whose interval
+        # of positions lies there skips the tunnelling check's bisections (most samples: a
+        # sample moves the slider a small part of a pitch). Tip j passes apex i when lo +
+        # offset_j < apex_i <= hi + offset_j: apex_i - offset_j in (lo, hi] up to the roundings
+        # of those sums, a few ulps of the positions, far inside EVENT_MARGIN of them.
+        self._events = None
+        if self.crossing and len(apex) * len(layout.upper_apex) <= EVENTS:
+            self._events = np.sort(np.subtract.outer(apex, layout.upper_apex), axis=None).tolist()
+        scale = float(np.max(np.abs(apex))) + float(np.max(np.abs(layout.upper_apex))) if len(apex) else 0.0
+        self._margin = EVENT_MARGIN * (1.0 + scale + abs(self.over[0]) + abs(self.over[1]))
+        # the lower asperities' span in the flat row list, when they are contiguous rows
+        rows = layout.lower_rows
+        self._lanes = (4 * rows.start, 4 * rows.stop) if isinstance(rows, slice) else None
+        self._reset()
+
+    def _reset(self) -> None:
         self.worst_step = 0.0  # largest step / limit seen
         self.lowest = math.inf  # lowest tip's height above the floor seen (bases)
         self.crossings = 0  # lower asperities passed over by an upper tip (fixed track)
         self._last = None  # (step, x, y, vx) at the previous sample
+        self._clear = (math.inf, -math.inf)  # slider positions where no tip is near an apex (none yet)
 
-    def check(self, rows: np.ndarray) -> None:
+    def fresh(self, engine) -> "Validity":
+        """New checks for ``engine``, a copy of this one's engine (:meth:`.core.Engine.copy`:
+        the same scene, units and geometry), sharing the limits computed from them (0.4 ms at
+        16/4, paid once rather than by every fork), its worst values reset."""
+        if engine.scene is not self.engine.scene or engine.units is not self.engine.units:
+            return Validity(engine)
+        out = object.__new__(Validity)
+        out.__dict__.update(self.__dict__)
+        out.engine, out.dt = engine, engine.dt_internal
+        out._reset()
+        return out
+
+    def check(self, rows: np.ndarray, flat: list | None = None) -> None:
         """Raise SimulationError if the state ``rows`` (all bodies, internal units) shows an
-        impossible run (see the module doc); else update the worst values."""
+        impossible run (see the module doc); else update the worst values. ``flat``: ``rows``
+        as a flat list (``rows.ravel().tolist()``), when the caller has read it."""
         e, layout = self.engine, self.engine.layout
         r = layout.slider_row
-        sx, sy, svx, svy = rows.item(r, 0), rows.item(r, 1), rows.item(r, 2), rows.item(r, 3)
+        if flat is not None:
+            sx, sy, svx, svy = flat[4 * r: 4 * r + 4]
+        else:
+            sx, sy, svx, svy = rows.item(r, 0), rows.item(r, 1), rows.item(r, 2), rows.item(r, 3)
         step_now = e.step_count
         last = self._last
         if self.free:
@@ -205,30 +250,52 @@ class Validity:
         steps = step_now - last[0] if last is not None else 0
         dx = max(abs(svx) * dt, abs(sx - last[1]) / steps if steps > 0 else 0.0)
         dy = max(abs(svy) * dt, abs(sy - last[2]) / steps if steps > 0 else 0.0) if self.free else 0.0
-        lower = rows[layout.lower_rows]
-        dl = float(np.max(np.abs(lower[:, 2:]))) * dt if len(lower) else 0.0  # vx: the lattice's peaks
-        worst = max(dx / self.limit_x, dy / self.limit_y, dl / min(self.limit_x, self.limit_y))
+        # vx: the lattice's peaks. max |v| in plain Python: exact like NumPy's, and cheaper for a
+        # few asperities (a NaN never gets here: the divergence guard raised before)
+        lanes = self._lanes
+        if flat is not None and lanes is not None:
+            a, b = lanes
+            dl = max(max(map(abs, flat[a + 2:b:4])), max(map(abs, flat[a + 3:b:4]))) * dt if b > a else 0.0
+        else:
+            lower = rows[layout.lower_rows]
+            dl = max(map(abs, lower[:, 2:].ravel().tolist())) * dt if len(lower) else 0.0
+        worst = max(dx / self.limit_x, dy / self.limit_y, dl / self.limit_l)
         if worst > self.worst_step:
             self.worst_step = worst
             if worst > 1.0:
                 self._too_fast(dx, dy, dl)
         if self.crossing and steps > 0 and sx != last[1]:
-            travel = max(dx, abs(last[3]) * dt)  # the step's travel: speeds now and before, mean displacement
-            self._crossed(min(sx, last[1]), max(sx, last[1]), sy, lower, travel)
+            lo, hi = (sx, last[1]) if sx < last[1] else (last[1], sx)
+            if not self._clear[0] < lo <= hi < self._clear[1]:  # else: no tip near an apex
+                travel = max(dx, abs(last[3]) * dt)  # the step's travel: speeds now and before, mean displacement
+                self._crossed(lo, hi, sy, rows[layout.lower_rows], travel)
+                self._clear_around(sx)
         self._last = (step_now, sx, sy, svx)
+
+    def _clear_around(self, x: float) -> None:
+        """The open interval of slider positions around ``x`` in which no upper tip is over a
+        lower apex (:attr:`_events`), narrowed by a margin far above the roundings of the sums
+        :meth:`_crossed` compares: a sample whose interval lies inside it crosses nothing."""
+        events = self._events
+        if events is None:
+            return
+        k = bisect_right(events, x)
+        self._clear = (events[k - 1] + self._margin if k else -math.inf,
+                       events[k] - self._margin if k < len(events) else math.inf)
 
     def _crossed(self, lo: float, hi: float, sy: float, lower: np.ndarray, travel: float) -> None:
         """Raise if an upper tip passed (between the samples at ``lo`` and ``hi``) over a lower
         asperity it must have touched: standing at rest across its path, with an overlap window
         (the two triangles' widths at the overlap depth) over twice the step's ``travel``."""
-        apex = self.engine.layout.lower_apex_x
-        offsets = self.engine.layout.upper_apex
-        start = np.searchsorted(apex, lo + offsets, side="right")
-        end = np.searchsorted(apex, hi + offsets, side="right")
-        if not np.any(end > start):
-            return
-        for j in np.flatnonzero(end > start):
-            idx = np.arange(start[j], end[j])
+        # the apexes each upper tip j passed: (lo, hi] + its offset, found by bisection in the
+        # sorted apexes (as np.searchsorted(side="right"), without its per-call cost: most
+        # samples cross none)
+        apex = self._apex
+        for j, offset in self._offsets:
+            start, end = bisect_right(apex, lo + offset), bisect_right(apex, hi + offset)
+            if end <= start:
+                continue
+            idx = np.arange(start, end)
             self.crossings += len(idx)
             depth = self.lower_top[idx] - (sy - self.depth[j])  # lower tips above the upper tip's path
             window = depth * (self.lower_slope[idx] + self.upper_slope[j])
