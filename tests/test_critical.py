@@ -278,3 +278,46 @@ def test_a_small_force_is_cut_to_the_step_budget_not_refused():
     assert not passes(base, 1e-9)  # 20 000 steps: far too short to cross under 1 nN
     with pytest.raises(a.SceneError, match="`max_steps`"):  # the public run is still refused
         a.simulate(scene.replace(drive=a.ConstantForce(force=1e-9)), max_steps=20_000)
+
+
+def test_every_argument_is_checked_under_its_own_name():
+    """A bad value is refused by the parameter the user wrote, before any run is made."""
+    scene = a.make_scene(drive="force", **SMALL)
+    for call in (lambda: critical_force(scene, max_runs=1), lambda: critical_force_bracket(scene, max_runs=1)):
+        with pytest.raises(a.SceneError, match=r"^`max_runs` must be >= 2, got 1$"):
+            call()
+    with pytest.raises(a.SceneError, match=r"^`start` must be one of .*'sideways'$"):
+        measure_dt(scene, "sideways")
+    never = Counting(lambda f: f >= 1.0)
+    for first, rule in ((-61, ">= -60"), (61, "<= 60")):
+        with pytest.raises(a.SceneError, match=rf"^`first` must be {rule}, got {first}$"):
+            smallest_passing(never, 1.0, first=first)
+    assert never.asked == []  # refused before the predicate was asked anything
+    # the limits themselves are allowed: 2**-60 and 2**60 times the estimate, then the same bracket
+    for first in (-60, 60):
+        lo, hi, band, _ = smallest_passing(lambda f: f >= 1.0, 1.0, first=first)
+        assert (lo, hi, band) == (1.0 - 2.0 ** -9, 1.0, None)  # 1 / 2**9 = 0.2 %: the first width <= 0.25 %
+
+
+def test_the_tolerance_reaches_the_bisection(monkeypatch):
+    """rel_tol given to critical_force arrives at critical_force_bracket, and from there at the
+    search, unchanged (a spy in place of each)."""
+    from asperity2d import critical
+
+    scene = a.make_scene(drive="force", **SMALL)
+    seen = {}
+
+    def fake_bracket(scene, **kw):
+        seen["bracket"] = kw["rel_tol"]
+        return critical.CriticalForce(stops=0.9, passes=1.0, runs=3)
+
+    def fake_search(test, estimate, **kw):
+        seen["search"] = kw["rel_tol"]
+        return 0.9, 1.0, None, [(0.9, False), (1.0, True)]
+
+    monkeypatch.setattr(critical, "critical_force_bracket", fake_bracket)
+    critical.critical_force(scene, rel_tol=0.125)
+    monkeypatch.undo()
+    monkeypatch.setattr(critical, "smallest_passing", fake_search)
+    critical.critical_force_bracket(scene, rel_tol=0.0625)
+    assert seen == {"bracket": 0.125, "search": 0.0625}
