@@ -295,3 +295,136 @@ def test_friction_velocity_bins_by_hand():
         friction_traces(result, bins=0)
     still = friction_traces(dataclasses.replace(base, v=np.zeros(51)), bins=5)
     assert len(still["velocity_centers"]) == len(still["friction_mean"]) == len(still["bin_count"]) == 0
+
+
+# -- the ground-truth generator: its documented properties, from its arguments -------------------
+
+def test_the_synthetic_series_is_the_documented_one():
+    """Defaults: 8 events, sticks of 80-160 samples creeping at exactly 3 % of V, slips of 20
+    samples that are the half-sine 40 V sin(pi j / 21), a final 80-sample stick; x integrates v
+    from 0, the drive moves at V and the force is the spring's k (V t - x), exactly (no noise)."""
+    result, truth = synthetic_stick_slip()
+    scene = result.scene
+    V, k = scene.drive.velocity, scene.drive.stiffness
+    slips, ends = truth["slip_index"], truth["end_index"]
+    assert len(slips) == len(ends) == 8
+    assert np.all(ends - slips == 21)  # last stick sample, 20 slip samples, then the next stick
+    sticks = np.diff(np.concatenate(([-1], slips))) - np.concatenate(([0], np.full(7, 20)))
+    assert np.all((sticks >= 80) & (sticks <= 160))
+    v, t, dt = result.v, result.t, result.meta["dt"]
+    assert len(v) == ends[-1] + 80  # the trailing stick has the shortest stick length
+    pulse = 40.0 * V * np.sin(np.pi * np.arange(1, 21) / 21)
+    stuck = np.ones(len(v), dtype=bool)
+    for i0, i1 in zip(slips, ends):
+        assert np.array_equal(v[i0 + 1:i1], pulse)
+        stuck[i0 + 1:i1] = False
+    assert np.all(v[stuck] == 0.03 * V)
+    assert dt == t[1] - t[0] and np.allclose(np.diff(t), dt, rtol=1e-9)
+    assert result.x[0] == 0.0
+    # a difference of the cumulative sum is exact to the rounding of x itself (a few ulp of max x)
+    assert np.allclose(np.diff(result.x), v[1:] * dt, rtol=0.0, atol=16 * np.spacing(result.x.max()))
+    assert np.array_equal(result.drive_x, V * t)
+    assert np.array_equal(result.drive_force, k * (V * t - result.x))
+    assert np.array_equal(result.friction_force, result.drive_force)
+    # every per-sample series has one value per sample; the slider never leaves y = 0 or touches
+    for name in ("y", "vy", "normal_force", "tangential_force", "contact_count"):
+        assert np.array_equal(getattr(result, name), np.zeros(len(t))), name
+    assert scene.lower.count == 2 and scene.slider.spacing.count == 1
+    for name in ("lower_dx", "lower_dy", "lower_contact"):
+        assert np.shape(getattr(result, name)) == (2, len(t))
+    assert not np.any(result.lower_contact)
+    assert result.meta == {"dt": dt, "record_every": 1, "status": "synthetic"} and result.status == "synthetic"
+
+
+def test_synthetic_stick_lengths_span_both_bounds_and_slips_their_count():
+    """Stick lengths are drawn from the closed range [lo, hi]: over 60 draws from {5, 6} both
+    appear (each is missing with probability 2^-60) and nothing else does."""
+    result, truth = synthetic_stick_slip(n_events=60, samples_per_stick=(5, 6), samples_per_slip=7, seed=2)
+    slips, ends = truth["slip_index"], truth["end_index"]
+    sticks = np.concatenate(([slips[0] + 1], slips[1:] - ends[:-1] + 1))
+    assert set(sticks.tolist()) == {5, 6}
+    assert np.all(ends - slips == 8)
+    assert len(result.t) == ends[-1] + 5
+
+
+def test_synthetic_series_is_reproducible_from_its_seed():
+    one, truth_one = synthetic_stick_slip(noise=0.2, seed=5)
+    two, truth_two = synthetic_stick_slip(noise=0.2, seed=5)
+    for name in ("t", "x", "v", "drive_force"):
+        assert np.array_equal(getattr(one, name), getattr(two, name)), name
+    assert np.array_equal(truth_one["slip_index"], truth_two["slip_index"])
+    other, truth_other = synthetic_stick_slip(noise=0.2, seed=6)
+    assert not np.array_equal(truth_one["slip_index"], truth_other["slip_index"])
+    default, truth_default = synthetic_stick_slip()
+    zero, truth_zero = synthetic_stick_slip(seed=0)
+    assert np.array_equal(default.v, zero.v) and np.array_equal(truth_default["end_index"], truth_zero["end_index"])
+
+
+def test_synthetic_noise_has_the_documented_level():
+    """noise = 0.5 adds N(0, 0.5 V) to v and N(0, 0.5 k V dt) to the force. The clean v is the
+    x increments over dt (x integrates the clean v) and the clean force k (V t - x). Over
+    ~9,000 samples the sample std is within 3 % of sigma (its relative error is
+    1/sqrt(2 n) = 0.75 %) and the mean within 5 sigma/sqrt(n) of 0."""
+    result, _ = synthetic_stick_slip(n_events=60, noise=0.5, seed=12)
+    scene = result.scene
+    V, k, dt = scene.drive.velocity, scene.drive.stiffness, result.meta["dt"]
+    n = len(result.t) - 1
+    dv = result.v[1:] - np.diff(result.x) / dt
+    df = result.drive_force - k * (V * result.t - result.x)
+    assert n > 8000
+    for residual, sigma in ((dv, 0.5 * V), (df, 0.5 * k * V * dt)):
+        assert np.std(residual) == pytest.approx(sigma, rel=0.03)
+        assert abs(np.mean(residual)) < 5 * sigma / math.sqrt(n)
+
+
+def test_synthetic_series_uses_the_scene_it_is_given():
+    base, _ = synthetic_stick_slip(n_events=2)
+    scene = dataclasses.replace(base.scene, drive=dataclasses.replace(base.scene.drive, stiffness=2.0 * base.scene.drive.stiffness,
+                                                                      velocity=0.5 * base.scene.drive.velocity))
+    result, _ = synthetic_stick_slip(n_events=2, scene=scene)
+    assert result.scene is scene
+    V, k = scene.drive.velocity, scene.drive.stiffness
+    assert np.allclose(result.drive_force, k * (V * result.t - result.x), rtol=1e-12, atol=0.0)
+    assert result.meta["dt"] == pytest.approx(1e-3 * scene.base / V, rel=1e-15)
+
+
+# -- every force measure passes every keyword to the detector --------------------------------------
+
+@pytest.mark.parametrize("measure", [breakaway_force, a.peak_stick_force, a.mean_stick_force])
+@pytest.mark.parametrize("keyword", ["stick_speed", "slip_speed", "min_stick", "min_slip", "min_slip_distance"])
+def test_each_keyword_reaches_the_detector(measure, keyword):
+    """A value of each keyword under which the synthetic series (creep 0.03 V, slips peaking near
+    40 V for 20 samples moving ~13 bases) has no stick-to-slip transition: the measure must
+    raise for it, while it returns the default answer without it. For min_stick the series
+    starts with a slip, a 50-sample stop (shorter than half a period, 55 samples) and a slip:
+    by default the stop is a bounce, with min_stick = 0 a stick whose breakaway comes first."""
+    result, truth = synthetic_stick_slip(n_events=3, seed=13)
+    V, dt = result.scene.drive.velocity, result.meta["dt"]
+    if keyword != "min_stick":
+        impossible = {"stick_speed": 0.01 * V,  # below the creep: never stuck
+                      "slip_speed": 100.0 * V,  # above the 40 V pulse: never slips
+                      "min_slip": 1e3 * dt,  # longer than any slip
+                      "min_slip_distance": 1e3 * result.scene.base}[keyword]
+        assert np.isfinite(measure(result))
+        with pytest.raises(a.SceneError, match="^`result` has no stick-to-slip transition"):
+            measure(result, **{keyword: impossible})
+        return
+    lead = np.concatenate((np.full(30, 40.0 * V), np.zeros(50), np.full(30, 40.0 * V)))
+    v = np.concatenate((lead, result.v))
+    dt_x = np.concatenate(([0.0], np.cumsum(v[1:] * dt)))
+    t = dt * np.arange(len(v))
+    k = result.scene.drive.stiffness
+    force = k * (V * t - dt_x)
+    force[79] = 2.0 * np.abs(force).max()  # the stop's last sample carries the largest force of the run
+    zeros, lower = np.zeros(len(v)), np.zeros((2, len(v)))
+    led = a.Result(t=t, x=dt_x, v=v, y=zeros, vy=zeros, drive_x=V * t, drive_force=force, normal_force=zeros,
+                   friction_force=force, tangential_force=zeros, contact_count=zeros, lower_dx=lower,
+                   lower_dy=lower, lower_contact=lower > 0, scene=result.scene, meta=dict(result.meta))
+    default, eager = measure(led), measure(led, min_stick=0.0)
+    assert eager != default
+    if measure is breakaway_force:  # the stop's breakaway comes first
+        assert eager == force[79]
+    elif measure is a.peak_stick_force:
+        assert eager == force[79] > default
+    else:
+        assert eager == pytest.approx((force[79] + 3 * default) / 4, rel=1e-12)
