@@ -428,3 +428,201 @@ def test_each_keyword_reaches_the_detector(measure, keyword):
         assert eager == force[79] > default
     else:
         assert eager == pytest.approx((force[79] + 3 * default) / 4, rel=1e-12)
+
+
+# -- the detector's rules at their boundaries, on series with exact (dyadic) numbers --------------
+
+def plain(v, force=None, drive="force"):
+    """Samples 1 s apart with slider velocity ``v`` (m/s, dyadic so every sum below is exact),
+    x the running sum of v[1:] (x[i] - x[i-1] = v[i]); on a constant-force drive (no drive
+    velocity: every threshold is given) unless ``drive="spring"``."""
+    v = np.asarray(v, dtype=float)
+    n = len(v)
+    t = np.arange(n, dtype=float)
+    x = np.concatenate(([0.0], np.cumsum(v[1:])))
+    force = -x if force is None else np.asarray(force, dtype=float)
+    zeros, lower = np.zeros(n), np.zeros((2, n))
+    return a.Result(t=t, x=x, v=v, y=zeros, vy=zeros, drive_x=zeros, drive_force=force, normal_force=zeros,
+                    friction_force=force, tangential_force=zeros, contact_count=zeros, lower_dx=lower, lower_dy=lower,
+                    lower_contact=lower > 0, scene=a.make_scene(drive=drive, lower_count=2, upper_count=1),
+                    meta={"dt": 1.0, "record_every": 1})
+
+
+#: stick below 0.5 m/s, slip above 3 m/s; no duration or distance rule unless a test sets one
+LOOSE = {"stick_speed": 0.5, "slip_speed": 3.0, "min_stick": 0.0, "min_slip": 0.0, "min_slip_distance": 0.0}
+
+
+def test_speed_thresholds_are_strict():
+    """|v| below stick_speed is stick, v above slip_speed is slip: a sample at either threshold
+    is in the dead band (it keeps the previous state)."""
+    assert len(stick_slip_events(plain([0] * 5 + [4] * 4 + [0] * 5), **LOOSE)) == 1
+    assert stick_slip_events(plain([0] * 5 + [3] * 4 + [0] * 5), **LOOSE) == []  # v = slip_speed: not a slip
+    # a stop at exactly the stick speed never sticks: the slip runs on to the end of the run
+    events = stick_slip_events(plain([0] * 5 + [4] * 4 + [0.5] * 5), **LOOSE)
+    assert len(events) == 1 and not events[0].complete and events[0].t_end == 13.0
+    with pytest.raises(a.SceneError, match="^`slip_speed` .* must be > `stick_speed`"):
+        stick_slip_events(plain([0] * 5), **{**LOOSE, "slip_speed": 0.5})
+
+
+def test_the_dead_band_keeps_the_previous_state():
+    """A slip dipping to 2 m/s (between the thresholds) for 3 samples stays one slip; a run
+    starting in the dead band is in no state until its first stick sample."""
+    events = stick_slip_events(plain([0] * 5 + [4] * 3 + [2] * 3 + [4] * 3 + [0] * 5), **LOOSE)
+    assert len(events) == 1 and events[0].t_end == 14.0  # the first stick sample after the slip
+    events = stick_slip_events(plain([2, 2] + [0] * 5 + [4] * 3 + [0] * 5), **LOOSE)
+    assert len(events) == 1 and events[0].t_stick == 2.0
+
+
+def test_motion_before_the_first_stick_is_not_an_event():
+    """The run starts sliding (dead band, then a slip), stops for 3 samples, slips again: only
+    the slip after the stop is an event; with min_stick above the 3 s stop it is a bounce and
+    there is none (a later stop must follow)."""
+    v = [2, 4, 4, 4, 0, 0, 0, 4, 4, 4, 0, 0, 0, 0, 0]
+    events = stick_slip_events(plain(v), **LOOSE)
+    assert [(e.t_stick, e.t_slip, e.t_end) for e in events] == [(4.0, 6.0, 10.0)]
+    assert stick_slip_events(plain(v), **{**LOOSE, "min_stick": 3.5}) == []
+    assert len(stick_slip_events(plain(v), **{**LOOSE, "min_stick": 3.0})) == 1  # not shorter than 3 s
+
+
+def test_a_short_first_stick_still_counts():
+    """The first stick of the run is not inside a slip: however short, the slip after it is an
+    event, even when the run ends sliding."""
+    events = stick_slip_events(plain([0, 0, 4, 4, 4, 0, 0, 0, 0, 0, 4, 4]), **{**LOOSE, "min_stick": 3.0})
+    assert [(e.t_stick, e.t_slip, e.complete) for e in events] == [(0.0, 1.0, True), (5.0, 9.0, False)]
+
+
+def test_min_stick_counts_only_the_slow_time():
+    """A stop after a slip: 2 samples at rest, then 3 at exactly the stick speed (dead band,
+    held as stick): 2 s slow, not 5 s. min_stick = 2 s keeps it a stick, 2.5 s makes it a
+    bounce, whatever the 5 s the hysteresis holds."""
+    v = [0] * 4 + [4] * 3 + [0, 0, 0.5, 0.5, 0.5] + [4] * 3 + [0] * 4
+    assert len(stick_slip_events(plain(v), **{**LOOSE, "min_stick": 2.0})) == 2
+    assert len(stick_slip_events(plain(v), **{**LOOSE, "min_stick": 2.5})) == 1
+
+
+def test_the_slip_rules_measure_from_the_sample_before_to_the_sample_after():
+    """A slip of 4 samples at 4 m/s between stick samples at 0.25 m/s: it lasts 4 s and moves
+    x[b] - x[a-1] = 4 x 4 + 0.25 = 16.25 m (the sample after it included, the one before not).
+    It is a slip at min_slip = 4 s and min_slip_distance = 16.25 m, noise above either."""
+    v = [0.25] * 6 + [4] * 4 + [0.25] * 6
+    result = plain(v)
+    assert result.x[10] - result.x[5] == 16.25
+    for rule, value in (("min_slip", 4.0), ("min_slip_distance", 16.25)):
+        assert len(stick_slip_events(result, **{**LOOSE, rule: value})) == 1, rule
+        assert stick_slip_events(result, **{**LOOSE, rule: value + 0.125}) == [], rule
+    # a slip from the second sample counts from the first
+    early = plain([0, 4, 4, 4, 4, 0.25, 0, 0])
+    assert len(stick_slip_events(early, **{**LOOSE, "min_slip_distance": 16.25})) == 1
+    assert stick_slip_events(early, **{**LOOSE, "min_slip_distance": 16.375}) == []
+
+
+def test_the_last_sample_stands_for_one_sample_interval():
+    """The end-of-run rule: a run [a, b) lasts t[b] - t[a], the last sample one interval more.
+    A slip in the last 4 samples lasts 4 s and moves x[-1] - x[a-1] = 16 m; a stop in the last
+    3 samples is 3 s slow."""
+    ending_in_slip = plain([0] * 6 + [4] * 4)
+    for rule, value in (("min_slip", 4.0), ("min_slip_distance", 16.0)):
+        events = stick_slip_events(ending_in_slip, **{**LOOSE, rule: value})
+        assert len(events) == 1 and not events[0].complete and events[0].t_end == 9.0, rule
+        assert stick_slip_events(ending_in_slip, **{**LOOSE, rule: value + 0.125}) == [], rule
+    ending_in_stop = plain([0] * 6 + [4] * 4 + [0] * 3)
+    assert stick_slip_events(ending_in_stop, **{**LOOSE, "min_stick": 3.0})[0].complete
+    assert not stick_slip_events(ending_in_stop, **{**LOOSE, "min_stick": 3.125})[0].complete
+
+
+def test_a_two_sample_run_can_hold_a_slip():
+    events = stick_slip_events(plain([0, 4]), **LOOSE)
+    assert [(e.t_stick, e.t_slip, e.t_end, e.complete) for e in events] == [(0.0, 0.0, 1.0, False)]
+    assert stick_slip_events(plain([0]), **LOOSE) == []
+
+
+def test_a_noise_slip_joins_the_stick_around_it():
+    """A 1-sample spike (too short for min_slip = 2 s) in a stick: the stick runs from the
+    start of the run to the real slip, one stick."""
+    events = stick_slip_events(plain([0] * 4 + [4] + [0] * 4 + [4] * 3 + [0] * 4), **{**LOOSE, "min_slip": 2.0})
+    assert [(e.t_stick, e.t_slip, e.stick_duration) for e in events] == [(0.0, 8.0, 8.0)]
+
+
+def test_the_onset_search_runs_from_the_last_slow_sample_to_the_first_fast_one():
+    """Measured force (not a spring's): it keeps rising 2 samples into the slip (a lagging
+    sensor). The onset is searched on [last sample not faster than the drive, first slip
+    sample]: it is the first slip sample, not later; the drop is the peak minus the lowest
+    force up to the re-stick sample, not after it."""
+    v = [0] * 5 + [4] * 4 + [0] * 5
+    force = [0, 1, 2, 3, 4, 5, 6, 7, 3, -2, -9, -50, -50, -50]
+    events = stick_slip_events(plain(v, force), **LOOSE)
+    assert [(e.t_slip, e.force_peak, e.force_drop, e.t_end) for e in events] == [(5.0, 5.0, 7.0, 9.0)]
+
+
+def test_the_onset_is_the_last_rise_of_the_drive_force_before_the_slip():
+    """A spring-driven stick interrupted by a surge: the slider creeps at 0.75 V, surges at 2 V
+    for 5 samples (below the 3 V slip speed: still stuck), creeps one sample, then slips. The
+    force k (V t - x) tops twice, before and after the surge; the slip starts from the second
+    top, the lower one (the surge unloaded the spring by 5 k V dt)."""
+    result = series([0.0] * 100 + [0.75] * 20 + [2.0] * 5 + [0.75] + [40.0] * 30 + [0.0] * 300)
+    events = stick_slip_events(result)
+    assert len(events) == 1
+    assert sample_of(result, events[0].t_slip) == 125
+    assert events[0].force_peak == pytest.approx(result.drive_force[125], rel=1e-12)
+    assert result.drive_force[119] > result.drive_force[125]  # the premise: the first top is higher
+
+
+def test_thresholds_given_make_any_drive_work():
+    """A constant-force run has no drive velocity: with every threshold given it segments like
+    a spring-driven one (the onset search then starts at the last stick-speed sample)."""
+    v = [0] * 5 + [4] * 4 + [0] * 5
+    forced, sprung = stick_slip_events(plain(v), **LOOSE), stick_slip_events(plain(v, drive="spring"), **LOOSE)
+    assert [(e.t_stick, e.t_end) for e in forced] == [(e.t_stick, e.t_end) for e in sprung] == [(0.0, 9.0)]
+
+
+# -- statistics and traces: remaining fields, by hand ----------------------------------------------
+
+def test_event_statistics_slip_distance_and_time_scale():
+    """The mean slip distance is over complete events only; the regularity (a coefficient of
+    variation) does not depend on the time unit: events nanoseconds apart give the same number
+    as events seconds apart. Zero mean interval has no regularity."""
+    def ev(t_slip, distance, complete=True):
+        return Event(t_stick=t_slip - 0.5, t_slip=t_slip, t_end=t_slip + 0.1, force_peak=1.0, force_drop=0.5,
+                     slip_distance=distance, stick_duration=0.5, complete=complete)
+
+    s = event_statistics([ev(1.0, 2.0), ev(2.0, 4.0), ev(4.0, 9.0, complete=False)])
+    assert s["slip_distance_mean"] == pytest.approx(3.0)
+    nano = event_statistics([ev(1e-9, 2.0), ev(2e-9, 4.0), ev(4e-9, 9.0)])
+    assert nano["interval_mean"] == pytest.approx(1.5e-9)
+    assert nano["regularity"] == pytest.approx(math.sqrt(0.5) / 1.5)
+    assert math.isnan(event_statistics([ev(1.0, 2.0), ev(1.0, 2.0)])["regularity"])
+
+
+def test_friction_trace_series_and_defaults():
+    """Every series is the run's own, as floats; by default 40 log bins over 4 decades below
+    the fastest sample, which itself is binned and the slowest at exactly 1e-4 of it is not."""
+    n = 2001
+    v = np.geomspace(1e-4, 1.0, n)
+    base = series(np.zeros(n))
+    result = dataclasses.replace(base, v=v, friction_force=3.0 - v, tangential_force=np.linspace(0.0, 1.0, n))
+    tr = friction_traces(result)
+    for name, key in (("t", "time"), ("v", "velocity"), ("friction_force", "friction_force"),
+                      ("tangential_force", "tangential_force"), ("drive_force", "drive_force")):
+        assert np.array_equal(tr[key], getattr(result, name)), key
+    assert len(tr["velocity_centers"]) == 40  # 2000 samples over 40 bins: none empty
+    assert tr["bin_count"].sum() == n - 1
+    edges = np.geomspace(v[1], 1.0 * (1 + 1e-12), 41)
+    assert np.allclose(tr["velocity_centers"], np.sqrt(edges[:-1] * edges[1:]), rtol=1e-12)
+
+
+def test_friction_trace_edge_cases_of_the_binning():
+    """One bin holds every moving sample (mean friction of all of them); two moving samples are
+    enough for a curve; sliding at one speed has no friction-velocity curve (no range to bin)."""
+    base = series(np.zeros(6))
+    v = np.array([0.0, 1.0, 2.0, 4.0, 12.0, 16.0])
+    one = friction_traces(dataclasses.replace(base, v=v, friction_force=v + 1.0), bins=1, dynamic_range=1.5)
+    assert one["bin_count"].tolist() == [2]  # only 12 and 16 are above 16 / 1.5
+    assert one["friction_mean"].tolist() == [15.0]
+    assert np.allclose(one["velocity_centers"], [math.sqrt(12.0 * 16.0)], rtol=1e-9)
+    two = friction_traces(dataclasses.replace(base, v=np.array([0.0, 0, 0, 0, 3.0, 12.0]), friction_force=np.ones(6)),
+                          bins=2, dynamic_range=10.0)
+    assert two["bin_count"].tolist() == [1, 1]
+    assert np.allclose(two["velocity_centers"], [3.0 * math.sqrt(2), 6.0 * math.sqrt(2)], rtol=1e-9)
+    flat = friction_traces(dataclasses.replace(base, v=np.array([0.0, 5, 5, 5, 5, 5])), bins=3)
+    assert len(flat["velocity_centers"]) == len(flat["friction_mean"]) == len(flat["bin_count"]) == 0
+    assert flat["bin_count"].dtype.kind == "i"  # counts, even when there are none
