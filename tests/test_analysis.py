@@ -6,6 +6,7 @@ false events), then a real short spring-driven run against the flank law.
 
 import dataclasses
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -626,3 +627,24 @@ def test_friction_trace_edge_cases_of_the_binning():
     flat = friction_traces(dataclasses.replace(base, v=np.array([0.0, 5, 5, 5, 5, 5])), bins=3)
     assert len(flat["velocity_centers"]) == len(flat["friction_mean"]) == len(flat["bin_count"]) == 0
     assert flat["bin_count"].dtype.kind == "i"  # counts, even when there are none
+
+
+def test_too_few_events_give_nan_quietly():
+    """No events, or one: the means and spreads that need more are NaN by design, without
+    NumPy's empty-slice or degrees-of-freedom warnings (run with warnings as errors)."""
+    one = Event(t_stick=0.0, t_slip=1.0, t_end=2.0, force_peak=1.0, force_drop=0.5, slip_distance=2.0,
+                stick_duration=1.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        empty, single = event_statistics([]), event_statistics([one])
+    assert empty["count"] == 0 and all(math.isnan(empty[k]) for k in empty if k != "count")
+    assert single["force_drop_mean"] == 0.5 and single["slip_distance_mean"] == 2.0
+    assert all(math.isnan(single[k]) for k in ("force_drop_std", "stick_duration_std", "interval_mean", "regularity"))
+
+
+def test_force_measures_name_the_result_they_cannot_use():
+    forced = dataclasses.replace(synthetic_stick_slip(n_events=1)[0],
+                                 scene=a.make_scene(drive="force", lower_count=2, upper_count=1))
+    for measure in (breakaway_force, a.peak_stick_force, a.mean_stick_force):
+        with pytest.raises(a.SceneError, match=r'^`result` must come from a spring-driven run \(drive="spring"\)$'):
+            measure(forced)
