@@ -470,8 +470,10 @@ def test_the_dead_band_keeps_the_previous_state():
     starting in the dead band is in no state until its first stick sample."""
     events = stick_slip_events(plain([0] * 5 + [4] * 3 + [2] * 3 + [4] * 3 + [0] * 5), **LOOSE)
     assert len(events) == 1 and events[0].t_end == 14.0  # the first stick sample after the slip
-    events = stick_slip_events(plain([2, 2] + [0] * 5 + [4] * 3 + [0] * 5), **LOOSE)
-    assert len(events) == 1 and events[0].t_stick == 2.0
+    # one dead-band sample, then a 3 s stick: with min_stick = 4 s it is still the first stick
+    # (nothing before it was a slip), so the slip after it is an event
+    events = stick_slip_events(plain([2] + [0] * 3 + [4] * 3 + [0] * 5), **{**LOOSE, "min_stick": 4.0})
+    assert len(events) == 1 and events[0].t_stick == 1.0
 
 
 def test_motion_before_the_first_stick_is_not_an_event():
@@ -570,10 +572,16 @@ def test_the_onset_is_the_last_rise_of_the_drive_force_before_the_slip():
 
 def test_thresholds_given_make_any_drive_work():
     """A constant-force run has no drive velocity: with every threshold given it segments like
-    a spring-driven one (the onset search then starts at the last stick-speed sample)."""
-    v = [0] * 5 + [4] * 4 + [0] * 5
+    a spring-driven one, and its onset search starts at the last sample below the stick speed
+    (0.5 m/s). Here the slider creeps at 0.75 m/s for one sample before slipping and the force
+    tops before that creep: the forced run's onset is the top (sample 4); the spring-driven
+    run's drive (20 m/s) is faster than every sample before the slip, so its search starts at
+    the creep sample (5)."""
+    v = [0] * 5 + [0.75] + [4] * 4 + [0] * 5
     forced, sprung = stick_slip_events(plain(v), **LOOSE), stick_slip_events(plain(v, drive="spring"), **LOOSE)
-    assert [(e.t_stick, e.t_end) for e in forced] == [(e.t_stick, e.t_end) for e in sprung] == [(0.0, 9.0)]
+    assert [(e.t_stick, e.t_end) for e in forced] == [(e.t_stick, e.t_end) for e in sprung] == [(0.0, 10.0)]
+    assert plain(v).drive_force[4] > plain(v).drive_force[5]  # the premise: the force tops at 4
+    assert forced[0].t_slip == 4.0 and sprung[0].t_slip == 5.0
 
 
 # -- statistics and traces: remaining fields, by hand ----------------------------------------------

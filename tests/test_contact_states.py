@@ -112,6 +112,17 @@ def test_passes_count_the_travel_over_the_span_of_the_lower_tips():
     assert cs.passes == pytest.approx(0.5, rel=1e-12) and cs.hops_per_pass == pytest.approx(4.0, rel=1e-12)
     still = contact_states(dataclasses.replace(run, x=np.zeros(10)), stick_speed=1.0)
     assert still.passes == 0.0 and math.isnan(still.hops_per_pass)
+    # the lower surface moved along x: the span, and so the passes, are the same
+    scene = run.scene
+    moved = dataclasses.replace(scene, lower=dataclasses.replace(
+        scene.lower, spacing=dataclasses.replace(scene.lower.spacing, offset=3.0 * span)))
+    assert moved.lower.tips().min() > 0  # the premise
+    assert contact_states(dataclasses.replace(run, scene=moved), stick_speed=1.0).passes == pytest.approx(1.5, rel=1e-12)
+    pair = make_scene(lower_count=2, upper_count=1)  # two lower asperities already have a span
+    tips = pair.lower.tips()
+    paired = dataclasses.replace(run, scene=pair, x=np.linspace(0.0, 2.0 * (tips.max() - tips.min()), 10),
+                                 lower_dx=np.zeros((2, 10)), lower_dy=np.zeros((2, 10)), lower_contact=run.lower_contact[:2])
+    assert contact_states(paired, stick_speed=1.0).passes == pytest.approx(2.0, rel=1e-12)
     lone = dataclasses.replace(run, scene=make_scene(lower_count=1, upper_count=1), lower_dx=np.zeros((1, 10)),
                                lower_dy=np.zeros((1, 10)), lower_contact=run.lower_contact[:1])
     cs = contact_states(lone, stick_speed=1.0)
