@@ -6,6 +6,7 @@ false events), then a real short spring-driven run against the flank law.
 
 import dataclasses
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -295,3 +296,363 @@ def test_friction_velocity_bins_by_hand():
         friction_traces(result, bins=0)
     still = friction_traces(dataclasses.replace(base, v=np.zeros(51)), bins=5)
     assert len(still["velocity_centers"]) == len(still["friction_mean"]) == len(still["bin_count"]) == 0
+
+
+# -- the ground-truth generator: its documented properties, from its arguments -------------------
+
+def test_the_synthetic_series_is_the_documented_one():
+    """Defaults: 8 events, sticks of 80-160 samples creeping at exactly 3 % of V, slips of 20
+    samples that are the half-sine 40 V sin(pi j / 21), a final 80-sample stick; x integrates v
+    from 0, the drive moves at V and the force is the spring's k (V t - x), exactly (no noise)."""
+    result, truth = synthetic_stick_slip()
+    scene = result.scene
+    V, k = scene.drive.velocity, scene.drive.stiffness
+    slips, ends = truth["slip_index"], truth["end_index"]
+    assert len(slips) == len(ends) == 8
+    assert np.all(ends - slips == 21)  # last stick sample, 20 slip samples, then the next stick
+    sticks = np.diff(np.concatenate(([-1], slips))) - np.concatenate(([0], np.full(7, 20)))
+    assert np.all((sticks >= 80) & (sticks <= 160))
+    v, t, dt = result.v, result.t, result.meta["dt"]
+    assert len(v) == ends[-1] + 80  # the trailing stick has the shortest stick length
+    pulse = 40.0 * V * np.sin(np.pi * np.arange(1, 21) / 21)
+    stuck = np.ones(len(v), dtype=bool)
+    for i0, i1 in zip(slips, ends):
+        assert np.array_equal(v[i0 + 1:i1], pulse)
+        stuck[i0 + 1:i1] = False
+    assert np.all(v[stuck] == 0.03 * V)
+    assert dt == t[1] - t[0] and np.allclose(np.diff(t), dt, rtol=1e-9)
+    assert result.x[0] == 0.0
+    # a difference of the cumulative sum is exact to the rounding of x itself (a few ulp of max x)
+    assert np.allclose(np.diff(result.x), v[1:] * dt, rtol=0.0, atol=16 * np.spacing(result.x.max()))
+    assert np.array_equal(result.drive_x, V * t)
+    assert np.array_equal(result.drive_force, k * (V * t - result.x))
+    assert np.array_equal(result.friction_force, result.drive_force)
+    # every per-sample series has one value per sample; the slider never leaves y = 0 or touches
+    for name in ("y", "vy", "normal_force", "tangential_force", "contact_count"):
+        assert np.array_equal(getattr(result, name), np.zeros(len(t))), name
+    assert scene.lower.count == 2 and scene.slider.spacing.count == 1
+    for name in ("lower_dx", "lower_dy", "lower_contact"):
+        assert np.shape(getattr(result, name)) == (2, len(t))
+    assert not np.any(result.lower_contact)
+    assert result.meta == {"dt": dt, "record_every": 1, "status": "synthetic"} and result.status == "synthetic"
+
+
+def test_synthetic_stick_lengths_span_both_bounds_and_slips_their_count():
+    """Stick lengths are drawn from the closed range [lo, hi]: over 60 draws from {5, 6} both
+    appear (each is missing with probability 2^-60) and nothing else does."""
+    result, truth = synthetic_stick_slip(n_events=60, samples_per_stick=(5, 6), samples_per_slip=7, seed=2)
+    slips, ends = truth["slip_index"], truth["end_index"]
+    sticks = np.concatenate(([slips[0] + 1], slips[1:] - ends[:-1] + 1))
+    assert set(sticks.tolist()) == {5, 6}
+    assert np.all(ends - slips == 8)
+    assert len(result.t) == ends[-1] + 5
+
+
+def test_synthetic_series_is_reproducible_from_its_seed():
+    one, truth_one = synthetic_stick_slip(noise=0.2, seed=5)
+    two, truth_two = synthetic_stick_slip(noise=0.2, seed=5)
+    for name in ("t", "x", "v", "drive_force"):
+        assert np.array_equal(getattr(one, name), getattr(two, name)), name
+    assert np.array_equal(truth_one["slip_index"], truth_two["slip_index"])
+    other, truth_other = synthetic_stick_slip(noise=0.2, seed=6)
+    assert not np.array_equal(truth_one["slip_index"], truth_other["slip_index"])
+    default, truth_default = synthetic_stick_slip()
+    zero, truth_zero = synthetic_stick_slip(seed=0)
+    assert np.array_equal(default.v, zero.v) and np.array_equal(truth_default["end_index"], truth_zero["end_index"])
+
+
+def test_synthetic_noise_has_the_documented_level():
+    """noise = 0.5 adds N(0, 0.5 V) to v and N(0, 0.5 k V dt) to the force. The clean v is the
+    x increments over dt (x integrates the clean v) and the clean force k (V t - x). Over
+    ~9,000 samples the sample std is within 3 % of sigma (its relative error is
+    1/sqrt(2 n) = 0.75 %) and the mean within 5 sigma/sqrt(n) of 0."""
+    result, _ = synthetic_stick_slip(n_events=60, noise=0.5, seed=12)
+    scene = result.scene
+    V, k, dt = scene.drive.velocity, scene.drive.stiffness, result.meta["dt"]
+    n = len(result.t) - 1
+    dv = result.v[1:] - np.diff(result.x) / dt
+    df = result.drive_force - k * (V * result.t - result.x)
+    assert n > 8000
+    for residual, sigma in ((dv, 0.5 * V), (df, 0.5 * k * V * dt)):
+        assert np.std(residual) == pytest.approx(sigma, rel=0.03)
+        assert abs(np.mean(residual)) < 5 * sigma / math.sqrt(n)
+
+
+def test_synthetic_series_uses_the_scene_it_is_given():
+    base, _ = synthetic_stick_slip(n_events=2)
+    scene = dataclasses.replace(base.scene, drive=dataclasses.replace(base.scene.drive, stiffness=2.0 * base.scene.drive.stiffness,
+                                                                      velocity=0.5 * base.scene.drive.velocity))
+    result, _ = synthetic_stick_slip(n_events=2, scene=scene)
+    assert result.scene is scene
+    V, k = scene.drive.velocity, scene.drive.stiffness
+    assert np.allclose(result.drive_force, k * (V * result.t - result.x), rtol=1e-12, atol=0.0)
+    assert result.meta["dt"] == pytest.approx(1e-3 * scene.base / V, rel=1e-15)
+
+
+# -- every force measure passes every keyword to the detector --------------------------------------
+
+@pytest.mark.parametrize("measure", [breakaway_force, a.peak_stick_force, a.mean_stick_force])
+@pytest.mark.parametrize("keyword", ["stick_speed", "slip_speed", "min_stick", "min_slip", "min_slip_distance"])
+def test_each_keyword_reaches_the_detector(measure, keyword):
+    """A value of each keyword under which the synthetic series (creep 0.03 V, slips peaking near
+    40 V for 20 samples moving ~13 bases) has no stick-to-slip transition: the measure must
+    raise for it, while it returns the default answer without it. For min_stick the series
+    starts with a slip, a 50-sample stop (shorter than half a period, 55 samples) and a slip:
+    by default the stop is a bounce, with min_stick = 0 a stick whose breakaway comes first."""
+    result, truth = synthetic_stick_slip(n_events=3, seed=13)
+    V, dt = result.scene.drive.velocity, result.meta["dt"]
+    if keyword != "min_stick":
+        impossible = {"stick_speed": 0.01 * V,  # below the creep: never stuck
+                      "slip_speed": 100.0 * V,  # above the 40 V pulse: never slips
+                      "min_slip": 1e3 * dt,  # longer than any slip
+                      "min_slip_distance": 1e3 * result.scene.base}[keyword]
+        assert np.isfinite(measure(result))
+        with pytest.raises(a.SceneError, match="^`result` has no stick-to-slip transition"):
+            measure(result, **{keyword: impossible})
+        return
+    lead = np.concatenate((np.full(30, 40.0 * V), np.zeros(50), np.full(30, 40.0 * V)))
+    v = np.concatenate((lead, result.v))
+    dt_x = np.concatenate(([0.0], np.cumsum(v[1:] * dt)))
+    t = dt * np.arange(len(v))
+    k = result.scene.drive.stiffness
+    force = k * (V * t - dt_x)
+    force[79] = 2.0 * np.abs(force).max()  # the stop's last sample carries the largest force of the run
+    zeros, lower = np.zeros(len(v)), np.zeros((2, len(v)))
+    led = a.Result(t=t, x=dt_x, v=v, y=zeros, vy=zeros, drive_x=V * t, drive_force=force, normal_force=zeros,
+                   friction_force=force, tangential_force=zeros, contact_count=zeros, lower_dx=lower,
+                   lower_dy=lower, lower_contact=lower > 0, scene=result.scene, meta=dict(result.meta))
+    default, eager = measure(led), measure(led, min_stick=0.0)
+    assert eager != default
+    if measure is breakaway_force:  # the stop's breakaway comes first
+        assert eager == force[79]
+    elif measure is a.peak_stick_force:
+        assert eager == force[79] > default
+    else:
+        assert eager == pytest.approx((force[79] + 3 * default) / 4, rel=1e-12)
+
+
+# -- the detector's rules at their boundaries, on series with exact (dyadic) numbers --------------
+
+def plain(v, force=None, drive="force"):
+    """Samples 1 s apart with slider velocity ``v`` (m/s, dyadic so every sum below is exact),
+    x the running sum of v[1:] (x[i] - x[i-1] = v[i]); on a constant-force drive (no drive
+    velocity: every threshold is given) unless ``drive="spring"``."""
+    v = np.asarray(v, dtype=float)
+    n = len(v)
+    t = np.arange(n, dtype=float)
+    x = np.concatenate(([0.0], np.cumsum(v[1:])))
+    force = -x if force is None else np.asarray(force, dtype=float)
+    zeros, lower = np.zeros(n), np.zeros((2, n))
+    return a.Result(t=t, x=x, v=v, y=zeros, vy=zeros, drive_x=zeros, drive_force=force, normal_force=zeros,
+                    friction_force=force, tangential_force=zeros, contact_count=zeros, lower_dx=lower, lower_dy=lower,
+                    lower_contact=lower > 0, scene=a.make_scene(drive=drive, lower_count=2, upper_count=1),
+                    meta={"dt": 1.0, "record_every": 1})
+
+
+#: stick below 0.5 m/s, slip above 3 m/s; no duration or distance rule unless a test sets one
+LOOSE = {"stick_speed": 0.5, "slip_speed": 3.0, "min_stick": 0.0, "min_slip": 0.0, "min_slip_distance": 0.0}
+
+
+def test_speed_thresholds_are_strict():
+    """|v| below stick_speed is stick, v above slip_speed is slip: a sample at either threshold
+    is in the dead band (it keeps the previous state)."""
+    assert len(stick_slip_events(plain([0] * 5 + [4] * 4 + [0] * 5), **LOOSE)) == 1
+    assert stick_slip_events(plain([0] * 5 + [3] * 4 + [0] * 5), **LOOSE) == []  # v = slip_speed: not a slip
+    # a stop at exactly the stick speed never sticks: the slip runs on to the end of the run
+    events = stick_slip_events(plain([0] * 5 + [4] * 4 + [0.5] * 5), **LOOSE)
+    assert len(events) == 1 and not events[0].complete and events[0].t_end == 13.0
+    with pytest.raises(a.SceneError, match="^`slip_speed` .* must be > `stick_speed`"):
+        stick_slip_events(plain([0] * 5), **{**LOOSE, "slip_speed": 0.5})
+
+
+def test_the_dead_band_keeps_the_previous_state():
+    """A slip dipping to 2 m/s (between the thresholds) for 3 samples stays one slip; a run
+    starting in the dead band is in no state until its first stick sample."""
+    events = stick_slip_events(plain([0] * 5 + [4] * 3 + [2] * 3 + [4] * 3 + [0] * 5), **LOOSE)
+    assert len(events) == 1 and events[0].t_end == 14.0  # the first stick sample after the slip
+    # one dead-band sample, then a 3 s stick: with min_stick = 4 s it is still the first stick
+    # (nothing before it was a slip), so the slip after it is an event
+    events = stick_slip_events(plain([2] + [0] * 3 + [4] * 3 + [0] * 5), **{**LOOSE, "min_stick": 4.0})
+    assert len(events) == 1 and events[0].t_stick == 1.0
+
+
+def test_motion_before_the_first_stick_is_not_an_event():
+    """The run starts sliding (dead band, then a slip), stops for 3 samples, slips again: only
+    the slip after the stop is an event; with min_stick above the 3 s stop it is a bounce and
+    there is none (a later stop must follow)."""
+    v = [2, 4, 4, 4, 0, 0, 0, 4, 4, 4, 0, 0, 0, 0, 0]
+    events = stick_slip_events(plain(v), **LOOSE)
+    assert [(e.t_stick, e.t_slip, e.t_end) for e in events] == [(4.0, 6.0, 10.0)]
+    assert stick_slip_events(plain(v), **{**LOOSE, "min_stick": 3.5}) == []
+    assert len(stick_slip_events(plain(v), **{**LOOSE, "min_stick": 3.0})) == 1  # not shorter than 3 s
+
+
+def test_a_short_first_stick_still_counts():
+    """The first stick of the run is not inside a slip: however short, the slip after it is an
+    event, even when the run ends sliding."""
+    events = stick_slip_events(plain([0, 0, 4, 4, 4, 0, 0, 0, 0, 0, 4, 4]), **{**LOOSE, "min_stick": 3.0})
+    assert [(e.t_stick, e.t_slip, e.complete) for e in events] == [(0.0, 1.0, True), (5.0, 9.0, False)]
+
+
+def test_min_stick_counts_only_the_slow_time():
+    """A stop after a slip: 2 samples at rest, then 3 at exactly the stick speed (dead band,
+    held as stick): 2 s slow, not 5 s. min_stick = 2 s keeps it a stick, 2.5 s makes it a
+    bounce, whatever the 5 s the hysteresis holds."""
+    v = [0] * 4 + [4] * 3 + [0, 0, 0.5, 0.5, 0.5] + [4] * 3 + [0] * 4
+    assert len(stick_slip_events(plain(v), **{**LOOSE, "min_stick": 2.0})) == 2
+    assert len(stick_slip_events(plain(v), **{**LOOSE, "min_stick": 2.5})) == 1
+
+
+def test_the_slip_rules_measure_from_the_sample_before_to_the_sample_after():
+    """A slip of 4 samples at 4 m/s between stick samples at 0.25 m/s: it lasts 4 s and moves
+    x[b] - x[a-1] = 4 x 4 + 0.25 = 16.25 m (the sample after it included, the one before not).
+    It is a slip at min_slip = 4 s and min_slip_distance = 16.25 m, noise above either."""
+    v = [0.25] * 6 + [4] * 4 + [0.25] * 6
+    result = plain(v)
+    assert result.x[10] - result.x[5] == 16.25
+    for rule, value in (("min_slip", 4.0), ("min_slip_distance", 16.25)):
+        assert len(stick_slip_events(result, **{**LOOSE, rule: value})) == 1, rule
+        assert stick_slip_events(result, **{**LOOSE, rule: value + 0.125}) == [], rule
+    # a slip from the second sample counts from the first
+    early = plain([0, 4, 4, 4, 4, 0.25, 0, 0])
+    assert len(stick_slip_events(early, **{**LOOSE, "min_slip_distance": 16.25})) == 1
+    assert stick_slip_events(early, **{**LOOSE, "min_slip_distance": 16.375}) == []
+
+
+def test_the_last_sample_stands_for_one_sample_interval():
+    """The end-of-run rule: a run [a, b) lasts t[b] - t[a], the last sample one interval more.
+    A slip in the last 4 samples lasts 4 s and moves x[-1] - x[a-1] = 16 m; a stop in the last
+    3 samples is 3 s slow."""
+    ending_in_slip = plain([0] * 6 + [4] * 4)
+    for rule, value in (("min_slip", 4.0), ("min_slip_distance", 16.0)):
+        events = stick_slip_events(ending_in_slip, **{**LOOSE, rule: value})
+        assert len(events) == 1 and not events[0].complete and events[0].t_end == 9.0, rule
+        assert stick_slip_events(ending_in_slip, **{**LOOSE, rule: value + 0.125}) == [], rule
+    ending_in_stop = plain([0] * 6 + [4] * 4 + [0] * 3)
+    assert stick_slip_events(ending_in_stop, **{**LOOSE, "min_stick": 3.0})[0].complete
+    assert not stick_slip_events(ending_in_stop, **{**LOOSE, "min_stick": 3.125})[0].complete
+
+
+def test_a_two_sample_run_can_hold_a_slip():
+    events = stick_slip_events(plain([0, 4]), **LOOSE)
+    assert [(e.t_stick, e.t_slip, e.t_end, e.complete) for e in events] == [(0.0, 0.0, 1.0, False)]
+    assert stick_slip_events(plain([0]), **LOOSE) == []
+
+
+def test_a_noise_slip_joins_the_stick_around_it():
+    """A 1-sample spike (too short for min_slip = 2 s) in a stick: the stick runs from the
+    start of the run to the real slip, one stick."""
+    events = stick_slip_events(plain([0] * 4 + [4] + [0] * 4 + [4] * 3 + [0] * 4), **{**LOOSE, "min_slip": 2.0})
+    assert [(e.t_stick, e.t_slip, e.stick_duration) for e in events] == [(0.0, 8.0, 8.0)]
+
+
+def test_the_onset_search_runs_from_the_last_slow_sample_to_the_first_fast_one():
+    """Measured force (not a spring's): it keeps rising 2 samples into the slip (a lagging
+    sensor). The onset is searched on [last sample not faster than the drive, first slip
+    sample]: it is the first slip sample, not later; the drop is the peak minus the lowest
+    force up to the re-stick sample, not after it."""
+    v = [0] * 5 + [4] * 4 + [0] * 5
+    force = [0, 1, 2, 3, 4, 5, 6, 7, 3, -2, -9, -50, -50, -50]
+    events = stick_slip_events(plain(v, force), **LOOSE)
+    assert [(e.t_slip, e.force_peak, e.force_drop, e.t_end) for e in events] == [(5.0, 5.0, 7.0, 9.0)]
+
+
+def test_the_onset_is_the_last_rise_of_the_drive_force_before_the_slip():
+    """A spring-driven stick interrupted by a surge: the slider creeps at 0.75 V, surges at 2 V
+    for 5 samples (below the 3 V slip speed: still stuck), creeps one sample, then slips. The
+    force k (V t - x) tops twice, before and after the surge; the slip starts from the second
+    top, the lower one (the surge unloaded the spring by 5 k V dt)."""
+    result = series([0.0] * 100 + [0.75] * 20 + [2.0] * 5 + [0.75] + [40.0] * 30 + [0.0] * 300)
+    events = stick_slip_events(result)
+    assert len(events) == 1
+    assert sample_of(result, events[0].t_slip) == 125
+    assert events[0].force_peak == pytest.approx(result.drive_force[125], rel=1e-12)
+    assert result.drive_force[119] > result.drive_force[125]  # the premise: the first top is higher
+
+
+def test_thresholds_given_make_any_drive_work():
+    """A constant-force run has no drive velocity: with every threshold given it segments like
+    a spring-driven one, and its onset search starts at the last sample below the stick speed
+    (0.5 m/s). Here the slider creeps at 0.75 m/s for one sample before slipping and the force
+    tops before that creep: the forced run's onset is the top (sample 4); the spring-driven
+    run's drive (20 m/s) is faster than every sample before the slip, so its search starts at
+    the creep sample (5)."""
+    v = [0] * 5 + [0.75] + [4] * 4 + [0] * 5
+    forced, sprung = stick_slip_events(plain(v), **LOOSE), stick_slip_events(plain(v, drive="spring"), **LOOSE)
+    assert [(e.t_stick, e.t_end) for e in forced] == [(e.t_stick, e.t_end) for e in sprung] == [(0.0, 10.0)]
+    assert plain(v).drive_force[4] > plain(v).drive_force[5]  # the premise: the force tops at 4
+    assert forced[0].t_slip == 4.0 and sprung[0].t_slip == 5.0
+
+
+# -- statistics and traces: remaining fields, by hand ----------------------------------------------
+
+def test_event_statistics_slip_distance_and_time_scale():
+    """The mean slip distance is over complete events only; the regularity (a coefficient of
+    variation) does not depend on the time unit: events nanoseconds apart give the same number
+    as events seconds apart. Zero mean interval has no regularity."""
+    def ev(t_slip, distance, complete=True):
+        return Event(t_stick=t_slip - 0.5, t_slip=t_slip, t_end=t_slip + 0.1, force_peak=1.0, force_drop=0.5,
+                     slip_distance=distance, stick_duration=0.5, complete=complete)
+
+    s = event_statistics([ev(1.0, 2.0), ev(2.0, 4.0), ev(4.0, 9.0, complete=False)])
+    assert s["slip_distance_mean"] == pytest.approx(3.0)
+    nano = event_statistics([ev(1e-9, 2.0), ev(2e-9, 4.0), ev(4e-9, 9.0)])
+    assert nano["interval_mean"] == pytest.approx(1.5e-9)
+    assert nano["regularity"] == pytest.approx(math.sqrt(0.5) / 1.5)
+    assert math.isnan(event_statistics([ev(1.0, 2.0), ev(1.0, 2.0)])["regularity"])
+
+
+def test_friction_trace_series_and_defaults():
+    """Every series is the run's own, as floats; by default 40 log bins over 4 decades below
+    the fastest sample, which itself is binned and the slowest at exactly 1e-4 of it is not."""
+    n = 2001
+    v = np.geomspace(1e-4, 1.0, n)
+    base = series(np.zeros(n))
+    result = dataclasses.replace(base, v=v, friction_force=3.0 - v, tangential_force=np.linspace(0.0, 1.0, n))
+    tr = friction_traces(result)
+    for name, key in (("t", "time"), ("v", "velocity"), ("friction_force", "friction_force"),
+                      ("tangential_force", "tangential_force"), ("drive_force", "drive_force")):
+        assert np.array_equal(tr[key], getattr(result, name)), key
+    assert len(tr["velocity_centers"]) == 40  # 2000 samples over 40 bins: none empty
+    assert tr["bin_count"].sum() == n - 1
+    edges = np.geomspace(v[1], 1.0 * (1 + 1e-12), 41)
+    assert np.allclose(tr["velocity_centers"], np.sqrt(edges[:-1] * edges[1:]), rtol=1e-12)
+
+
+def test_friction_trace_edge_cases_of_the_binning():
+    """One bin holds every moving sample (mean friction of all of them); two moving samples are
+    enough for a curve; sliding at one speed has no friction-velocity curve (no range to bin)."""
+    base = series(np.zeros(6))
+    v = np.array([0.0, 1.0, 2.0, 4.0, 12.0, 16.0])
+    one = friction_traces(dataclasses.replace(base, v=v, friction_force=v + 1.0), bins=1, dynamic_range=1.5)
+    assert one["bin_count"].tolist() == [2]  # only 12 and 16 are above 16 / 1.5
+    assert one["friction_mean"].tolist() == [15.0]
+    assert np.allclose(one["velocity_centers"], [math.sqrt(12.0 * 16.0)], rtol=1e-9)
+    two = friction_traces(dataclasses.replace(base, v=np.array([0.0, 0, 0, 0, 3.0, 12.0]), friction_force=np.ones(6)),
+                          bins=2, dynamic_range=10.0)
+    assert two["bin_count"].tolist() == [1, 1]
+    assert np.allclose(two["velocity_centers"], [3.0 * math.sqrt(2), 6.0 * math.sqrt(2)], rtol=1e-9)
+    flat = friction_traces(dataclasses.replace(base, v=np.array([0.0, 5, 5, 5, 5, 5])), bins=3)
+    assert len(flat["velocity_centers"]) == len(flat["friction_mean"]) == len(flat["bin_count"]) == 0
+    assert flat["bin_count"].dtype.kind == "i"  # counts, even when there are none
+
+
+def test_too_few_events_give_nan_quietly():
+    """No events, or one: the means and spreads that need more are NaN by design, without
+    NumPy's empty-slice or degrees-of-freedom warnings (run with warnings as errors)."""
+    one = Event(t_stick=0.0, t_slip=1.0, t_end=2.0, force_peak=1.0, force_drop=0.5, slip_distance=2.0,
+                stick_duration=1.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        empty, single = event_statistics([]), event_statistics([one])
+    assert empty["count"] == 0 and all(math.isnan(empty[k]) for k in empty if k != "count")
+    assert single["force_drop_mean"] == 0.5 and single["slip_distance_mean"] == 2.0
+    assert all(math.isnan(single[k]) for k in ("force_drop_std", "stick_duration_std", "interval_mean", "regularity"))
+
+
+def test_force_measures_name_the_result_they_cannot_use():
+    forced = dataclasses.replace(synthetic_stick_slip(n_events=1)[0],
+                                 scene=a.make_scene(drive="force", lower_count=2, upper_count=1))
+    for measure in (breakaway_force, a.peak_stick_force, a.mean_stick_force):
+        with pytest.raises(a.SceneError, match=r'^`result` must come from a spring-driven run \(drive="spring"\)$'):
+            measure(forced)

@@ -34,7 +34,7 @@ ROOT = Path(__file__).resolve().parent.parent
 MODULES = {
     "critical": ("asperity2d/critical.py", ["tests/test_critical.py",
                                             "tests/test_ooten_studies.py::test_critical_force_brackets_correctly"]),
-    "analysis": ("asperity2d/analysis.py", ["tests/test_analysis.py"]),
+    "analysis": ("asperity2d/analysis.py", ["tests/test_analysis.py", "tests/test_contact_states.py"]),
     "stats": ("asperity2d/stats.py", ["tests/test_stats.py"]),
     "geometry": ("asperity2d/geometry.py", ["tests/test_geometry.py", "tests/test_scene_validation.py"]),
     "belt-events": ("asperity2d/belt/events.py", ["tests/test_belt_events.py", "tests/test_belt_exact.py"]),
