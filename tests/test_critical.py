@@ -80,6 +80,28 @@ def test_two_bands_below_are_followed_down_to_the_lowest():
     assert band is not None and band[1] < 1.0
 
 
+def test_a_staircase_of_bands_below_is_bracketed_from_below():
+    """Passes at >= 1.05, in [0.90, 0.97] and in [0.43, 0.47]. The bracket lands on 1.05; the
+    check finds its lowest scan point (0.945) passing with nothing seen to stop below it, so the
+    search bisects down to 0.90 and then halves from there: 0.45 passes too, 0.225 stops, and
+    bisection ends on the staircase's lowest edge, 0.43. Halving by anything but two, or
+    doubling, would miss the 0.43-0.47 band (its width is under a third of 0.9's distance)."""
+    rule = lambda f: f >= 1.05 or 0.90 <= f <= 0.97 or 0.43 <= f <= 0.47  # noqa: E731
+
+    def test(force):
+        if len(test.asked) >= 200:  # a search that runs away fails here, not by a time-out
+            raise AssertionError("more than 200 forces asked")
+        test.asked.append(force)
+        return rule(force)
+
+    test.asked = []
+    lo, hi, band, tried = smallest_passing(test, 1.0, rel_tol=0.0025)
+    assert lo < 0.43 <= hi <= 0.43 * 1.0025 and not rule(lo)
+    # the halving from the bisected 0.90 (to within 0.25 %) was asked, and passed
+    assert any(0.45 <= f <= 0.90 * 1.0025 / 2 and ok for f, ok in tried)
+    assert band is not None and band[0] == hi and 1.0 <= band[1] < 1.05
+
+
 @pytest.mark.parametrize("island", [(0.945, 0.955), (0.80, 0.82)])
 def test_what_the_check_cannot_see_is_what_its_window_and_step_say(island):
     """An island narrower than SCAN_STEP between two scan points, or more than SCAN_WINDOW
@@ -165,8 +187,9 @@ def test_critical_force_warns_with_the_band(monkeypatch):
 
     monkeypatch.setattr(critical, "critical_force_bracket", fake_bracket)
     with pytest.warns(NonMonotoneWarning, match=r"not monotone in the force \(start='run-up'\): 1 N passes, "
-                                                r"1.07 N does not"):
+                                                r"1.07 N does not") as record:
         assert critical.critical_force(a.make_scene(drive="force"), start="run-up") == 1.0
+    assert record[0].filename == __file__  # the warning names the caller's line, not critical.py's
     monkeypatch.setattr(critical, "critical_force_bracket",
                         lambda scene, **kw: critical.CriticalForce(stops=0.9, passes=1.0, runs=3))
     with warnings.catch_warnings():
@@ -236,6 +259,9 @@ def test_run_arguments_reach_every_run(monkeypatch):
 
     run_defaults = inspect.signature(Run).parameters
     assert args()["iterations"] == run_defaults["iterations"].default == 20
+    with pytest.raises(Built):  # the bracket's own default, not only critical_force's
+        critical.critical_force_bracket(scene)
+    assert built[-1]["iterations"] == run_defaults["iterations"].default
     # the step: half the simulation's default from rest (converged there), a quarter with a run-up
     assert args()["dt"] == 0.5 * default_dt(scene) == critical.measure_dt(scene, "rest")
     assert args()["max_steps"] == critical.MAX_STEPS
@@ -251,7 +277,7 @@ def test_bad_arguments():
         critical_force_bracket(scene, rel_tol=1.0)
     with pytest.raises(a.SceneError, match="`rel_tol`"):
         critical_force_bracket(scene, rel_tol=-0.1)
-    with pytest.raises(a.SceneError, match="`scene`"):
+    with pytest.raises(a.SceneError, match=r"^`scene` must be a Scene, got str$"):
         critical_force_bracket("scene")
     with pytest.raises(a.SceneError, match="`start`"):
         critical_force_bracket(scene, start="sideways")
@@ -321,3 +347,16 @@ def test_the_tolerance_reaches_the_bisection(monkeypatch):
     monkeypatch.setattr(critical, "smallest_passing", fake_search)
     critical.critical_force_bracket(scene, rel_tol=0.0625)
     assert seen == {"bracket": 0.125, "search": 0.0625}
+
+
+@pytest.mark.parametrize("entry", ["critical_force", "critical_force_bracket"])
+def test_the_default_run_budget_is_80_runs(monkeypatch, entry):
+    """A slider that never passes (every run reports "stopped"): each entry point runs exactly
+    its documented default of 80 simulations, then refuses with the budget in the message."""
+    from asperity2d import critical
+
+    calls = []
+    monkeypatch.setattr(critical, "passes", lambda base, force: calls.append(force) or False)
+    with pytest.raises(a.SceneError, match=r"^`max_runs` = 80 runs did not bracket"):
+        getattr(critical, entry)(a.make_scene(drive="force", **SMALL))
+    assert len(calls) == 80 and calls[1] == 2 * calls[0]  # doubling, each force run once

@@ -9,7 +9,10 @@ For each module it copies the project (``git archive`` of the working tree's fil
 ``--rev``) into a scratch directory, writes a ``[tool.mutmut]`` section that mutates that one
 module and runs only its own test files (:data:`MODULES`), runs mutmut there and reads every
 mutant's outcome from mutmut's ``.meta`` files. The score is killed / (killed + survived);
-a mutant no test runs counts as survived, one that times out as killed (mutmut's own rule).
+a mutant no test runs counts as survived, one that times out as killed (mutmut's own rule),
+and the time-outs are counted apart. A mutant times out at ``--timeout-multiplier`` (default 4)
+times its tests' clean time plus a second, not mutmut's default 15: a search mutated into an
+endless loop then costs a minute, not ten, and a correct mutant is never 4 times slower.
 Writes ``renders/mutation/<module>.json`` (every mutant and its outcome) and prints one line
 per module. Not part of the default test run: the five modules take about an hour on two
 shared cores (critical.py alone ~25 min: every mutant of the bisection runs simulations).
@@ -44,6 +47,7 @@ MODULES = {
 #: killed; it passed every test (0) or no test ran it (5, 33): survived
 KILLED = {1, 3, 36, 24, -24, 152, 255, -9, -11}
 SURVIVED = {0, 5, 33}
+TIMED_OUT = {36, 24, -24, 152, 255}
 
 
 def copy_project(destination: Path, rev: str | None) -> None:
@@ -62,7 +66,7 @@ def copy_project(destination: Path, rev: str | None) -> None:
             shutil.copy2(source, target)
 
 
-def configure(project: Path, module: str, tests: list[str]) -> list[str]:
+def configure(project: Path, module: str, tests: list[str], timeout_multiplier: float = 4.0) -> list[str]:
     """Write the [tool.mutmut] section for one module; return the test files that exist."""
     tests = [t for t in tests if (project / t.split("::")[0]).exists()]
     pyproject = project / "pyproject.toml"
@@ -71,7 +75,8 @@ def configure(project: Path, module: str, tests: list[str]) -> list[str]:
              'source_paths = ["asperity2d"]\n'
              f"only_mutate = [{json.dumps(module)}]\n"
              f"pytest_add_cli_args_test_selection = {json.dumps(tests)}\n"
-             'pytest_add_cli_args = ["-p", "no:cacheprovider", "-q", "-m", "not slow"]\n')
+             'pytest_add_cli_args = ["-p", "no:cacheprovider", "-q", "-m", "not slow"]\n'
+             f"timeout_multiplier = {float(timeout_multiplier)!r}\n")
     pyproject.write_text(text)
     return tests
 
@@ -88,13 +93,13 @@ def outcomes(project: Path, module: str) -> dict[str, int]:
     return meta["exit_code_by_key"]
 
 
-def run_module(name: str, *, sample: int, rev: str | None, seed: int) -> dict:
+def run_module(name: str, *, sample: int, rev: str | None, seed: int, timeout_multiplier: float = 4.0) -> dict:
     module, tests = MODULES[name]
     started = time.time()
     with tempfile.TemporaryDirectory(prefix=f"mutation-{name}-") as scratch:
         project = Path(scratch)
         copy_project(project, rev)
-        tests = configure(project, module, tests)
+        tests = configure(project, module, tests, timeout_multiplier)
         if not tests:  # never let mutmut fall back to the whole suite
             raise SystemExit(f"{module}: none of its test files exist in {rev or 'the working tree'}")
         env = {**os.environ, "MPLBACKEND": "Agg", "PYTHONDONTWRITEBYTECODE": "1"}
@@ -116,11 +121,13 @@ def run_module(name: str, *, sample: int, rev: str | None, seed: int) -> dict:
         codes = outcomes(project, module) if (project / "mutants" / (module + ".meta")).exists() else {}
     results = {n: codes.get(n) for n in chosen}
     killed = sum(1 for c in results.values() if c in KILLED)
+    timeouts = sum(1 for c in results.values() if c in TIMED_OUT)
     survived = sorted(n for n, c in results.items() if c in SURVIVED)
     unknown = sorted(n for n, c in results.items() if c not in KILLED | SURVIVED)
     judged = killed + len(survived)
     out = {"module": module, "tests": tests, "rev": rev or "working tree", "mutants": len(names),
-           "run": len(chosen), "killed": killed, "survived": survived, "unknown": unknown,
+           "run": len(chosen), "killed": killed, "timeouts": timeouts,
+           "timeout_multiplier": timeout_multiplier, "survived": survived, "unknown": unknown,
            "score": killed / judged if judged else float("nan"), "seconds": round(time.time() - started),
            "mutmut_stderr": (proc.stderr or "")[-2000:] if not judged else "",
            "setup_stderr": (first.stderr or "")[-2000:] if first is not None and not judged else ""}
@@ -132,6 +139,8 @@ def main(argv=None) -> int:
     parser.add_argument("modules", nargs="*", help=f"any of {', '.join(MODULES)} (default: all)")
     parser.add_argument("--sample", type=int, default=0, help="mutants per module (0: all)")
     parser.add_argument("--seed", type=int, default=25, help="seed of the sample")
+    parser.add_argument("--timeout-multiplier", type=float, default=4.0,
+                        help="a mutant times out at this many times its tests' clean time (mutmut: 15)")
     parser.add_argument("--rev", help="measure this commit's code and tests instead of the working tree")
     parser.add_argument("-o", "--out", default=str(ROOT / "renders" / "mutation"), help="output directory")
     args = parser.parse_args(argv)
@@ -141,11 +150,12 @@ def main(argv=None) -> int:
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     for name in args.modules or list(MODULES):
-        result = run_module(name, sample=args.sample, rev=args.rev, seed=args.seed)
+        result = run_module(name, sample=args.sample, rev=args.rev, seed=args.seed,
+                            timeout_multiplier=args.timeout_multiplier)
         tag = f"{name}{'@' + args.rev if args.rev else ''}"
         (out / f"{tag}.json").write_text(json.dumps(result, indent=1) + "\n")
         print(f"{result['module']}: {100 * result['score']:.1f} % killed ({result['killed']} of "
-              f"{result['killed'] + len(result['survived'])} judged; {result['run']} of {result['mutants']} mutants "
+              f"{result['killed'] + len(result['survived'])} judged, {result['timeouts']} of the kills time-outs; {result['run']} of {result['mutants']} mutants "
               f"run; {len(result['unknown'])} without an outcome; {result['seconds']} s) tests: "
               f"{' '.join(result['tests'])}", flush=True)
     return 0
