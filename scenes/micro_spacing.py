@@ -27,7 +27,7 @@ one-sided (lower), holds if p < 0.01 and the change is at least 1 % (:func:`aspe
 
 Run::
 
-    python scenes/micro_spacing.py [--seeds 10] [--workers auto|N]
+    python scenes/micro_spacing.py [--seeds 20] [--workers auto|N]
 """
 
 from __future__ import annotations
@@ -96,7 +96,7 @@ def run_setup(setup: str, seeds: list[int], *, quick: bool, workers: int | None)
 
 
 def main(argv=None) -> int:
-    args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=10, minimum_seeds=2)
+    args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=20, minimum_seeds=2)
     out = scripting.out_dir(args, __file__)
     seeds = list(range(args.seeds))
     summary = {"seeds": len(seeds), "acceleration_factor": FACTOR, "setups": SETUPS, "alpha": ALPHA,

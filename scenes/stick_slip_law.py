@@ -27,7 +27,7 @@ unit normal load, which a fixed-height track does not have.
 
 Run::
 
-    python scenes/stick_slip_law.py [--seeds 8] [--workers auto|N] [--quick]
+    python scenes/stick_slip_law.py [--seeds 20] [--workers auto|N] [--quick]
 """
 
 from __future__ import annotations
@@ -101,7 +101,7 @@ def _plot(table, path):
 
 
 def main(argv=None) -> int:
-    args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=8, minimum_seeds=4,
+    args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=20, minimum_seeds=4,
                                 quick_seeds=4)
     out = scripting.out_dir(args, __file__)
     count = 24 if args.quick else LOWER_COUNT
