@@ -364,3 +364,78 @@ def test_the_default_run_budget_is_80_runs(monkeypatch, entry):
     with pytest.raises(a.SceneError, match=r"^`max_runs` = 80 runs did not bracket"):
         getattr(critical, entry)(a.make_scene(drive="force", **SMALL))
     assert len(calls) == 80 and calls[1] == 2 * calls[0]  # doubling, each force run once
+
+
+# -- the remaining mutation survivors: the estimate, the pass/fail run, the search's edges ------
+
+@pytest.mark.parametrize("kw, angle, mu", [({}, 45.0, 0.3), ({"flank_angle": 1.5}, 1.5, 0.3),
+                                           ({"flank_angle": 30.0, "mu_static": 0.5}, 30.0, 0.5)])
+def test_the_flank_estimate_is_the_wedge_law_of_each_set_up(kw, angle, mu):
+    """Free slider: the load on one flank, L tan(theta + atan mu_s); fixed track: every upper tip
+    pushing its spring down by the interference at once, n k delta tan(theta + atan mu_s)."""
+    from asperity2d.critical import flank_estimate
+
+    wedge = math.tan(math.radians(angle) + math.atan(mu))
+    free = a.make_scene(drive="force", track="free", normal_load=0.01, mu_static=mu,
+                        **{k: v for k, v in kw.items() if k != "mu_static"})
+    assert flank_estimate(free) == pytest.approx(0.01 * wedge, rel=1e-12)
+    fixed = a.make_scene(drive="force", mu_static=mu, **{k: v for k, v in kw.items() if k != "mu_static"})
+    n, k, delta = fixed.slider.count, max(fixed.lower.stiffness), fixed.slider.interference
+    assert flank_estimate(fixed) == pytest.approx(n * k * delta * wedge, rel=1e-12)
+
+
+def test_the_flank_estimate_caps_the_wedge_at_89_degrees():
+    """An 80-degree flank at mu_s = 0.5 (theta + phi = 106.6 degrees: no finite wedge): the
+    estimate is the 89-degree wedge, tan 89 = 57.3 times the load, never tan 90's 1.6e16."""
+    from asperity2d.critical import flank_estimate
+
+    scene = a.make_scene(drive="force", track="free", normal_load=0.01, flank_angle=80.0, mu_static=0.5)
+    assert flank_estimate(scene) == pytest.approx(0.01 * math.tan(math.radians(89.0)), rel=1e-12)
+
+
+def test_a_pass_fail_run_records_nothing_and_stays_inside_the_step_budget(monkeypatch):
+    """passes() asks its fork for at most the steps left in the budget, without a record (a
+    critical force makes ~20 such runs: recording them would cost memory for nothing)."""
+    from asperity2d.run import Run
+
+    scene = a.make_scene(drive="force", **SMALL)
+    base = settled_run(scene, dt=measure_dt(scene, "rest"), max_steps=20_000)
+    asked = []
+    advance = Run.advance
+
+    def spy(self, duration, **kw):
+        asked.append((duration, (self.max_steps - self.engine.step_count) * self.dt, kw))
+        return advance(self, duration, **kw)
+
+    monkeypatch.setattr(Run, "advance", spy)
+    assert not passes(base, 1e-9)
+    duration, room, kw = asked[0]
+    assert duration <= room and duration == pytest.approx(0.999 * room, rel=1e-12)
+    assert kw["record"] is False
+
+
+def test_a_bracket_exactly_rel_tol_wide_is_final():
+    """The bisection stops when the bracket is at most rel_tol wide: (0.5, 1.0) at rel_tol 0.5
+    is final; a search that bisected it once more would return 0.75 as the stopping force."""
+    lo, hi, band, _ = smallest_passing(lambda f: f >= 1.0, 1.0, rel_tol=0.5)
+    assert (lo, hi, band) == (0.5, 1.0, None)
+
+
+def test_the_check_never_asks_a_zero_force():
+    """A window of the whole force (scan_step 0.25, window 1.0) reaches 0 below the threshold:
+    a zero force is not a run (nothing would move), so it is never asked."""
+    test = Counting(lambda f: f >= 1.0)
+    lo, hi, band, _ = smallest_passing(test, 1.0, rel_tol=0.01, scan_step=0.25, window=1.0)
+    assert 0.0 not in test.asked and lo < 1.0 <= hi and band is None
+
+
+def test_the_second_bisection_starts_from_the_highest_force_seen_to_stop():
+    """Passes at >= 1, in [0.90, 0.93] and in [0.55, 0.60], searched from 0.7 (which stops). The
+    check finds 0.90 passing; 0.875 was seen to stop on the way, so the bisection down to the
+    band's edge runs between them and asks nothing between the bracket's 0.7 and 0.8 (the band
+    at 0.55-0.60 is beyond the window, as documented); restarting from half of 0.90 would."""
+    rule = lambda f: f >= 1.0 or 0.90 <= f <= 0.93 or 0.55 <= f <= 0.60  # noqa: E731
+    lo, hi, band, tried = smallest_passing(rule, 0.7)
+    assert lo < 0.90 <= hi <= 0.90 * 1.0025
+    assert any(abs(f - 0.875) < 1e-12 and not ok for f, ok in tried)  # the bracket's bisection: (0.7 + 1.05) / 2
+    assert [f for f, _ in tried if 0.45 <= f < 0.80] == [0.7]
