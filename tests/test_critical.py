@@ -10,6 +10,7 @@ code under test.
 from __future__ import annotations
 
 import math
+import sys
 import os
 import warnings
 
@@ -439,3 +440,81 @@ def test_the_second_bisection_starts_from_the_highest_force_seen_to_stop():
     assert lo < 0.90 <= hi <= 0.90 * 1.0025
     assert any(abs(f - 0.875) < 1e-12 and not ok for f, ok in tried)  # the bracket's bisection: (0.7 + 1.05) / 2
     assert [f for f, _ in tried if 0.45 <= f < 0.80] == [0.7]
+
+
+# -- settling: the start each search forks from ------------------------------------------------
+
+class FakeRun:
+    """Stands in for Run inside settled_run: each settle moves the slider a fixed step, and a
+    tip touches a flank from the ``touch``-th settle on (never, if None). Records what it was
+    built with and every push."""
+
+    built: list = []
+
+    def __init__(self, scene, **kw):
+        FakeRun.built.append(kw)
+        self.pushes, self.x = [], 10.0 * PITCH  # x far from 0: a position, not a displacement
+        self.engine = self
+
+    def slider_state(self):
+        return (self.x, -3.0 * PITCH, 0.0, 0.0)  # (x, y, vx, vy): y would never pass the reach test
+
+    def arbiters_internal(self):
+        return [object()] if TOUCH is not None and len(self.pushes) >= TOUCH else []
+
+    def settle(self, push=None):
+        self.pushes.append(push)
+        self.x += STEP * PITCH
+
+
+PITCH, STEP, TOUCH = 2.0 ** -20, 0.5, None  # a power of two: x - x0 lands exactly on two pitches
+
+
+@pytest.mark.parametrize("step, touch, settles", [
+    (0.5, None, 5),   # nothing to touch: at exactly 2.0 pitches it pushes once more (past, not at), stops at 2.5
+    (0.3, None, 7),   # 0.3 ... 2.1 pitches: the first push past two mean pitches is the last
+    (0.0, None, 21),  # never moves, never touches: the first settle and MAX_PUSHES more, then gives up
+    (0.5, 3, 3),      # a tip touches after the third settle: no further push
+    (0.5, 1, 1),      # touching after the first settle: that settle is all
+])
+def test_settling_pushes_until_a_tip_touches_or_two_pitches_are_passed(monkeypatch, step, touch, settles):
+    from asperity2d import critical
+
+    monkeypatch.setattr(critical, "Run", FakeRun)
+    monkeypatch.setattr(sys.modules[__name__], "STEP", step)
+    monkeypatch.setattr(sys.modules[__name__], "TOUCH", touch)
+    scene = a.make_scene(drive="force", **SMALL)
+    monkeypatch.setattr(type(scene.lower.spacing), "mean_pitch", property(lambda self: PITCH))
+    for start in ("rest", "entry"):
+        run = critical.settled_run(scene, start=start)
+        assert len(run.pushes) == settles
+        push = critical.PUSH_FRACTION * critical.flank_estimate(scene)
+        assert run.pushes == [push] * settles  # the gentle push every time, from both starts
+
+
+def test_settling_builds_an_engaged_run_only_from_rest(monkeypatch):
+    """From rest the slider starts over the surface (engaged); from the entry and with a run-up it
+    starts where the builder puts it. Iterations default to Run's own, and a bad start is refused
+    by its name."""
+    import inspect
+
+    from asperity2d import critical
+    from asperity2d.run import Run
+
+    FakeRun.built = []
+    monkeypatch.setattr(critical, "Run", FakeRun)
+    scene = a.make_scene(drive="force", **SMALL)
+    for start in ("rest", "entry", "run-up"):
+        critical.settled_run(scene, start=start)
+    assert [kw["engaged"] for kw in FakeRun.built] == [True, False, False]
+    assert FakeRun.built[0]["iterations"] == inspect.signature(Run).parameters["iterations"].default
+    with pytest.raises(a.SceneError, match=r"^`start` must be one of"):
+        critical.settled_run(scene, start="sideways")
+
+
+def test_from_the_entry_the_front_tip_rests_against_the_first_flank():
+    """The real run: settled for the entry, the fixed-track slider touches the surface (it was
+    pushed to the first flank); with a run-up it is left before the surface, touching nothing."""
+    scene = a.make_scene(drive="force", **SMALL)
+    assert len(settled_run(scene, start="entry").engine.arbiters_internal()) > 0
+    assert len(settled_run(scene, start="run-up").engine.arbiters_internal()) == 0
