@@ -13,8 +13,9 @@ a mutant no test runs counts as survived, one that times out as killed (mutmut's
 and the time-outs are counted apart. A mutant times out at ``--timeout-multiplier`` (default 4)
 times its tests' clean time plus a second, not mutmut's default 15: a search mutated into an
 endless loop then costs a minute, not ten, and a correct mutant is never 4 times slower.
-Writes ``renders/mutation/<module>.json`` (every mutant and its outcome) and prints one line
-per module. Not part of the default test run: the five modules take about an hour on two
+Writes ``docs/data/mutation/<module>.json`` (every mutant and its outcome, the commit and the
+date; the Validation page's table reads these files, so commit them) and prints one line per
+module. Not part of the default test run: the five modules take about an hour on two
 shared cores (critical.py alone ~25 min: every mutant of the bisection runs simulations).
 """
 
@@ -48,6 +49,18 @@ MODULES = {
 KILLED = {1, 3, 36, 24, -24, 152, 255, -9, -11}
 SURVIVED = {0, 5, 33}
 TIMED_OUT = {36, 24, -24, 152, 255}
+
+
+def commit(rev: str | None) -> str:
+    """The commit measured: ``rev``'s short hash, or HEAD's with "+changes" if the module or
+    test files differ from it in the working tree."""
+    out = subprocess.run(["git", "rev-parse", "--short", rev or "HEAD"], cwd=ROOT, check=True,
+                         capture_output=True, text=True).stdout.strip()
+    if rev:
+        return out
+    dirty = subprocess.run(["git", "status", "--porcelain", "--", "asperity2d", "tests"], cwd=ROOT,
+                           check=True, capture_output=True, text=True).stdout.strip()
+    return out + ("+changes" if dirty else "")
 
 
 def copy_project(destination: Path, rev: str | None) -> None:
@@ -96,6 +109,7 @@ def outcomes(project: Path, module: str) -> dict[str, int]:
 def run_module(name: str, *, sample: int, rev: str | None, seed: int, timeout_multiplier: float = 4.0) -> dict:
     module, tests = MODULES[name]
     started = time.time()
+    measured = commit(rev)
     with tempfile.TemporaryDirectory(prefix=f"mutation-{name}-") as scratch:
         project = Path(scratch)
         copy_project(project, rev)
@@ -125,7 +139,8 @@ def run_module(name: str, *, sample: int, rev: str | None, seed: int, timeout_mu
     survived = sorted(n for n, c in results.items() if c in SURVIVED)
     unknown = sorted(n for n, c in results.items() if c not in KILLED | SURVIVED)
     judged = killed + len(survived)
-    out = {"module": module, "tests": tests, "rev": rev or "working tree", "mutants": len(names),
+    out = {"module": module, "tests": tests, "rev": rev or "working tree", "commit": measured,
+           "date": time.strftime("%Y-%m-%d"), "mutants": len(names),
            "run": len(chosen), "killed": killed, "timeouts": timeouts,
            "timeout_multiplier": timeout_multiplier, "survived": survived, "unknown": unknown,
            "score": killed / judged if judged else float("nan"), "seconds": round(time.time() - started),
@@ -142,7 +157,7 @@ def main(argv=None) -> int:
     parser.add_argument("--timeout-multiplier", type=float, default=4.0,
                         help="a mutant times out at this many times its tests' clean time (mutmut: 15)")
     parser.add_argument("--rev", help="measure this commit's code and tests instead of the working tree")
-    parser.add_argument("-o", "--out", default=str(ROOT / "renders" / "mutation"), help="output directory")
+    parser.add_argument("-o", "--out", default=str(ROOT / "docs" / "data" / "mutation"), help="output directory")
     args = parser.parse_args(argv)
     unknown = [m for m in args.modules if m not in MODULES]
     if unknown:

@@ -193,6 +193,39 @@ class ClaimsTable(_Generated):
         return lines + claims_table_lines(data["claims"], setup=self.options.get("setup"))
 
 
+# -- mutation scores ---------------------------------------------------------------------------
+MUTATION = DOCS / "data" / "mutation"
+#: tools/mutation.py's modules, in the order the page lists them
+MUTATION_MODULES = ("critical", "analysis", "stats", "geometry", "belt-events")
+
+
+class MutationTable(_Generated):
+    """The recorded mutation score of each measure module (``docs/data/mutation/<module>.json``,
+    written by ``python tools/mutation.py``)."""
+
+    def lines(self):
+        rows, missing = [], []
+        for name in MUTATION_MODULES:
+            path = MUTATION / f"{name}.json"
+            if not path.exists():
+                missing.append(name)
+                continue
+            self.state.document.settings.record_dependencies.add(str(path))
+            data = json.loads(path.read_text(encoding="utf-8"))
+            judged = data["killed"] + len(data["survived"])
+            rows.append([f"``{data['module']}``", cell(", ".join(data["tests"])), str(data["mutants"]),
+                         f"{data['killed']} ({data.get('timeouts', '?')} time-outs)", str(len(data["survived"])),
+                         str(len(data["unknown"])), f"**{100 * data['killed'] / judged:.1f} %**" if judged else "—",
+                         f"``{data.get('commit', '?')}``, {data.get('date', '?')}"])
+        lines = list_table(["module", "its tests", "mutants", "killed", "survived", "no outcome", "score",
+                            "measured at"], rows, widths="16 24 8 12 8 8 8 16", cls="mutation-table")
+        if missing:
+            lines += [".. admonition:: Not measured yet", "   :class: warning", "",
+                      f"   No record for {', '.join(missing)}: run ``python tools/mutation.py "
+                      f"{' '.join(missing)}`` and commit ``docs/data/mutation/``.", ""]
+        return lines
+
+
 def _duration(cpu_s) -> str:
     if cpu_s is None or not math.isfinite(cpu_s):
         return "run time not recorded"
@@ -318,5 +351,6 @@ def setup(app):
     app.add_directive("parameter-table", ParameterTable)
     app.add_directive("validation-table", ValidationTable)
     app.add_directive("claims-table", ClaimsTable)
+    app.add_directive("mutation-table", MutationTable)
     app.add_directive("cli-help", CliHelp)
     return {"version": "1", "parallel_read_safe": True, "parallel_write_safe": True}
