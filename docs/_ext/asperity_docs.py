@@ -218,7 +218,7 @@ class MutationTable(_Generated):
                          str(len(data["unknown"])), f"**{100 * data['killed'] / judged:.1f} %**" if judged else "—",
                          f"``{data.get('commit', '?')}``, {data.get('date', '?')}"])
         lines = list_table(["module", "its tests", "mutants", "killed", "survived", "no outcome", "score",
-                            "measured at"], rows, widths="16 24 8 12 8 8 8 16", cls="mutation-table")
+                            "measured at"], rows, widths="16 24 8 12 8 8 8 16", cls="mutation-table") if rows else []
         if missing:
             lines += [".. admonition:: Not measured yet", "   :class: warning", "",
                       f"   No record for {', '.join(missing)}: run ``python tools/mutation.py "
