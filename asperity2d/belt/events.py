@@ -102,10 +102,18 @@ class ModalEvents:
     def _point(self, r):
         lam, b, c0, c1 = self.g.scalar(r)
         M = np.array([b, b * lam, b * lam * lam])
+        # the root search asks again for times it has just evaluated (the zero it returns is the
+        # dip search's start): the same numbers, kept; t = 0 is left out (a -0.0 would share its key)
+        seen = {}
 
         def f(t):
-            d0, d1, d2 = (M @ np.exp(lam * t)).real.tolist()  # (plain floats: the search is scalar)
-            return d0 + c0 + c1 * t, d1 + c1, d2
+            out = seen.get(t)
+            if out is None:
+                d0, d1, d2 = (M @ np.exp(lam * t)).real.tolist()  # (plain floats: the search is scalar)
+                out = d0 + c0 + c1 * t, d1 + c1, d2
+                if t:
+                    seen[t] = out
+            return out
 
         return f
 

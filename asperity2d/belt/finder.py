@@ -73,7 +73,9 @@ def find_event(events, horizon: float, step: float, chunk: int = 16):
             G, D = np.concatenate((g_prev[:, None], g), axis=1), np.concatenate((d_prev[:, None], d), axis=1)
         flagged = _flags(G[:, :-1], G[:, 1:], D[:, :-1], D[:, 1:], np.diff(tg)[None, :], events.bound4)
         if first:
-            flagged[:, 0] = _flags(G[:, 0], G[:, 1], D[:, 0], D[:, 1], tg[1], events.bound4, opening)
+            # the first interval's opening rows count as positive at its start and only a crossing
+            # counts (`_flags` with ``opening``); the other rows' flags stand as screened
+            flagged[:, 0] = np.where(opening, G[:, 1] <= 0, flagged[:, 0])
         for k in np.flatnonzero(flagged.any(axis=0)):
             found = _earliest(events, np.flatnonzero(flagged[:, k]), tg[k], tg[k + 1], G[:, k], G[:, k + 1], D[:, k],
                           D[:, k + 1], opening if first and k == 0 else None, horizon)
@@ -89,11 +91,10 @@ def _flags(ga, gb, da, db, h, bound4, opening=None):
 
     ``opening`` rows started at zero: they count as positive at ``a`` and only a crossing counts.
     """
-    pos = ga > 0 if opening is None else (ga > 0) | opening
-    risky = pos & (_lower(ga, gb, da, db, h, bound4) <= SWITCH_TOL)
-    if opening is not None:
-        risky &= ~opening
-    return (pos & (gb <= 0)) | risky
+    if opening is None:
+        return (ga > 0) & ((gb <= 0) | (_lower(ga, gb, da, db, h, bound4) <= SWITCH_TOL))
+    # an opening row (|ga| within the tolerance) is flagged by a crossing only
+    return np.where(opening, gb <= 0, (ga > 0) & ((gb <= 0) | (_lower(ga, gb, da, db, h, bound4) <= SWITCH_TOL)))
 
 
 def _earliest(events, rows, a, b, ga, gb, da, db, opening, horizon, depth=0):
@@ -142,11 +143,11 @@ def _lower(ga, gb, da, db, h, bound4):
         else:
             error = h**4 / 384 * bound4
         return min(ga, gb) - 4 / 27 * h * (abs(da) + abs(db)) - error
-    if np.size(ga) <= 1024:  # few intervals: fewer NumPy calls win
+    if ga.size <= 1024:  # few intervals: fewer NumPy calls win
         if bound4 is None:
             error = 1e-3 * (np.abs(ga) + np.abs(gb) + h * (np.abs(da) + np.abs(db)))
         else:
-            error = h**4 / 384 * (bound4[:, None] if np.ndim(ga) == 2 else bound4)
+            error = h**4 / 384 * (bound4[:, None] if ga.ndim == 2 else bound4)
         return np.minimum(ga, gb) - 4 / 27 * h * (np.abs(da) + np.abs(db)) - error
     # many: in place, each operation in the order of the formula above (the same rounding): a long
     # phase screens thousands of intervals at once, and fresh temporaries cost page faults
@@ -158,7 +159,7 @@ def _lower(ga, gb, da, db, h, bound4):
         error += h * slopes
         error *= 1e-3
     else:
-        error = h**4 / 384 * (bound4[:, None] if np.ndim(ga) == 2 else bound4)
+        error = h**4 / 384 * (bound4[:, None] if ga.ndim == 2 else bound4)
     slopes *= 4 / 27 * h
     out = np.minimum(ga, gb)
     out -= slopes
