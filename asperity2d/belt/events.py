@@ -78,7 +78,7 @@ class ModalEvents:
         dB = scale_columns(self.g.B, lam)
         B = stack_rows(self.g.B, dB)
         self._both = ModalForm(lam, B, np.concatenate([self.g.c0, self.g.c1]),
-                               np.concatenate([self.g.c1, np.zeros_like(self.g.c1)]), self.g.damped)
+                               np.concatenate([self.g.c1, np.zeros(self.g.c1.size)]), self.g.damped)
         #: rigorous bound on |d⁴g/dtau⁴| per row: sum of |b|·|lam|⁴
         self.bound4 = t.event_shapes_abs @ (np.abs(phase.coef) * t.lam_abs4)
         self._points = {}  # row -> its closed form at one time (the root search asks repeatedly)

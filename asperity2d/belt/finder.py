@@ -60,24 +60,25 @@ def find_event(events, horizon: float, step: float, chunk: int = 16):
         g_prev, d_prev = g[:, 0], d[:, 0]
     t_prev, first = 0.0, True
     while t_prev < horizon:
-        taus = t_prev + step * np.arange(1, chunk + 1)
-        taus = taus[taus < horizon * (1 - 4 * _EPS)]
-        if taus.size < chunk:
-            taus = np.append(taus, horizon)
-        tg = np.concatenate([[t_prev], taus])
+        # the chunk's grid from its start (t_prev + 0·step is t_prev itself, below the horizon)
+        tg = t_prev + step * np.arange(chunk + 1)
+        tg = tg[tg < horizon * (1 - 4 * _EPS)]
+        if tg.size <= chunk:
+            tg = np.concatenate((tg, [horizon]))
+        taus = tg[1:]
         if first and events.pointwise:  # the start with the first chunk, in one evaluation
             G, D = events.values(tg)
             opening = np.abs(G[:, 0]) <= SWITCH_TOL
         else:
             g, d = events.values(taus)
             G, D = np.concatenate((g_prev[:, None], g), axis=1), np.concatenate((d_prev[:, None], d), axis=1)
-        flagged = _flags(G[:, :-1], G[:, 1:], D[:, :-1], D[:, 1:], np.diff(tg)[None, :], events.bound4)
+        flagged = _flags(G[:, :-1], G[:, 1:], D[:, :-1], D[:, 1:], (tg[1:] - tg[:-1])[None, :], events.bound4)
         if first:
             # the first interval's opening rows count as positive at its start and only a crossing
             # counts (`_flags` with ``opening``); the other rows' flags stand as screened
             flagged[:, 0] = np.where(opening, G[:, 1] <= 0, flagged[:, 0])
-        for k in np.flatnonzero(flagged.any(axis=0)):
-            found = _earliest(events, np.flatnonzero(flagged[:, k]), tg[k], tg[k + 1], G[:, k], G[:, k + 1], D[:, k],
+        for k in flagged.any(axis=0).nonzero()[0]:
+            found = _earliest(events, flagged[:, k].nonzero()[0], tg[k], tg[k + 1], G[:, k], G[:, k + 1], D[:, k],
                           D[:, k + 1], opening if first and k == 0 else None, horizon)
             if found is not None:
                 return found

@@ -185,7 +185,8 @@ class LinearPhase:
 
     def friction_force(self, x, v, a, tau):
         """Friction force on each mass (N): kinetic while slipping, the required static force while stuck."""
-        f = np.repeat(self.fric_slip[:, None], np.size(tau), axis=1)
+        f = np.empty((self.fric_slip.size, np.size(tau)))
+        f[...] = self.fric_slip[:, None]
         if self.template.any_stuck:  # (an all-slipping phase needs no spring forces)
             f[self.stuck] = -self.spring_damper_force(x, v)[self.stuck]
         return f

@@ -67,7 +67,7 @@ class ModalForm:
             # rows without a ramp (every c1 a signed zero: an all-slipping phase): c1·tau is c1
             # itself for tau >= +0, and (y + c0) + z = y + (c0 + z) for a signed zero z, so one
             # addition of c0 + c1 gives the same numbers
-            self._offset = False if self.c1.any() else (self.c0 + self.c1)[:, None]
+            self._offset = False if np.count_nonzero(self.c1) else (self.c0 + self.c1)[:, None]
         if self._offset is False:
             out += self.c0[:, None]
             out += np.multiply.outer(self.c1, tau)
@@ -107,7 +107,7 @@ class ModalForm:
         out -= Bl.imag @ im
         out += np.multiply.outer(self.c0, tau)
         half_c1 = 0.5 * self.c1
-        if half_c1.any():
+        if np.count_nonzero(half_c1):  # (cheaper than .any() on a few rows)
             out += np.multiply.outer(half_c1, np.square(tau))
         else:  # signed zeros times tau² >= +0: themselves (no (R, T) product to form)
             out += half_c1[:, None]

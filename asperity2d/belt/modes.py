@@ -43,7 +43,7 @@ def resolve_modes(spec, x, v, V, a_belt, previous, v_scale, touching=(), contrad
     rel = v - V
     at_belt = spec.frictional & (np.abs(rel) <= SWITCH_TOL * v_scale)
     modes = np.where(rel >= 0, 1, -1)  # off belt speed (frictionless masses never stick)
-    any_at = bool(at_belt.any())
+    any_at = bool(np.count_nonzero(at_belt))  # (count_nonzero: cheaper than .any() on a few masses)
     v_at = np.where(at_belt, V, v) if any_at else v  # the forces as if the masses at belt speed were stuck
     f_sd = link_force(spec.k, x)
     if spec.damped:
@@ -56,10 +56,10 @@ def resolve_modes(spec, x, v, V, a_belt, previous, v_scale, touching=(), contrad
         size = np.abs(f_req)
         outside = at_belt & (size > above)
         modes[at_belt] = 0
-        if outside.any():
+        if np.count_nonzero(outside):
             modes[outside] = -np.sign(f_req[outside]).astype(int)
         border = at_belt & ~outside & (size >= below)
-        if border.any():
+        if np.count_nonzero(border):
             # at the static limit: compare the trend of the required force with the tentative modes
             a = (f_sd - modes * spec.kinetic_force) / spec.m
             a[modes == 0] = a_belt
