@@ -65,7 +65,7 @@ class Template:
         self.spec, self.V = spec, float(V)
         self.modes = np.asarray(modes)
         self.stuck = self.modes == 0
-        self.any_stuck = bool(self.stuck.any())
+        self.any_stuck = bool(np.count_nonzero(self.stuck))
         #: kinetic force on each slipping mass (N): opposes the relative velocity
         self.fric_slip = -self.modes * spec.kinetic_force
         self.runs = []
@@ -96,8 +96,9 @@ class Template:
         #: whether any mode decays or grows (:func:`~.modal.damped`): undamped phases skip exp(Re lam·tau)
         self.damped = damped(self.lam)
         #: the particular solution's (c0, c1) rows [x; v; a] of stuck masses, c0's x rows to be set to x0
-        self.c0_stuck = np.concatenate([np.zeros(n), np.full(n, self.V), np.zeros(n)])
-        self.c1_stuck = np.concatenate([np.full(n, self.V), np.zeros(2 * n)])
+        self.c0_stuck, self.c1_stuck = np.zeros(3 * n), np.zeros(3 * n)
+        self.c0_stuck[n : 2 * n] = self.V
+        self.c1_stuck[:n] = self.V
         #: per segment, the rows of its x and v in the state [x; v; a]
         self.segment_rows = [np.concatenate([lo + np.arange(hi - lo + 1), n + lo + np.arange(hi - lo + 1)])
                              for lo, hi, _ in self.runs]

@@ -106,7 +106,9 @@ def _record(phase, taus, t0, length, work, rec):
         rec["t"].append(t0 + taus)
         rec["x"].append(x[:, :m])
         rec["v"].append(v[:, :m])
-        rec["state"].append(np.repeat(phase.modes[:, None], m, axis=1))
+        state = np.empty((phase.modes.size, m), dtype=phase.modes.dtype)
+        state[...] = phase.modes[:, None]
+        rec["state"].append(state)
         rec["friction"].append(fric[:, :m])
         rec["work"].append(w[:, :m])
     return w[:, -1], x[:, -1], v[:, -1]
