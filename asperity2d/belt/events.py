@@ -77,8 +77,10 @@ class ModalEvents:
         lam = self.g.lam
         dB = scale_columns(self.g.B, lam)
         B = stack_rows(self.g.B, dB)
-        self._both = ModalForm(lam, B, np.concatenate([self.g.c0, self.g.c1]),
-                               np.concatenate([self.g.c1, np.zeros(self.g.c1.size)]), self.g.damped)
+        R = self.kind.size
+        c1 = np.zeros(2 * R)
+        c1[:R] = self.g.c1
+        self._both = ModalForm(lam, B, np.concatenate([self.g.c0, self.g.c1]), c1, self.g.damped)
         #: rigorous bound on |d⁴g/dtau⁴| per row: sum of |b|·|lam|⁴
         self.bound4 = t.event_shapes_abs @ (np.abs(phase.coef) * t.lam_abs4)
         self._points = {}  # row -> its closed form at one time (the root search asks repeatedly)

@@ -110,7 +110,9 @@ class SegmentModes:
             beta = self.K_inv @ q
             alpha = self.K_inv @ (p - self.C @ beta)
             coef = (self.W_inv @ (y0 - np.concatenate([alpha, beta])))[self.half] * self.half_weight
-        return np.concatenate([alpha, beta]), np.concatenate([beta, np.zeros(L)]), coef
+        c1 = np.zeros(2 * L)
+        c1[:L] = beta
+        return np.concatenate([alpha, beta]), c1, coef
 
 
 class Segment:

@@ -334,7 +334,8 @@ def link_force(links: np.ndarray, x: np.ndarray) -> np.ndarray:
     velocities the damper force. Walls sit at 0 and never move.
     """
     tension = link_extension(x)
-    tension *= links if tension.ndim == 1 else links.reshape((-1,) + (1,) * (tension.ndim - 1))
+    tension *= links if tension.ndim == 1 else (links[:, None] if tension.ndim == 2 else
+                                                links.reshape((-1,) + (1,) * (tension.ndim - 1)))
     return tension[1:] - tension[:-1]
 
 
