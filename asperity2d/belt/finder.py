@@ -125,9 +125,12 @@ def _earliest(events, rows, a, b, ga, gb, da, db, opening, horizon, depth=0):
 
 def _rows_event(events, rows, a, b, ga, gb, da, db, opening, horizon):
     """(time, touching masses, contradicted masses) of the earliest of ``rows``' events on [a, b], or None."""
-    found = [(out, events.mass[r]) for r in rows
-             if (out := _row_event(events, r, a, b, ga[r], gb[r], da[r], db[r],
-                                   opening is not None and opening[r], horizon)) is not None]
+    # plain floats and ints: the root search is scalar, and each NumPy scalar operation costs
+    # several times a float's (the same IEEE operations: the same numbers)
+    a, b = float(a), float(b)
+    found = [(out, events.mass[r]) for r in rows.tolist()
+             if (out := _row_event(events, r, a, b, float(ga[r]), float(gb[r]), float(da[r]), float(db[r]),
+                                   opening is not None and bool(opening[r]), horizon)) is not None]
     if not found:
         return None
     t = min(out[0] for out, _ in found)
