@@ -189,7 +189,12 @@ class LinearPhase:
         f = np.empty((self.fric_slip.size, np.size(tau)))
         f[...] = self.fric_slip[:, None]
         if self.template.any_stuck:  # (an all-slipping phase needs no spring forces)
-            f[self.stuck] = -self.spring_damper_force(x, v)[self.stuck]
+            f_sd = link_force(self.spec.k, x)
+            # without dampers the damper force is a signed zero: it changes no non-zero spring force,
+            # so it is added only where it could set the sign of a zero (the same numbers, fewer calls)
+            if self.spec.damped or np.count_nonzero(f_sd) < f_sd.size:
+                f_sd = f_sd + link_force(self.spec.c, v)
+            f[self.stuck] = -f_sd[self.stuck]
         return f
 
     def spring_damper_force(self, x, v):
