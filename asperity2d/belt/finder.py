@@ -66,9 +66,10 @@ def find_event(events, horizon: float, step: float, chunk: int = 16):
         if tg.size <= chunk:
             tg = np.concatenate((tg, [horizon]))
         taus = tg[1:]
-        if first and events.pointwise:  # the start with the first chunk, in one evaluation
+        if events.pointwise:  # the chunk with its start, in one evaluation (the start's values again, to the bit)
             G, D = events.values(tg)
-            opening = np.abs(G[:, 0]) <= SWITCH_TOL
+            if first:
+                opening = np.abs(G[:, 0]) <= SWITCH_TOL
         else:
             g, d = events.values(taus)
             G, D = np.concatenate((g_prev[:, None], g), axis=1), np.concatenate((d_prev[:, None], d), axis=1)
