@@ -47,8 +47,8 @@ def power_maps(spec, stuck, fric_slip, V):
         vals += [-V * c for c in coefs_i]
     slip = (~stuck).nonzero()[0]
     rows += [1] * slip.size
-    cols += list(n + slip)
-    vals += list(-fric_slip[slip])
+    cols += (n + slip).tolist()
+    vals += (-fric_slip[slip]).tolist()
     fric = float(fric_slip[slip].sum())
     rates = None
     if spec.damped:
