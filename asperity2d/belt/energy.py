@@ -40,18 +40,18 @@ def power_maps(spec, stuck, fric_slip, V):
     """
     n = spec.n
     rows, cols, vals = [], [], []
-    for i in np.flatnonzero(stuck):
+    for i in stuck.nonzero()[0].tolist():
         cols_i, coefs_i = force_row(spec, i)
         rows += [0] * len(cols_i)
         cols += cols_i
         vals += [-V * c for c in coefs_i]
-    slip = np.flatnonzero(~stuck)
+    slip = (~stuck).nonzero()[0]
     rows += [1] * slip.size
-    cols += list(n + slip)
-    vals += list(-fric_slip[slip])
+    cols += (n + slip).tolist()
+    vals += (-fric_slip[slip]).tolist()
     fric = float(fric_slip[slip].sum())
     rates = None
-    if spec.c.any():
+    if spec.damped:
         j = np.arange(n)
         rates = linear_map((n + 1, 3 * n), (np.concatenate([j, j + 1]), np.concatenate([n + j, n + j]),
                                             np.concatenate([np.ones(n), -np.ones(n)])))

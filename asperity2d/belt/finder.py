@@ -60,22 +60,26 @@ def find_event(events, horizon: float, step: float, chunk: int = 16):
         g_prev, d_prev = g[:, 0], d[:, 0]
     t_prev, first = 0.0, True
     while t_prev < horizon:
-        taus = t_prev + step * np.arange(1, chunk + 1)
-        taus = taus[taus < horizon * (1 - 4 * _EPS)]
-        if taus.size < chunk:
-            taus = np.append(taus, horizon)
-        tg = np.concatenate([[t_prev], taus])
-        if first and events.pointwise:  # the start with the first chunk, in one evaluation
+        # the chunk's grid from its start (t_prev + 0·step is t_prev itself, below the horizon)
+        tg = t_prev + step * np.arange(chunk + 1)
+        tg = tg[tg < horizon * (1 - 4 * _EPS)]
+        if tg.size <= chunk:
+            tg = np.concatenate((tg, [horizon]))
+        taus = tg[1:]
+        if events.pointwise:  # the chunk with its start, in one evaluation (the start's values again, to the bit)
             G, D = events.values(tg)
-            opening = np.abs(G[:, 0]) <= SWITCH_TOL
+            if first:
+                opening = np.abs(G[:, 0]) <= SWITCH_TOL
         else:
             g, d = events.values(taus)
             G, D = np.concatenate((g_prev[:, None], g), axis=1), np.concatenate((d_prev[:, None], d), axis=1)
-        flagged = _flags(G[:, :-1], G[:, 1:], D[:, :-1], D[:, 1:], np.diff(tg)[None, :], events.bound4)
+        flagged = _flags(G[:, :-1], G[:, 1:], D[:, :-1], D[:, 1:], (tg[1:] - tg[:-1])[None, :], events.bound4)
         if first:
-            flagged[:, 0] = _flags(G[:, 0], G[:, 1], D[:, 0], D[:, 1], tg[1], events.bound4, opening)
-        for k in np.flatnonzero(flagged.any(axis=0)):
-            found = _earliest(events, np.flatnonzero(flagged[:, k]), tg[k], tg[k + 1], G[:, k], G[:, k + 1], D[:, k],
+            # the first interval's opening rows count as positive at its start and only a crossing
+            # counts (`_flags` with ``opening``); the other rows' flags stand as screened
+            flagged[:, 0] = np.where(opening, G[:, 1] <= 0, flagged[:, 0])
+        for k in flagged.any(axis=0).nonzero()[0]:
+            found = _earliest(events, flagged[:, k].nonzero()[0], tg[k], tg[k + 1], G[:, k], G[:, k + 1], D[:, k],
                           D[:, k + 1], opening if first and k == 0 else None, horizon)
             if found is not None:
                 return found
@@ -89,11 +93,10 @@ def _flags(ga, gb, da, db, h, bound4, opening=None):
 
     ``opening`` rows started at zero: they count as positive at ``a`` and only a crossing counts.
     """
-    pos = ga > 0 if opening is None else (ga > 0) | opening
-    risky = pos & (_lower(ga, gb, da, db, h, bound4) <= SWITCH_TOL)
-    if opening is not None:
-        risky &= ~opening
-    return (pos & (gb <= 0)) | risky
+    if opening is None:
+        return (ga > 0) & ((gb <= 0) | (_lower(ga, gb, da, db, h, bound4) <= SWITCH_TOL))
+    # an opening row (|ga| within the tolerance) is flagged by a crossing only
+    return np.where(opening, gb <= 0, (ga > 0) & ((gb <= 0) | (_lower(ga, gb, da, db, h, bound4) <= SWITCH_TOL)))
 
 
 def _earliest(events, rows, a, b, ga, gb, da, db, opening, horizon, depth=0):
@@ -123,9 +126,12 @@ def _earliest(events, rows, a, b, ga, gb, da, db, opening, horizon, depth=0):
 
 def _rows_event(events, rows, a, b, ga, gb, da, db, opening, horizon):
     """(time, touching masses, contradicted masses) of the earliest of ``rows``' events on [a, b], or None."""
-    found = [(out, events.mass[r]) for r in rows
-             if (out := _row_event(events, r, a, b, ga[r], gb[r], da[r], db[r],
-                                   opening is not None and opening[r], horizon)) is not None]
+    # plain floats and ints: the root search is scalar, and each NumPy scalar operation costs
+    # several times a float's (the same IEEE operations: the same numbers)
+    a, b = float(a), float(b)
+    found = [(out, events.mass[r]) for r in rows.tolist()
+             if (out := _row_event(events, r, a, b, float(ga[r]), float(gb[r]), float(da[r]), float(db[r]),
+                                   opening is not None and bool(opening[r]), horizon)) is not None]
     if not found:
         return None
     t = min(out[0] for out, _ in found)
@@ -142,11 +148,11 @@ def _lower(ga, gb, da, db, h, bound4):
         else:
             error = h**4 / 384 * bound4
         return min(ga, gb) - 4 / 27 * h * (abs(da) + abs(db)) - error
-    if np.size(ga) <= 1024:  # few intervals: fewer NumPy calls win
+    if ga.size <= 1024:  # few intervals: fewer NumPy calls win
         if bound4 is None:
             error = 1e-3 * (np.abs(ga) + np.abs(gb) + h * (np.abs(da) + np.abs(db)))
         else:
-            error = h**4 / 384 * (bound4[:, None] if np.ndim(ga) == 2 else bound4)
+            error = h**4 / 384 * (bound4[:, None] if ga.ndim == 2 else bound4)
         return np.minimum(ga, gb) - 4 / 27 * h * (np.abs(da) + np.abs(db)) - error
     # many: in place, each operation in the order of the formula above (the same rounding): a long
     # phase screens thousands of intervals at once, and fresh temporaries cost page faults
@@ -158,7 +164,7 @@ def _lower(ga, gb, da, db, h, bound4):
         error += h * slopes
         error *= 1e-3
     else:
-        error = h**4 / 384 * (bound4[:, None] if np.ndim(ga) == 2 else bound4)
+        error = h**4 / 384 * (bound4[:, None] if ga.ndim == 2 else bound4)
     slopes *= 4 / 27 * h
     out = np.minimum(ga, gb)
     out -= slopes

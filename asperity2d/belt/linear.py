@@ -65,7 +65,7 @@ class Template:
         self.spec, self.V = spec, float(V)
         self.modes = np.asarray(modes)
         self.stuck = self.modes == 0
-        self.any_stuck = bool(self.stuck.any())
+        self.any_stuck = bool(np.count_nonzero(self.stuck))
         #: kinetic force on each slipping mass (N): opposes the relative velocity
         self.fric_slip = -self.modes * spec.kinetic_force
         self.runs = []
@@ -96,8 +96,9 @@ class Template:
         #: whether any mode decays or grows (:func:`~.modal.damped`): undamped phases skip exp(Re lam·tau)
         self.damped = damped(self.lam)
         #: the particular solution's (c0, c1) rows [x; v; a] of stuck masses, c0's x rows to be set to x0
-        self.c0_stuck = np.concatenate([np.zeros(n), np.full(n, self.V), np.zeros(n)])
-        self.c1_stuck = np.concatenate([np.full(n, self.V), np.zeros(2 * n)])
+        self.c0_stuck, self.c1_stuck = np.zeros(3 * n), np.zeros(3 * n)
+        self.c0_stuck[n : 2 * n] = self.V
+        self.c1_stuck[:n] = self.V
         #: per segment, the rows of its x and v in the state [x; v; a]
         self.segment_rows = [np.concatenate([lo + np.arange(hi - lo + 1), n + lo + np.arange(hi - lo + 1)])
                              for lo, hi, _ in self.runs]
@@ -185,9 +186,15 @@ class LinearPhase:
 
     def friction_force(self, x, v, a, tau):
         """Friction force on each mass (N): kinetic while slipping, the required static force while stuck."""
-        f = np.repeat(self.fric_slip[:, None], np.size(tau), axis=1)
+        f = np.empty((self.fric_slip.size, np.size(tau)))
+        f[...] = self.fric_slip[:, None]
         if self.template.any_stuck:  # (an all-slipping phase needs no spring forces)
-            f[self.stuck] = -self.spring_damper_force(x, v)[self.stuck]
+            f_sd = link_force(self.spec.k, x)
+            # without dampers the damper force is a signed zero: it changes no non-zero spring force,
+            # so it is added only where it could set the sign of a zero (the same numbers, fewer calls)
+            if self.spec.damped or np.count_nonzero(f_sd) < f_sd.size:
+                f_sd = f_sd + link_force(self.spec.c, v)
+            f[self.stuck] = -f_sd[self.stuck]
         return f
 
     def spring_damper_force(self, x, v):

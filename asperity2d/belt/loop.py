@@ -47,7 +47,7 @@ def event_loop(spec, options, make_phase) -> RawRun:
         found = find_event(rows, horizon, phase.step)
         tau_e, touching, contradicted = (None, (), ()) if found is None else found
         t1 = spec.t_end if tau_e is None else t + tau_e
-        stop = np.searchsorted(samples, t1, side="right" if tau_e is None else "left")
+        stop = samples.searchsorted(t1, side="right" if tau_e is None else "left")
         taus = samples[next_sample:stop] - t
         next_sample = stop
         if opened and options.include_events and (not taus.size or taus[0] > 0):
@@ -71,7 +71,7 @@ def event_loop(spec, options, make_phase) -> RawRun:
         t = float(t1)
         new, v, grazing = resolve_modes(spec, x, v, spec.belt_velocity(t), spec.belt_acceleration(t), modes, v_scale,
                                         touching, contradicted)
-        for i in np.flatnonzero((new != modes) & spec.frictional):  # a frictionless mass's mode is moot
+        for i in ((new != modes) & spec.frictional).nonzero()[0]:  # a frictionless mass's mode is moot
             kind = "stick" if new[i] == 0 else ("slip" if modes[i] == 0 else "reverse")
             events.append(Event(t=t, mass=int(i), kind=kind, x=float(x[i])))
             if new[i] == 0:
@@ -106,7 +106,9 @@ def _record(phase, taus, t0, length, work, rec):
         rec["t"].append(t0 + taus)
         rec["x"].append(x[:, :m])
         rec["v"].append(v[:, :m])
-        rec["state"].append(np.repeat(phase.modes[:, None], m, axis=1))
+        state = np.empty((phase.modes.size, m), dtype=phase.modes.dtype)
+        state[...] = phase.modes[:, None]
+        rec["state"].append(state)
         rec["friction"].append(fric[:, :m])
         rec["work"].append(w[:, :m])
     return w[:, -1], x[:, -1], v[:, -1]

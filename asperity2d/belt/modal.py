@@ -44,13 +44,17 @@ class ModalForm:
         self._offset = None  # (see :meth:`at`)
 
     def growth(self, tau):
-        """(Re, Im) of exp(lam·tau), each (S, T)."""
-        phase = np.multiply.outer(self.lam.imag, tau)
+        """(Re, Im) of exp(lam·tau), each (S, T), at times ``tau`` (s, (T,)).
+
+        (Outer products here and below are broadcast products, the same numbers as
+        ``np.multiply.outer`` without its Python-level cost: these run several times a phase.)
+        """
+        phase = self.lam.imag[:, None] * tau
         cos, sin = np.cos(phase), np.sin(phase)
         if self.damped is None:
             self.damped = damped(self.lam)
         if self.damped:
-            amp = np.exp(np.multiply.outer(self.lam.real, tau))
+            amp = np.exp(self.lam.real[:, None] * tau)
             cos *= amp
             sin *= amp
         return cos, sin
@@ -67,10 +71,10 @@ class ModalForm:
             # rows without a ramp (every c1 a signed zero: an all-slipping phase): c1·tau is c1
             # itself for tau >= +0, and (y + c0) + z = y + (c0 + z) for a signed zero z, so one
             # addition of c0 + c1 gives the same numbers
-            self._offset = False if self.c1.any() else (self.c0 + self.c1)[:, None]
+            self._offset = False if np.count_nonzero(self.c1) else (self.c0 + self.c1)[:, None]
         if self._offset is False:
             out += self.c0[:, None]
-            out += np.multiply.outer(self.c1, tau)
+            out += self.c1[:, None] * tau
         else:
             out += self._offset
         return out
@@ -82,7 +86,7 @@ class ModalForm:
         difference of nearly equal numbers: short phases keep their relative accuracy.
         """
         tau = np.asarray(tau, dtype=float)
-        w = np.multiply.outer(self.lam.imag, tau)
+        w = self.lam.imag[:, None] * tau
         # in place, in the order of the formulas in the comments (the same rounding)
         half = np.sin(0.5 * w)
         np.square(half, out=half)
@@ -90,7 +94,7 @@ class ModalForm:
         if self.damped is None:
             self.damped = damped(self.lam)
         if self.damped:
-            a = np.multiply.outer(self.lam.real, tau)
+            a = self.lam.real[:, None] * tau
             re = np.expm1(a)  # Re(exp(lam tau) - 1) = expm1(a)·cos(w) - 2·sin²(w/2)
             re *= np.cos(w)
             re -= half
@@ -105,10 +109,10 @@ class ModalForm:
         Bl = scale_columns(self.B, 1.0 / self.lam)
         out = Bl.real @ re  # Bl.real @ re - Bl.imag @ im + c0·tau + c1·tau²/2
         out -= Bl.imag @ im
-        out += np.multiply.outer(self.c0, tau)
+        out += self.c0[:, None] * tau
         half_c1 = 0.5 * self.c1
-        if half_c1.any():
-            out += np.multiply.outer(half_c1, np.square(tau))
+        if np.count_nonzero(half_c1):  # (cheaper than .any() on a few rows)
+            out += half_c1[:, None] * np.square(tau)
         else:  # signed zeros times tau² >= +0: themselves (no (R, T) product to form)
             out += half_c1[:, None]
         return out
@@ -135,8 +139,8 @@ class ModalForm:
 def damped(lam) -> bool:
     """False only when every ``lam`` has real part +0.0 exactly (so that exp(lam·tau) = cos + i·sin
     with no rounding of its own): a -0.0 counts as damped, which costs time, never bits."""
-    real = np.real(lam)
-    return bool(real.any() or np.signbit(real).any())
+    real = np.asarray(lam).real
+    return bool(np.count_nonzero(real) or np.count_nonzero(np.signbit(real)))
 
 
 def scale_columns(B, w):

@@ -23,7 +23,6 @@ from __future__ import annotations
 import numpy as np
 
 from .finder import SWITCH_TOL
-from .spec import link_force
 
 
 def resolve_modes(spec, x, v, V, a_belt, previous, v_scale, touching=(), contradicted=()):
@@ -38,41 +37,55 @@ def resolve_modes(spec, x, v, V, a_belt, previous, v_scale, touching=(), contrad
     resolution, contradicts the mode the forces gave: the mode is turned round instead
     of being chosen again). Masses that end stuck, or cross belt speed, get v = V exactly.
     """
-    v = np.array(v, dtype=float)
-    previous = np.asarray(previous, dtype=int)
-    rel = v - V
-    at_belt = spec.frictional & (np.abs(rel) <= SWITCH_TOL * v_scale)
-    modes = np.where(rel >= 0, 1, -1)  # off belt speed (frictionless masses never stick)
-    any_at = bool(at_belt.any())
-    v_at = np.where(at_belt, V, v) if any_at else v  # the forces as if the masses at belt speed were stuck
-    f_sd = link_force(spec.k, x)
+    # per mass in plain Python floats: a switch concerns a mass or two of a short chain, where each
+    # NumPy call costs more than its arithmetic. Every operation is elementwise -- the same IEEE
+    # operations on the same numbers as the array form, so the same modes to the bit
+    vs = np.asarray(v, dtype=float).tolist()
+    prev = np.asarray(previous, dtype=int).tolist()
+    tol = SWITCH_TOL * v_scale
+    rel = [vi - V for vi in vs]
+    at_belt = [bool(f) and abs(r) <= tol for f, r in zip(spec.frictional.tolist(), rel)]
+    modes = [1 if r >= 0 else -1 for r in rel]  # off belt speed (frictionless masses never stick)
+    any_at = any(at_belt)
+    # the forces as if the masses at belt speed were stuck
+    v_at = [V if at else vi for at, vi in zip(at_belt, vs)] if any_at else vs
+    f_sd = _link_force(spec.springs, np.asarray(x, dtype=float).tolist())
     if spec.damped:
         # (without dampers the damper force is a signed zero, which changes neither f_req =
         # m·a_belt - f_sd, a_belt never being -0.0, nor any mode decided below)
-        f_sd = f_sd + link_force(spec.c, v_at)
-    f_req = spec.m * a_belt - f_sd
+        f_sd = [f + d for f, d in zip(f_sd, _link_force(spec.dampers, v_at))]
+    f_req = [m * a_belt - f for m, f in zip(spec.masses, f_sd)]
     if any_at:
-        above, below = spec.limit_band
-        size = np.abs(f_req)
-        outside = at_belt & (size > above)
-        modes[at_belt] = 0
-        if outside.any():
-            modes[outside] = -np.sign(f_req[outside]).astype(int)
-        border = at_belt & ~outside & (size >= below)
-        if border.any():
+        above, below = (band.tolist() for band in spec.limit_band)
+        outside = [at and abs(f) > up for at, f, up in zip(at_belt, f_req, above)]
+        border = [at and not out and abs(f) >= low for at, out, f, low in zip(at_belt, outside, f_req, below)]
+        modes = [-_sign(f) if out else (0 if at else mode) for at, out, f, mode in zip(at_belt, outside, f_req, modes)]
+        if any(border):
             # at the static limit: compare the trend of the required force with the tentative modes
-            a = (f_sd - modes * spec.kinetic_force) / spec.m
-            a[modes == 0] = a_belt
-            df_req = -(link_force(spec.k, v_at) + link_force(spec.c, a))
-            leaving = border & ((np.sign(f_req) * df_req > 0) | ((f_req == 0) & (df_req != 0)))
-            modes[leaving] = -np.sign(np.where(f_req != 0, f_req, df_req)[leaving]).astype(int)
+            a = [a_belt if mode == 0 else (f - mode * kin) / m
+                 for mode, f, kin, m in zip(modes, f_sd, spec.kinetic_force.tolist(), spec.masses)]
+            df_req = [-(fk + fc) for fk, fc in zip(_link_force(spec.springs, v_at), _link_force(spec.dampers, a))]
+            modes = [-_sign(f if f != 0 else d) if on and (_sign(f) * d > 0 or (f == 0 and d != 0)) else mode
+                     for on, f, d, mode in zip(border, f_req, df_req, modes)]
     for i in contradicted:
-        if modes[i] == previous[i]:
-            modes[i] = -previous[i] if previous[i] != 0 else (-int(np.sign(f_req[i])) or 1)
-    # (per mass in Python: `touching` holds a mass or two, and this runs at every switch)
-    grazed = {int(i) for i in touching if at_belt[i] and previous[i] != 0 and modes[i] == previous[i]}
+        if modes[i] == prev[i]:
+            modes[i] = -prev[i] if prev[i] != 0 else (-_sign(f_req[i]) or 1)
+    grazed = {int(i) for i in touching if at_belt[i] and prev[i] != 0 and modes[i] == prev[i]}
     grazing = np.array(sorted(grazed), dtype=np.intp)
     if any_at:
-        snap = at_belt & ((modes != previous) | (modes == 0))
-        v[snap] = V
-    return modes, v, grazing
+        vs = [V if at and (mode != p or mode == 0) else vi for at, mode, p, vi in zip(at_belt, modes, prev, vs)]
+    return np.array(modes), np.array(vs), grazing
+
+
+def _sign(value: float) -> int:
+    """-1, 0 or 1 (NumPy's ``sign`` of a finite float, as an int)."""
+    return (value > 0) - (value < 0)
+
+
+def _link_force(links, x) -> list:
+    """:func:`~.spec.link_force` of ``links`` (n+1) on the list ``x`` (n), as a list: the same
+    extensions, products and differences, one float at a time."""
+    tension = [x[0] * links[0]]
+    tension += [(b - a) * k for a, b, k in zip(x, x[1:], links[1:])]
+    tension.append((0.0 - x[-1]) * links[-1])
+    return [b - a for a, b in zip(tension, tension[1:])]

@@ -48,16 +48,13 @@ class SegmentModes:
         L = self.L = hi - lo + 1
         m = self.m = spec.m[lo : hi + 1]
         k, c = spec.k[lo : hi + 2], spec.c[lo : hi + 2]
-        off = np.arange(L - 1)
-        K = np.diag(k[:-1] + k[1:])
-        C = np.diag(c[:-1] + c[1:])
-        K[off, off + 1] = K[off + 1, off] = -k[1:-1]
-        C[off, off + 1] = C[off + 1, off] = -c[1:-1]
-        self.K, self.C = K, C
-        self.undamped = not c.any()
+        k_diag, k_off = k[:-1] + k[1:], -k[1:-1]
+        K = self.K = _tridiagonal(k_diag, k_off)
+        C = self.C = _tridiagonal(c[:-1] + c[1:], -c[1:-1])
+        self.undamped = not np.count_nonzero(c)
         if self.undamped:
             root = np.sqrt(m)
-            w2, Q = _symmetric_tridiagonal_eig(np.diag(K) / m, np.diag(K, 1) / (root[:-1] * root[1:]))
+            w2, Q = _symmetric_tridiagonal_eig(k_diag / m, k_off / (root[:-1] * root[1:]))
             self.rate = float(np.sqrt(max(w2[-1], 0.0)))
             self.exact = bool(w2[-1] > 0 and w2[0] > 1e-10 * w2[-1])
             if self.exact:
@@ -110,7 +107,9 @@ class SegmentModes:
             beta = self.K_inv @ q
             alpha = self.K_inv @ (p - self.C @ beta)
             coef = (self.W_inv @ (y0 - np.concatenate([alpha, beta])))[self.half] * self.half_weight
-        return np.concatenate([alpha, beta]), np.concatenate([beta, np.zeros(L)]), coef
+        c1 = np.zeros(2 * L)
+        c1[:L] = beta
+        return np.concatenate([alpha, beta]), c1, coef
 
 
 class Segment:
@@ -197,10 +196,25 @@ def _symmetric_tridiagonal_eig(d, e):
     if d.size == 1:
         return d.copy(), np.ones((1, 1))
     if d.size <= 64:
-        return np.linalg.eigh(np.diag(d) + np.diag(e, 1) + np.diag(e, -1))
+        # the dense matrix np.diag(d) + np.diag(e, 1) + np.diag(e, -1), built in place: adding +0.0
+        # turns a -0.0 into +0.0 as those sums do and leaves every other number as it is
+        dense = _tridiagonal(d, e)
+        dense += 0.0
+        return np.linalg.eigh(dense)
     from scipy.linalg import eigh_tridiagonal  # lazily: keeps `import asperity2d.belt` free of SciPy
 
     return eigh_tridiagonal(d, e, lapack_driver="stemr")
+
+
+def _tridiagonal(diagonal, off):
+    """The symmetric (L, L) matrix with ``diagonal`` and ``off`` (L - 1) beside it, zeros elsewhere
+    (what np.diag and two index assignments give, in fewer NumPy calls: built once per segment)."""
+    L = diagonal.size
+    out = np.zeros((L, L))
+    out.flat[:: L + 1] = diagonal
+    out.flat[1 :: L + 1] = off
+    out.flat[L :: L + 1] = off
+    return out
 
 
 def _well_posed(K, lam, W) -> bool:

@@ -246,6 +246,8 @@ class ChainSpec:
     def belt_velocity(self, t):
         """Belt speed (m/s) at time(s) ``t`` (s)."""
         if not callable(self.v_belt):
+            if isinstance(t, (float, int)):  # (a scalar: asked at every switch; np.ndim costs more)
+                return float(self.v_belt)
             return np.full(np.shape(t), self.v_belt) if np.ndim(t) else float(self.v_belt)
         if np.ndim(t):
             return np.array([self._call_belt(s) for s in np.ravel(t)]).reshape(np.shape(t))
@@ -334,7 +336,8 @@ def link_force(links: np.ndarray, x: np.ndarray) -> np.ndarray:
     velocities the damper force. Walls sit at 0 and never move.
     """
     tension = link_extension(x)
-    tension *= links if tension.ndim == 1 else links.reshape((-1,) + (1,) * (tension.ndim - 1))
+    tension *= links if tension.ndim == 1 else (links[:, None] if tension.ndim == 2 else
+                                                links.reshape((-1,) + (1,) * (tension.ndim - 1)))
     return tension[1:] - tension[:-1]
 
 
