@@ -12,7 +12,8 @@ mutant's outcome from mutmut's ``.meta`` files. The score is killed / (killed + 
 a mutant no test runs counts as survived, one that times out as killed (mutmut's own rule),
 and the time-outs are counted apart. A mutant times out at ``--timeout-multiplier`` (default 4)
 times its tests' clean time plus a second, not mutmut's default 15: a search mutated into an
-endless loop then costs a minute, not ten, and a correct mutant is never 4 times slower.
+endless loop then costs a minute, not ten (a mutant that only slows the tests down would have to
+slow them 4-fold to be counted killed; every time-out can be read in the record).
 Writes ``docs/data/mutation/<module>.json`` (every mutant and its outcome, the commit and the
 date; the Validation page's table reads these files, so commit them) and prints one line per
 module. Not part of the default test run: the five modules take about 21 minutes on
@@ -32,6 +33,8 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+
+from asperity2d._io import atomic_write_text
 
 ROOT = Path(__file__).resolve().parent.parent
 #: module (path under the project) -> its test files
@@ -168,7 +171,7 @@ def main(argv=None) -> int:
         result = run_module(name, sample=args.sample, rev=args.rev, seed=args.seed,
                             timeout_multiplier=args.timeout_multiplier)
         tag = f"{name}{'@' + args.rev if args.rev else ''}"
-        (out / f"{tag}.json").write_text(json.dumps(result, indent=1) + "\n")
+        atomic_write_text(out / f"{tag}.json", json.dumps(result, indent=1) + "\n")  # a committed record
         print(f"{result['module']}: {100 * result['score']:.1f} % killed ({result['killed']} of "
               f"{result['killed'] + len(result['survived'])} judged, {result['timeouts']} of the kills time-outs; {result['run']} of {result['mutants']} mutants "
               f"run; {len(result['unknown'])} without an outcome; {result['seconds']} s) tests: "
