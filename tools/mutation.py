@@ -13,7 +13,7 @@ a mutant no test runs counts as survived, one that times out as killed (mutmut's
 and the time-outs are counted apart. A mutant times out at ``--timeout-multiplier`` (default 4)
 times its tests' clean time plus a second, not mutmut's default 15: a search mutated into an
 endless loop then costs a minute, not ten (a mutant that only slows the tests down would have to
-slow them 4-fold to be counted killed; every time-out can be read in the record).
+slow them 4-fold to be counted killed; the record counts the time-outs).
 Writes ``docs/data/mutation/<module>.json`` (every mutant and its outcome, the commit and the
 date; the Validation page's table reads these files, so commit them) and prints one line per
 module. Not part of the default test run: the five modules take about 21 minutes on
