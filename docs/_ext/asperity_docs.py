@@ -204,7 +204,7 @@ class MutationTable(_Generated):
     written by ``python tools/mutation.py``)."""
 
     def lines(self):
-        rows, missing = [], []
+        rows, missing, dates, sampled = [], [], set(), False
         for name in MUTATION_MODULES:
             path = MUTATION / f"{name}.json"
             if not path.exists():
@@ -213,12 +213,21 @@ class MutationTable(_Generated):
             self.state.document.settings.record_dependencies.add(str(path))
             data = json.loads(path.read_text(encoding="utf-8"))
             judged = data["killed"] + len(data["survived"])
-            rows.append([f"``{data['module']}``", cell(", ".join(data["tests"])), str(data["mutants"]),
-                         f"{data['killed']} ({data.get('timeouts', '?')} time-outs)", str(len(data["survived"])),
-                         str(len(data["unknown"])), f"**{100 * data['killed'] / judged:.1f} %**" if judged else "—",
-                         f"``{data.get('commit', '?')}``, {data.get('date', '?')}"])
-        lines = list_table(["module", "its tests", "mutants", "killed", "survived", "no outcome", "score",
-                            "measured at"], rows, widths="16 24 8 12 8 8 8 16", cls="mutation-table") if rows else []
+            tests = [t.split("/")[-1].replace("::", " (") + (")" if "::" in t else "") for t in data["tests"]]
+            survived = str(len(data["survived"])) + (f" (+{len(data['unknown'])} without an outcome)"
+                                                      if data["unknown"] else "")
+            rows.append([f"``{data['module'].removeprefix('asperity2d/')}``", cell(", ".join(tests)),
+                         str(data["mutants"]), f"{data['killed']} ({data.get('timeouts', '?')})", survived,
+                         f"**{100 * data['killed'] / judged:.1f} %**" if judged else "—",
+                         f"``{data.get('commit', '?')}``"])
+            dates.add(data.get("date", "an unrecorded date"))
+            sampled = sampled or data["run"] < data["mutants"]
+        lines = []
+        if rows:
+            lines = list_table(["module", "its tests", "mutants", "killed (time-outs)", "survived", "score",
+                                "commit"], rows, widths="14 34 9 12 9 10 12", cls="mutation-table")
+            extent = "a seeded sample of the mutants of some modules" if sampled else "every mutant of each module"
+            lines += [f"Measured on {', '.join(sorted(dates))}, {extent}.", ""]
         if missing:
             lines += [".. admonition:: Not measured yet", "   :class: warning", "",
                       f"   No record for {', '.join(missing)}: run ``python tools/mutation.py "
