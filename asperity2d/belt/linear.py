@@ -189,16 +189,17 @@ class LinearPhase:
         f = np.empty((self.fric_slip.size, np.size(tau)))
         f[...] = self.fric_slip[:, None]
         if self.template.any_stuck:  # (an all-slipping phase needs no spring forces)
-            f_sd = link_force(self.spec.k, x)
-            # without dampers the damper force is a signed zero: it changes no non-zero spring force,
-            # so it is added only where it could set the sign of a zero (the same numbers, fewer calls)
-            if self.spec.damped or np.count_nonzero(f_sd) < f_sd.size:
-                f_sd = f_sd + link_force(self.spec.c, v)
-            f[self.stuck] = -f_sd[self.stuck]
+            f[self.stuck] = -self.spring_damper_force(x, v)[self.stuck]
         return f
 
     def spring_damper_force(self, x, v):
-        return link_force(self.spec.k, x) + link_force(self.spec.c, v)
+        """Spring plus damper force on each mass (N), at states ``x``, ``v`` (n, T)."""
+        f = link_force(self.spec.k, x)
+        # without dampers the damper force is a signed zero: it changes no non-zero spring force,
+        # so it is added only where it could set the sign of a zero (the same numbers, fewer calls)
+        if self.spec.damped or np.count_nonzero(f) < f.size:
+            f = f + link_force(self.spec.c, v)
+        return f
 
 
 def _runs(stuck, spec):
