@@ -10,7 +10,6 @@ code under test.
 from __future__ import annotations
 
 import math
-import sys
 import os
 import warnings
 
@@ -445,29 +444,27 @@ def test_the_second_bisection_starts_from_the_highest_force_seen_to_stop():
 # -- settling: the start each search forks from ------------------------------------------------
 
 class FakeRun:
-    """Stands in for Run inside settled_run: each settle moves the slider a fixed step, and a
-    tip touches a flank from the ``touch``-th settle on (never, if None). Records what it was
-    built with and every push."""
+    """Stands in for Run inside settled_run: each settle moves the slider ``step`` pitches, and
+    a tip touches a flank from the ``touch``-th settle on (never, if None). Records what it was
+    built with and every push. ``pitch`` is a power of two: x - x0 lands exactly on two pitches."""
 
     built: list = []
+    pitch, step, touch = 2.0 ** -20, 0.5, None
 
     def __init__(self, scene, **kw):
         FakeRun.built.append(kw)
-        self.pushes, self.x = [], 10.0 * PITCH  # x far from 0: a position, not a displacement
+        self.pushes, self.x = [], 10.0 * self.pitch  # x far from 0: a position, not a displacement
         self.engine = self
 
     def slider_state(self):
-        return (self.x, -3.0 * PITCH, 0.0, 0.0)  # (x, y, vx, vy): y would never pass the reach test
+        return (self.x, -3.0 * self.pitch, 0.0, 0.0)  # (x, y, vx, vy): y would never pass the reach test
 
     def arbiters_internal(self):
-        return [object()] if TOUCH is not None and len(self.pushes) >= TOUCH else []
+        return [object()] if self.touch is not None and len(self.pushes) >= self.touch else []
 
     def settle(self, push=None):
         self.pushes.append(push)
-        self.x += STEP * PITCH
-
-
-PITCH, STEP, TOUCH = 2.0 ** -20, 0.5, None  # a power of two: x - x0 lands exactly on two pitches
+        self.x += self.step * self.pitch
 
 
 @pytest.mark.parametrize("step, touch, settles", [
@@ -481,10 +478,10 @@ def test_settling_pushes_until_a_tip_touches_or_two_pitches_are_passed(monkeypat
     from asperity2d import critical
 
     monkeypatch.setattr(critical, "Run", FakeRun)
-    monkeypatch.setattr(sys.modules[__name__], "STEP", step)
-    monkeypatch.setattr(sys.modules[__name__], "TOUCH", touch)
+    monkeypatch.setattr(FakeRun, "step", step)
+    monkeypatch.setattr(FakeRun, "touch", touch)
     scene = a.make_scene(drive="force", **SMALL)
-    monkeypatch.setattr(type(scene.lower.spacing), "mean_pitch", property(lambda self: PITCH))
+    monkeypatch.setattr(type(scene.lower.spacing), "mean_pitch", property(lambda self: FakeRun.pitch))
     for start in ("rest", "entry"):
         run = critical.settled_run(scene, start=start)
         assert len(run.pushes) == settles
