@@ -162,6 +162,8 @@ def main(argv=None) -> int:
     parser.add_argument("--rev", help="measure this commit's code and tests instead of the working tree")
     parser.add_argument("-o", "--out", default=str(ROOT / "docs" / "data" / "mutation"), help="output directory")
     args = parser.parse_args(argv)
+    if not args.timeout_multiplier > 0:
+        parser.error(f"--timeout-multiplier must be > 0, got {args.timeout_multiplier!r}")
     unknown = [m for m in args.modules if m not in MODULES]
     if unknown:
         parser.error(f"unknown module {unknown[0]!r}: choose from {', '.join(MODULES)}")
