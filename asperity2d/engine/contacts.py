@@ -145,6 +145,7 @@ class StickSlip:
         self._set_friction = friction_setter(layout.lower_shapes)
         self._stuck, self._slid, self._mu = [False] * n, [0.0] * n, [self.mu_kinetic] * n
         self._present = {}.keys()  # lower asperities in contact after the last update
+        self._kernel = None  # the C step loop holding this state in its arrays (.kernel), if one does
         self._ints, self._touching = None, []  # the last contacts read, and what they touch
         self.slip_distance = (1e-3 * units.length if contact.slip_distance is None
                               else contact.slip_distance) / units.length
@@ -158,20 +159,47 @@ class StickSlip:
     @property
     def stuck(self) -> np.ndarray:
         """Whether each lower asperity's contact is stuck (False when not in contact)."""
+        self._take_back()
         return np.array(self._stuck)
 
     @property
     def slid(self) -> np.ndarray:
         """Distance each contact has slid since it last stuck (internal length units)."""
+        self._take_back()
         return np.array(self._slid)
 
     @property
     def mu(self) -> np.ndarray:
         """Each lower asperity's current friction coefficient."""
+        self._take_back()
         return np.array(self._mu)
+
+    def hand_to(self, kernel) -> None:
+        """Let the C step loop ``kernel`` (:class:`.kernel.Kernel`) hold and update this state
+        in its arrays until the Python side next needs it (:meth:`_take_back`)."""
+        if self._kernel is kernel:
+            return
+        self._take_back()
+        kernel.stuck[:] = self._stuck
+        kernel.slid[:] = self._slid
+        kernel.mu[:] = self._mu
+        kernel.present[:] = 0
+        kernel.present[list(self._present)] = 1
+        self._kernel = kernel
+
+    def _take_back(self) -> None:
+        """The state from the C step loop's arrays into the lists, if the loop holds it."""
+        k = self._kernel
+        if k is None:
+            return
+        self._stuck = [bool(s) for s in k.stuck.tolist()]
+        self._slid, self._mu = k.slid.tolist(), k.mu.tolist()
+        self._present = dict.fromkeys(np.flatnonzero(k.present).tolist()).keys()
+        self._kernel = None
 
     def copy_to(self, layout) -> "StickSlip":
         """This switch's state, re-pointed at the shapes of ``layout`` (a copied space)."""
+        self._take_back()
         out = object.__new__(StickSlip)
         out.__dict__.update(self.__dict__)
         out._set_friction = friction_setter(layout.lower_shapes)
@@ -187,6 +215,7 @@ class StickSlip:
         :class:`Arbiters` holds); ``rows`` are the bodies' ``[x, y, vx, vy]`` after the step
         (internal units).
         """
+        self._take_back()
         ints, floats = contacts
         present = self._present
         if not ints and not present:

@@ -8,6 +8,10 @@ bodies once with ``pymunk.batch`` (a Python loop over bodies would cost
 milliseconds at N = 1000); that one read serves the projection, the switch,
 the next step's drive force and the recorder.
 
+Where the optional C extension was built, :class:`~.kernel.Kernel` runs the
+steps themselves (drive, ``cpSpaceStep``, read, projection, switch) in one C
+call per run of steps, bit-identical to the Python loop here.
+
 Its public surface is SI (``time``, ``slider_state``, ``drive_position``,
 ``drive_force``, ``set_drive_velocity``, ``set_drive_force``); the few
 internal-unit read-outs used by the run loop and the energy meter say so in
@@ -26,7 +30,8 @@ from pymunk import batch
 from ..scene import Scene, SpringDrive
 from ..units import Units, check_scales
 from .contacts import ARBITER_FIELDS, Arbiters, StickSlip
-from .native import stepper
+from .kernel import KERNEL, Kernel
+from .native import Native, stepper
 from .space import build
 from .validity import check_scene
 
@@ -93,6 +98,7 @@ class Engine:
         self.step_hooks: list = []
         self.projection_hooks: list = []
         self._native = None  # raw handles of the space (.native), made with the body buffer
+        self._kernel = None  # ... and the C step loop bound to them (.kernel), where it is usable
         self._contacts = None  # the last step's contacts as read (Native.read_arbiters), if read
         self._arbiters = None  # ... and as Arbiters, made when asked for
         self._changes = 0  # counts what changes the space: forks of an unchanged engine share a snapshot
@@ -173,6 +179,11 @@ class Engine:
         hooks, before_projection = self.step_hooks, self.projection_hooks
         rows, slider_row = self._rows, layout.slider_row
         self._changes += 1
+        if self._kernel is not None and not hooks and not before_projection:
+            # the same steps in C (bit-identical); the contacts are read again when asked for
+            self._kernel.steps(n)
+            self._arbiters = self._contacts = None
+            return
         for _ in range(n):
             if d.spring:
                 # Symplectic Euler: pymunk moves bodies with the old velocity
@@ -214,6 +225,8 @@ class Engine:
             rows = self.layout.lower_rows
             if not isinstance(rows, slice):  # pymunk keeps bodies in insertion order
                 raise RuntimeError("the lower asperities are not contiguous in the batch rows")
+            if KERNEL and isinstance(native, Native):
+                self._kernel = Kernel(self, native, TRACK_TOLERANCE)
             self._lower_x = self._rows[rows, 0]  # a view: it follows every read
             # the drift check in _project: track positions as a list for a few asperities,
             # else a scratch array for NumPy
@@ -363,7 +376,7 @@ class Engine:
         out.drive = object.__new__(Drive)
         out.drive.__dict__.update(self.drive.__dict__)
         out.step_hooks, out.projection_hooks = [], []
-        out._native = None
+        out._native = out._kernel = None
         out._contacts = out._arbiters = None
         out._read_bodies()
         return out
