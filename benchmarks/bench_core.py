@@ -39,7 +39,7 @@ TARGETS = {10: 2.0, 100: 1.5, 1000: 1.5, "steel": 2.0}
 
 def engaged_run(scene) -> Run:
     """A run of ``scene`` advanced until every slider tip is over the lower surface."""
-    run = Run(scene)
+    run = Run(scene, max_steps=10**8)  # N = 1000: the run-up is 2.3e5 steps of 52 step-equivalents each
     if scene.slider.track == "free":
         run.settle()
     span = scene.slider.tips()[-1] + 2 * scene.base

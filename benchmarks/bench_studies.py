@@ -1,6 +1,6 @@
 """Critical force and a 20-seed comparison, against the previous release's code, in one run.
 
-    python benchmarks/bench_studies.py [--quick] [--bare-only] [--json]
+    python benchmarks/bench_studies.py [--quick] [--json]
 
 What a user of the previous code ran: ``critical_force(scene)`` and
 ``asperity2d compare --measure critical --seeds 20`` at the command line's
@@ -11,13 +11,9 @@ interpreters, interleaved, and report CPU time (``time.process_time``) of the
 measurement alone, one worker, each after the same warm-up (a critical force
 of a 3/1 scene, so first-use imports are outside the clock on both sides). Like with like: the previous critical force
 started from the builder's position (the run-up), so against it the new code is timed
-with ``start="run-up"`` -- which is not the default. The default, ``critical_force(scene)``
-from rest on the surface, is timed by itself (``critical-rest``) against what it costs in a
-bare public-API pymunk loop of the very same runs (the same forces, steps and settling):
-issue 28's "<= 1.3x the bare steps". It is timed with the engine's C step loop (the default where
-the extension was built) and with its Python loop (``ASPERITY2D_KERNEL=0``), interleaved, and the
-two must give the same critical force to the bit. ``--bare-only`` runs just those rows, from rest
-and with a run-up, on both set-ups.
+with ``start="run-up"`` -- which is not the default. The default from rest, and either start
+against a bare pymunk loop of its own runs, is ``bench_critical.py``; this script gives it the
+critical force's code (``_CODE``: ``what`` = "critical-rest" / "critical").
 The previous code settled a free slider again in every bisection run and
 measured the seed-independent regular scene once per seed.
 
@@ -118,36 +114,10 @@ def _measure(tree: Path | None, setup: str, what: str, seeds: int, new: bool, ke
     return json.loads(proc.stdout.strip().splitlines()[-1])
 
 
-def _against_bare(setup: str, what: str, repeats: int) -> dict:
-    """A critical force (``what``: "critical-rest" from rest, "critical" with a run-up) against a
-    bare pymunk loop of its own runs, with the engine's C step loop and with its Python loop
-    (interleaved; the answers must be the same to the bit)."""
-    runs = {"c": [], "python": []}
-    for _ in range(repeats):
-        runs["c"].append(_measure(None, setup, what, 0, new=True, kernel=True))
-        runs["python"].append(_measure(None, setup, what, 0, new=True, kernel=False))
-    if {r["value"] for r in runs["c"] + runs["python"]} != {runs["c"][0]["value"]}:
-        raise AssertionError(f"{setup}/{what}: the C and Python step loops gave different critical forces")
-    out = {"steps": runs["c"][0]["steps"], "repeats": repeats, "new_value_N": runs["c"][0]["value"]}
-    for loop, rs in runs.items():
-        pairs = [r["cpu_s"] / r["bare_cpu_s"] for r in rs]
-        key = "new" if loop == "c" else "python_loop"
-        out.update({f"{key}_cpu_s": statistics.median(r["cpu_s"] for r in rs),
-                    f"{key}_over_bare": statistics.median(pairs), f"{key}_over_bare_min": min(pairs),
-                    f"{key}_over_bare_max": max(pairs)})
-    out["bare_cpu_s"] = statistics.median(r["bare_cpu_s"] for r in runs["c"])
-    return out
-
-
-def run(quick: bool = False, bare_only: bool = False) -> dict:
+def run(quick: bool = False) -> dict:
     repeats = {"critical": 1 if quick else 7, "compare": 1 if quick else 3}  # critical: ~1 s a pair
     seeds = 3 if quick else 20
     rows = {}
-    if bare_only:
-        for setup in ("free", "fixed"):
-            for what, name in (("critical-rest", "critical-rest"), ("critical", "critical-run-up")):
-                rows[f"{setup}/{name}"] = _against_bare(setup, what, repeats["critical"])
-        return {"baseline": BASELINE, "seeds": seeds, "target": TARGET, "rows": rows}
     with tempfile.TemporaryDirectory() as tmp:
         old_tree = _baseline_tree(Path(tmp))
         for setup in ("free", "fixed"):
@@ -164,7 +134,6 @@ def run(quick: bool = False, bare_only: bool = False) -> dict:
                     b = statistics.median(r["bare_cpu_s"] for r in new)
                     rows[f"{setup}/{what}"].update(bare_cpu_s=b, steps=new[0]["steps"], zero_overhead_bound=o / b,
                                                    new_over_bare=n / b)
-            rows[f"{setup}/critical-rest"] = _against_bare(setup, "critical-rest", repeats["critical"])
     return {"baseline": BASELINE, "seeds": seeds, "target": TARGET, "rows": rows}
 
 
@@ -172,13 +141,6 @@ def headline(res):
     out = []
     for key, r in res["rows"].items():
         setup, what = key.split("/")
-        if what in ("critical-rest", "critical-run-up"):
-            start = "from rest (the default)" if what == "critical-rest" else "start='run-up'"
-            out.append((f"critical_force(make_scene(drive='force', track='{setup}'), {start}): now / "
-                        f"a bare pymunk loop of the same runs (range {r['new_over_bare_min']:.2f}-"
-                        f"{r['new_over_bare_max']:.2f}; the engine's Python step loop: "
-                        f"{r['python_loop_over_bare']:.2f})", r["new_over_bare"], "<= 1.3"))
-            continue
         label = ("critical force" if what == "critical" else f"{res['seeds']}-seed compare, critical") + \
             f", {setup}, run-up (as the previous code measured; not the default): previous code / now (CPU)"
         out.append((label, r["speedup"], f">= {res['target']}"))
@@ -192,20 +154,12 @@ def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--quick", action="store_true", help="3 seeds, one repeat")
     p.add_argument("--json", action="store_true")
-    p.add_argument("--bare-only", action="store_true",
-                   help="only the critical forces against a bare pymunk loop (C and Python step loops)")
     args = p.parse_args(argv)
-    out = run(quick=args.quick, bare_only=args.bare_only)
+    out = run(quick=args.quick)
     if args.json:
         print(json.dumps(out))
         return 0
     for key, r in out["rows"].items():
-        if key.endswith(("critical-rest", "critical-run-up")):
-            print(f"{key:22s} {r['new_cpu_s']:.2f} s CPU, {r['new_over_bare']:.2f}x a bare pymunk loop of the "
-                  f"same {r['steps']} steps (range {r['new_over_bare_min']:.2f}-{r['new_over_bare_max']:.2f}); "
-                  f"the Python step loop {r['python_loop_over_bare']:.2f}x "
-                  f"({r['python_loop_over_bare_min']:.2f}-{r['python_loop_over_bare_max']:.2f})")
-            continue
         print(f"{key:16s} previous {r['old_cpu_s']:7.2f} s, now {r['new_cpu_s']:7.2f} s CPU: "
               f"{r['speedup']:5.2f}x (target >= {TARGET}); values {r['old_value_N'] * 1e3:.4g} / "
               f"{r['new_value_N'] * 1e3:.4g} mN")
