@@ -248,9 +248,14 @@ def test_version_comes_from_the_installed_metadata(capsys):
 
     import asperity2d
 
+    from asperity2d.engine import kernel
+
     assert main(["--version"]) == 0
-    assert capsys.readouterr().out.strip() == f"asperity2d {version('asperity2d')}"
+    name, loop = capsys.readouterr().out.strip().splitlines()
+    assert name == f"asperity2d {version('asperity2d')}"
     assert asperity2d.__version__ == version("asperity2d")
+    # and which step loop runs: C, or Python with the reason
+    assert loop == ("engine step loop: C" if kernel.KERNEL else f"engine step loop: Python ({kernel.KERNEL_REASON})")
 
 
 def test_run_table_works_with_and_without_a_scene_table(tmp_path, capsys):

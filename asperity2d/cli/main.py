@@ -31,15 +31,18 @@ __all__ = ["main", "build_parser", "Parser", "PROG", "PLOT_SUFFIXES", "fail", "p
 
 
 class _Version(argparse.Action):
-    """``--version``: read from the installed metadata only when asked (it costs ~80 ms)."""
+    """``--version``: read from the installed metadata only when asked (it costs ~80 ms), and which
+    step loop the engine uses (the C one, or Python and why: the numbers are the same)."""
 
     def __init__(self, option_strings, dest=argparse.SUPPRESS, default=argparse.SUPPRESS, help=None):
         super().__init__(option_strings, dest=dest, default=default, nargs=0, help=help)
 
     def __call__(self, parser, namespace, values, option_string=None):
         from .._version import __version__
+        from ..engine import kernel
 
-        print(f"{PROG} {__version__}")
+        loop = "C" if kernel.KERNEL else f"Python ({kernel.KERNEL_REASON})"
+        print(f"{PROG} {__version__}\nengine step loop: {loop}")
         parser.exit(0)
 
 
