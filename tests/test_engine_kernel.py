@@ -73,6 +73,18 @@ def test_the_c_loop_steps_as_the_python_loop_to_the_bit(name):
         assert switches > -1  # ... and the switch had work to do
 
 
+@pytest.mark.parametrize("name", ["fixed, regular, spring", "free, regular, force", "free, random, spring"])
+def test_settling_in_c_is_settling_in_python_to_the_bit(name):
+    # the fixed track lowered onto the surface and pushed; the free slider dropped, then pushed
+    # (force drive) or left to find the spring's preload (spring drive)
+    scene = a.make_scene(**SCENES[name])
+    one, two = (Engine(scene, default_dt(scene), engaged=scene.slider.track == "fixed") for _ in range(2))
+    two._kernel = None
+    spent = [e.settle(20 * scene.slowest_period(), push=2e-3) for e in (one, two)]
+    assert spent[0] == spent[1] > 0
+    assert _state(one) == _state(two)
+
+
 def test_the_c_loop_puts_drifted_bodies_back_as_the_python_loop_does():
     # A hard start: the fixed track's slider driven at 30 x the default force from the run-up
     # makes the groove joints drift past TRACK_TOLERANCE, so the write-back path runs.

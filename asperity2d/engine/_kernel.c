@@ -213,6 +213,28 @@ void asp_steps(asp_ctx *c, int64_t n)
 size_t asp_ctx_size(void) { return sizeof(asp_ctx); }
 size_t asp_ctx_offset_has(void) { return offsetof(asp_ctx, has); }
 
+/* Engine.settle's steps (no switch, no step count): the drive spring's pull towards its far end
+ * if there is one, plus ``push``. */
+void asp_settle_steps(asp_ctx *c, int64_t n, double push)
+{
+    space_step_fn space_step = (space_step_fn)c->space_step;
+    set_force_fn set_force = (set_force_fn)c->set_force;
+    each_fn each_body = (each_fn)c->each_body;
+    asp_float_array *bodies = (asp_float_array *)c->bodies;
+    double *slider = c->rows + 4 * c->slider_row;
+    for (int64_t s = 0; s < n; s++) {
+        asp_vect f;
+        double fx = c->spring ? c->k * (c->origin - slider[0]) : 0.0;
+        f.x = fx + push;
+        f.y = -c->load;
+        set_force((void *)c->body, f);
+        space_step((void *)c->space, c->dt);
+        bodies->num = 0;
+        each_body((void *)c->space, (void *)c->get_body, (void *)c->body_data);
+        project(c);
+    }
+}
+
 static struct PyModuleDef module = {PyModuleDef_HEAD_INIT, "_kernel",
                                     "The engine's step loop in C (loaded with cffi by kernel.py).", -1, NULL};
 

@@ -331,10 +331,14 @@ class Engine:
                 n = min(window, share - done)
                 if phase == "drop" and lowering:
                     self._lower_track(min(1.0, (done + n) / period))
-                for _ in range(n):
-                    fx = d.k * (d.origin - self._slider[0]) if d.spring else 0.0
-                    native.step(dt, fx + (push_i if phase == "push" else 0.0), -load)
-                    self._project(self._rows)
+                extra = push_i if phase == "push" else 0.0
+                if self._kernel is not None:  # the same steps in C (bit-identical)
+                    self._kernel.settle_steps(n, extra)
+                else:
+                    for _ in range(n):
+                        fx = d.k * (d.origin - self._slider[0]) if d.spring else 0.0
+                        native.step(dt, fx + extra, -load)
+                        self._project(self._rows)
                 done += n
                 calm = calm + 1 if float(np.abs(self._rows[:, 2:]).max()) < rest_speed else 0
                 if on_steps is not None:

@@ -4,7 +4,7 @@
 between its calls into Chipmunk: the drive force, the track projection, the
 contact read and the stick/slip switch (measured on Ooten's 16/4 fixed track:
 ~10 us of Python around a ~20 us ``cpSpaceStep``). :class:`Kernel` runs ``n``
-such steps in one C call: the same Chipmunk and pymunk batch functions (their
+such steps in one C call (and :meth:`Engine.settle`'s simpler steps): the same Chipmunk and pymunk batch functions (their
 addresses are taken from pymunk's cffi module, so nothing is linked against
 pymunk) and the same arithmetic, operation for operation, with no fused
 multiply-adds. Results are bit-identical to the Python loop
@@ -56,6 +56,7 @@ typedef struct {
     uint8_t *has;
 } asp_ctx;
 void asp_steps(asp_ctx *c, int64_t n);
+void asp_settle_steps(asp_ctx *c, int64_t n, double push);
 size_t asp_ctx_size(void);
 size_t asp_ctx_offset_has(void);
 """
@@ -140,6 +141,15 @@ class Kernel:
         e.switch.hand_to(self)
         lib.asp_steps(c, n)
         e.step_count, e.max_solver_drift = c.step_count, c.max_drift
+
+    def settle_steps(self, n: int, push: float) -> None:
+        """``n`` of :meth:`Engine.settle`'s steps with the extra force ``push`` (internal units)."""
+        e, c = self.engine, self.ctx
+        d = e.drive
+        c.k, c.origin = d.k, d.origin
+        c.max_drift, c.y_track = e.max_solver_drift, e.layout.slider_y_track
+        lib.asp_settle_steps(c, n, push)
+        e.max_solver_drift = c.max_drift
 
 
 def _load() -> str | None:
