@@ -209,9 +209,21 @@ void asp_steps(asp_ctx *c, int64_t n)
     }
 }
 
-/* kernel.py checks its cdef's layout of asp_ctx against the compiler's */
-size_t asp_ctx_size(void) { return sizeof(asp_ctx); }
-size_t asp_ctx_offset_has(void) { return offsetof(asp_ctx, has); }
+/* kernel.py checks its cdef's layout of asp_ctx, and pymunk's of the structs mirrored at the top,
+ * against this compiler's: 0 sizeof(asp_ctx), 1 offsetof(asp_ctx, has), 2 and 3 the array field's
+ * offset in pmFloatArray and pmIntArray, 4 sizeof(cpVect), 5 sizeof(uintptr_t) */
+size_t asp_layout(int which)
+{
+    switch (which) {
+    case 0: return sizeof(asp_ctx);
+    case 1: return offsetof(asp_ctx, has);
+    case 2: return offsetof(asp_float_array, arr);
+    case 3: return offsetof(asp_int_array, arr);
+    case 4: return sizeof(asp_vect);
+    case 5: return sizeof(uintptr_t);
+    default: return 0;
+    }
+}
 
 /* Engine.settle's steps (no switch, no step count): the drive spring's pull towards its far end
  * if there is one, plus ``push``. */

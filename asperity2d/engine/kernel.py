@@ -4,9 +4,9 @@
 between its calls into Chipmunk: the drive force, the track projection, the
 contact read and the stick/slip switch (measured on Ooten's 16/4 fixed track:
 ~10 us of Python around a ~20 us ``cpSpaceStep``). :class:`Kernel` runs ``n``
-such steps in one C call (and :meth:`Engine.settle`'s simpler steps): the same Chipmunk and pymunk batch functions (their
-addresses are taken from pymunk's cffi module, so nothing is linked against
-pymunk) and the same arithmetic, operation for operation, with no fused
+such steps in one C call (and :meth:`Engine.settle`'s simpler steps): the
+same Chipmunk and pymunk batch functions (their addresses are taken from
+pymunk's cffi module, so nothing is linked against pymunk) and the same arithmetic, operation for operation, with no fused
 multiply-adds. Results are bit-identical to the Python loop
 (``tests/test_engine_kernel.py``). Steps with hooks (an energy meter) run in
 Python.
@@ -57,8 +57,7 @@ typedef struct {
 } asp_ctx;
 void asp_steps(asp_ctx *c, int64_t n);
 void asp_settle_steps(asp_ctx *c, int64_t n, double push);
-size_t asp_ctx_size(void);
-size_t asp_ctx_offset_has(void);
+size_t asp_layout(int which);
 """
 
 ffi = lib = None
@@ -168,14 +167,14 @@ def _load() -> str | None:
         ffi = cffi.FFI()
         ffi.cdef(_CDEF)
         lib = ffi.dlopen(spec.origin)
-        if lib.asp_ctx_size() != ffi.sizeof("asp_ctx") or lib.asp_ctx_offset_has() != ffi.offsetof("asp_ctx", "has"):
+        if [lib.asp_layout(i) for i in (0, 1)] != [ffi.sizeof("asp_ctx"), ffi.offsetof("asp_ctx", "has")]:
             return "the compiled loop's struct layout differs from kernel.py's"
         pffi = native.ffi
-        expected = {("pmFloatArray", "num"): 0, ("pmFloatArray", "max"): 4, ("pmFloatArray", "arr"): 8,
-                    ("pmIntArray", "num"): 0, ("pmIntArray", "max"): 4, ("pmIntArray", "arr"): 8}
-        if any(pffi.offsetof(t, f) != off for (t, f), off in expected.items()) or \
-                pffi.sizeof("cpVect") != 16 or pffi.sizeof("uintptr_t") != ffi.sizeof("uintptr_t"):
-            return "pymunk's batch arrays are not laid out as the compiled loop expects"
+        pymunks = [pffi.offsetof("pmFloatArray", "arr"), pffi.offsetof("pmIntArray", "arr"),
+                   pffi.sizeof("cpVect"), pffi.sizeof("uintptr_t")]
+        if [lib.asp_layout(i) for i in (2, 3, 4, 5)] != pymunks or \
+                [pffi.offsetof(t, "num") for t in ("pmFloatArray", "pmIntArray")] != [0, 0]:
+            return "pymunk's structs are not laid out as the compiled loop expects"
     except Exception as exc:  # noqa: BLE001 - anything missing or different means: step in Python
         return f"the compiled loop could not be loaded ({type(exc).__name__}: {exc})"
     return None
