@@ -173,10 +173,15 @@ class LinearPhase:
         if self.motion is None:
             x, v, a = self.evaluate(tau)
             return x, v, self.friction_force(x, v, a, tau), quadrature_work(self, tau)
-        y = self.motion.at(tau)
         n = self.spec.n
-        x, v = y[:n], y[n : 2 * n]
-        return x, v, self.friction_force(x, v, None, tau), modal_work(self, tau)
+        # the rows x and v only (recording needs no accelerations): each row's value is its own
+        # sum, the same numbers as among all rows (:class:`~.events.ModalEvents`); the work
+        # integrals reuse these times' exponentials
+        m = self.motion
+        growth = m.growth(tau)
+        y = ModalForm(m.lam, m.B[: 2 * n], m.c0[: 2 * n], m.c1[: 2 * n], m.damped).at(tau, growth)
+        x, v = y[:n], y[n:]
+        return x, v, self.friction_force(x, v, None, tau), modal_work(self, tau, growth)
 
     def belt_velocity(self, tau):
         return np.full(np.size(tau), self.V)

@@ -79,11 +79,14 @@ class ModalForm:
             out += self._offset
         return out
 
-    def integral(self, tau) -> np.ndarray:
+    def integral(self, tau, growth=None) -> np.ndarray:
         """Integrals from 0 to ``tau`` (R, T) in closed form (every lam non-zero).
 
         (exp(lam·tau) - 1)/lam is formed from expm1 and 2·sin²(omega·tau/2), never as a
         difference of nearly equal numbers: short phases keep their relative accuracy.
+        ``growth``: :meth:`growth` of the same times by a form with the same ``lam`` (its
+        sin, exp(Re lam·tau)·sin(Im lam·tau), is Im exp(lam·tau): the same numbers, not
+        evaluated again).
         """
         tau = np.asarray(tau, dtype=float)
         w = self.lam.imag[:, None] * tau
@@ -98,14 +101,18 @@ class ModalForm:
             re = np.expm1(a)  # Re(exp(lam tau) - 1) = expm1(a)·cos(w) - 2·sin²(w/2)
             re *= np.cos(w)
             re -= half
-            im = np.exp(a)  # Im(exp(lam tau)) = exp(a)·sin(w)
-            im *= np.sin(w)
+            if growth is None:
+                im = np.exp(a)  # Im(exp(lam tau)) = exp(a)·sin(w) (growth's sin: sin(w)·exp(a), the same product)
+                im *= np.sin(w)
         else:
             # Re lam = +0: a = +0·tau = +0 (tau >= 0), expm1(a)·cos(w) = ±0 and exp(a) = 1, so the
             # same numbers are 0.0 - 2·sin²(w/2) (±0 - x = -x for x > 0; x = 0 only at w = 0,
             # where cos = 1 and both give +0) and sin(w): no cos, exp or expm1 to evaluate
             re = np.subtract(0.0, half, out=half)
-            im = np.sin(w)
+            if growth is None:
+                im = np.sin(w)  # (growth's sin: sin(w) itself, undamped)
+        if growth is not None:
+            im = growth[1]
         Bl = scale_columns(self.B, 1.0 / self.lam)
         out = Bl.real @ re  # Bl.real @ re - Bl.imag @ im + c0·tau + c1·tau²/2
         out -= Bl.imag @ im
@@ -199,7 +206,7 @@ def phi(z):
 def block_matrix(blocks, shape):
     """Dense or CSR complex matrix of ``shape`` from (rows, cols, values) blocks.
 
-    ``rows`` and ``cols`` of each block are runs of consecutive indices (``lo + np.arange(L)``).
+    ``rows`` and ``cols`` of each block are runs of consecutive indices (``range(lo, lo + L)``).
     """
     if shape[1] <= SPARSE_ABOVE:
         out = np.zeros(shape, dtype=complex)
