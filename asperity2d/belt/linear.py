@@ -22,7 +22,7 @@ from .backend import RawRun
 from .energy import modal_work, power_maps, quadrature_work
 from .events import event_map
 from .loop import event_loop
-from .modal import ModalForm, block_matrix, damped, scale_columns
+from .modal import ModalForm, block_matrix, scale_columns
 from .segment import Segment, SegmentModes
 from .spec import link_force
 
@@ -64,12 +64,13 @@ class Template:
         n, V = spec.n, spec.v_belt
         self.spec, self.V = spec, float(V)
         self.modes = np.asarray(modes)
+        stuck = self.modes.tolist()  # (plain ints: the pattern is read mass by mass below)
         self.stuck = self.modes == 0
-        self.any_stuck = bool(np.count_nonzero(self.stuck))
+        self.any_stuck = 0 in stuck
         #: kinetic force on each slipping mass (N): opposes the relative velocity
         self.fric_slip = -self.modes * spec.kinetic_force
         self.runs = []
-        for lo, hi in _runs(self.stuck, spec):
+        for lo, hi in _runs([mode == 0 for mode in stuck], spec):
             if (lo, hi) not in segments:
                 segments[lo, hi] = SegmentModes(spec, lo, hi)
                 _bound(segments)
@@ -83,18 +84,23 @@ class Template:
         blocks, col = [], 0
         for lo, hi, m in self.runs:
             L, S = hi - lo + 1, m.lam.size
-            idx, cols = lo + np.arange(L), col + np.arange(S)
-            blocks += [(idx, cols, m.shapes[:L]), (n + idx, cols, m.shapes[L:]), (2 * n + idx, cols, m.shapes[L:] * m.lam)]
+            # (ranges of consecutive indices, as :func:`~.modal.block_matrix` takes them)
+            cols = range(col, col + S)
+            blocks += [(range(lo, hi + 1), cols, m.shapes[:L]), (range(n + lo, n + hi + 1), cols, m.shapes[L:]),
+                       (range(2 * n + lo, 2 * n + hi + 1), cols, m.shapes[L:] * m.lam)]
             col += S
-        self.lam = np.concatenate([m.lam for _, _, m in self.runs]) if self.runs else np.zeros(0, complex)
+        # (one segment's eigenvalues are the pattern's own: never written to, so shared, not copied)
+        self.lam = (self.runs[0][2].lam if len(self.runs) == 1 else
+                    np.concatenate([m.lam for _, _, m in self.runs]) if self.runs else np.zeros(0, complex))
         self.shapes = block_matrix(blocks, (3 * n, col))
         self.kind, self.mass, self.event_map, self.event_offset = event_map(spec, self.modes, self.V)
         self.event_shapes = self.event_map @ self.shapes
         self.event_shapes_abs = abs(self.event_shapes)
         #: |lam|⁴ of the modes (the event functions' fourth-derivative bound, :class:`~.events.ModalEvents`)
         self.lam_abs4 = np.abs(self.lam) ** 4
-        #: whether any mode decays or grows (:func:`~.modal.damped`): undamped phases skip exp(Re lam·tau)
-        self.damped = damped(self.lam)
+        #: whether any mode decays or grows (:func:`~.modal.damped`): undamped phases skip exp(Re lam·tau);
+        #: the pattern's eigenvalues are its segments', so it is any segment's (found once per segment)
+        self.damped = any(m.damped for _, _, m in self.runs)
         #: the particular solution's (c0, c1) rows [x; v; a] of stuck masses, c0's x rows to be set to x0
         self.c0_stuck, self.c1_stuck = np.zeros(3 * n), np.zeros(3 * n)
         self.c0_stuck[n : 2 * n] = self.V
@@ -142,7 +148,9 @@ class LinearPhase:
             c0[:n] = self.x0
             for seg, rows in zip(self.segments, template.segment_rows):
                 c0[rows], c1[rows] = seg.c0, seg.c1
-            self.coef = np.concatenate([s.coef for s in self.segments]) if self.segments else np.zeros(0, complex)
+            # (one segment's amplitudes are the phase's own: never written to, so shared, not copied)
+            self.coef = (self.segments[0].coef if len(self.segments) == 1 else
+                         np.concatenate([s.coef for s in self.segments]) if self.segments else np.zeros(0, complex))
             self.motion = ModalForm(template.lam, scale_columns(template.shapes, self.coef), c0, c1, template.damped)
 
     def form(self, shapes, rows_map, offset) -> ModalForm:
@@ -208,9 +216,8 @@ class LinearPhase:
 
 
 def _runs(stuck, spec):
-    """(lo, hi) of each maximal run of slipping masses joined by a spring or damper."""
-    n = spec.n
-    linked = (spec.k[1:n] != 0) | (spec.c[1:n] != 0)
+    """(lo, hi) of each maximal run of slipping masses joined by a spring or damper (``stuck``: a list of bools)."""
+    n, linked = spec.n, spec.linked
     out, i = [], 0
     while i < n:
         if stuck[i]:

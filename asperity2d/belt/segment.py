@@ -29,7 +29,7 @@ from functools import cached_property
 
 import numpy as np
 
-from .modal import cmatmul
+from .modal import cmatmul, damped
 
 
 #: largest condition number of the eigenvector matrix of a damped segment solved in modal form:
@@ -63,6 +63,7 @@ class SegmentModes:
                 self.Phi = Q / root[:, None]  # mass-normalised: Phiᵀ M Phi = I
                 self.lam = 1j * self.omega
                 self.shapes = np.concatenate((self.Phi, self.Phi * self.lam))  # (complex: promoted)
+                self.damped = damped(self.lam)
             return
         lam, W = np.linalg.eig(self.A)
         self.rate = float(np.max(np.abs(lam)))
@@ -76,6 +77,8 @@ class SegmentModes:
             self.half_weight = np.where(lam.imag[self.half] > 0, 2.0, 1.0)
             self.lam = lam[self.half].astype(complex)
             self.shapes = W[:, self.half].astype(complex)
+            #: :func:`~.modal.damped` of ``lam`` (exact segments)
+            self.damped = damped(self.lam)
 
     @cached_property
     def A(self) -> np.ndarray:
