@@ -137,12 +137,19 @@ def check_vector(name: str, value, length: int | None = None, *, positive: bool 
         raise SceneError(f"`{name}` must not be empty")
     if length is not None and len(items) != length:
         raise SceneError(f"`{name}` must have {length} entries, got {len(items)}")
-    if set(map(type, items)) <= {float, int}:  # fast path for long plain lists (sample times)
-        import numpy as np
+    if set(map(type, items)) <= {float, int} and all(abs(v) <= HUGE for v in items):  # plain numbers
+        if len(items) <= 16 and not as_array:
+            # a few (a chain's masses and springs): :func:`_plain_ok`'s tests in Python, cheaper than
+            # NumPy's calls at this size (abs(v) <= HUGE above is also the finiteness test)
+            out = tuple(map(float, items))
+            if all((not positive or v >= TINY) and (not nonneg or v >= 0) for v in out):
+                return out
+        else:  # fast path for long plain lists (sample times)
+            import numpy as np
 
-        arr = np.array(items, dtype=float) if all(abs(v) <= HUGE for v in items) else None
-        if arr is not None and _plain_ok(arr, positive, nonneg):
-            return arr if as_array else tuple(arr.tolist())
+            arr = np.array(items, dtype=float)
+            if _plain_ok(arr, positive, nonneg):
+                return arr if as_array else tuple(arr.tolist())
     out = tuple(_window(name, check_finite(name, v, where=f" at index {i}"), v, f" at index {i}",
                         positive, nonneg) for i, v in enumerate(items))
     if as_array:
