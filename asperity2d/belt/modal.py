@@ -44,25 +44,25 @@ class ModalForm:
         self._offset = None  # (see :meth:`at`)
 
     def growth(self, tau):
-        """(Re, Im) of exp(lam·tau), each (S, T), at times ``tau`` (s, (T,)).
+        """(Re, Im) of exp(lam·tau), each (S, T), at times ``tau`` (s, (T,)), and the angles Im lam·tau.
 
         (Outer products here and below are broadcast products, the same numbers as
         ``np.multiply.outer`` without its Python-level cost: these run several times a phase.)
         """
-        phase = self.lam.imag[:, None] * tau
-        cos, sin = np.cos(phase), np.sin(phase)
+        angle = self.lam.imag[:, None] * tau
+        cos, sin = np.cos(angle), np.sin(angle)
         if self.damped is None:
             self.damped = damped(self.lam)
         if self.damped:
             amp = np.exp(self.lam.real[:, None] * tau)
             cos *= amp
             sin *= amp
-        return cos, sin
+        return cos, sin, angle
 
     def at(self, tau, growth=None) -> np.ndarray:
         """Values (R, T) at times ``tau`` (s, (T,), >= 0 as every time from a phase start);
         ``growth`` reuses :meth:`growth` of the same times."""
-        cos, sin = self.growth(tau) if growth is None else growth
+        cos, sin, _ = self.growth(tau) if growth is None else growth
         # in place, in the order of Br@cos - Bi@sin + c0 + c1·tau (the same rounding): a long scan
         # evaluates thousands of times at once, and each fresh (R, T) temporary costs page faults
         out = self.Br @ cos
@@ -85,11 +85,11 @@ class ModalForm:
         (exp(lam·tau) - 1)/lam is formed from expm1 and 2·sin²(omega·tau/2), never as a
         difference of nearly equal numbers: short phases keep their relative accuracy.
         ``growth``: :meth:`growth` of the same times by a form with the same ``lam`` (its
-        sin, exp(Re lam·tau)·sin(Im lam·tau), is Im exp(lam·tau): the same numbers, not
-        evaluated again).
+        angles, and its sin, exp(Re lam·tau)·sin(Im lam·tau) = Im exp(lam·tau): the same
+        numbers, not evaluated again).
         """
         tau = np.asarray(tau, dtype=float)
-        w = self.lam.imag[:, None] * tau
+        w = self.lam.imag[:, None] * tau if growth is None else growth[2]
         # in place, in the order of the formulas in the comments (the same rounding)
         half = np.sin(0.5 * w)
         np.square(half, out=half)
