@@ -37,7 +37,7 @@ import numpy as np
 
 #: relative tolerance that declares an event function zero (and two numbers equal at a switch)
 SWITCH_TOL = 1e-9
-_EPS = np.finfo(float).eps
+_EPS = float(np.finfo(float).eps)  # (a plain float: the scalar root search does its arithmetic in floats)
 #: subdivisions of one interval for one row before it is declared free of contact
 _SUBDIVISIONS = 64
 
@@ -236,7 +236,7 @@ def _first_contact(f, a, b, ga, gb, da, db, bound4, r, budget):
         t_zero = _zero(lambda t: f(t)[:2], a, end, ga, g_end)
         t_min, g_min = _dip_after(f, t_zero, b, b - a)
         return ("cross", t_zero) if g_min < -SWITCH_TOL else ("touch", t_min)
-    low = _lower(ga, gb, da, db, b - a, None if bound4 is None else bound4[r])
+    low = _lower(ga, gb, da, db, b - a, None if bound4 is None else float(bound4[r]))
     if low > SWITCH_TOL:
         return None
     if da < 0 < db:  # one interior minimum
