@@ -105,9 +105,8 @@ class Template:
         self.c0_stuck, self.c1_stuck = np.zeros(3 * n), np.zeros(3 * n)
         self.c0_stuck[n : 2 * n] = self.V
         self.c1_stuck[:n] = self.V
-        #: per segment, the rows of its x and v in the state [x; v; a]
-        self.segment_rows = [np.concatenate([lo + np.arange(hi - lo + 1), n + lo + np.arange(hi - lo + 1)])
-                             for lo, hi, _ in self.runs]
+        #: per segment, the rows of its x and of its v in the state [x; v; a] (slices)
+        self.segment_rows = [(slice(lo, hi + 1), slice(n + lo, n + hi + 1)) for lo, hi, _ in self.runs]
         self.power_map, self.power_offset, self.rate_map = power_maps(spec, self.stuck, self.fric_slip, self.V)
         self.power_shapes = self.power_map @ self.shapes
         self.rate_shapes = None if self.rate_map is None else self.rate_map @ self.shapes
@@ -146,8 +145,9 @@ class LinearPhase:
             # stuck rows: x = x0 + V·tau, v = V, a = 0; segment rows: particular solution + modes
             c0, c1 = template.c0_stuck.copy(), template.c1_stuck.copy()
             c0[:n] = self.x0
-            for seg, rows in zip(self.segments, template.segment_rows):
-                c0[rows], c1[rows] = seg.c0, seg.c1
+            for seg, (x_rows, v_rows) in zip(self.segments, template.segment_rows):
+                L = seg.L
+                c0[x_rows], c0[v_rows], c1[x_rows], c1[v_rows] = seg.c0[:L], seg.c0[L:], seg.c1[:L], seg.c1[L:]
             # (one segment's amplitudes are the phase's own: never written to, so shared, not copied)
             self.coef = (self.segments[0].coef if len(self.segments) == 1 else
                          np.concatenate([s.coef for s in self.segments]) if self.segments else np.zeros(0, complex))
