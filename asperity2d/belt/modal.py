@@ -138,6 +138,8 @@ class ModalForm:
         if isinstance(self.B, np.ndarray):
             b = self.B[r]
             keep = b != 0
+            if np.count_nonzero(keep) == keep.size:  # every exponential present: the same numbers, uncopied
+                return self.lam, b, float(self.c0[r]), float(self.c1[r])
             return self.lam[keep], b[keep], float(self.c0[r]), float(self.c1[r])
         lo, hi = self.B.indptr[r], self.B.indptr[r + 1]  # CSR row r, without fancy indexing
         return self.lam[self.B.indices[lo:hi]], self.B.data[lo:hi], float(self.c0[r]), float(self.c1[r])
