@@ -115,9 +115,10 @@ def check_real(name: str, value, *, positive: bool = False, nonneg: bool = False
 
 
 def check_vector(name: str, value, length: int | None = None, *, positive: bool = False,
-                 nonneg: bool = False) -> tuple[float, ...]:
+                 nonneg: bool = False, as_array: bool = False):
     """A non-empty 1-D sequence of real numbers, each checked as :func:`check_real`, as a tuple
-    of floats (``length`` entries if given)."""
+    of floats (``length`` entries if given), or with ``as_array`` as a new float64 array of the
+    same numbers (long sample times: no round trip through a tuple)."""
     np = sys.modules.get("numpy")
     if np is not None and isinstance(value, np.ndarray):
         if value.ndim != 1 or value.dtype.kind not in "iuf":
@@ -126,7 +127,7 @@ def check_vector(name: str, value, length: int | None = None, *, positive: bool 
         if value.dtype.kind == "f" and value.size and (length is None or value.size == length):
             arr = value.astype(float)  # fast path for long arrays (sample times): no Python loop
             if _plain_ok(arr, positive, nonneg):
-                return tuple(arr.tolist())
+                return arr if as_array else tuple(arr.tolist())
         items = value.tolist()
     elif isinstance(value, (list, tuple)):
         items = list(value)
@@ -136,14 +137,26 @@ def check_vector(name: str, value, length: int | None = None, *, positive: bool 
         raise SceneError(f"`{name}` must not be empty")
     if length is not None and len(items) != length:
         raise SceneError(f"`{name}` must have {length} entries, got {len(items)}")
-    if set(map(type, items)) <= {float, int}:  # fast path for long plain lists (sample times)
+    if set(map(type, items)) <= {float, int} and all(abs(v) <= HUGE for v in items):  # plain numbers
+        if len(items) <= 16 and not as_array:
+            # a few (a chain's masses and springs): :func:`_plain_ok`'s tests in Python, cheaper than
+            # NumPy's calls at this size (abs(v) <= HUGE above is also the finiteness test)
+            out = tuple(map(float, items))
+            if all((not positive or v >= TINY) and (not nonneg or v >= 0) for v in out):
+                return out
+        else:  # fast path for long plain lists (sample times)
+            import numpy as np
+
+            arr = np.array(items, dtype=float)
+            if _plain_ok(arr, positive, nonneg):
+                return arr if as_array else tuple(arr.tolist())
+    out = tuple(_window(name, check_finite(name, v, where=f" at index {i}"), v, f" at index {i}",
+                        positive, nonneg) for i, v in enumerate(items))
+    if as_array:
         import numpy as np
 
-        arr = np.array(items, dtype=float) if all(abs(v) <= HUGE for v in items) else None
-        if arr is not None and _plain_ok(arr, positive, nonneg):
-            return tuple(arr.tolist())
-    return tuple(_window(name, check_finite(name, v, where=f" at index {i}"), v, f" at index {i}",
-                         positive, nonneg) for i, v in enumerate(items))
+        return np.fromiter(out, dtype=float, count=len(out))
+    return out
 
 
 def _plain_ok(arr, positive: bool, nonneg: bool) -> bool:

@@ -104,9 +104,9 @@ class RunOptions:
 
 def _sample_times(spec, n_samples, t_eval) -> np.ndarray:
     if t_eval is not None:
-        checked = check_vector("t_eval", t_eval, nonneg=True)
-        t = np.fromiter(checked, dtype=float, count=len(checked))  # (np.array of a tuple costs 2x)
-        if np.any(np.diff(t) <= 0) or t[-1] > spec.t_end:
+        t = check_vector("t_eval", t_eval, nonneg=True, as_array=True)
+        # (t[i+1] <= t[i] exactly where their difference is <= 0: the same test as np.diff's, one NumPy call)
+        if np.count_nonzero(t[1:] <= t[:-1]) or t[-1] > spec.t_end:
             raise SceneError(f"`t_eval` must increase strictly within [0, t_end={spec.t_end!r}]")
         return t
     n = check_int("n_samples", n_samples, minimum=2, maximum=limits.MAX_VALUES)

@@ -58,12 +58,13 @@ def power_maps(spec, stuck, fric_slip, V):
     return linear_map((2, 3 * n), (rows, cols, vals)), np.array([V * fric, V * fric]), rates
 
 
-def modal_work(phase, taus):
-    """(3, T) work integrals of a closed-form phase at ``taus`` (s)."""
+def modal_work(phase, taus, growth=None):
+    """(3, T) work integrals of a closed-form phase at ``taus`` (s); ``growth``: the phase
+    motion's :meth:`~.modal.ModalForm.growth` at ``taus``, if at hand."""
     t = phase.template
     power = phase.form(t.power_shapes, t.power_map, t.power_offset)
     work = np.empty((3, np.size(taus)))
-    work[:2] = power.integral(taus)
+    work[:2] = power.integral(taus, growth)
     c = phase.spec.c
     if t.rate_map is not None:  # (a chain without dampers loses nothing in them)
         rates = phase.form(t.rate_shapes, t.rate_map, np.zeros(phase.spec.n + 1))

@@ -22,7 +22,7 @@ from .backend import RawRun
 from .energy import modal_work, power_maps, quadrature_work
 from .events import event_map
 from .loop import event_loop
-from .modal import ModalForm, block_matrix, damped, scale_columns
+from .modal import ModalForm, block_matrix, scale_columns
 from .segment import Segment, SegmentModes
 from .spec import link_force
 
@@ -64,12 +64,13 @@ class Template:
         n, V = spec.n, spec.v_belt
         self.spec, self.V = spec, float(V)
         self.modes = np.asarray(modes)
+        stuck = self.modes.tolist()  # (plain ints: the pattern is read mass by mass below)
         self.stuck = self.modes == 0
-        self.any_stuck = bool(np.count_nonzero(self.stuck))
+        self.any_stuck = 0 in stuck
         #: kinetic force on each slipping mass (N): opposes the relative velocity
         self.fric_slip = -self.modes * spec.kinetic_force
         self.runs = []
-        for lo, hi in _runs(self.stuck, spec):
+        for lo, hi in _runs([mode == 0 for mode in stuck], spec):
             if (lo, hi) not in segments:
                 segments[lo, hi] = SegmentModes(spec, lo, hi)
                 _bound(segments)
@@ -83,25 +84,29 @@ class Template:
         blocks, col = [], 0
         for lo, hi, m in self.runs:
             L, S = hi - lo + 1, m.lam.size
-            idx, cols = lo + np.arange(L), col + np.arange(S)
-            blocks += [(idx, cols, m.shapes[:L]), (n + idx, cols, m.shapes[L:]), (2 * n + idx, cols, m.shapes[L:] * m.lam)]
+            # (ranges of consecutive indices, as :func:`~.modal.block_matrix` takes them)
+            cols = range(col, col + S)
+            blocks += [(range(lo, hi + 1), cols, m.shapes[:L]), (range(n + lo, n + hi + 1), cols, m.shapes[L:]),
+                       (range(2 * n + lo, 2 * n + hi + 1), cols, m.shapes[L:] * m.lam)]
             col += S
-        self.lam = np.concatenate([m.lam for _, _, m in self.runs]) if self.runs else np.zeros(0, complex)
+        # (one segment's eigenvalues are the pattern's own: never written to, so shared, not copied)
+        self.lam = (self.runs[0][2].lam if len(self.runs) == 1 else
+                    np.concatenate([m.lam for _, _, m in self.runs]) if self.runs else np.zeros(0, complex))
         self.shapes = block_matrix(blocks, (3 * n, col))
         self.kind, self.mass, self.event_map, self.event_offset = event_map(spec, self.modes, self.V)
         self.event_shapes = self.event_map @ self.shapes
         self.event_shapes_abs = abs(self.event_shapes)
         #: |lam|⁴ of the modes (the event functions' fourth-derivative bound, :class:`~.events.ModalEvents`)
         self.lam_abs4 = np.abs(self.lam) ** 4
-        #: whether any mode decays or grows (:func:`~.modal.damped`): undamped phases skip exp(Re lam·tau)
-        self.damped = damped(self.lam)
+        #: whether any mode decays or grows (:func:`~.modal.damped`): undamped phases skip exp(Re lam·tau);
+        #: the pattern's eigenvalues are its segments', so it is any segment's (found once per segment)
+        self.damped = any(m.damped for _, _, m in self.runs)
         #: the particular solution's (c0, c1) rows [x; v; a] of stuck masses, c0's x rows to be set to x0
         self.c0_stuck, self.c1_stuck = np.zeros(3 * n), np.zeros(3 * n)
         self.c0_stuck[n : 2 * n] = self.V
         self.c1_stuck[:n] = self.V
-        #: per segment, the rows of its x and v in the state [x; v; a]
-        self.segment_rows = [np.concatenate([lo + np.arange(hi - lo + 1), n + lo + np.arange(hi - lo + 1)])
-                             for lo, hi, _ in self.runs]
+        #: per segment, the rows of its x and of its v in the state [x; v; a] (slices)
+        self.segment_rows = [(slice(lo, hi + 1), slice(n + lo, n + hi + 1)) for lo, hi, _ in self.runs]
         self.power_map, self.power_offset, self.rate_map = power_maps(spec, self.stuck, self.fric_slip, self.V)
         self.power_shapes = self.power_map @ self.shapes
         self.rate_shapes = None if self.rate_map is None else self.rate_map @ self.shapes
@@ -140,9 +145,12 @@ class LinearPhase:
             # stuck rows: x = x0 + V·tau, v = V, a = 0; segment rows: particular solution + modes
             c0, c1 = template.c0_stuck.copy(), template.c1_stuck.copy()
             c0[:n] = self.x0
-            for seg, rows in zip(self.segments, template.segment_rows):
-                c0[rows], c1[rows] = seg.c0, seg.c1
-            self.coef = np.concatenate([s.coef for s in self.segments]) if self.segments else np.zeros(0, complex)
+            for seg, (x_rows, v_rows) in zip(self.segments, template.segment_rows):
+                L = seg.L
+                c0[x_rows], c0[v_rows], c1[x_rows], c1[v_rows] = seg.c0[:L], seg.c0[L:], seg.c1[:L], seg.c1[L:]
+            # (one segment's amplitudes are the phase's own: never written to, so shared, not copied)
+            self.coef = (self.segments[0].coef if len(self.segments) == 1 else
+                         np.concatenate([s.coef for s in self.segments]) if self.segments else np.zeros(0, complex))
             self.motion = ModalForm(template.lam, scale_columns(template.shapes, self.coef), c0, c1, template.damped)
 
     def form(self, shapes, rows_map, offset) -> ModalForm:
@@ -173,10 +181,15 @@ class LinearPhase:
         if self.motion is None:
             x, v, a = self.evaluate(tau)
             return x, v, self.friction_force(x, v, a, tau), quadrature_work(self, tau)
-        y = self.motion.at(tau)
         n = self.spec.n
-        x, v = y[:n], y[n : 2 * n]
-        return x, v, self.friction_force(x, v, None, tau), modal_work(self, tau)
+        # the rows x and v only (recording needs no accelerations): each row's value is its own
+        # sum, the same numbers as among all rows (:class:`~.events.ModalEvents`); the work
+        # integrals reuse these times' exponentials
+        m = self.motion
+        growth = m.growth(tau)
+        y = ModalForm(m.lam, m.B[: 2 * n], m.c0[: 2 * n], m.c1[: 2 * n], m.damped).at(tau, growth)
+        x, v = y[:n], y[n:]
+        return x, v, self.friction_force(x, v, None, tau), modal_work(self, tau, growth)
 
     def belt_velocity(self, tau):
         return np.full(np.size(tau), self.V)
@@ -203,9 +216,8 @@ class LinearPhase:
 
 
 def _runs(stuck, spec):
-    """(lo, hi) of each maximal run of slipping masses joined by a spring or damper."""
-    n = spec.n
-    linked = (spec.k[1:n] != 0) | (spec.c[1:n] != 0)
+    """(lo, hi) of each maximal run of slipping masses joined by a spring or damper (``stuck``: a list of bools)."""
+    n, linked = spec.n, spec.linked
     out, i = [], 0
     while i < n:
         if stuck[i]:

@@ -86,7 +86,7 @@ def event_loop(spec, options, make_phase) -> RawRun:
             intervals[i].append((stick_start[i], spec.t_end))
     out = RawRun(
         t=np.concatenate(rec["t"]), x=np.concatenate(rec["x"], axis=1), v=np.concatenate(rec["v"], axis=1),
-        state=np.concatenate(rec["state"], axis=1), friction_force=np.concatenate(rec["friction"], axis=1),
+        state=_states(rec["state"]), friction_force=np.concatenate(rec["friction"], axis=1),
         work=np.concatenate(rec["work"], axis=1), events=events, stick_intervals=intervals,
         meta={"n_events": sum(e.kind != "graze" for e in events), "n_grazes": sum(e.kind == "graze" for e in events),
               "v_scale": v_scale})
@@ -106,9 +106,13 @@ def _record(phase, taus, t0, length, work, rec):
         rec["t"].append(t0 + taus)
         rec["x"].append(x[:, :m])
         rec["v"].append(v[:, :m])
-        state = np.empty((phase.modes.size, m), dtype=phase.modes.dtype)
-        state[...] = phase.modes[:, None]
-        rec["state"].append(state)
         rec["friction"].append(fric[:, :m])
         rec["work"].append(w[:, :m])
+        rec["state"].append((phase.modes, m))
     return w[:, -1], x[:, -1], v[:, -1]
+
+
+def _states(recorded):
+    """The mode of every mass at every sample (n, T) from each phase's (modes, sample count)."""
+    modes, counts = zip(*recorded)
+    return np.repeat(np.stack(modes, axis=1), counts, axis=1)

@@ -44,25 +44,25 @@ class ModalForm:
         self._offset = None  # (see :meth:`at`)
 
     def growth(self, tau):
-        """(Re, Im) of exp(lam·tau), each (S, T), at times ``tau`` (s, (T,)).
+        """(Re, Im) of exp(lam·tau), each (S, T), at times ``tau`` (s, (T,)), and the angles Im lam·tau.
 
         (Outer products here and below are broadcast products, the same numbers as
         ``np.multiply.outer`` without its Python-level cost: these run several times a phase.)
         """
-        phase = self.lam.imag[:, None] * tau
-        cos, sin = np.cos(phase), np.sin(phase)
+        angle = self.lam.imag[:, None] * tau
+        cos, sin = np.cos(angle), np.sin(angle)
         if self.damped is None:
             self.damped = damped(self.lam)
         if self.damped:
             amp = np.exp(self.lam.real[:, None] * tau)
             cos *= amp
             sin *= amp
-        return cos, sin
+        return cos, sin, angle
 
     def at(self, tau, growth=None) -> np.ndarray:
         """Values (R, T) at times ``tau`` (s, (T,), >= 0 as every time from a phase start);
         ``growth`` reuses :meth:`growth` of the same times."""
-        cos, sin = self.growth(tau) if growth is None else growth
+        cos, sin, _ = self.growth(tau) if growth is None else growth
         # in place, in the order of Br@cos - Bi@sin + c0 + c1·tau (the same rounding): a long scan
         # evaluates thousands of times at once, and each fresh (R, T) temporary costs page faults
         out = self.Br @ cos
@@ -79,14 +79,17 @@ class ModalForm:
             out += self._offset
         return out
 
-    def integral(self, tau) -> np.ndarray:
+    def integral(self, tau, growth=None) -> np.ndarray:
         """Integrals from 0 to ``tau`` (R, T) in closed form (every lam non-zero).
 
         (exp(lam·tau) - 1)/lam is formed from expm1 and 2·sin²(omega·tau/2), never as a
         difference of nearly equal numbers: short phases keep their relative accuracy.
+        ``growth``: :meth:`growth` of the same times by a form with the same ``lam`` (its
+        angles, and its sin, exp(Re lam·tau)·sin(Im lam·tau) = Im exp(lam·tau): the same
+        numbers, not evaluated again).
         """
         tau = np.asarray(tau, dtype=float)
-        w = self.lam.imag[:, None] * tau
+        w = self.lam.imag[:, None] * tau if growth is None else growth[2]
         # in place, in the order of the formulas in the comments (the same rounding)
         half = np.sin(0.5 * w)
         np.square(half, out=half)
@@ -98,14 +101,18 @@ class ModalForm:
             re = np.expm1(a)  # Re(exp(lam tau) - 1) = expm1(a)·cos(w) - 2·sin²(w/2)
             re *= np.cos(w)
             re -= half
-            im = np.exp(a)  # Im(exp(lam tau)) = exp(a)·sin(w)
-            im *= np.sin(w)
+            if growth is None:
+                im = np.exp(a)  # Im(exp(lam tau)) = exp(a)·sin(w) (growth's sin: sin(w)·exp(a), the same product)
+                im *= np.sin(w)
         else:
             # Re lam = +0: a = +0·tau = +0 (tau >= 0), expm1(a)·cos(w) = ±0 and exp(a) = 1, so the
             # same numbers are 0.0 - 2·sin²(w/2) (±0 - x = -x for x > 0; x = 0 only at w = 0,
             # where cos = 1 and both give +0) and sin(w): no cos, exp or expm1 to evaluate
             re = np.subtract(0.0, half, out=half)
-            im = np.sin(w)
+            if growth is None:
+                im = np.sin(w)  # (growth's sin: sin(w) itself, undamped)
+        if growth is not None:
+            im = growth[1]
         Bl = scale_columns(self.B, 1.0 / self.lam)
         out = Bl.real @ re  # Bl.real @ re - Bl.imag @ im + c0·tau + c1·tau²/2
         out -= Bl.imag @ im
@@ -131,6 +138,8 @@ class ModalForm:
         if isinstance(self.B, np.ndarray):
             b = self.B[r]
             keep = b != 0
+            if np.count_nonzero(keep) == keep.size:  # every exponential present: the same numbers, uncopied
+                return self.lam, b, float(self.c0[r]), float(self.c1[r])
             return self.lam[keep], b[keep], float(self.c0[r]), float(self.c1[r])
         lo, hi = self.B.indptr[r], self.B.indptr[r + 1]  # CSR row r, without fancy indexing
         return self.lam[self.B.indices[lo:hi]], self.B.data[lo:hi], float(self.c0[r]), float(self.c1[r])
@@ -199,7 +208,7 @@ def phi(z):
 def block_matrix(blocks, shape):
     """Dense or CSR complex matrix of ``shape`` from (rows, cols, values) blocks.
 
-    ``rows`` and ``cols`` of each block are runs of consecutive indices (``lo + np.arange(L)``).
+    ``rows`` and ``cols`` of each block are runs of consecutive indices (``range(lo, lo + L)``).
     """
     if shape[1] <= SPARSE_ABOVE:
         out = np.zeros(shape, dtype=complex)

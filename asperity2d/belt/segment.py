@@ -29,7 +29,7 @@ from functools import cached_property
 
 import numpy as np
 
-from .modal import cmatmul
+from .modal import cmatmul, damped
 
 
 #: largest condition number of the eigenvector matrix of a damped segment solved in modal form:
@@ -47,10 +47,8 @@ class SegmentModes:
     def __init__(self, spec, lo: int, hi: int):
         L = self.L = hi - lo + 1
         m = self.m = spec.m[lo : hi + 1]
-        k, c = spec.k[lo : hi + 2], spec.c[lo : hi + 2]
+        k, c = self._k, self._c = spec.k[lo : hi + 2], spec.c[lo : hi + 2]
         k_diag, k_off = k[:-1] + k[1:], -k[1:-1]
-        K = self.K = _tridiagonal(k_diag, k_off)
-        C = self.C = _tridiagonal(c[:-1] + c[1:], -c[1:-1])
         self.undamped = not np.count_nonzero(c)
         if self.undamped:
             root = np.sqrt(m)
@@ -63,19 +61,35 @@ class SegmentModes:
                 self.Phi = Q / root[:, None]  # mass-normalised: Phiᵀ M Phi = I
                 self.lam = 1j * self.omega
                 self.shapes = np.concatenate((self.Phi, self.Phi * self.lam))  # (complex: promoted)
+                self.damped = damped(self.lam)
             return
         lam, W = np.linalg.eig(self.A)
         self.rate = float(np.max(np.abs(lam)))
-        self.exact = _well_posed(K, lam, W)
+        self.exact = _well_posed(self.K, lam, W)
         if self.exact:
             self.W_inv = np.linalg.inv(W.astype(complex))
-            self.K_inv = np.linalg.inv(K)
+            self.K_inv = np.linalg.inv(self.K)
             # A is real: conjugate pairs have conjugate eigenvectors, so the real motion needs
             # one of each pair (weight 2) plus the real eigenvalues (weight 1)
             self.half = np.flatnonzero(lam.imag >= 0)
             self.half_weight = np.where(lam.imag[self.half] > 0, 2.0, 1.0)
             self.lam = lam[self.half].astype(complex)
             self.shapes = W[:, self.half].astype(complex)
+            #: :func:`~.modal.damped` of ``lam`` (exact segments)
+            self.damped = damped(self.lam)
+
+    @cached_property
+    def K(self) -> np.ndarray:
+        """Stiffness matrix (N/m) of the segment, built when used (an undamped anchored segment is
+        solved from its symmetric eigenproblem without it)."""
+        k = self._k
+        return _tridiagonal(k[:-1] + k[1:], -k[1:-1])
+
+    @cached_property
+    def C(self) -> np.ndarray:
+        """Damping matrix (N·s/m) of the segment, built when used."""
+        c = self._c
+        return _tridiagonal(c[:-1] + c[1:], -c[1:-1])
 
     @cached_property
     def A(self) -> np.ndarray:

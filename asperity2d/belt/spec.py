@@ -233,6 +233,11 @@ class ChainSpec:
         return tuple(np.flatnonzero(self.frictional).tolist())
 
     @cached_property
+    def linked(self) -> tuple:
+        """Per pair of neighbours (n - 1), True when a spring or damper joins masses i and i + 1."""
+        return tuple(k != 0 or c != 0 for k, c in zip(self.springs[1:-1], self.dampers[1:-1]))
+
+    @cached_property
     def damped(self) -> bool:
         """True when any damper acts."""
         return bool(self.c.any())
