@@ -220,9 +220,9 @@ def test_entry_start_sees_the_first_asperity_only():
 SEEDS_SLOW = rule_seeds(0x25_51_0E, 20)
 
 def _script(name: str):
-    from asperity2d.cli.main import _load_script
+    from asperity2d.cli.args import load_script
 
-    return _load_script(ROOT / "scenes" / f"ooten_{name}.py")
+    return load_script(ROOT / "scenes" / f"ooten_{name}.py")
 
 
 def _spacing_verdicts(setup: str) -> dict:
