@@ -241,7 +241,9 @@ def test_fixed_track_spacing_verdicts_hold_on_new_seeds():
     """README, fixed track: random spacing (random-upper and random) lowers every force measure
     but the first breakaway (the same for every spacing by construction); random on both
     surfaces is not the smallest for any measure, and random-upper is below random for the
-    run-up threshold and the peak stick force."""
+    run-up threshold. (On the study's 24 seeds random-upper was below random in the peak stick
+    force too, ×1.16-1.62; on these 20 it is not, ×1.03 [0.86, 1.20], measured 2026-11-25: that
+    difference is seed noise, and the findings page says so.)"""
     found = _spacing_verdicts("fixed")
     for measure in ("critical", "critical-run-up", "quasi-static-breakaway", "peak-stick", "mean-stick"):
         for variant in ("random-upper", "random"):
@@ -249,8 +251,7 @@ def test_fixed_track_spacing_verdicts_hold_on_new_seeds():
             assert c["verdict"] == claims.HOLDS and c["numbers"]["missing"] == 0, (measure, variant)
             assert c["numbers"]["ratio_ci_high"] < 0.95, (measure, variant)
         assert found[measure, "random vs random-upper"]["verdict"] == claims.FAILS, measure
-    for measure in ("critical-run-up", "peak-stick"):
-        assert found[measure, "random vs random-upper"]["numbers"]["ratio_ci_low"] > 1.0, measure
+    assert found["critical-run-up", "random vs random-upper"]["numbers"]["ratio_ci_low"] > 1.0
     for variant in ("random-upper", "random"):
         n = found["first-breakaway", variant]["numbers"]
         assert n["ratio_ci_low"] == n["ratio_ci_high"] == 1.0
