@@ -147,3 +147,22 @@ def test_the_switch_names_why_the_c_loop_is_off():
     env = {**os.environ, kernel.SWITCH: "0"}
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True)
     assert out.stdout.strip() == f"False {kernel.SWITCH}=0"
+
+
+def test_a_finished_copy_is_freed_at_once_not_at_the_next_cycle_collection():
+    # an engine and its C loop form no reference cycle: a critical force's forks (and their
+    # pymunk spaces) go as soon as each run ends, not whenever the cycle collector next runs
+    import gc
+    import weakref
+
+    scene = a.make_scene(lower_count=6, upper_count=2)
+    copy = Engine(scene, default_dt(scene)).copy()
+    copy.step(10)
+    assert copy._kernel is not None
+    space = weakref.ref(copy.layout.space)
+    gc.disable()
+    try:
+        del copy
+        assert space() is None
+    finally:
+        gc.enable()

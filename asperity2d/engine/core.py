@@ -181,7 +181,7 @@ class Engine:
         self._changes += 1
         if self._kernel is not None and not hooks and not before_projection:
             # the same steps in C (bit-identical); the contacts are read again when asked for
-            self._kernel.steps(n)
+            self._kernel.steps(self, n)
             self._arbiters = self._contacts = None
             return
         for _ in range(n):
@@ -333,7 +333,7 @@ class Engine:
                     self._lower_track(min(1.0, (done + n) / period))
                 extra = push_i if phase == "push" else 0.0
                 if self._kernel is not None:  # the same steps in C (bit-identical)
-                    self._kernel.settle_steps(n, extra)
+                    self._kernel.settle_steps(self, n, extra)
                 else:
                     for _ in range(n):
                         fx = d.k * (d.origin - self._slider[0]) if d.spring else 0.0

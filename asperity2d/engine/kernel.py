@@ -78,13 +78,14 @@ class Kernel:
 
     Holds the arrays the C code reads and writes; the engine's drive, step
     count and drift books are copied in before each :meth:`steps` and back
-    after it. The switch's state moves between its Python lists and these
+    after it. The engine is passed to each call rather than kept, so an engine
+    and its kernel form no reference cycle: a finished fork is freed at once,
+    its pymunk space with it, not at the next cycle collection. The switch's state moves between its Python lists and these
     arrays only when the other loop needs it (:meth:`StickSlip.hand_to`).
     """
 
     def __init__(self, engine, stepper: native.Native, track_tolerance: float):
         layout, switch = engine.layout, engine.switch
-        self.engine = engine
         c = self.ctx = ffi.new("asp_ctx *")
         lib_p = native.lib
         c.space, c.body = _address(stepper._space), _address(stepper._body)
@@ -130,9 +131,10 @@ class Kernel:
                      np.int32: "int32_t *"}[arr.dtype.type]
             setattr(c, name.lstrip("_"), ffi.cast(ctype, arr.ctypes.data))
 
-    def steps(self, n: int) -> None:
-        """``n`` steps of the engine (no hooks): as :meth:`Engine.step`'s loop."""
-        e, c = self.engine, self.ctx
+    def steps(self, e, n: int) -> None:
+        """``n`` steps of the engine ``e`` (the one it was made for; no hooks): as
+        :meth:`Engine.step`'s loop."""
+        c = self.ctx
         d, layout = e.drive, e.layout
         c.k, c.c, c.v, c.origin, c.force = d.k, d.c, d.v, d.origin, d.force
         c.step_count, c.max_drift = e.step_count, e.max_solver_drift
@@ -141,9 +143,10 @@ class Kernel:
         lib.asp_steps(c, n)
         e.step_count, e.max_solver_drift = c.step_count, c.max_drift
 
-    def settle_steps(self, n: int, push: float) -> None:
-        """``n`` of :meth:`Engine.settle`'s steps with the extra force ``push`` (internal units)."""
-        e, c = self.engine, self.ctx
+    def settle_steps(self, e, n: int, push: float) -> None:
+        """``n`` of the engine ``e``'s :meth:`Engine.settle` steps with the extra force ``push``
+        (internal units)."""
+        c = self.ctx
         d = e.drive
         c.k, c.origin = d.k, d.origin
         c.max_drift, c.y_track = e.max_solver_drift, e.layout.slider_y_track
