@@ -254,8 +254,21 @@ def load(path: str | os.PathLike) -> Result:
         if name != "drive_x" and not np.all(np.isfinite(arrays[name])):
             raise FileError("path", path, f"is damaged or not {kind}",
                             f"array {name!r} holds non-finite values (NaN or infinity)")
+    t = arrays["t"]
+    if t.size > 1 and np.any(np.diff(t) < 0):
+        at = int(np.argmax(np.diff(t) < 0))
+        raise FileError("path", path, f"is damaged or not {kind}",
+                        f"its time runs backwards (t[{at + 1}] = {t[at + 1]:.6g} s < t[{at}] = {t[at]:.6g} s)")
+    counts = arrays["contact_count"]
+    if np.any(counts < 0) or np.any(counts != np.floor(counts)):
+        raise FileError("path", path, f"is damaged or not {kind}",
+                        "array 'contact_count' holds negative or fractional counts")
     try:
         scene = Scene.from_dict(meta.pop("scene"))
     except Exception as exc:  # noqa: BLE001 - any malformed record; the file is not ours to trust
         raise FileError("path", path, f"is not {kind}", f"its scene record is invalid: {exc}") from None
+    rows = {arrays[name].shape[0] for name in LOWER_SERIES}
+    if rows != {scene.lower.count}:
+        raise FileError("path", path, f"is not {kind}", f"its lower arrays have {sorted(rows)} rows for "
+                        f"the scene's {scene.lower.count} lower asperities")
     return Result(**arrays, scene=scene, meta=meta)

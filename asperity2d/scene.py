@@ -441,7 +441,15 @@ class Scene:
 
     @classmethod
     def from_dict(cls, data: dict) -> "Scene":
-        return _from_plain(data)
+        """The scene :meth:`to_dict` wrote; a record that is not a scene's raises SceneError."""
+        if not isinstance(data, dict) or data.get("type") != cls.__name__:
+            raise SceneError(f"`scene` must be a scene record (a table with type = {cls.__name__!r}), "
+                             f"got {type(data).__name__}" + (f" of type {data.get('type')!r}"
+                                                             if isinstance(data, dict) else ""))
+        try:
+            return _from_plain(data)
+        except TypeError as exc:  # a missing or unknown field of a component
+            raise SceneError(f"`scene` record does not fit: {exc}") from None
 
 
 _KINDS = {"full": "full triangles", "half": "half triangles", "flat": "flat blocks"}

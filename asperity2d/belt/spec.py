@@ -22,7 +22,7 @@ from typing import Callable
 import numpy as np
 
 from ..errors import SceneError, SimulationError
-from ..friction.laws import Coulomb, FrictionLaw, StaticKinetic
+from ..friction.laws import Coulomb, FrictionLaw, StaticKinetic, law_from_dict
 from .._validate import check_real, check_vector, show
 from . import limits
 
@@ -302,6 +302,32 @@ class ChainSpec:
             "g": self.g,
             "normal_load": list(self.normal) if self.normal_load is not None else None,
         }
+
+    #: The fields of :meth:`to_dict`'s record.
+    RECORD = ("masses", "springs", "dampers", "friction", "v_belt", "x0", "v0", "t_end", "g", "normal_load")
+
+    @classmethod
+    def from_dict(cls, record: dict) -> "ChainSpec":
+        """The chain :meth:`to_dict` wrote (a saved result's ``chain`` record), validated again.
+
+        ``friction`` is the law's own record (``law_from_dict``); a callable ``v_belt`` was saved
+        by its name only and cannot be rebuilt. A record that is not a dict, lacks a field, has
+        one this class does not know, or holds a bad value raises :class:`SceneError` naming the
+        field."""
+        if not isinstance(record, dict):
+            raise SceneError(f"`chain` must be a table of ChainSpec fields, got {show(record)}")
+        unknown = sorted(set(record) - set(cls.RECORD))
+        if unknown:
+            raise SceneError(f"`chain.{unknown[0]}` is not a ChainSpec field (known: {', '.join(cls.RECORD)})")
+        missing = [name for name in cls.RECORD if name not in record and name not in ("g", "normal_load")]
+        if missing:
+            raise SceneError(f"`chain.{missing[0]}` is missing")
+        if isinstance(record["v_belt"], str):
+            raise SceneError(f"`chain.v_belt` was a function ({record['v_belt']}), saved by its name only: "
+                             "it cannot be rebuilt")
+        return cls(record["masses"], record["springs"], record["dampers"], None, None, record["v_belt"],
+                   record["x0"], record["v0"], record["t_end"], record.get("g", 9.81),
+                   record.get("normal_load"), law_from_dict(record["friction"]))
 
 
 def tridiagonal(links: np.ndarray) -> np.ndarray:
