@@ -206,6 +206,55 @@ class LowerSurface(SurfaceGeometry):
         return K
 
 
+#: NumPy's pairwise-summation block (``PW_BLOCKSIZE`` in its loops): a row longer than this is
+#: summed as two halves, each a multiple of 8 long; a block of 8..128 with eight accumulators.
+_PAIRWISE_BLOCK = 128
+
+
+def _meet(p, q):
+    """The level (1, 2, 3) at which accumulators ``p`` and ``q`` (0..7) are first added together in
+    NumPy's ``((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7))``."""
+    return np.where(p // 2 == q // 2, 1, np.where(p // 4 == q // 4, 2, 3))
+
+
+def gershgorin_rows(links) -> np.ndarray:
+    """Row sums of abs(K) for the tridiagonal stiffness matrix K of ``links`` (n + 1 springs, N/m),
+    in O(n) memory and time: the Gershgorin bound on its eigenvalues without the n x n matrix.
+
+    Bit-identical to ``np.abs(K).sum(axis=1)`` (the dense computation the scenes' time steps were
+    derived from, so no run's numbers change): a row holds three non-zero terms a, b, c (columns
+    i - 1, i, i + 1) and zeros, which add exactly, so NumPy's pairwise sum of the row is
+    (a + b) + c or a + (b + c) by where the three fall in its summation tree; this function
+    walks that tree for every row at once (the test compares it with the dense sum)."""
+    links = np.asarray(links, dtype=float).ravel()
+    n = links.size - 1
+    if n < 1:
+        return np.zeros(0)
+    a = np.abs(links[:-1])  # |K[i, i - 1]| (none on row 0)
+    b = np.abs(links[:-1] + links[1:])  # |K[i, i]|
+    c = np.abs(links[1:])  # |K[i, i + 1]| (none on row n - 1)
+    a[0] = c[-1] = 0.0  # fresh arrays (np.abs), so the links are not touched
+    left_first = np.ones(n, bool)  # (a + b) + c; else a + (b + c)
+    stack = [(0, n, np.arange(1, n - 1))]  # (first column, length, rows with all three terms)
+    while stack:
+        lo, size, rows = stack.pop()
+        if rows.size == 0 or size < 8:  # under 8: added in order, (a + b) + c
+            continue
+        if size > _PAIRWISE_BLOCK:
+            half = size // 2
+            half -= half % 8
+            split = lo + half
+            left_first[rows[rows == split]] = False  # {a} + {b, c}
+            stack.append((lo, half, rows[rows + 1 < split]))
+            stack.append((split, size - half, rows[rows - 1 >= split]))
+            continue
+        full = lo + size - size % 8  # columns from here on are added one by one after the tree
+        r = rows[rows + 1 < full]
+        pa, pb, pc = (r - 1 - lo) % 8, (r - lo) % 8, (r + 1 - lo) % 8
+        left_first[r] = _meet(pa, pb) < _meet(pb, pc)
+    return np.where(left_first, (a + b) + c, a + (b + c))
+
+
 @dataclass(frozen=True)
 class Slider(SurfaceGeometry):
     """The upper body carrying its own asperities, on a horizontal track.
@@ -413,8 +462,8 @@ class Scene:
         with np.errstate(over="ignore", divide="ignore"):
             freqs = {"lower": float(np.max(np.sqrt(k / m)))}
         if self.lower.is_lattice:
-            # Gershgorin bound on the lattice's highest horizontal mode.
-            row = np.abs(self.lower.lateral_stiffness_matrix()).sum(axis=1)
+            # Gershgorin bound on the lattice's highest horizontal mode, in O(n) memory
+            row = gershgorin_rows(self.lower.lateral_stiffness if self.lower.is_lattice else ())
             freqs["lattice"] = float(np.max(np.sqrt(row / m)))
         if isinstance(self.drive, SpringDrive):
             freqs["drive"] = math.sqrt(self.drive.stiffness / self.slider.mass)
