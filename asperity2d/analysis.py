@@ -68,8 +68,18 @@ class Event:
     complete: bool = True
 
 
+def _asperity_run(result) -> None:
+    """Raise SceneError unless ``result`` is an asperity run (a Result, or a record read lazily)."""
+    if getattr(result, "kind", None) != "asperity" or getattr(result, "scene", None) is None:
+        what = "a belt chain" if getattr(result, "kind", None) == "belt" else type(result).__name__
+        hint = ("; a chain's sticks and slips are its `stick_intervals` and `events` (asperity2d.belt)"
+                if what == "a belt chain" else "")
+        raise SceneError(f"`result` must be an asperity run (asperity2d.simulate), got {what}{hint}")
+
+
 def _drive_scales(result) -> tuple[float | None, float | None]:
     """(drive velocity m/s, slider period on the drive spring s), or Nones."""
+    _asperity_run(result)
     drive = result.scene.drive
     if not isinstance(drive, SpringDrive):
         return None, None
@@ -291,6 +301,7 @@ def friction_traces(result, *, bins: int = 40, dynamic_range: float = 1e4) -> di
     (log-spaced bins; slower samples are left out): ``velocity_centers``
     (m/s), ``friction_mean`` (N) and ``bin_count``.
     """
+    _asperity_run(result)
     if int(bins) < 1:
         raise SceneError(f"`bins` must be >= 1, got {bins!r}")
     x, v = np.asarray(result.x, dtype=float), np.asarray(result.v, dtype=float)
@@ -405,6 +416,7 @@ def contact_states(result, *, stick_speed: float | None = None) -> ContactStates
     ``stick_speed`` (m/s) defaults to 0.5 x the drive velocity (as :func:`stick_slip_events`); a
     constant-force run needs it given.
     """
+    _asperity_run(result)
     t = np.asarray(result.t, dtype=float)
     if t.size < 2:
         raise SceneError(f"`result` must have at least 2 samples, got {t.size}")

@@ -33,7 +33,7 @@ import math
 import warnings
 from dataclasses import dataclass
 
-from ._validate import check_choice, check_int, check_positive
+from ._validate import check_choice, check_int, check_positive, check_tolerance
 from .errors import SceneError
 from .scene import ConstantForce, Scene
 from .run import MAX_STEPS, Run, default_dt, default_duration, default_stops
@@ -285,10 +285,12 @@ def critical_force_bracket(scene: Scene, *, start: str = "rest", rel_tol: float 
     """
     if not isinstance(scene, Scene):
         raise SceneError(f"`scene` must be a Scene, got {type(scene).__name__}")
-    rel_tol = check_positive("rel_tol", rel_tol)
-    if rel_tol >= 1:
-        raise SceneError(f"`rel_tol` must be < 1, got {rel_tol!r}")
+    rel_tol = check_tolerance("rel_tol", rel_tol)
     max_runs = check_int("max_runs", max_runs, minimum=2)
+    halvings = math.ceil(math.log2(1.0 / rel_tol))  # bisections from a factor-2 bracket at least
+    if halvings > max_runs:
+        raise SceneError(f"`rel_tol` = {rel_tol:g} needs at least {halvings} runs to bisect, more than "
+                         f"`max_runs` = {max_runs}: raise one or the other")
     check_choice("start", start, STARTS)
     base = settled_run(scene, start=start, dt=measure_dt(scene, start) if dt is None else dt,
                        iterations=iterations, max_steps=max_steps)

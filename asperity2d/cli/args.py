@@ -10,7 +10,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from .._validate import MAX_RUNS, check_int, check_positive
+from .._validate import MAX_RUNS, check_int, check_positive, check_tolerance
 from .._validate import check_runs as _check_runs
 from ..errors import SceneError
 
@@ -92,6 +92,12 @@ def _checked(check, convert, text: str):
 def positive_float(text: str) -> float:
     """An argparse type: a finite number > 0 (:func:`asperity2d._validate.check_positive`)."""
     return _checked(check_positive, float, text)
+
+
+def tolerance(text: str) -> float:
+    """An argparse type: a relative tolerance a float can meet
+    (:func:`asperity2d._validate.check_tolerance`)."""
+    return _checked(check_tolerance, float, text)
 
 
 def positive_int(text: str) -> int:

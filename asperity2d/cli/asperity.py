@@ -220,7 +220,7 @@ def _parse_set(items: list[str]) -> dict:
             raise SceneError(f"`--set` takes key=value, got {item!r}")
         try:
             out[key.strip()] = tomllib.loads(f"v = {text}")["v"]
-        except tomllib.TOMLDecodeError:
+        except (tomllib.TOMLDecodeError, RecursionError):  # not a TOML value: the text itself
             out[key.strip()] = text
     return out
 

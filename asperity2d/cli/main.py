@@ -22,7 +22,7 @@ import warnings
 
 from ..errors import SceneError, SimulationError
 from . import asperity, basins, belt, sweep
-from .args import MAX_RUNS, PLOT_SUFFIXES, PROG, WORKERS_HELP, Parser, Subcommands, fail, positive_float
+from .args import MAX_RUNS, PLOT_SUFFIXES, PROG, WORKERS_HELP, Parser, Subcommands, fail, positive_float, tolerance
 from .args import positive_int
 from .args import workers as workers_arg
 
@@ -93,7 +93,7 @@ def build_parser() -> Parser:
 
     p = sub.add_parser("critical", help="critical constant drive force of a TOML scene")
     p.add_argument("scene", help="TOML scene file")
-    p.add_argument("--rel-tol", type=positive_float, default=0.0025, help="bracket width (default 0.0025)")
+    p.add_argument("--rel-tol", type=tolerance, default=0.0025, help="bracket width (default 0.0025)")
     _json_flag(p)
     p.set_defaults(handler=asperity.critical)
 
@@ -170,7 +170,7 @@ def _add_belt(subparsers) -> None:
     p.add_argument("--store", help="sweep store directory (default: <output>.runs)")
     p.add_argument("--workers", type=workers_arg, default=None, help=WORKERS_HELP)
     p.add_argument("--scheduler", help="Dask scheduler address, or 'local'")
-    p.add_argument("--rtol", type=positive_float, default=1e-6, help="relative tolerance of the limit-cycle test")
+    p.add_argument("--rtol", type=tolerance, default=1e-6, help="relative tolerance of the limit-cycle test")
     _max_runs(p)
     p.set_defaults(handler=basins.run)
 

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._validate import check_tolerance
 from ..errors import SceneError
 from .sections import chain_section, crossings, opening_section, poincare_section
 from .signals import check_series
@@ -90,8 +91,7 @@ def detect_period(points, times=None, *, scale=None, rtol: float = 1e-4, max_mul
 
 
 def _check_detect(rtol, max_multiplicity, min_repeats):
-    if not np.isfinite(rtol) or rtol <= 0:
-        raise SceneError(f"`rtol` must be > 0, got {rtol!r}")
+    check_tolerance("rtol", rtol)
     for name, val in (("max_multiplicity", max_multiplicity), ("min_repeats", min_repeats)):
         if isinstance(val, bool) or not isinstance(val, (int, np.integer)) or val < 1:
             raise SceneError(f"`{name}` must be an integer >= 1, got {val!r}")

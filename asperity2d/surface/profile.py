@@ -32,6 +32,9 @@ from ..errors import SceneError
 
 #: Relative tolerance on the sample spacing for a profile to count as uniformly sampled.
 UNIFORM_TOLERANCE = 1e-3
+#: The smallest sample step (m): a femtometre, far below any instrument's (and an atom's 1e-10 m);
+#: steps far smaller (subnormal numbers: 1e-320) leave the levelling fit without a solution.
+MIN_STEP = 1e-15
 #: Most points of a generated profile (a 2**24-point trace is 128 MB of heights).
 MAX_POINTS = 2**24
 
@@ -65,6 +68,10 @@ class SurfaceProfile:
             i = int(np.argmax(steps <= 0))
             raise SceneError(f"`x` must be strictly increasing: x[{i + 1}] = {x[i + 1]!r} "
                              f"follows x[{i}] = {x[i]!r}")
+        if np.min(steps) < MIN_STEP:
+            i = int(np.argmin(steps))
+            raise SceneError(f"`x` steps must be at least {MIN_STEP:g} m (positions are in m), got "
+                             f"{float(steps[i])!r} between x[{i}] and x[{i + 1}]")
         object.__setattr__(self, "x", x)
         object.__setattr__(self, "z", z)
         object.__setattr__(self, "metadata", MappingProxyType(dict(self.metadata)))
@@ -96,7 +103,11 @@ class SurfaceProfile:
 
     def detrended(self) -> "SurfaceProfile":
         """The profile minus its least-squares straight line (form / tilt removal)."""
-        slope, intercept = np.polyfit(self.x, self.z, 1)
+        try:
+            slope, intercept = np.polyfit(self.x, self.z, 1)
+        except (np.linalg.LinAlgError, ValueError) as exc:  # the rule on x steps should prevent it
+            raise SceneError(f"profile {self.name!r} cannot be levelled (a least-squares line through "
+                             f"its points has no solution: {exc}); use surface_detrend=False") from None
         return SurfaceProfile(self.x, self.z - (slope * self.x + intercept),
                               name=self.name, metadata={**self.metadata, "detrended": True})
 

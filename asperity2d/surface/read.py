@@ -55,6 +55,9 @@ def read_profile(path: str | os.PathLike, *, unit: str | None = None, line: int 
     name : str, optional
         Profile name (default: the file name).
     """
+    if not isinstance(path, (str, os.PathLike)):
+        raise SceneError(f"`path` must be a file name (str or path), got {type(path).__name__}"
+                         + ("; to read bytes, write them to a file first" if isinstance(path, (bytes, bytearray)) else ""))
     path = Path(path)
     if unit is not None:
         check_choice("unit", unit, UNITS)

@@ -265,7 +265,7 @@ def load_study(path: str | os.PathLike) -> Study:
         try:
             with path.open("rb") as fh:
                 data = tomllib.load(fh)
-        except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        except (tomllib.TOMLDecodeError, UnicodeDecodeError, RecursionError) as exc:
             raise SceneError(f"`study` file {str(path)!r} is not valid TOML: {exc}") from None
         return Study.from_dict(data)
     if suffix == ".py":
