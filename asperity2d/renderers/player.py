@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import base64
 import json
+import re
 import os
 from importlib import resources
 from pathlib import Path
@@ -197,12 +198,27 @@ def asset(name: str) -> str:
 
 def page(result, **options) -> str:
     """The player's whole HTML document for ``result``."""
-    data = json.dumps(_clean(payload(result, **options)), separators=(",", ":"), allow_nan=False)
-    data = data.replace("</", "<\\/")  # never end the <script> element early
-    html = asset("player.html")
-    title = data_title(result)
-    return (html.replace("{{TITLE}}", _escape(title)).replace("/*{{CSS}}*/", asset("player.css"))
-            .replace("/*{{JS}}*/", asset("player.js")).replace("{{DATA}}", data))
+    data = script_json(_clean(payload(result, **options)))
+    parts = {"{{TITLE}}": _escape(data_title(result)), "/*{{CSS}}*/": asset("player.css"),
+             "/*{{JS}}*/": asset("player.js"), "{{DATA}}": data}
+    # one pass over the template: a scene named "{{DATA}}" stays text and is not filled in
+    return re.sub("|".join(map(re.escape, parts)), lambda m: parts[m.group(0)], asset("player.html"))
+
+
+#: Characters JSON may hold that HTML would read inside a ``<script>`` element (``</script>``,
+#: ``<!--`` starting the script's "double escaped" state, which hides the rest of the page), or an
+#: attribute (``&``), and the two line separators old JavaScript parsers reject in strings.
+_SCRIPT_UNSAFE = {"<": "\\u003c", ">": "\\u003e", "&": "\\u0026", "\u2028": "\\u2028", "\u2029": "\\u2029"}
+
+
+def script_json(value) -> str:
+    """``value`` as JSON safe to embed in an HTML ``<script>`` element: every ``<``, ``>`` and
+    ``&`` written as a ``\\u`` escape (the same string to JavaScript), so no data -- a scene named
+    ``<!--<script>`` -- can end the element or blank the page."""
+    text = json.dumps(value, separators=(",", ":"), allow_nan=False)
+    for char, escaped in _SCRIPT_UNSAFE.items():
+        text = text.replace(char, escaped)
+    return text
 
 
 def data_title(result) -> str:
@@ -225,4 +241,4 @@ def write_player(result, path: str | os.PathLike, *, max_samples: int = 8000, ca
     return atomic_write_text(path, page(result, max_samples=max_samples, camera=camera))
 
 
-__all__ = ["PLAYBACK_SECONDS", "asset", "keep_indices", "page", "payload", "write_player"]
+__all__ = ["PLAYBACK_SECONDS", "asset", "keep_indices", "page", "payload", "script_json", "write_player"]
