@@ -40,6 +40,7 @@ from ..builders import make_scene
 from ..errors import SceneError
 from ..scene import Scene
 from ..sweep.engine import is_auto, run_calls
+from ..sweep.executors import check_executor_args
 from ..sweep.progress import Progress
 from .measures import MEASURES, measure_label  # noqa: F401  (the named measures live there)
 
@@ -199,6 +200,7 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
     if "seed" in base or any("seed" in (kw or {}) for kw in variants.values()):
         raise SceneError("`variants` and `base` must not set `seed` (it comes from `seeds`)")
     workers = None if is_auto(workers) else check_int("workers", workers, minimum=1, maximum=1024)
+    check_executor_args(workers=workers, scheduler=scheduler)  # before the progress bar is drawn
     if workers != 1 or scheduler is not None:
         try:
             pickle.dumps(measure)

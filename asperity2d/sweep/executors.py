@@ -40,7 +40,10 @@ import uuid
 from functools import lru_cache
 from typing import Any, Callable, Iterable, Iterator, Mapping, Sequence
 
-from ..errors import SceneError
+import contextlib
+import logging
+
+from ..errors import SceneError, SimulationError
 
 
 @lru_cache(maxsize=32)
@@ -299,6 +302,44 @@ def _import_distributed():
     return distributed
 
 
+class OneLine(logging.Filter):
+    """A log filter that writes an exception's record as one line: its message and the exception's
+    type and text, without the traceback (a killed Dask worker makes its peers and the scheduler
+    log a ``CommClosedError`` traceback each; the run it held is reported as failed anyway)."""
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        if record.exc_info and record.exc_info[1] is not None:
+            exc = record.exc_info[1]
+            record.msg = f"{record.getMessage()} ({type(exc).__name__}: {exc})".replace("\n", " ")
+            record.args, record.exc_info, record.exc_text = (), None, None
+        return True
+
+
+#: The loggers whose exception records :class:`OneLine` shortens while a Dask executor is open.
+DASK_LOGGERS = ("distributed", "tornado", "asyncio")
+
+
+def quiet_tracebacks(names=DASK_LOGGERS) -> Callable[[], None]:
+    """Put a :class:`OneLine` filter on the handlers of loggers ``names`` (and the root's);
+    return the function that takes it off again."""
+    one = OneLine()
+    handlers = {h for name in (*names, "") for h in logging.getLogger(name).handlers}
+    for handler in handlers:
+        handler.addFilter(one)
+
+    def undo() -> None:
+        for handler in handlers:
+            handler.removeFilter(one)
+
+    return undo
+
+
+def dask_setup(worker=None) -> None:
+    """Dask preload hook (``LocalCluster(preload=[__name__])``): the workers this package starts
+    log exceptions as one line too."""
+    quiet_tracebacks()
+
+
 class DaskExecutor:
     """Runs on a Dask distributed cluster.
 
@@ -318,11 +359,17 @@ class DaskExecutor:
         distributed = _import_distributed()
         self.scheduler = scheduler
         self._cluster = None
+        self._loud = quiet_tracebacks()
         if scheduler == "local":
             n = _check_workers(workers)
-            self._cluster = distributed.LocalCluster(
-                n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None
-            )
+            try:
+                self._cluster = distributed.LocalCluster(
+                    n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+                    preload=[__name__])
+            except Exception as exc:  # noqa: BLE001 - a worker killed or failing while it starts
+                self._loud()
+                raise SimulationError(f"`scheduler` 'local': the Dask cluster did not start "
+                                      f"({type(exc).__name__}: {exc})") from None
             address = self._cluster.scheduler_address
         else:
             address = scheduler
@@ -330,6 +377,7 @@ class DaskExecutor:
             self._client = distributed.Client(address, set_as_default=False, timeout=CONNECT_TIMEOUT)
         except (OSError, TimeoutError, ValueError) as exc:
             self._close_cluster()
+            self._loud()
             raise SceneError(f"`scheduler` {scheduler!r} could not be reached within "
                              f"{CONNECT_TIMEOUT:g} s: {exc}") from None
 
@@ -358,7 +406,10 @@ class DaskExecutor:
                 index = futures[future.key][1]
                 try:
                     result = future.result()
-                except Exception:  # the worker died running it, or beside the one that did
+                except (KeyboardInterrupt, SystemExit):
+                    raise
+                except BaseException:  # the worker died running it, or beside the one that did
+                    # (KilledWorker, CommClosedError, a cancelled future: each is a death)
                     suspects.append(index)
                     future.release()
                     continue
@@ -374,6 +425,10 @@ class DaskExecutor:
                     result = died(exc)
                 future.release()
                 yield index, result
+        except OSError as exc:  # CommClosedError: the connection to the scheduler itself was lost
+            raise SimulationError(f"`scheduler` {self.scheduler!r}: the connection to the Dask scheduler "
+                                  f"closed ({type(exc).__name__}: {exc}); the runs not finished have no result"
+                                  ) from None
         finally:  # stopped early (error, Ctrl-C): do not leave runs queued on the cluster
             for future, _ in futures.values():
                 if not future.done():
@@ -381,12 +436,15 @@ class DaskExecutor:
 
     def _close_cluster(self) -> None:
         if self._cluster is not None:
-            self._cluster.close()
+            with contextlib.suppress(Exception):  # a cluster whose workers were killed: gone already
+                self._cluster.close()
             self._cluster = None
 
     def close(self) -> None:
-        self._client.close()
+        with contextlib.suppress(Exception):  # CommClosedError, a timeout: the connection is gone
+            self._client.close()
         self._close_cluster()
+        self._loud()
 
     def __enter__(self) -> "DaskExecutor":
         return self
