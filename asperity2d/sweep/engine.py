@@ -165,7 +165,7 @@ def run_calls(fn: Callable, calls: Sequence[tuple], *, workers: int | str | None
     to run in worker processes. ``report``, if given, receives ``"executor"``: where the calls
     ran, in words.
     """
-    from .executors import LocalExecutor, check_executor_args, make_executor, warm_pools
+    from .executors import LocalExecutor, check_executor_args, make_executor, plain_script_fallback, warm_pools
 
     calls = list(calls)
     if executor is not None and (not is_auto(workers) or scheduler is not None):
@@ -181,6 +181,8 @@ def run_calls(fn: Callable, calls: Sequence[tuple], *, workers: int | str | None
         return
     jobs = [(fn, tuple(args)) for args in calls]
     owned, first, pilot = executor is None, 0, ""
+    if owned and scheduler in (None, "local") and workers != 1 and len(jobs) > 1 and plain_script_fallback():
+        workers, scheduler = 1, None  # a plain script without the main guard: in this process
     if owned and scheduler is not None:
         executor = make_executor(workers=workers, scheduler=scheduler)
     elif owned:

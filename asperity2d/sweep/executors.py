@@ -105,6 +105,88 @@ def _check_main_importable() -> None:
         )
 
 
+# -- plain scripts ---------------------------------------------------------------------------
+def _is_main_test(test) -> bool:
+    """True for the test ``__name__ == "__main__"`` (either way round)."""
+    import ast
+
+    if not (isinstance(test, ast.Compare) and len(test.ops) == 1 and isinstance(test.ops[0], ast.Eq)):
+        return False
+    sides = [test.left, test.comparators[0]]
+    return (any(isinstance(s, ast.Name) and s.id == "__name__" for s in sides)
+            and any(isinstance(s, ast.Constant) and s.value == "__main__" for s in sides))
+
+
+def guarded_line(source: str, line: int) -> bool:
+    """True if ``line`` of the module ``source`` lies in the body of an ``if __name__ ==
+    "__main__":`` block (False also for source that does not parse)."""
+    import ast
+
+    try:
+        tree = ast.parse(source)
+    except (SyntaxError, ValueError):
+        return False
+    for node in ast.walk(tree):
+        if isinstance(node, ast.If) and _is_main_test(node.test) and node.body:
+            if node.body[0].lineno <= line <= (node.body[-1].end_lineno or node.body[-1].lineno):
+                return True
+    return False
+
+
+def unguarded_main_call(frame=None) -> str | None:
+    """``"path:line"`` of the main script's statement if the ensemble is started from its top-level code outside an
+    ``if __name__ == "__main__":`` block, else None.
+
+    A spawned worker process (local pools, a Dask ``LocalCluster``) starts by running the main
+    script again, as ``__mp_main__``: code under the guard is skipped there, code outside it
+    runs again -- and starts its own ensemble inside the worker, which fails (one traceback per
+    worker). Python's ``multiprocessing`` does not re-run a main module named ``__main__`` or
+    ``pkg.__main__`` (``python -m asperity2d``), nor an interactive session or notebook (no file).
+    """
+    main = sys.modules.get("__main__")
+    if main is None:
+        return None
+    spec_name = getattr(getattr(main, "__spec__", None), "name", None)
+    if spec_name is not None and (spec_name == "__main__" or spec_name.endswith(".__main__")):
+        return None
+    path = getattr(main, "__file__", None)
+    if not path or not os.path.isfile(path):
+        return None
+    frame = sys._getframe(1) if frame is None else frame
+    while frame is not None and not (frame.f_globals is vars(main) and frame.f_code.co_name == "<module>"):
+        frame = frame.f_back
+    if frame is None:  # not called from the main script's top level (a function it called later)
+        return None
+    try:
+        with open(path, encoding="utf-8") as fh:
+            source = fh.read()
+    except (OSError, UnicodeDecodeError):
+        return None
+    return None if guarded_line(source, frame.f_lineno) else f"{path}:{frame.f_lineno}"
+
+
+_warned_scripts: set[str] = set()
+
+
+def plain_script_fallback() -> bool:
+    """True (and, once per script, a warning saying how to get the workers) if worker processes
+    would re-run the main script's unguarded top-level code: the ensemble then runs here."""
+    import warnings
+
+    where = unguarded_main_call(sys._getframe(1))
+    if where is None:
+        return False
+    script, _, line = where.rpartition(":")
+    if script not in _warned_scripts:
+        _warned_scripts.add(script)
+        warnings.warn_explicit(
+            "asperity2d runs these calls in this process, without worker processes: the script starts "
+            "them outside an `if __name__ == \"__main__\":` block, and each worker would run the script "
+            "again. Put the script's calls under that block to get the workers.",
+            RuntimeWarning, script, int(line), module="__main__")
+    return True
+
+
 # -- the warm pools ----------------------------------------------------------------------------
 #: How often a worker checks that its parent is alive (s), besides the kernel's death signal.
 WATCH_INTERVAL = 0.2
