@@ -342,3 +342,68 @@ def test_a_saved_belt_result_renders_as_a_gif_and_a_player_from_the_command_line
         assert (tmp_path / name).stat().st_size > 1000
     with pytest.raises(a.SceneError, match="`result` must be a Result or a BeltResult, got dict"):
         a.render({"t": []}, tmp_path / "r.gif")
+
+
+# -- fuzzed saved files: any change to a saved file loads or is one FileError ---------------------
+from hypothesis import HealthCheck, given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+JSON = st.recursive(st.one_of(st.none(), st.booleans(), st.integers(-10**20, 10**20), st.floats(allow_nan=False),
+                              st.text(max_size=6)),
+                    lambda inner: st.lists(inner, max_size=3) | st.dictionaries(st.text(max_size=5), inner, max_size=3),
+                    max_leaves=6)
+ARRAY_CHANGES = st.sampled_from(["reverse", "negate", "drop_first", "drop_row", "as_int", "as_bool", "scalar",
+                                 "transpose", "nan"])
+
+
+def _change_array(value: np.ndarray, how: str) -> np.ndarray:
+    if how == "reverse":
+        return value[..., ::-1].copy()
+    if how == "negate":
+        return -value.astype(float)
+    if how == "drop_first":
+        return value[..., 1:]
+    if how == "drop_row":
+        return value[1:] if value.ndim == 2 else value[:0]
+    if how == "as_int":
+        return value.astype(np.int64)
+    if how == "as_bool":
+        return value.astype(bool)
+    if how == "scalar":
+        return np.asarray(value.ravel()[0] if value.size else 0.0)
+    if how == "transpose":
+        return value.T.copy()
+    out = value.astype(float)
+    out.flat[out.size // 2 if out.size else 0:out.size // 2 + 1] = np.nan
+    return out
+
+
+@pytest.mark.parametrize("kind", KINDS)
+@settings(max_examples=25, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(data=st.data())
+def test_any_change_to_a_saved_file_loads_or_is_one_file_error(tmp_path, kind, example, data):
+    """Random JSON at a random place of the metadata (a top-level record or one of its fields),
+    or a random change to a random array: ``asperity2d.load`` returns a result of the kind or
+    raises FileError, never a KeyError, AttributeError, ValueError or a traceback."""
+    source = tmp_path / f"{kind}.npz"
+    if not source.exists():
+        example.save(source)
+    arrays, meta = _saved(source)
+    keys = sorted(k for k in meta if k != "format")
+    if data.draw(st.booleans(), label="metadata"):
+        key = data.draw(st.sampled_from(keys), label="key")
+        if isinstance(meta[key], dict) and meta[key] and data.draw(st.booleans(), label="field"):
+            field = data.draw(st.sampled_from(sorted(meta[key])), label="field name")
+            meta[key][field] = data.draw(JSON, label="value")
+        else:
+            meta[key] = data.draw(JSON, label="value")
+    else:
+        name = data.draw(st.sampled_from(sorted(arrays)), label="array")
+        arrays[name] = _change_array(arrays[name], data.draw(ARRAY_CHANGES, label="change"))
+    bad = save_npz(tmp_path / "fuzzed.npz", arrays, meta)
+    try:
+        back = a.load(bad)
+    except FileError as exc:
+        assert "`path`" in str(exc)
+    else:
+        assert isinstance(back, RESULT_KINDS[kind].family == "belt" and belt.BeltResult or a.Result)
