@@ -407,3 +407,23 @@ def test_any_change_to_a_saved_file_loads_or_is_one_file_error(tmp_path, kind, e
         assert "`path`" in str(exc)
     else:
         assert isinstance(back, RESULT_KINDS[kind].family == "belt" and belt.BeltResult or a.Result)
+
+
+def test_a_chain_spec_comes_back_from_its_record(belt_result):
+    from asperity2d.belt import ChainSpec
+
+    spec = belt_result.chain
+    again = ChainSpec.from_dict(spec.to_dict())
+    assert again.to_dict() == spec.to_dict() and again.law == spec.law
+    record = spec.to_dict()
+    for change, message in [(lambda r: r.pop("masses"), "`chain.masses` is missing"),
+                            (lambda r: r.update(colour=1), "`chain.colour` is not a ChainSpec field"),
+                            (lambda r: r.update(v_belt="<function ramp>"), "saved by its name only"),
+                            (lambda r: r.update(masses=[-1.0, 1.0]), "`masses`"),
+                            (lambda r: r.update(friction={"law": "nope"}), "`friction` law must be one of")]:
+        bad = json.loads(json.dumps(record))
+        change(bad)
+        with pytest.raises(a.SceneError, match=message):
+            ChainSpec.from_dict(bad)
+    with pytest.raises(a.SceneError, match="`chain` must be a table"):
+        ChainSpec.from_dict([1, 2])
