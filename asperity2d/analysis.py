@@ -70,7 +70,7 @@ class Event:
 
 def _asperity_run(result) -> None:
     """Raise SceneError unless ``result`` is an asperity run (a Result, or a record read lazily)."""
-    if getattr(result, "kind", None) != "asperity" or getattr(result, "scene", None) is None:
+    if getattr(result, "kind", "asperity") != "asperity" or getattr(result, "scene", None) is None:
         what = "a belt chain" if getattr(result, "kind", None) == "belt" else type(result).__name__
         hint = ("; a chain's sticks and slips are its `stick_intervals` and `events` (asperity2d.belt)"
                 if what == "a belt chain" else "")
