@@ -427,3 +427,8 @@ def test_a_chain_spec_comes_back_from_its_record(belt_result):
             ChainSpec.from_dict(bad)
     with pytest.raises(a.SceneError, match="`chain` must be a table"):
         ChainSpec.from_dict([1, 2])
+
+
+def test_belt_load_reads_either_kind_of_chain(tmp_path, belt_result, contact_result):
+    assert type(belt.load(contact_result.save(tmp_path / "c.npz"))) is belt.ContactResult
+    assert type(belt.load(belt_result.save(tmp_path / "b.npz"))) is belt.BeltResult

@@ -18,6 +18,7 @@ import numpy as np
 
 from .._io import FileError, check_format, load_npz
 from .normal import SEPARATED, ContactSpec, NormalContact
+from . import result as result_module
 from .result import ENERGY_SERIES, BeltResult, read_intervals, check_arrays, check_books, describe_error, read_record
 from .spec import link_force
 
@@ -118,6 +119,16 @@ def load_contact(path: str | os.PathLike) -> ContactResult:
         raise FileError("path", path, f"is not {kind}",
                         f"its metadata is invalid: {describe_error(exc)}") from None
     return ContactResult(**arrays, **record, meta=meta, separation_intervals=separations, contact=spec)
+
+
+def load(path: str | os.PathLike) -> BeltResult:
+    """Read a saved belt chain of either kind (``asperity2d.belt.load``): a
+    :class:`ContactResult` when the file holds a normal contact (its tag, or the previous
+    release's ``normal`` record), else a :class:`BeltResult`."""
+    _, meta = load_npz(path, (), kind="a belt result file")
+    if meta.get("format") == FORMAT or (meta.get("format") is None and "normal" in meta):
+        return load_contact(path)
+    return result_module.load(path)
 
 
 def assemble_contact(spec: ContactSpec, raw, meta: dict) -> ContactResult:
