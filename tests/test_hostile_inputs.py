@@ -216,3 +216,9 @@ def test_dask_exception_logs_are_one_line():
     first, rest = stream.getvalue().split("after", 1)
     assert first == "Exception while handling op (ConnectionResetError: Stream is closed)\n"
     assert "Traceback" in rest  # the filter is taken off again
+
+
+def test_compare_reaches_a_cluster_before_any_progress_line(capsys):
+    code = main(["compare", "--scheduler", "tcp://127.0.0.1:1", "--seeds", "2", "--set", "lower_count=3"])
+    err = capsys.readouterr().err
+    assert code == 2 and err.count("\n") == 1 and "could not be reached within" in err and "compare:" not in err

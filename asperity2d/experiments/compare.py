@@ -23,6 +23,7 @@ do not depend on the executor.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import math
 import os
@@ -40,7 +41,7 @@ from ..builders import make_scene
 from ..errors import SceneError
 from ..scene import Scene
 from ..sweep.engine import is_auto, run_calls
-from ..sweep.executors import check_executor_args
+from ..sweep.executors import check_executor_args, make_executor
 from ..sweep.progress import Progress
 from .measures import MEASURES, measure_label  # noqa: F401  (the named measures live there)
 
@@ -223,8 +224,15 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
             jobs.append((measure, scene, f"variant {name!r} with seed {seed}"))
     results: list = [None] * len(jobs)
     failed = None  # the first failing run in (variant, seed) order, whichever finished first
-    with Progress(total=len(jobs), enabled=progress, label="compare") as bar:
-        for outcome in run_calls(_evaluate, jobs, workers=workers, scheduler=scheduler):
+    # a cluster at an address is reached before the progress bar is drawn: one that cannot be
+    # reached is then one line, not a progress line and an error
+    cluster = make_executor(scheduler=scheduler) if scheduler not in (None, "local") else None
+    where = {"executor": cluster} if cluster is not None else {"workers": workers, "scheduler": scheduler}
+    with contextlib.ExitStack() as stack:
+        if cluster is not None:
+            stack.callback(cluster.close)
+        bar = stack.enter_context(Progress(total=len(jobs), enabled=progress, label="compare"))
+        for outcome in run_calls(_evaluate, jobs, **where):
             if not outcome.ok:
                 if failed is None or outcome.index < failed.index:
                     failed = outcome
