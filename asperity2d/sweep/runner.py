@@ -149,8 +149,12 @@ def run_study(
         report = {"executor": executor.description if executor is not None else
                   ("local processes (decided by cost)" if workers is None and scheduler is None else
                    f"dask ({scheduler})" if scheduler is not None else f"local processes ({workers})")}
-        bar = None
+        bar, cluster = None, None
         try:
+            if todo and executor is None and scheduler not in (None, "local"):
+                # reach the cluster before the progress bar: one that cannot be reached is one line
+                executor = cluster = DaskExecutor(scheduler=scheduler)
+                scheduler = None
             store.begin_session(study, executor=report["executor"] if todo else "none")
             bar = Progress(total=len(specs), done=done, failed=failed, label=study.name,
                            enabled=progress)
@@ -166,6 +170,8 @@ def run_study(
         finally:
             if bar is not None:
                 bar.close()
+            if cluster is not None:
+                cluster.close()
     return SweepSummary(
         study=study.name,
         store=str(store.path),
