@@ -216,6 +216,21 @@ def test_dask_exception_logs_are_one_line():
     first, rest = stream.getvalue().split("after", 1)
     assert first == "Exception while handling op (ConnectionResetError: Stream is closed)\n"
     assert "Traceback" in rest  # the filter is taken off again
+    # a user's own records keep their tracebacks, even while the filter is on
+    user = logging.getLogger("my_study")
+    mine = io.StringIO()
+    root_handler = logging.StreamHandler(mine)
+    logging.getLogger().addHandler(root_handler)
+    undo = quiet_tracebacks()
+    try:
+        try:
+            raise ValueError("mine")
+        except ValueError:
+            user.exception("my run failed")
+    finally:
+        undo()
+        logging.getLogger().removeHandler(root_handler)
+    assert "Traceback" in mine.getvalue()
 
 
 def test_compare_reaches_a_cluster_before_any_progress_line(capsys):

@@ -390,7 +390,8 @@ class OneLine(logging.Filter):
     log a ``CommClosedError`` traceback each; the run it held is reported as failed anyway)."""
 
     def filter(self, record: logging.LogRecord) -> bool:
-        if record.exc_info and record.exc_info[1] is not None:
+        # only Dask's (and its event loop's) records: a user's own logging keeps its tracebacks
+        if record.exc_info and record.exc_info[1] is not None and record.name.split(".")[0] in DASK_LOGGERS:
             exc = record.exc_info[1]
             record.msg = f"{record.getMessage()} ({type(exc).__name__}: {exc})".replace("\n", " ")
             record.args, record.exc_info, record.exc_text = (), None, None
