@@ -19,6 +19,11 @@ Directives (reStructuredText; in a MyST page wrap them in an ``{eval-rst}`` bloc
 
 ``.. cli-help::``
     ``asperity2d --help`` and every subcommand's help, from the command line's own parser.
+
+``.. constant-value:: module.NAME``
+    a constant's value as a reader wants it: a table of records (one row per record, one column
+    per field), a table of a mapping's keys and values, or the literal (the API reference's
+    constant pages use it through ``docs/_templates/autosummary/data.rst``).
 """
 
 from __future__ import annotations
@@ -266,6 +271,89 @@ class CliHelp(_Generated):
         return out
 
 
+# -- constants as tables ------------------------------------------------------------------------
+def _short(value) -> str:
+    """A value as a reader writes it: a function by name, a record by its fields, no addresses."""
+    import functools
+    import inspect
+
+    if isinstance(value, functools.partial):
+        args = ", ".join([repr(a) for a in value.args] + [f"{k}={v!r}" for k, v in value.keywords.items()])
+        return f"{_short(value.func)}({args})"
+    if inspect.isfunction(value) or inspect.isclass(value) or inspect.isbuiltin(value):
+        name = value.__name__
+        return "a function" if name == "<lambda>" else f"{name}"
+    if isinstance(value, tuple) and not hasattr(value, "_fields"):
+        return ", ".join(_short(v) for v in value)
+    if hasattr(value, "_fields"):
+        return "; ".join(f"{f} {_short(getattr(value, f))}" for f in value._fields)
+    if isinstance(value, (set, frozenset)):
+        return ", ".join(sorted(map(str, value)))
+    return repr(value)
+
+
+class ConstantValue(_Generated):
+    required_arguments = 1
+
+    def lines(self):
+        import dataclasses
+        import importlib
+
+        module_name, name = self.arguments[0].rsplit(".", 1)
+        value = getattr(importlib.import_module(module_name), name)
+        records = isinstance(value, (tuple, list)) and value and all(
+            hasattr(v, "_fields") or dataclasses.is_dataclass(v) for v in value)
+        if records:
+            fields = (value[0]._fields if hasattr(value[0], "_fields")
+                      else [f.name for f in dataclasses.fields(value[0])])
+            rows = [[cell(_short(getattr(v, f))) if f != "name" else f"``{getattr(v, f)}``" for f in fields]
+                    for v in value]
+            return [f"{len(value)} records:", ""] + list_table(list(fields), rows, cls="constant-table")
+        if isinstance(value, dict):
+            rows = [[f"``{k!r}``", cell(_short(v))] for k, v in value.items()]
+            return [f"{len(value)} entries:", ""] + list_table(["key", "value"], rows, widths="25 75",
+                                                                 cls="constant-table")
+        if isinstance(value, (tuple, list, set, frozenset)):
+            items = sorted(value, key=str) if isinstance(value, (set, frozenset)) else value
+            return ["Value: " + ", ".join(f"``{v!r}``" for v in items), ""]
+        return [f"Value: ``{value!r}``", ""]
+
+
+def _drop_type_docstring(app, what, name, obj, options, lines) -> None:
+    """A constant without its own ``#:`` comment would show its type's docstring (tuple's, str's):
+    nothing instead. A named tuple's field shows no "Alias for field number N"."""
+    text = "\n".join(lines).strip()
+    if what in ("data", "attribute") and text and text == (type(obj).__doc__ or "").strip():
+        lines.clear()
+    elif text.startswith("Alias for field number"):
+        lines.clear()
+
+
+def type_aliases() -> dict[str, str]:
+    """numpydoc's type links: common short forms and every public class of the package by its
+    bare name (the first module listing it wins: the top level before the subpackages)."""
+    import importlib
+    import inspect
+
+    aliases = {"Path": "pathlib.Path", "pathlib.Path": "pathlib.Path", "os.PathLike": "os.PathLike",
+               "path-like": ":term:`python:path-like object`", "Generator": "numpy.random.Generator",
+               "numpy.random.Generator": "numpy.random.Generator", "Figure": "matplotlib.figure.Figure",
+               "matplotlib.figure.Figure": "matplotlib.figure.Figure", "Axes": "matplotlib.axes.Axes",
+               "matplotlib.axes.Axes": "matplotlib.axes.Axes", "numpy.ndarray": "numpy.ndarray",
+               "complex": ":class:`python:complex`", "object": ":class:`python:object`",
+               "Mapping": "collections.abc.Mapping", "Sequence": "collections.abc.Sequence",
+               "Iterable": "collections.abc.Iterable", "Callable": "collections.abc.Callable",
+               "pymunk.Space": "pymunk.Space", "pymunk.Body": "pymunk.Body"}
+    for module_name, _title, _what in API:
+        module = importlib.import_module(module_name)
+        for name in public_names(module):
+            obj = getattr(module, name, None)
+            if inspect.isclass(obj):
+                aliases.setdefault(name, f"{module_name}.{name}")
+                aliases.setdefault(f"{module_name}.{name}", f"{module_name}.{name}")
+    return aliases
+
+
 # -- the API reference, generated from the packages' public names ------------------------------
 #: (module, title, what it holds): one page each. A module's public names are its ``__all__``, or
 #: else the classes, functions and upper-case data it defines; ``asperity2d.experiments`` lists
@@ -333,7 +421,8 @@ def write_api(app, config=None) -> None:
             first = (group.__doc__ or "").strip().split("\n\n")[0]
             if first:
                 lines += [" ".join(first.split()), ""]
-            lines += [".. currentmodule:: " + group_name, "", ".. autosummary::", "   :toctree: generated",
+            directive = "currentmodule" if group_name == name else "module"  # a submodule is a link target
+            lines += [f".. {directive}:: {group_name}", "", ".. autosummary::", "   :toctree: generated",
                       "   :nosignatures:", ""]
             lines += [f"   {n}" for n in members] + [""]
             expected.update(f"{group_name}.{n}.rst" for n in members)
@@ -362,4 +451,6 @@ def setup(app):
     app.add_directive("claims-table", ClaimsTable)
     app.add_directive("mutation-table", MutationTable)
     app.add_directive("cli-help", CliHelp)
+    app.add_directive("constant-value", ConstantValue)
+    app.connect("autodoc-process-docstring", _drop_type_docstring)
     return {"version": "1", "parallel_read_safe": True, "parallel_write_safe": True}
