@@ -1,6 +1,6 @@
 """Saved results of either kind, read by their format tag: :func:`load` (``asperity2d.load``).
 
-A record streamed to disk as its run went (a directory, :mod:`asperity2d.streamed`) is an
+A record streamed to disk as its run went (a directory, ``asperity2d.streamed``) is an
 asperity run too, read lazily. An asperity run (:class:`asperity2d.result.Result`,
 ``"asperity2d.result/2"``) and a belt chain
 (:class:`asperity2d.belt.BeltResult`, ``"asperity2d.belt-result/2"``) share one result protocol
@@ -22,7 +22,7 @@ _UNTAGGED = {"scene": "asperity", "chain": "belt"}
 
 def kind_of(path: str | os.PathLike) -> str:
     """``"asperity"`` or ``"belt"``: the kind of result saved at ``path`` (only its metadata is
-    read). A file that is neither raises :class:`~asperity2d._io.FileError` naming ``path``."""
+    read). A file that is neither raises ``FileError`` naming ``path``."""
     what = "an asperity2d result file (asperity run or belt chain)"
     from .streamed import is_record
 
@@ -47,7 +47,7 @@ def load(path: str | os.PathLike):
     to a directory (``simulate(..., record_to=path)``), read lazily.
 
     A file that is neither (missing, empty, foreign, damaged, malformed) raises one
-    :class:`~asperity2d._io.FileError` (a ``SceneError``) naming ``path``.
+    ``FileError`` (a ``SceneError``) naming ``path``.
     """
     if kind_of(path) == "belt":
         from .belt.result import load as load_belt

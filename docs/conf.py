@@ -59,7 +59,7 @@ suppress_warnings = ["config.cache"]  # sphinx-gallery's callables in the config
 # -- API reference ---------------------------------------------------------------------------
 autosummary_generate = True
 autosummary_imported_members = True
-autodoc_default_options = {"members": True, "inherited-members": False, "show-inheritance": False}
+autodoc_default_options = {"members": True}  # no "Bases:" line: the bases are private mixins
 autodoc_typehints = "none"  # numpydoc's parameter sections carry the types
 numpydoc_show_class_members = False
 numpydoc_class_members_toctree = False

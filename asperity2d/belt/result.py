@@ -155,7 +155,7 @@ class BeltResult:
 
     # -- persistence -------------------------------------------------------
     def save(self, path: str | os.PathLike) -> Path:
-        """Write the result to ``path`` (``.npz``, tagged :data:`FORMAT`) atomically and return the path."""
+        """Write the result to ``path`` (``.npz``, tagged ``FORMAT``) atomically and return the path."""
         meta = dict(self.meta)
         meta["chain"] = self.chain.to_dict() if self.chain is not None else meta.get("chain")
         meta["events"] = [asdict(e) for e in self.events]
@@ -256,11 +256,11 @@ def assemble(spec: ChainSpec, raw: RawRun, meta: dict) -> BeltResult:
 
 def load(path: str | os.PathLike) -> BeltResult:
     """Read a :class:`BeltResult` written by :meth:`BeltResult.save` (this release's
-    :data:`FORMAT`, or the previous release's untagged file).
+    ``FORMAT``, or the previous release's untagged file).
 
     A file that is not one (missing, empty, foreign -- an asperity result included --,
     truncated, damaged, arrays that do not fit together, metadata that is not a chain's)
-    raises one :class:`~asperity2d._io.FileError` naming ``path``; never a KeyError.
+    raises one ``FileError`` naming ``path``; never a KeyError.
     """
     kind = "a belt result file"
     arrays, meta = load_npz(path, ("t",) + MASS_SERIES + ENERGY_SERIES, kind=kind,
