@@ -110,7 +110,7 @@ class ParameterTable(_Generated):
         rows = []
         for title, records in groups:
             rows.append([f"**{title}**", "\\ ", "\\ ", "\\ "])
-            rows += [[f"``{r.name}``", default_text(r), cell("—" if r.unit == "-" else r.unit), cell(r.meaning)]
+            rows += [[f"``{r.name}``", default_text(r), cell("—" if r.unit == "-" else r.unit), math_cell(r.meaning)]
                      for r in records]
         return list_table(["keyword", "default", "unit", "meaning"], rows, widths="18 12 8 62",
                           cls="parameter-table")
@@ -120,6 +120,48 @@ def _ooten():
     from asperity2d.scene import OOTEN_PARAMETERS
 
     return OOTEN_PARAMETERS
+
+
+# -- formulas in one notation ------------------------------------------------------------------
+#: the closed forms and parameter meanings that the code states in plain text, as LaTeX (the pages
+#: typeset them with MathJax; a form not listed here stays text)
+LATEX = {
+    "(belt work - Δ energy - dissipation) / belt work = 0":
+        r"(W_\text{belt} - \Delta E - D) / W_\text{belt} = 0",
+    "F / W = tan(θ + atan μ)": r"F / W = \tan(\theta + \arctan\mu)",
+    "F = μk N": r"F = \mu_k N",
+    "F = μs N": r"F = \mu_s N",
+    "F_crit / N = μs (tan θ_crit = μ)": r"F_\text{crit} / N = \mu_s \; (\tan\theta_\text{crit} = \mu)",
+    "T = (2π - 2 atan(ω d / V)) / ω + 2 d / V, d = (Fs - Fk) / k":
+        r"T = \frac{2\pi - 2\arctan(\omega d / V)}{\omega} + \frac{2 d}{V},\; d = \frac{F_s - F_k}{k}",
+    "T = 2π / ω": r"T = 2\pi / \omega",
+    "drive work = Δ stored + dissipated + numerical": r"W_\text{drive} = \Delta E_\text{stored} + D + \varepsilon",
+    "f_j = sqrt(k (2 - 2 cos(jπ/4)) / m) / 2π": r"f_j = \sqrt{k (2 - 2\cos(j\pi/4)) / m} \,/\, 2\pi",
+    "k x = Fs = μs m g": r"k x = F_s = \mu_s m g",
+    "n k δ tan(45° + atan μs)": r"n k \delta \tan(45^\circ + \arctan\mu_s)",
+    "ΔF = 2 (Fs - Fk)": r"\Delta F = 2 (F_s - F_k)",
+    "Δx = 4 Fk / k": r"\Delta x = 4 F_k / k",
+    "Σ F_n = L": r"\textstyle\sum F_n = L",
+    "Σ F_t = F_drive": r"\textstyle\sum F_t = F_\text{drive}",
+    "μ_crit = [(K11 - K22')² + 4κ²] / (4 s κ k_c)":
+        r"\mu_\text{crit} = \frac{(K_{11} - K'_{22})^2 + 4\kappa^2}{4 s \kappa k_c}",
+    "σ = Re λ of the characteristic polynomial": r"\sigma = \operatorname{Re}\lambda \text{ of the characteristic polynomial}",
+    "2√(k m)": r"2\sqrt{k m}",
+    "K = 2 E b": r"K = 2 E b",
+    "ρ b² h / 3": r"\rho b^2 h / 3",
+}
+
+
+def math_cell(text: str) -> str:
+    """A table cell with the formulas of :data:`LATEX` typeset (``:math:``), the rest as :func:`cell`."""
+    text = str(text)
+    if text in LATEX:
+        return f":math:`{LATEX[text]}`"
+    out = cell(text)
+    for plain, latex in LATEX.items():
+        if plain in text and len(plain) < len(text):
+            out = out.replace(cell(plain), f":math:`{latex}`")
+    return out
 
 
 # -- closed-form checks --------------------------------------------------------------------
@@ -137,7 +179,7 @@ class ValidationTable(_Generated):
         for check_id, check in zip(validation.CHECKS, checks):
             if not check.passed:
                 logger.warning(f"closed-form check {check_id!r} fails: {check.line()}", location=self.get_location())
-            rows.append([cell(check.name), cell(check.closed_form), cell(check.show(check.expected)),
+            rows.append([cell(check.name), math_cell(check.closed_form), cell(check.show(check.expected)),
                          cell(check.show(check.measured)), f"{check.error:.1e}", f"{check.tolerance:.0e}",
                          "✓" if check.passed else "**fails**"])
             notes.append([cell(check.name), cell(check.why), cell(check.source)])
