@@ -1,7 +1,7 @@
 """Forces against the spread of the asperity heights
 =================================================
 
-Critical force and mean stick force against the spread of the asperity heights (issue 14).
+Critical force and mean stick force against the spread of the asperity heights.
 
 Ooten's surfaces (10 lower / 3 upper 45° full triangles on a 1 µm base,
 1.25 µm pitch, Table 1 steel) with Gaussian random heights on both surfaces:

@@ -20,6 +20,11 @@ Directives (reStructuredText; in a MyST page wrap them in an ``{eval-rst}`` bloc
 ``.. cli-help::``
     ``asperity2d --help`` and every subcommand's help, from the command line's own parser.
 
+``{claim-seeds}`NAME; key=value; ...```` (a role)
+    how the seeds of one claim of ``docs/data/claims/NAME.json`` fell ("12/24 above, 4 below
+    and 8 equal"), the claim picked by its fields (``measure=critical; setup=fixed``): a count
+    quoted in prose comes from the data, not typed.
+
 ``.. constant-value:: module.NAME``
     a constant's value as a reader wants it: a table of records (one row per record, one column
     per field), a table of a mapping's keys and values, or the literal (the API reference's
@@ -235,9 +240,153 @@ class ClaimsTable(_Generated):
                     "shows the same claims on a few seeds.", ""]
         data = json.loads(path.read_text(encoding="utf-8"))
         self.state.document.settings.record_dependencies.add(str(path))
-        lines = [f"*Full-size run:* ``{data['command']}`` at commit ``{data['commit']}`` ({data['date']}; "
-                 f"{_duration(data.get('cpu_s'))}).", ""]
+        lines = [f"*Full-size run:* ``{data['command']}`` ({data['date']}; {_duration(data.get('cpu_s'))}).", ""]
         return lines + claims_table_lines(data["claims"], setup=self.options.get("setup"))
+
+
+def claim_seeds_role(name, rawtext, text, lineno, inliner, options=None, content=None):
+    """``{claim-seeds}`ooten_profiles; measure=critical; setup=fixed; friction=mu_s > mu_k```."""
+    file, *selectors = [part.strip() for part in text.split(";")]
+    wanted = dict(part.split("=", 1) for part in selectors)
+    wanted = {k.strip(): v.strip() for k, v in wanted.items()}
+    path = CLAIMS / f"{file}.json"
+    try:
+        claims = json.loads(path.read_text(encoding="utf-8"))["claims"]
+    except (OSError, ValueError, KeyError) as exc:
+        msg = inliner.reporter.error(f"claim-seeds: cannot read {path}: {exc}", line=lineno)
+        return [inliner.problematic(rawtext, rawtext, msg)], [msg]
+    found = [c for c in claims if all(str(c.get(k)) == v for k, v in wanted.items())]
+    if len(found) != 1:
+        msg = inliner.reporter.error(f"claim-seeds: {len(found)} claims of {file} match {wanted} (want one)",
+                                     line=lineno)
+        return [inliner.problematic(rawtext, rawtext, msg)], [msg]
+    inliner.document.settings.record_dependencies.add(str(path))
+    n = found[0]["numbers"]
+    equal = n["n"] - n["above"] - n["below"]
+    return [nodes.Text(f"{n['above']}/{n['n']} above, {n['below']} below and {equal} equal")], []
+
+
+# -- benchmarks: the cost model, from benchmarks/results.json ------------------------------------
+RESULTS = DOCS.parent / "benchmarks" / "results.json"
+
+
+def _us(x: float) -> str:
+    return f"{x:,.0f} µs" if x >= 100 else f"{x:.1f} µs"
+
+
+def _secs(x: float) -> str:
+    if x < 1:
+        return f"{x * 1e3:.0f} ms"
+    if x < 120:
+        return f"{x:.1f} s"
+    if x < 7200:
+        return f"{x / 60:.0f} min"
+    return f"{x / 3600:.1f} h"
+
+
+def cost_fit(rows: list[dict]) -> tuple[float, float]:
+    """The line ``a + b N`` (µs a step) through the measured per-step costs, least squares in the
+    relative error (each point weighted by 1/cost, so the small scenes count as much as the large)."""
+    import numpy as np
+
+    n = np.array([r["N"] for r in rows], float)
+    c = np.array([r["run_us_per_step"] for r in rows], float)
+    b, a = np.polyfit(n, c, 1, w=1.0 / c)
+    return float(a), float(b)
+
+
+class BenchmarkTables(_Generated):
+    """The benchmarks page's figures, read from ``benchmarks/results.json`` when the page is built.
+
+    Argument: ``cost`` (the per-step cost by asperity count and the cost model), ``measures``
+    (a critical force's steps and time), ``workers`` (what parallel workers give), ``others``
+    (the belt solver, pictures, start-up) or ``machine`` (where and when it was measured).
+    """
+
+    required_arguments = 1
+
+    def lines(self):
+        import asperity2d as a
+
+        self.state.document.settings.record_dependencies.add(str(RESULTS))
+        data = json.loads(RESULTS.read_text(encoding="utf-8"))
+        res = data["results"]
+        what = self.arguments[0]
+        if what == "machine":
+            m = data["machine"]
+            return [f"Measured on a {m['cpus']}-core x86-64 Linux machine shared with other work (Python "
+                    f"{m['python']}; load {m['load_average'][0]:.1f} at the start of the full run), CPU time, "
+                    f"each figure the median of interleaved repeats; the per-step costs on "
+                    f"{res['core']['measured']['date'].split()[0]}. Re-measure with "
+                    "``python benchmarks/run_all.py`` (it rewrites ``benchmarks/results.json``, and this page "
+                    "follows at its next build).", ""]
+        if what == "cost":
+            rows = res["core"]["rows"]
+            fa, fb = cost_fit(rows)
+            table = [[str(r["N"]), str(r["upper"]), f"**{_us(r['run_us_per_step'])}**", _us(fa + fb * r["N"]),
+                      _us(r["bare_us_per_step"]), f"{r['ratio']:.2f}×"] for r in rows]
+            for name, r in res["core"]["steel"].items():
+                table.append([cell(r["N"]).replace("x2000", "×2000"), "", f"**{_us(r['run_us_per_step'])}**", "",
+                              _us(r["bare_us_per_step"]), f"{r['ratio']:.2f}×"])
+            scene = a.make_scene()
+            dt = scene.shortest_period() / 50
+            per_um = 1e-6 / dt
+            n16 = scene.lower.count if hasattr(scene.lower, "count") else 16
+            c16 = fa + fb * n16
+            worst = max(abs(fa + fb * r["N"] - r["run_us_per_step"]) / r["run_us_per_step"] for r in rows)
+            out = [f"The fitted line: **c(N) = {fa:.1f} µs + {fb:.2f} µs × N** a step (N lower asperities, the "
+                   f"slider carrying max(3, N/25) tips), within {100 * worst:.0f} % of each measured point. The "
+                   "cost follows the contacts more than the count: the steel scenes below, with their slider "
+                   "pressed into more asperities, cost more than the line says for their N.", ""]
+            out += list_table(["lower asperities N", "slider tips", "a step of a run (measured)", "the line",
+                               "a bare pymunk loop", "run / bare"], table, cls="benchmark-table")
+            out += [f"Worked example, the default scene (``make_scene()``: {n16} lower asperities, 4 tips): its "
+                    f"shortest natural period is {scene.shortest_period() * 1e12:.0f} ps, so the default step "
+                    f"is {dt * 1e12:.1f} ps and 1 µs of simulated time is {per_um:,.0f} steps: about "
+                    f"**{_secs(per_um * c16 * 1e-6)}** of CPU at {_us(c16)} a step.", ""]
+            return out
+        if what == "measures":
+            rows = []
+            for key, r in res["critical"]["rows"].items():
+                setup, start = key.split("/")
+                rows.append([f"``critical_force(scene, start=\"{start}\")``",
+                             "fixed track" if setup == "fixed" else "free slider",
+                             f"{r['steps']:,}", f"**{_secs(r['new_cpu_s'])}**",
+                             f"{1e6 * r['new_cpu_s'] / r['steps']:.0f} µs"])
+            return list_table(["measure (default scene, constant force)", "set-up", "steps", "CPU time",
+                               "a step, all included"], rows, cls="benchmark-table")
+        if what == "workers":
+            sw = res["sweep"]
+            thr = sw["throughput"]["cpu"]
+            over = sw["overhead"]["cpu"]
+            rows = [["runs a second, 1 worker", f"{thr['runs_per_s_1']:.2f}"],
+                    ["runs a second, 2 workers", f"{thr['runs_per_s_2']:.2f} (×{thr['runs_per_s_2'] / thr['runs_per_s_1']:.2f})"],
+                    ["starting a pool of 2 workers", _secs(sw["pool_start_2_workers_s"])],
+                    ["overhead a run, in this process", f"{over['in-process']['per_run_ms']:.1f} ms"],
+                    ["overhead a run, a warm worker", f"{over['pool1-warm']['per_run_ms']:.1f} ms"],
+                    ["overhead a run, a cold worker (first run: start-up and imports)",
+                     f"{over['pool1-cold']['per_run_ms']:.0f} ms"]]
+            return ([f"Runs of about {sw['run_seconds']:g} s of CPU each, the sweep engine's own measurement "
+                     f"(``benchmarks/bench_sweep.py``):", ""]
+                    + list_table(["", "measured"], rows, widths="60 40", cls="benchmark-table"))
+        if what == "others":
+            belt = res["belt"]["speed"]
+            gif = res["gif"]
+            start = res["startup"]["rows"]
+            basin = res["basins"]["per_run"]["base"]
+            rows = [["a belt chain (2 masses, 10 s), exact solver", _secs(belt["10s"]["cpu_s"]["exact"]),
+                     f"{belt['10s']['cpu_s']['solve_ivp+events'] / belt['10s']['cpu_s']['exact']:.1f}× faster than "
+                     "the best ``solve_ivp`` with events"],
+                    ["… 1000 s", _secs(belt["1000s"]["cpu_s"]["exact"]),
+                     f"{belt['1000s']['cpu_s']['solve_ivp+events'] / belt['1000s']['cpu_s']['exact']:.0f}× faster"],
+                    ["a basin-map point (3-DOF chain, 100 s)", f"{basin['ms_per_run_median']:.1f} ms", ""],
+                    [f"a GIF frame with meters ({gif['width']} × {gif['height']})", _secs(gif["ours_s_per_frame"]),
+                     f"{gif['speedup']:.0f}× faster than matplotlib blitting"],
+                    ["``import asperity2d``", f"{start['import asperity2d']['wall_ms']:.0f} ms",
+                     f"``import pymunk`` alone: {start['import pymunk']['wall_ms']:.0f} ms"],
+                    ["``asperity2d --help``", f"{start['asperity2d --help']['wall_ms']:.0f} ms", ""]]
+            return list_table(["what", "time", "compared"], rows, widths="45 20 35", cls="benchmark-table")
+        raise self.error(f"benchmark-tables: unknown table {what!r}")
 
 
 # -- mutation scores ---------------------------------------------------------------------------
@@ -265,14 +414,13 @@ class MutationTable(_Generated):
                                                       if data["unknown"] else "")
             rows.append([f"``{data['module'].removeprefix('asperity2d/')}``", cell(", ".join(tests)),
                          str(data["mutants"]), f"{data['killed']} ({data.get('timeouts', '?')})", survived,
-                         f"**{100 * data['killed'] / judged:.1f} %**" if judged else "—",
-                         f"``{data.get('commit', '?')}``"])
+                         f"**{100 * data['killed'] / judged:.1f} %**" if judged else "—"])
             dates.add(data.get("date", "an unrecorded date"))
             sampled = sampled or data["run"] < data["mutants"]
         lines = []
         if rows:
-            lines = list_table(["module", "its tests", "mutants", "killed (time-outs)", "survived", "score",
-                                "commit"], rows, widths="14 34 9 12 9 10 12", cls="mutation-table")
+            lines = list_table(["module", "its tests", "mutants", "killed (time-outs)", "survived", "score"],
+                               rows, widths="16 38 10 14 10 12", cls="mutation-table")
             extent = "a seeded sample of the mutants of some modules" if sampled else "every mutant of each module"
             lines += [f"Measured on {', '.join(sorted(dates))}, {extent}.", ""]
         if missing:
@@ -494,5 +642,7 @@ def setup(app):
     app.add_directive("mutation-table", MutationTable)
     app.add_directive("cli-help", CliHelp)
     app.add_directive("constant-value", ConstantValue)
+    app.add_role("claim-seeds", claim_seeds_role)
+    app.add_directive("benchmark-tables", BenchmarkTables)
     app.connect("autodoc-process-docstring", _drop_type_docstring)
     return {"version": "1", "parallel_read_safe": True, "parallel_write_safe": True}
