@@ -116,4 +116,7 @@ html_theme_options = {
     "footer_end": ["sphinx-version", "theme-version"],
 }
 html_show_sourcelink = False
+# Pages without sub-pages: no left sidebar (it would hold an empty "Section Navigation" column)
+html_sidebars = {page: [] for page in ("index", "getting_started", "findings", "validation", "benchmarks", "faq",
+                                       "coming_from", "glossary", "changelog", "parameters", "layout")}
 html_last_updated_fmt = None

@@ -214,8 +214,61 @@ def claim_rows(claims: list[dict], *, setup: str | None = None, setups: bool = T
         row = [cell(record["claim"])]
         if setups:
             row.append(cell(SETUPS.get(record.get("setup"), record.get("setup") or "—")))
-        rows.append(row + [shown, cell(numbers_text(record.get("numbers", {}))), cell(record.get("test", ""))])
+        rows.append(row + [shown, cell(numbers_text(record.get("numbers", {}))), cell(short_test(record.get("test", "")))])
     return rows
+
+
+#: the words every test of a claim repeats, said once above the tables instead of on every row
+_BOILERPLATE = (("; holds if p < 0.01 and the change is at least 1 %", ""),
+                ("one-sample Wilcoxon signed-rank against the reference value", "Wilcoxon against the regular value"),
+                ("Wilcoxon signed-rank", "Wilcoxon"), (" (same seeds)", ""))
+
+
+def short_test(text: str) -> str:
+    """A claim's test without the criterion every claim shares (the page states it once)."""
+    for long, short in _BOILERPLATE:
+        text = text.replace(long, short)
+    return text
+
+
+class ClaimsSummary(Directive):
+    """A summary of a study page's claims: one row per section, the verdicts counted per set-up.
+
+    Content: one line per claims file, ``NAME | section title | #anchor``.
+    """
+
+    has_content = True
+
+    def run(self):
+        rows = []
+        setups_seen = []
+        parsed = []
+        for line in self.content:
+            if not line.strip():
+                continue
+            name, title, anchor = [part.strip() for part in line.split("|")]
+            path = CLAIMS / f"{name}.json"
+            self.state.document.settings.record_dependencies.add(str(path))
+            claims = json.loads(path.read_text(encoding="utf-8"))["claims"]
+            counts = {}
+            for record in claims:
+                setup = record.get("setup") or "—"
+                if setup not in setups_seen:
+                    setups_seen.append(setup)
+                held, total = counts.get(setup, (0, 0))
+                counts[setup] = (held + (record["verdict"] == "holds"), total + 1)
+            parsed.append((title, anchor, counts))
+        for title, anchor, counts in parsed:
+            row = [f"`{title} <{anchor}>`__"]
+            for setup in setups_seen:
+                held, total = counts.get(setup, (0, 0))
+                row.append(f"**{held}** of {total}" if total else "—")
+            rows.append(row)
+        header = ["claim (section)"] + [f"holds on {SETUPS.get(s, s)}" for s in setups_seen]
+        lines = list_table(header, rows, cls="claims-summary")
+        container = nodes.container()
+        self.state.nested_parse(StringList(lines, source="<claims-summary>"), self.content_offset, container)
+        return container.children
 
 
 def claims_table_lines(claims: list[dict], *, setup: str | None = None) -> list[str]:
@@ -639,6 +692,7 @@ def setup(app):
     app.add_directive("parameter-table", ParameterTable)
     app.add_directive("validation-table", ValidationTable)
     app.add_directive("claims-table", ClaimsTable)
+    app.add_directive("claims-summary", ClaimsSummary)
     app.add_directive("mutation-table", MutationTable)
     app.add_directive("cli-help", CliHelp)
     app.add_directive("constant-value", ConstantValue)
