@@ -112,13 +112,14 @@ class ParameterTable(_Generated):
                   ("Ooten's fixed track (asperity2d.scene.OOTEN_PARAMETERS)",
                    builders.PARAMETERS[:len(_ooten())]),
                   ("everything else (asperity2d.builders.PARAMETERS)", builders.PARAMETERS[len(_ooten()):]))
-        rows = []
-        for title, records in groups:
-            rows.append([f"**{title}**", "\\ ", "\\ ", "\\ "])
-            rows += [[f"``{r.name}``", default_text(r), cell("—" if r.unit == "-" else r.unit), math_cell(r.meaning)]
-                     for r in records]
-        return list_table(["keyword", "default", "unit", "meaning"], rows, widths="18 12 8 62",
-                          cls="parameter-table")
+        out = []
+        for title, records in groups:  # one table per group, its title above it (not a row that widens column 1)
+            rows = [[f"``{r.name}``", default_text(r), cell("—" if r.unit == "-" else r.unit), math_cell(r.meaning)]
+                    for r in records]
+            out += [f".. rubric:: {title}", ""]
+            out += list_table(["keyword", "default", "unit", "meaning"], rows, widths="18 12 8 62",
+                              cls="parameter-table")
+        return out
 
 
 def _ooten():
