@@ -161,6 +161,8 @@ def numpy_inventory() -> Inventory:
     inv.add("numpy.random", "module", "reference/random/index.html#module-numpy.random")
     inv.add("numpy.random.Generator", "class", "reference/random/generator.html#numpy.random.Generator")
     inv.add("numpy.random.default_rng", "function", "reference/random/generator.html#numpy.random.default_rng")
+    inv.add("numpy.random.RandomState", "class",
+            "reference/random/legacy.html#numpy.random.RandomState")
     inv.add("numpy.random.SeedSequence", "class",
             "reference/random/bit_generators/generated/numpy.random.SeedSequence.html#numpy.random.SeedSequence")
     for member, role in members(np.random.Generator):
