@@ -1,11 +1,11 @@
-"""Scene builders: named physical parameters in, a validated :class:`Scene` out.
+"""Scene builders: named physical parameters in, a validated :class:`~asperity2d.Scene` out.
 
 :func:`make_scene` is a pure function of its arguments: random spacings and
 random heights are reproducible from ``seed`` (each surface gets independent
 streams derived from it with ``numpy.random.SeedSequence``: the spacings from
 ``generate_state(2)`` as always, the heights from its two spawned children).
 A surface can also be a measured or generated profile (``lower_surface`` /
-``upper_surface``, see :mod:`asperity2d.surface.source`). :data:`PARAMETERS`
+``upper_surface``, see ``asperity2d.surface.source``). :data:`PARAMETERS`
 lists every parameter it accepts with its default, unit and meaning (the
 documentation's parameter table is generated from it) and :data:`DEFAULTS`
 is its dict; Ooten's fixed track comes from
@@ -233,13 +233,13 @@ def make_scene(*, spacing: str = "regular", seed: int = 0, profile: str = "full"
     ``height_distribution`` ("gaussian" or "uniform"), on the same base (so
     each has its own flank angles). Heights at or below 2e-3 of the base (the
     smallest the engine resolves) are redrawn; a std that would redraw over
-    1 % of them is refused (:func:`asperity2d.surface.heights.max_std`).
+    1 % of them is refused (``asperity2d.surface.heights.max_std``).
 
     ``lower_surface`` / ``upper_surface`` build a surface from a profile (a
     ``SurfaceProfile``, ``(x, z)`` arrays in m, an ``(n, 2)`` array, a file
     path read in ``surface_unit`` or the unit the file states, or an
     ``Asperities`` record): its summits become triangles
-    (:mod:`asperity2d.surface.source`: ``surface_detrend``, ``min_prominence``,
+    (``asperity2d.surface.source``: ``surface_detrend``, ``min_prominence``,
     ``min_width``); the upper one is turned face down. Each lower asperity
     gets ``stiffness`` and ``mass``, or by rule from ``modulus`` (K = 2 E b)
     and ``density`` (rho b^2 h / 3). With a profile surface, a fixed track's

@@ -75,7 +75,7 @@ FIRST_POWER = {("free", "rest"): 0, ("free", "entry"): 0, ("free", "run-up"): 0,
 FORCE_FLOOR = 2.0 ** -20
 
 
-#: The step of the critical-force runs, as a fraction of :func:`asperity2d.run.default_dt`.
+#: The step of the critical-force runs, as a fraction of ``default_dt``.
 #: At the default step the fixed track's thresholds sit low -- the tips sink into the flanks
 #: they press (pymunk removes 10 % of an overlap per step, so the overlap left under a load
 #: shrinks with dt) -- by 1.2-1.6 % from rest and 0.4-4.6 % with a run-up (measured on 10/3,
@@ -129,7 +129,7 @@ class CriticalForce:
 
     @property
     def monotone(self) -> bool:
-        """True when no force above :attr:`passes` was seen to stop."""
+        """True when no force above ``passes`` was seen to stop."""
         return self.band is None
 
 
@@ -274,11 +274,11 @@ def critical_force_bracket(scene: Scene, *, start: str = "rest", rel_tol: float 
     """The smallest constant drive force that carries the slider across, and its bracket.
 
     Bisection to a bracket ``rel_tol`` wide, checked by trying forces 2 %, 4 %,
-    ... 10 % below and above it (:func:`smallest_passing`): with inertia
+    ... 10 % below and above it (``smallest_passing``): with inertia
     passing is not always monotone in the force, and a smaller force that
     passes moves the search there. ``band`` reports the forces with mixed
     outcomes. Raises :class:`SceneError` if more than ``max_runs`` runs are
-    needed. ``dt`` (s) defaults to :func:`measure_dt` (half the simulation's
+    needed. ``dt`` (s) defaults to ``measure_dt`` (half the simulation's
     default step from rest, a quarter with a run-up: converged to 0.3 %);
     ``iterations`` and ``max_steps`` (per run) are those of
     :func:`asperity2d.simulate`.
@@ -321,7 +321,7 @@ def critical_force(scene: Scene, *, start: str = "rest", rel_tol: float = REL_TO
     ``rel_tol`` (default 0.25 %), each stopped as soon as the slider is stuck or
     has passed, then checked 2-10 % below and above. When passing is not
     monotone in the force (some force above the returned one stops) it warns
-    with :class:`NonMonotoneWarning`, naming the band; see
+    with ``NonMonotoneWarning``, naming the band; see
     :func:`critical_force_bracket` for the record.
     """
     bracket = critical_force_bracket(scene, start=start, rel_tol=rel_tol, max_runs=max_runs, dt=dt,

@@ -7,8 +7,8 @@ simulated once and then re-analysed or re-rendered any number of times.
 
 The result protocol, shared with :class:`asperity2d.belt.BeltResult`: ``kind``,
 ``status``, ``message``, ``success``, ``summary()``, ``save(path)`` writing a
-format tag (:data:`FORMAT`) and a ``load`` that refuses a malformed or foreign
-file with one :class:`~asperity2d._io.FileError`. :func:`asperity2d.load` reads
+format tag (``FORMAT``) and a ``load`` that refuses a malformed or foreign
+file with one ``FileError``. :func:`asperity2d.load` reads
 either kind by its tag.
 """
 
@@ -47,7 +47,7 @@ LOWER_SERIES = ("lower_dx", "lower_dy", "lower_contact")
 FORMAT = "asperity2d.result/2"
 #: Statuses of a run that did not do what was asked (``success`` is False): with
 #: ``duration=None`` no stop condition (passed, stuck) held before the time limit; a record
-#: streamed to disk whose run stopped before it finished (:mod:`asperity2d.streamed`).
+#: streamed to disk whose run stopped before it finished (``asperity2d.streamed``).
 UNSUCCESSFUL = ("time limit", "interrupted")
 
 
@@ -124,7 +124,7 @@ class Result:
 
     @property
     def success(self) -> bool:
-        """True unless the run ended without doing what was asked (:data:`UNSUCCESSFUL`: the
+        """True unless the run ended without doing what was asked (``UNSUCCESSFUL``: the
         time limit of ``duration=None`` reached before any stop condition). A run that
         diverged raises :class:`~asperity2d.SimulationError` and has no result."""
         return bool(self.status) and self.status not in UNSUCCESSFUL and all(
@@ -197,7 +197,7 @@ class Result:
 
         The file holds every array plus a ``metadata`` entry: a JSON record of
         the scene, the run settings and the package / pymunk versions, tagged
-        :data:`FORMAT`.
+        ``FORMAT``.
         """
         meta = {**self.meta, "scene": self.scene.to_dict()}
         return save_npz(path, {name: getattr(self, name) for name in SERIES + LOWER_SERIES}, meta,
@@ -229,12 +229,12 @@ class Result:
 
 
 def load(path: str | os.PathLike) -> Result:
-    """Read a :class:`Result` written by :meth:`Result.save` (this release's :data:`FORMAT`, or
+    """Read a :class:`Result` written by :meth:`Result.save` (this release's ``FORMAT``, or
     the previous release's untagged file).
 
     A file that is not one (missing, empty, foreign -- a belt result included --, truncated,
     damaged, or with arrays or a scene record that do not fit together) raises one
-    :class:`~asperity2d._io.FileError` (a ``SceneError``) naming ``path``.
+    ``FileError`` (a ``SceneError``) naming ``path``.
     :func:`asperity2d.load` reads either kind of result.
     """
     kind = "an asperity2d result file"

@@ -56,7 +56,7 @@ class Probe:
     means the slider has passed the whole surface. ``x_start`` is where the
     slider was when the run (the current :meth:`Run.advance`) started.
     ``energy`` is a function returning the energy books so far (the report of
-    :class:`~asperity2d.engine.energy.EnergyMeter`, J) when the run is metered
+    ``EnergyMeter``, J) when the run is metered
     (``simulate(..., energy=True)``, :meth:`Run.meter_energy`), else None.
     Observers (``simulate(..., observers=[...])``) see the same object.
     """
@@ -85,7 +85,7 @@ class Passed:
 class Stuck:
     """Stop when abs(v) stays below ``speed`` (m/s) for ``dwell`` seconds.
 
-    It remembers when the slider became slow; :meth:`reset` (called by the run
+    It remembers when the slider became slow; ``reset()`` (called by the run
     at the start of every :meth:`Run.advance`) forgets it, so one instance can
     serve several runs.
     """
@@ -273,7 +273,7 @@ class Run:
             self._stream(record_to)
 
     def _stream(self, path) -> None:
-        """Stream the record to directory ``path`` from now on (:mod:`asperity2d.streamed`)."""
+        """Stream the record to directory ``path`` from now on (``asperity2d.streamed``)."""
         from .streamed import Writer
 
         if self._record.size:
@@ -310,7 +310,7 @@ class Run:
     # -- running ------------------------------------------------------------
     def settle(self, *, push: float = 0.0, max_time: float | None = None,
                progress: bool | None = None) -> float:
-        """Bring the scene to rest before t = 0 (see :meth:`Engine.settle`); return the time (s).
+        """Bring the scene to rest before t = 0 (see ``Engine.settle``); return the time (s).
 
         A free slider comes down under its load (x held, damped) and, with a
         spring drive, finds its equilibrium against the spring's preload;
@@ -341,7 +341,7 @@ class Run:
         ``"duration"`` or the stop's name.
 
         ``observers`` are called as ``observer(probe)`` at every sample, the first
-        included, with the SI view of the state (:class:`Probe`), before the stop
+        included, with the SI view of the state (``Probe``), before the stop
         conditions are asked; they watch and must not change the run.
 
         ``record=False`` keeps nothing: every ``record_every`` steps the stop conditions
@@ -491,9 +491,9 @@ class Run:
 
 def _checks(run: Run) -> dict:
     """What ``run`` passed (``result.meta["checks"]``): the divergence guard, the physical-validity
-    checks (:mod:`asperity2d.engine.validity`) and the step size, each with its worst value and
+    checks (``asperity2d.engine.validity``) and the step size, each with its worst value and
     limit. A check that failed carries a ``warning`` (the result is marked unsuccessful): the step
-    size (``unsafe_dt``) and a step resolution past :data:`~asperity2d.engine.validity.STEP_WARNING`;
+    size (``unsafe_dt``) and a step resolution past ``STEP_WARNING``;
     the other failures raise."""
     coarse = max(run.dt / (COARSEST_DT_FRACTION * run.scene.shortest_period()),
                  run.dt / (COARSEST_DAMPER_DT_FRACTION * _damper_time(run.scene)))
@@ -557,17 +557,17 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
         Show a progress bar (default: only on a terminal, for long runs).
     energy : bool
         Meter every step's energy flows from the settled state on
-        (:class:`asperity2d.engine.energy.EnergyMeter`) and store its report
+        (``EnergyMeter``) and store its report
         in ``result.meta["energy"]`` (a metered step costs about 7 plain steps).
     contact_work : bool
         Book the work of the slider's contacts by what each does, from the settled
-        state on (:class:`asperity2d.engine.energy.ContactWork`), in
+        state on (``ContactWork``), in
         ``result.meta["contact_work"]`` (J).
     max_steps : int
         Step budget (settling included), checked before anything runs.
     observers : list of callables
         ``observer(probe)`` called at every sample (the settled state included),
-        with the SI view of the state (:class:`Probe`: time, slider position and
+        with the SI view of the state (``Probe``: time, slider position and
         velocity, drive force, the start position; ``probe.energy()`` the energy
         books so far when ``energy=True``), before the stop conditions. For
         studies that watch a run as it goes (e.g. the books when the slider
@@ -578,7 +578,7 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
         (88 B a sample). False keeps only the slider's (the three then have no samples; the
         animations, which draw the asperities, refuse such a result).
     record_to : path, optional
-        Stream the record to this directory as the run goes (:mod:`asperity2d.streamed`:
+        Stream the record to this directory as the run goes (``asperity2d.streamed``:
         one ``.npy`` per array and a JSON manifest, written a block of at most 4 MB at a
         time), so the run's memory stays flat whatever its length; the result returned reads
         the files lazily (memory maps), as ``asperity2d.load(record_to)`` does later. A run

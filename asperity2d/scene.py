@@ -110,13 +110,13 @@ class LowerSurface(SurfaceGeometry):
     """Asperities on vertical spring-damper tracks (Ooten's figures 5, 7, 8).
 
     Every asperity has ``profile``'s shape unless ``shapes`` (a
-    :class:`~asperity2d.shapes.Shapes` record) gives each its own height,
+    ``Shapes`` record) gives each its own height,
     flank runs and base level; ``profile`` then still sets the kind and the
     scene's length scale (its base). ``substrate`` (polylines of (x, z)
     points, m, x in the tips' frame, z in the datum) is rigid valley floor
     between asperities, touched only by the slider: a measured profile's
     valleys, so the slider's tips cannot sink below them (see
-    :mod:`asperity2d.surface.source`).
+    ``asperity2d.surface.source``).
 
     ``mass`` (kg), ``stiffness`` (N/m) and ``damping`` (N s/m) are scalars or
     one value per asperity; they are stored as tuples. ``damping=None`` gives
@@ -339,7 +339,7 @@ Drive = ConstantForce | SpringDrive
 class Contact:
     """Friction at the asperity contacts (both surfaces).
 
-    ``mu_static`` >= ``mu_kinetic`` (default: :func:`kinetic_default`, two
+    ``mu_static`` >= ``mu_kinetic`` (default: :func:`~asperity2d.scene.kinetic_default`, two
     thirds of ``mu_static``). A stuck contact keeps ``mu_static`` until it has
     slid ``slip_distance`` (m, default 0.1 % of the asperity base) without
     pause, so a micro-slip of a step or two under a suddenly applied load
@@ -440,7 +440,7 @@ class Scene:
     def floor(self) -> float:
         """Height of the engine's guard floor (m): the lower surface's (``travel_down`` below its
         lowest base level), raised where needed so that a slider lying on it still reaches
-        :data:`FLOOR_OVERLAP` of its tip depth above every lower asperity's base level.
+        :data:`~asperity2d.scene.FLOOR_OVERLAP` of its tip depth above every lower asperity's base level.
 
         At ``travel_down`` = the asperity height a slider resting on the floor had its top
         exactly at the base level: it slid beneath the asperities untouched (one lower asperity
@@ -457,7 +457,7 @@ class Scene:
 
     def natural_frequencies(self) -> dict[str, float]:
         """Angular natural frequencies (rad/s) of the scene's spring-mass pairs (inf where a
-        ratio overflows: :class:`~asperity2d.units.Units` refuses those scenes)."""
+        ratio overflows: ``Units`` refuses those scenes)."""
         k, m = np.asarray(self.lower.stiffness), np.asarray(self.lower.mass)
         with np.errstate(over="ignore", divide="ignore"):
             freqs = {"lower": float(np.max(np.sqrt(k / m)))}

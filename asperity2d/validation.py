@@ -92,7 +92,7 @@ class Check:
 
     @property
     def passed(self) -> bool:
-        """True when :attr:`error` is within :attr:`tolerance` (and both values are finite)."""
+        """True when :attr:`error` is within ``tolerance`` (and both values are finite)."""
         return math.isfinite(self.measured) and self.error <= self.tolerance
 
     def line(self) -> str:

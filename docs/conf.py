@@ -1,9 +1,13 @@
 """Sphinx configuration of the asperity2d documentation.
 
-Build (warnings are errors; the gallery runs every scene script in its quick setting)::
+Build (nitpicky, warnings are errors; the gallery runs every scene script in its quick setting)::
 
     pip install -e ".[docs]"
-    python -m sphinx -W --keep-going -b html docs docs/_build/html
+    python -m sphinx -n -W --keep-going -b html docs docs/_build/html
+
+Offline: intersphinx reads the inventories in ``docs/_inv/`` (made from the installed packages by
+``docs/_inv/make_inventories.py``, since the build has no network), and the math is typeset by a
+MathJax copied into the site (``sphinx-mathjax-offline``).
 
 ``ASPERITY2D_DOCS_GALLERY=0`` skips running the scene scripts (the gallery pages then show the
 code without outputs): for fast edits of the prose only.
@@ -23,6 +27,7 @@ sys.path.insert(0, str(DOCS / "_ext"))
 os.environ["TQDM_DISABLE"] = "1"
 
 import asperity2d  # noqa: E402
+import asperity_docs  # noqa: E402  (docs/_ext/asperity_docs.py: generated tables and API pages)
 import gallery  # noqa: E402  (docs/_ext/gallery.py: arguments and output scraper of the scenes)
 
 project = "asperity2d"
@@ -35,6 +40,7 @@ extensions = [
     "sphinx.ext.autosummary",
     "sphinx.ext.intersphinx",
     "sphinx.ext.mathjax",
+    "sphinx-mathjax-offline",  # MathJax served from the site's _static/, not a CDN
     "numpydoc",
     "myst_parser",
     "sphinx_design",
@@ -53,22 +59,26 @@ suppress_warnings = ["config.cache"]  # sphinx-gallery's callables in the config
 # -- API reference ---------------------------------------------------------------------------
 autosummary_generate = True
 autosummary_imported_members = True
-autodoc_default_options = {"members": True, "inherited-members": False, "show-inheritance": False}
+autodoc_default_options = {"members": True}  # no "Bases:" line: the bases are private mixins
 autodoc_typehints = "none"  # numpydoc's parameter sections carry the types
 numpydoc_show_class_members = False
 numpydoc_class_members_toctree = False
-numpydoc_xref_param_type = False
+templates_path = ["_templates"]  # autosummary: classes without member tables, constants as tables
+numpydoc_xref_param_type = True  # the types in Parameters / Returns link (Python, NumPy, ..., ours)
+numpydoc_xref_ignore = "all"  # only the names below link: units and words such as "optional" stay text
 numpydoc_validation_checks = set()
 
+# The inventories are files in docs/_inv/ (no network at build time); the links go to the sites.
 intersphinx_mapping = {
-    "python": ("https://docs.python.org/3", None),
-    "numpy": ("https://numpy.org/doc/stable", None),
-    "scipy": ("https://docs.scipy.org/doc/scipy", None),
+    "python": ("https://docs.python.org/3", "_inv/python.inv"),
+    "numpy": ("https://numpy.org/doc/stable", "_inv/numpy.inv"),
+    "scipy": ("https://docs.scipy.org/doc/scipy", "_inv/scipy.inv"),
+    "matplotlib": ("https://matplotlib.org/stable", "_inv/matplotlib.inv"),
+    "pymunk": ("https://www.pymunk.org/en/latest", "_inv/pymunk.inv"),
 }
-intersphinx_disabled_reftypes = ["*"]  # no network: references resolve only when written explicitly
-intersphinx_timeout = 5
-if os.environ.get("ASPERITY2D_DOCS_INTERSPHINX", "0") != "1":
-    intersphinx_mapping = {}  # CI and this machine have no network beyond the package registries
+nitpicky = True
+nitpick_ignore: list[tuple[str, str]] = []
+numpydoc_xref_aliases = asperity_docs.type_aliases()
 
 # -- the gallery of scene scripts ----------------------------------------------------------------
 sphinx_gallery_conf = {
@@ -99,10 +109,14 @@ html_static_path = ["_static"]
 html_css_files = ["asperity2d.css"]
 html_theme_options = {
     "navbar_align": "left",
+    "header_links_before_dropdown": 7,  # the reference, validation and benchmarks in the top bar
     "show_toc_level": 2,
     "navigation_with_keys": False,
     "footer_start": ["copyright"],
     "footer_end": ["sphinx-version", "theme-version"],
 }
 html_show_sourcelink = False
+# Pages without sub-pages: no left sidebar (it would hold an empty "Section Navigation" column)
+html_sidebars = {page: [] for page in ("index", "getting_started", "findings", "validation", "benchmarks", "faq",
+                                       "coming_from", "glossary", "changelog", "parameters", "layout")}
 html_last_updated_fmt = None

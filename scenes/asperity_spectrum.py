@@ -15,16 +15,16 @@ needs many asperities to show several cycles) and a tenfold stiffer
 37 200 N/m (the lower asperities' own stiffness) over 40. For regular and
 random (seed 0) spacing the friction force and the drive force are analysed
 over the part of the run where the slider is on the surface (15-90 % of the
-run, :data:`asperity2d.dynamics.asperity_basins.WINDOW`):
+run, ``asperity2d.dynamics.asperity_basins.WINDOW``):
 
 * periodogram, dominant frequency in units of drive speed / mean pitch;
 * ``line_fraction``: the share of the force's variance (above 0.2 V/pitch)
   within ±2 bins of the harmonics k·V/pitch, k = 1..5 -- near 1 for a
   spectrum of sharp lines at the pitch frequency, small when smeared;
-* the slip sequence's class (:func:`asperity2d.dynamics.asperity_basins.classify_asperity`).
+* the slip sequence's class (``asperity2d.dynamics.asperity_basins.classify_asperity``).
 
 Then a scan over the drive preload (the initial condition the public API
-offers: :mod:`asperity2d.dynamics.asperity_basins` says why the spacing
+offers: ``asperity2d.dynamics.asperity_basins`` says why the spacing
 offset is not one) on the regular surface, and a WAV of the regular run's
 friction force (its pitch frequency heard at 110 Hz) with its spectrogram.
 """

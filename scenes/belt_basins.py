@@ -13,7 +13,7 @@ Run: ``python scenes/belt_basins.py [--quick] [--grid N] [--workers auto|N] [-o 
 * a basin map over mass 1's initial displacement and velocity (x1, v1), the
   other coordinates at eq 3.12, each run 100 s with the exact solver and
   classified rest / pure slip / stick-slip period-n / irregular
-  (:mod:`asperity2d.dynamics.basins`), kept in a resumable sweep store;
+  (``asperity2d.dynamics.basins``), kept in a resumable sweep store;
 * a sample of the points classed irregular run again four times longer
   (does the class hold, or was it a long transient?), and the largest
   Lyapunov exponent of a few that stay irregular (chaos or not?);

@@ -16,7 +16,7 @@ from eq 3.12 with the exact solver and measures mass 1's displacement
 spectrum (periodogram) in two windows -- the thesis' first 10 s, and the
 steady state (the last half of a long run) -- with its dominant frequency,
 harmonic distortion (THD) and stick fraction, and the run's class
-(:func:`asperity2d.dynamics.basins.classify_chain`). The same for a contrast
+(``asperity2d.dynamics.basins.classify_chain``). The same for a contrast
 chain with static friction 0.4 above the kinetic 0.2, which keeps a
 stick-slip cycle. The undamped chain's normal modes, f = sqrt(k (2 - 2 cos(jπ/4)) / m) / 2π,
 are printed beside them. Writes spectra plots, THD / stick fraction against

@@ -23,7 +23,7 @@ spacing on both surfaces over seeds, measuring per spring-driven pass:
 Claim (abstract: "regularity enhances stick-slip, randomness reduces it"),
 per set-up: random spacing lowers the mean force drop per slip, one-sample
 Wilcoxon signed-rank test of the random passes against the regular value,
-one-sided (lower), holds if p < 0.01 and the change is at least 1 % (:func:`asperity2d.studies.claims.judge`).
+one-sided (lower), holds if p < 0.01 and the change is at least 1 % (``asperity2d.studies.claims.judge``).
 
 Run::
 

@@ -19,7 +19,7 @@ farther than the damped one, and a paired Wilcoxon signed-rank test of the
 travel difference (one-sided, "greater"). The claim holds if more than half
 the seeds went farther and p < 0.01.
 
-Mechanism: every run is metered (:mod:`asperity2d.engine.energy`); the
+Mechanism: every run is metered (``asperity2d.engine.energy``); the
 summary gives each energy channel as a share of the drive work (force x
 travel, pooled over the seeds), over the whole run and over the damped
 slider's path only (up to where it stopped). Over one path the drive work is

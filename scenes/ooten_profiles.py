@@ -28,7 +28,7 @@ default pair only). Per run:
   force (one pass: chaotic, see :mod:`asperity2d.experiments.measures`), the
   force to keep the slider moving (work / distance from the first breakaway
   on, N), and the contact work books
-  (:class:`asperity2d.engine.energy.ContactWork`): the work of contacts
+  (``asperity2d.engine.energy.ContactWork``): the work of contacts
   pushing the slider on (J) against the work of those resisting it.
 
 Regular spacing gives one deterministic half/full ratio; random spacing (both

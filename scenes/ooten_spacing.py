@@ -66,7 +66,7 @@ HEADLINE = ("critical", "peak-stick")
 
 def rows_for(setup: str, *, size: dict, seeds: list[int], workers: int | None, passes: int,
              quasi_static: bool = True) -> dict:
-    """{variant: [row per seed]} of :func:`asperity2d.studies.ooten.measures_run` on one set-up;
+    """{variant: [row per seed]} of ``asperity2d.studies.ooten.measures_run`` on one set-up;
     the regular scene (seed-independent) is measured once and repeated."""
     base = {**size, **studies.SETUPS[setup], "passes": passes, "quasi_static": quasi_static}
     jobs = [(v, s) for v in VARIANTS for s in (seeds[:1] if v == "regular" else seeds)]

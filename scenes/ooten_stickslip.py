@@ -10,7 +10,7 @@ Spring-driven passes over regular/regular and random/random surfaces at three
 drive-spring stiffnesses spanning a decade (default 1 176, 3 720 and
 11 760 N/m: the package default x 10^-0.5, 1, 10^0.5), for both set-ups
 (Ooten's fixed-height track first, then the free slider under load). Per
-run (:func:`asperity2d.studies.ooten.spring_pass_run`): the number of
+run (``asperity2d.studies.ooten.spring_pass_run``): the number of
 stick-slip events, the stick-slip amplitude -- the mean force drop per slip
 (N) -- the spread of the drops (std, N) and the regularity of the events
 (coefficient of variation of the intervals between slips; 0 = periodic).
@@ -18,7 +18,7 @@ stick-slip events, the stick-slip amplitude -- the mean force drop per slip
 Claim tested per set-up and stiffness: the random surfaces' mean force drop
 per slip is below the deterministic regular value (one-sample Wilcoxon
 signed-rank test over the random seeds, one-sided "lower"; holds if p < 0.01,
-:func:`asperity2d.studies.claims.judge`). A pass with no complete slip (one
+``asperity2d.studies.claims.judge``). A pass with no complete slip (one
 slip carried the slider across) has no force drop and counts as missing.
 Whether the verdict changes with the drive stiffness is reported as
 ``drive_dependent``.

@@ -11,7 +11,7 @@ the power spectrum between the wavelengths length / 8 (6.25 µm; the longest
 ones are few and smeared by the window) and 0.2 µm (above the noise floor);
 the recipe asked for H = 0.8 between 10 µm and 0.1 µm. The summits with prominence
 >= 20 nm (ten times the noise) and width at half prominence >= 0.1 µm become
-triangular asperities by the rule of :mod:`asperity2d.surface.asperities`;
+triangular asperities by the rule of ``asperity2d.surface.asperities``;
 track stiffness from Ooten's Table 1's rule K = 2 E b with its printed
 E = 1.86e10 Pa (37,200 N/m at b = 1 µm, the package default), mass from the
 Appendix A pyramid rho b^2 h / 3 with steel's 7850 kg/m^3 (Ooten's

@@ -1,7 +1,7 @@
 """Forces against the spread of the asperity heights
 =================================================
 
-Critical force and mean stick force against the spread of the asperity heights (issue 14).
+Critical force and mean stick force against the spread of the asperity heights.
 
 Ooten's surfaces (10 lower / 3 upper 45° full triangles on a 1 µm base,
 1.25 µm pitch, Table 1 steel) with Gaussian random heights on both surfaces:
@@ -9,7 +9,7 @@ every asperity keeps its 1 µm base and gets its own height about 0.5 µm with
 standard deviation sigma, so sigma / base = 0 (today's surfaces) to 0.2; the
 spacing stays regular. Both set-ups: the free slider under 10 mN, and seed
 000's fixed track whose deepest upper tip runs 0.125 µm below the tallest
-lower tip. Per (set-up, sigma, seed) one scene (:func:`asperity2d.rough.rough_run`):
+lower tip. Per (set-up, sigma, seed) one scene (``asperity2d.rough.rough_run``):
 its critical constant force and, from a spring-driven pass, the mean drive
 force at the stick-to-slip transitions (``mean_stick_force``), the asperities
 touched, the most contacts at once and the steepest lower flank touched.

@@ -1,7 +1,7 @@
 """Forces against the Hurst exponent of a self-affine surface
 ==========================================================
 
-Critical force and mean stick force against the Hurst exponent H at fixed rms height (issue 14).
+Critical force and mean stick force against the Hurst exponent H at fixed rms height.
 
 The lower surface is a self-affine profile (``asperity2d.surface.self_affine_profile``,
 one realisation per seed): 16 µm long, 2048 points, rms height 0.15 µm, power

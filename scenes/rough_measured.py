@@ -1,7 +1,7 @@
 """A scene from a measured-style profile, on both set-ups
 ======================================================
 
-A scene built from the shipped measured-style profile file, run on both set-ups (issue 14).
+A scene built from the shipped measured-style profile file, run on both set-ups.
 
 ``scenes/data/measured_style_profile.csv`` is SYNTHETIC: a self-affine trace
 (H = 0.8, rms 0.15 µm, 50 µm, 4096 points) with instrument-like noise, tilt and

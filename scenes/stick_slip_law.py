@@ -20,7 +20,7 @@ its mean period. Then:
   the random surfaces against the regular one: Ooten's abstract
   ("randomness reduces stick-slip") read as "random spacing lowers the gap",
   one-sample Wilcoxon over seeds against the regular value, one-sided
-  (lower), holds if p < 0.01 and the change is at least 1 % (:func:`asperity2d.studies.claims.judge`).
+  (lower), holds if p < 0.01 and the change is at least 1 % (``asperity2d.studies.claims.judge``).
 
 The scene is the free slider under load only: a friction law is a force per
 unit normal load, which a fixed-height track does not have.

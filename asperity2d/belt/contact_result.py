@@ -42,7 +42,7 @@ class ContactResult(BeltResult):
     load_energy : (T,) Σ W_i·y_i (J), the work done against the weights and preloads.
     impact_dissipation : (T,) cumulative kinetic energy lost in impacts (J).
     separation_intervals : per mass, the (t_open, t_close) intervals (s) out of contact.
-    contact : the :class:`~.normal.ContactSpec` (normal parameters and initial gaps).
+    contact : the ``ContactSpec`` (normal parameters and initial gaps).
     """
 
     y: np.ndarray = None

@@ -1,4 +1,4 @@
-"""Named chains from the multi-DOF belt thesis' tables, as keyword arguments for :func:`simulate_chain`.
+"""Named chains from the multi-DOF belt thesis' tables, as keyword arguments for :func:`~asperity2d.belt.simulate_chain`.
 
 The thesis uses one friction coefficient mu0 in sign() friction, so the
 presets set mu_s = mu_k = mu0. Figures 3-4 (2-DOF) run on a still surface

@@ -93,7 +93,7 @@ def simulate_chain(
 
     ``normal``, a :class:`~.normal.NormalContact`, gives every mass a normal
     degree of freedom and a unilateral contact (separated, sliding or sticking;
-    :mod:`.normal`); ``y0`` / ``vy0`` (m, m/s) are then the initial gaps and
+    ``asperity2d.belt.normal``); ``y0`` / ``vy0`` (m, m/s) are then the initial gaps and
     normal velocities (default: at rest on the contact) and the result is a
     :class:`~.contact_result.ContactResult`.
     """

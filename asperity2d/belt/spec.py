@@ -244,7 +244,7 @@ class ChainSpec:
 
     @cached_property
     def force_rows(self) -> tuple:
-        """Per mass, :func:`force_row`: the (columns, coefficients) of its spring + damper force."""
+        """Per mass, ``force_row``: the (columns, coefficients) of its spring + damper force."""
         return tuple(_force_row(self, i) for i in range(self.n))
 
     # -- belt -------------------------------------------------------------

@@ -156,7 +156,7 @@ def floquet(chain: dict, *, mass: int | None = None, step: float = 1e-6, rtol: f
     """Floquet multipliers of the limit cycle that ``simulate_chain(**chain)`` settles on.
 
     The run must reach the cycle within ``chain["t_end"]`` (found with
-    :func:`~asperity2d.dynamics.cycles.chain_cycle`, ``mass`` and ``rtol``
+    :func:`~asperity2d.dynamics.chain_cycle`, ``mass`` and ``rtol``
     passed on); otherwise a SceneError says so.
     """
     from ..belt import simulate_chain

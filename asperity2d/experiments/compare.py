@@ -127,7 +127,7 @@ class Comparison:
                 "values": {k: [float(v) for v in vals] for k, vals in self.values.items()}}
 
     def save(self, path: str | os.PathLike) -> Path:
-        """Write the comparison as strict JSON (NaN as null, :func:`asperity2d._io.write_json`),
+        """Write the comparison as strict JSON (NaN as null, ``write_json``),
         atomically; return the path."""
         try:  # the scene arguments must come back as they went in (no object turned into text)
             json.dumps({"base": self.base, "variants": self.variants})
@@ -163,7 +163,7 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
     Parameters
     ----------
     measure : callable or str
-        ``measure(scene) -> float``, or a name from :data:`MEASURES`
+        ``measure(scene) -> float``, or a name from :data:`~asperity2d.experiments.measures.MEASURES`
         (``"critical"``, ``"peak-stick"``, ...). A callable must be picklable
         (a module-level function) to run in worker processes.
     variants : dict of str to dict
@@ -177,7 +177,7 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
     workers, scheduler
         As for :func:`asperity2d.sweep.run_study`: ``workers`` local processes
         (1: in this process; default None or ``"auto"``: decided by what the first
-        run costs, :func:`asperity2d.sweep.engine.decide_workers` -- serial for a
+        run costs, ``decide_workers`` -- serial for a
         small comparison, every core for a large one; always this process for a
         measure that cannot be pickled), or a Dask ``scheduler`` address (``"local"``
         starts one). The values do not depend on them.

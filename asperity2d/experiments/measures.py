@@ -1,7 +1,7 @@
 """The named measures: one number per scene, what each one measures, and how far to trust it.
 
 Each measure is a function ``measure(scene) -> float`` (module level, so worker
-processes can run it) registered in :data:`MEASURES` with its plain-language
+processes can run it) registered in :data:`~asperity2d.experiments.measures.MEASURES` with its plain-language
 label; :func:`asperity2d.compare` and the command line's ``--measure`` take
 them by name. The scene-level measures are named for what they do to a scene
 (``critical_force_from_rest(scene)``, ``peak_stick_force_of_passes(scene)``),
@@ -108,7 +108,7 @@ def stick_forces(scene: Scene, *, passes: int = PASSES, dt: float | None = None)
     """Run ``passes`` spring-driven passes of ``scene`` (its drive made a spring if it was a
     constant force) whose drive speeds differ by 2e-4 of V each, and collect their stick forces.
 
-    ``dt`` (s) is the step of every pass (default: :func:`asperity2d.run.default_dt`).
+    ``dt`` (s) is the step of every pass (default: ``default_dt``).
     """
     from ..run import simulate
 
@@ -204,7 +204,7 @@ def quasi_static_breakaway(scene: Scene, *, start: str = "rest", ramp_periods: f
     run at that rate and at twice it, and the rate is halved until the two agree within
     :data:`RATE_TOL` (or ``ramp_periods`` reaches :data:`MAX_RAMP_PERIODS`); the record
     reports the last pair. ``dt`` (s) defaults to the critical force's
-    (:func:`asperity2d.critical.measure_dt`: half the default step from rest, where the
+    (``measure_dt``: half the default step from rest, where the
     regular fixed track's breakaway is the flank law to 0.2 %; at the default step the tips
     sink into the flanks and it reads 1.2 % low).
     """

@@ -87,11 +87,11 @@ def render(result, path: str | os.PathLike, **options) -> Path:
     """Render ``result`` (a result of either kind, or the path of a saved one) to ``path``,
     choosing the renderer by the result's kind and the path's extension.
 
-    ``options`` go to :func:`~asperity2d.renderers.animate.render_animation` (``.gif``, ``.mp4``),
-    :func:`~asperity2d.renderers.player.write_player` (``.html``),
-    :func:`~asperity2d.renderers.plots.plot_run` or, for a belt chain,
-    :func:`~asperity2d.renderers.belt.plot_chain` (``.png``, ``.svg``, ``.pdf``)
-    or :func:`~asperity2d.renderers.sound.write_wav` (``.wav``).
+    ``options`` go to ``render_animation`` (``.gif``, ``.mp4``),
+    ``write_player`` (``.html``),
+    ``plot_run`` or, for a belt chain,
+    ``plot_chain`` (``.png``, ``.svg``, ``.pdf``)
+    or ``write_wav`` (``.wav``).
 
     Raises
     ------

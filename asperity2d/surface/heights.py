@@ -15,7 +15,7 @@ when std < mean / sqrt(3). With a ``floor`` (a scene's triangles need heights
 the engine resolves, :data:`asperity2d.units.MIN_LENGTH_RATIO` bases), every
 draw at or below it is redrawn from the same stream: the heights then follow
 the distribution truncated at the floor, whose mean and spread
-:func:`truncated_moments` gives in closed form. :func:`max_std` is the largest
+:func:`truncated_moments` gives in closed form. ``max_std`` is the largest
 spread for which at most :data:`MAX_REDRAWN` (1 %) of the draws fall below the
 floor; ``make_scene`` refuses a larger one, so the truncation moves the mean
 by at most 0.027 std (Gaussian) and the heights stay what was asked for.
@@ -147,7 +147,7 @@ def random_shapes(shape, count: int, *, std: float, name: str, distribution: str
                   seed: np.random.SeedSequence | int, floor: float, upper: bool):
     """``count`` asperities of ``shape`` (a :class:`~asperity2d.geometry.Profile`), each with
     its own height drawn about ``shape.height`` (same base, so each its own flank angles),
-    as a :class:`~asperity2d.shapes.Shapes` record. A ``std`` over :func:`max_std` is
+    as a ``Shapes`` record. A ``std`` over ``max_std`` is
     refused, naming the parameter ``name``."""
     from ..shapes import Shapes
     from ..units import MIN_LENGTH_RATIO

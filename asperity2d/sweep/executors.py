@@ -15,7 +15,7 @@ returned. Runs are deterministic given their seed, so the executor never
 changes the numbers.
 
 Local worker processes live as long as the process that started them (one warm pool per worker
-count, :func:`shared_pool`: a spawned worker pays ~0.3 s of CPU to start and more to import
+count, ``shared_pool``: a spawned worker pays ~0.3 s of CPU to start and more to import
 what its calls need, so an ensemble after the first pays neither) and no longer: each worker
 asks the kernel to kill it when its parent dies (Linux ``prctl(PR_SET_PDEATHSIG)``) and watches
 its parent besides (a thread that exits the worker once it has been re-parented), so a sweep
@@ -271,7 +271,7 @@ MAX_BREAKS = 3
 
 class LocalExecutor:
     """Runs on this machine: in-process for one worker, else the process's warm pool of that
-    many workers (:func:`shared_pool`).
+    many workers (``shared_pool``).
 
     Parameters
     ----------
@@ -431,7 +431,7 @@ class DaskExecutor:
     scheduler : str
         ``"tcp://host:port"`` (or any address Dask accepts) to connect to a
         running cluster, or ``"local"`` to start a ``LocalCluster`` of worker
-        processes here (closed again by :meth:`close`). The workers must be
+        processes here (closed again by ``close()``). The workers must be
         able to import asperity2d and the study's run function.
     workers : int, optional
         Worker processes for ``scheduler="local"`` (default ``os.cpu_count()``).

@@ -63,7 +63,7 @@ class RunRecord:
     @classmethod
     def from_outcome(cls, spec: RunSpec, run: str, outcome) -> "RunRecord":
         """Record for ``spec`` from the engine's :class:`~.engine.Outcome` of
-        :func:`~.executors.execute_run` (its value: the quantities of a done run)."""
+        ``execute_run`` (its value: the quantities of a done run)."""
         return cls(
             key=spec.key,
             run=run,

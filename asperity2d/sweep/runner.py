@@ -106,7 +106,7 @@ def run_study(
     workers : int or "auto", optional
         Local worker processes (1 = in-process), or the size of the cluster for
         ``scheduler="local"``. Default (None or ``"auto"``): decided by what a run costs
-        (:func:`asperity2d.sweep.engine.decide_workers`): the median time of the runs this
+        (``decide_workers``): the median time of the runs this
         store already holds, else the first run's, timed in this process -- serial when
         starting workers would not pay, every core when it would.
     scheduler : str, optional
@@ -121,7 +121,7 @@ def run_study(
         e.g. to run several studies on one Dask client.
     max_runs : int, optional
         Refuse (``SceneError``, before any run starts) a study of more runs (grid points x
-        seeds) than this; default :data:`asperity2d._validate.MAX_RUNS` (100,000).
+        seeds) than this; default ``MAX_RUNS`` (100,000).
     """
     if executor is not None and (not is_auto(workers) or scheduler is not None):
         raise SceneError("`executor` excludes `workers` and `scheduler`")

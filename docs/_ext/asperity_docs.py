@@ -19,6 +19,16 @@ Directives (reStructuredText; in a MyST page wrap them in an ``{eval-rst}`` bloc
 
 ``.. cli-help::``
     ``asperity2d --help`` and every subcommand's help, from the command line's own parser.
+
+``{claim-seeds}`NAME; key=value; ...```` (a role)
+    how the seeds of one claim of ``docs/data/claims/NAME.json`` fell ("12/24 above, 4 below
+    and 8 equal"), the claim picked by its fields (``measure=critical; setup=fixed``): a count
+    quoted in prose comes from the data, not typed.
+
+``.. constant-value:: module.NAME``
+    a constant's value as a reader wants it: a table of records (one row per record, one column
+    per field), a table of a mapping's keys and values, or the literal (the API reference's
+    constant pages use it through ``docs/_templates/autosummary/data.rst``).
 """
 
 from __future__ import annotations
@@ -102,19 +112,62 @@ class ParameterTable(_Generated):
                   ("Ooten's fixed track (asperity2d.scene.OOTEN_PARAMETERS)",
                    builders.PARAMETERS[:len(_ooten())]),
                   ("everything else (asperity2d.builders.PARAMETERS)", builders.PARAMETERS[len(_ooten()):]))
-        rows = []
-        for title, records in groups:
-            rows.append([f"**{title}**", "\\ ", "\\ ", "\\ "])
-            rows += [[f"``{r.name}``", default_text(r), cell("—" if r.unit == "-" else r.unit), cell(r.meaning)]
-                     for r in records]
-        return list_table(["keyword", "default", "unit", "meaning"], rows, widths="18 12 8 62",
-                          cls="parameter-table")
+        out = []
+        for title, records in groups:  # one table per group, its title above it (not a row that widens column 1)
+            rows = [[f"``{r.name}``", default_text(r), cell("—" if r.unit == "-" else r.unit), math_cell(r.meaning)]
+                    for r in records]
+            out += [f".. rubric:: {title}", ""]
+            out += list_table(["keyword", "default", "unit", "meaning"], rows, widths="18 12 8 62",
+                              cls="parameter-table")
+        return out
 
 
 def _ooten():
     from asperity2d.scene import OOTEN_PARAMETERS
 
     return OOTEN_PARAMETERS
+
+
+# -- formulas in one notation ------------------------------------------------------------------
+#: the closed forms and parameter meanings that the code states in plain text, as LaTeX (the pages
+#: typeset them with MathJax; a form not listed here stays text)
+LATEX = {
+    "(belt work - Δ energy - dissipation) / belt work = 0":
+        r"(W_\text{belt} - \Delta E - D) / W_\text{belt} = 0",
+    "F / W = tan(θ + atan μ)": r"F / W = \tan(\theta + \arctan\mu)",
+    "F = μk N": r"F = \mu_k N",
+    "F = μs N": r"F = \mu_s N",
+    "F_crit / N = μs (tan θ_crit = μ)": r"F_\text{crit} / N = \mu_s \; (\tan\theta_\text{crit} = \mu)",
+    "T = (2π - 2 atan(ω d / V)) / ω + 2 d / V, d = (Fs - Fk) / k":
+        r"T = \frac{2\pi - 2\arctan(\omega d / V)}{\omega} + \frac{2 d}{V},\; d = \frac{F_s - F_k}{k}",
+    "T = 2π / ω": r"T = 2\pi / \omega",
+    "drive work = Δ stored + dissipated + numerical": r"W_\text{drive} = \Delta E_\text{stored} + D + \varepsilon",
+    "f_j = sqrt(k (2 - 2 cos(jπ/4)) / m) / 2π": r"f_j = \sqrt{k (2 - 2\cos(j\pi/4)) / m} \,/\, 2\pi",
+    "k x = Fs = μs m g": r"k x = F_s = \mu_s m g",
+    "n k δ tan(45° + atan μs)": r"n k \delta \tan(45^\circ + \arctan\mu_s)",
+    "ΔF = 2 (Fs - Fk)": r"\Delta F = 2 (F_s - F_k)",
+    "Δx = 4 Fk / k": r"\Delta x = 4 F_k / k",
+    "Σ F_n = L": r"\textstyle\sum F_n = L",
+    "Σ F_t = F_drive": r"\textstyle\sum F_t = F_\text{drive}",
+    "μ_crit = [(K11 - K22')² + 4κ²] / (4 s κ k_c)":
+        r"\mu_\text{crit} = \frac{(K_{11} - K'_{22})^2 + 4\kappa^2}{4 s \kappa k_c}",
+    "σ = Re λ of the characteristic polynomial": r"\sigma = \operatorname{Re}\lambda \text{ of the characteristic polynomial}",
+    "2√(k m)": r"2\sqrt{k m}",
+    "K = 2 E b": r"K = 2 E b",
+    "ρ b² h / 3": r"\rho b^2 h / 3",
+}
+
+
+def math_cell(text: str) -> str:
+    """A table cell with the formulas of :data:`LATEX` typeset (``:math:``), the rest as :func:`cell`."""
+    text = str(text)
+    if text in LATEX:
+        return f":math:`{LATEX[text]}`"
+    out = cell(text)
+    for plain, latex in LATEX.items():
+        if plain in text and len(plain) < len(text):
+            out = out.replace(cell(plain), f":math:`{latex}`")
+    return out
 
 
 # -- closed-form checks --------------------------------------------------------------------
@@ -132,7 +185,7 @@ class ValidationTable(_Generated):
         for check_id, check in zip(validation.CHECKS, checks):
             if not check.passed:
                 logger.warning(f"closed-form check {check_id!r} fails: {check.line()}", location=self.get_location())
-            rows.append([cell(check.name), cell(check.closed_form), cell(check.show(check.expected)),
+            rows.append([cell(check.name), math_cell(check.closed_form), cell(check.show(check.expected)),
                          cell(check.show(check.measured)), f"{check.error:.1e}", f"{check.tolerance:.0e}",
                          "✓" if check.passed else "**fails**"])
             notes.append([cell(check.name), cell(check.why), cell(check.source)])
@@ -162,8 +215,61 @@ def claim_rows(claims: list[dict], *, setup: str | None = None, setups: bool = T
         row = [cell(record["claim"])]
         if setups:
             row.append(cell(SETUPS.get(record.get("setup"), record.get("setup") or "—")))
-        rows.append(row + [shown, cell(numbers_text(record.get("numbers", {}))), cell(record.get("test", ""))])
+        rows.append(row + [shown, cell(numbers_text(record.get("numbers", {}))), cell(short_test(record.get("test", "")))])
     return rows
+
+
+#: the words every test of a claim repeats, said once above the tables instead of on every row
+_BOILERPLATE = (("; holds if p < 0.01 and the change is at least 1 %", ""),
+                ("one-sample Wilcoxon signed-rank against the reference value", "Wilcoxon against the regular value"),
+                ("Wilcoxon signed-rank", "Wilcoxon"), (" (same seeds)", ""))
+
+
+def short_test(text: str) -> str:
+    """A claim's test without the criterion every claim shares (the page states it once)."""
+    for long, short in _BOILERPLATE:
+        text = text.replace(long, short)
+    return text
+
+
+class ClaimsSummary(Directive):
+    """A summary of a study page's claims: one row per section, the verdicts counted per set-up.
+
+    Content: one line per claims file, ``NAME | section title | #anchor``.
+    """
+
+    has_content = True
+
+    def run(self):
+        rows = []
+        setups_seen = []
+        parsed = []
+        for line in self.content:
+            if not line.strip():
+                continue
+            name, title, anchor = [part.strip() for part in line.split("|")]
+            path = CLAIMS / f"{name}.json"
+            self.state.document.settings.record_dependencies.add(str(path))
+            claims = json.loads(path.read_text(encoding="utf-8"))["claims"]
+            counts = {}
+            for record in claims:
+                setup = record.get("setup") or "—"
+                if setup not in setups_seen:
+                    setups_seen.append(setup)
+                held, total = counts.get(setup, (0, 0))
+                counts[setup] = (held + (record["verdict"] == "holds"), total + 1)
+            parsed.append((title, anchor, counts))
+        for title, anchor, counts in parsed:
+            row = [f"`{title} <{anchor}>`__"]
+            for setup in setups_seen:
+                held, total = counts.get(setup, (0, 0))
+                row.append(f"**{held}** of {total}" if total else "—")
+            rows.append(row)
+        header = ["claim (section)"] + [f"holds on {SETUPS.get(s, s)}" for s in setups_seen]
+        lines = list_table(header, rows, cls="claims-summary")
+        container = nodes.container()
+        self.state.nested_parse(StringList(lines, source="<claims-summary>"), self.content_offset, container)
+        return container.children
 
 
 def claims_table_lines(claims: list[dict], *, setup: str | None = None) -> list[str]:
@@ -188,9 +294,153 @@ class ClaimsTable(_Generated):
                     "shows the same claims on a few seeds.", ""]
         data = json.loads(path.read_text(encoding="utf-8"))
         self.state.document.settings.record_dependencies.add(str(path))
-        lines = [f"*Full-size run:* ``{data['command']}`` at commit ``{data['commit']}`` ({data['date']}; "
-                 f"{_duration(data.get('cpu_s'))}).", ""]
+        lines = [f"*Full-size run:* ``{data['command']}`` ({data['date']}; {_duration(data.get('cpu_s'))}).", ""]
         return lines + claims_table_lines(data["claims"], setup=self.options.get("setup"))
+
+
+def claim_seeds_role(name, rawtext, text, lineno, inliner, options=None, content=None):
+    """``{claim-seeds}`ooten_profiles; measure=critical; setup=fixed; friction=mu_s > mu_k```."""
+    file, *selectors = [part.strip() for part in text.split(";")]
+    wanted = dict(part.split("=", 1) for part in selectors)
+    wanted = {k.strip(): v.strip() for k, v in wanted.items()}
+    path = CLAIMS / f"{file}.json"
+    try:
+        claims = json.loads(path.read_text(encoding="utf-8"))["claims"]
+    except (OSError, ValueError, KeyError) as exc:
+        msg = inliner.reporter.error(f"claim-seeds: cannot read {path}: {exc}", line=lineno)
+        return [inliner.problematic(rawtext, rawtext, msg)], [msg]
+    found = [c for c in claims if all(str(c.get(k)) == v for k, v in wanted.items())]
+    if len(found) != 1:
+        msg = inliner.reporter.error(f"claim-seeds: {len(found)} claims of {file} match {wanted} (want one)",
+                                     line=lineno)
+        return [inliner.problematic(rawtext, rawtext, msg)], [msg]
+    inliner.document.settings.record_dependencies.add(str(path))
+    n = found[0]["numbers"]
+    equal = n["n"] - n["above"] - n["below"]
+    return [nodes.Text(f"{n['above']}/{n['n']} above, {n['below']} below and {equal} equal")], []
+
+
+# -- benchmarks: the cost model, from benchmarks/results.json ------------------------------------
+RESULTS = DOCS.parent / "benchmarks" / "results.json"
+
+
+def _us(x: float) -> str:
+    return f"{x:,.0f} µs" if x >= 100 else f"{x:.1f} µs"
+
+
+def _secs(x: float) -> str:
+    if x < 1:
+        return f"{x * 1e3:.0f} ms"
+    if x < 120:
+        return f"{x:.1f} s"
+    if x < 7200:
+        return f"{x / 60:.0f} min"
+    return f"{x / 3600:.1f} h"
+
+
+def cost_fit(rows: list[dict]) -> tuple[float, float]:
+    """The line ``a + b N`` (µs a step) through the measured per-step costs, least squares in the
+    relative error (each point weighted by 1/cost, so the small scenes count as much as the large)."""
+    import numpy as np
+
+    n = np.array([r["N"] for r in rows], float)
+    c = np.array([r["run_us_per_step"] for r in rows], float)
+    b, a = np.polyfit(n, c, 1, w=1.0 / c)
+    return float(a), float(b)
+
+
+class BenchmarkTables(_Generated):
+    """The benchmarks page's figures, read from ``benchmarks/results.json`` when the page is built.
+
+    Argument: ``cost`` (the per-step cost by asperity count and the cost model), ``measures``
+    (a critical force's steps and time), ``workers`` (what parallel workers give), ``others``
+    (the belt solver, pictures, start-up) or ``machine`` (where and when it was measured).
+    """
+
+    required_arguments = 1
+
+    def lines(self):
+        import asperity2d as a
+
+        self.state.document.settings.record_dependencies.add(str(RESULTS))
+        data = json.loads(RESULTS.read_text(encoding="utf-8"))
+        res = data["results"]
+        what = self.arguments[0]
+        if what == "machine":
+            m = data["machine"]
+            return [f"Measured on a {m['cpus']}-core x86-64 Linux machine shared with other work (Python "
+                    f"{m['python']}; load {m['load_average'][0]:.1f} at the start of the full run), CPU time, "
+                    f"each figure the median of interleaved repeats; the per-step costs on "
+                    f"{res['core']['measured']['date'].split()[0]}. Re-measure with "
+                    "``python benchmarks/run_all.py`` (it rewrites ``benchmarks/results.json``, and this page "
+                    "follows at its next build).", ""]
+        if what == "cost":
+            rows = res["core"]["rows"]
+            fa, fb = cost_fit(rows)
+            table = [[str(r["N"]), str(r["upper"]), f"**{_us(r['run_us_per_step'])}**", _us(fa + fb * r["N"]),
+                      _us(r["bare_us_per_step"]), f"{r['ratio']:.2f}×"] for r in rows]
+            for name, r in res["core"]["steel"].items():
+                table.append([cell(r["N"]).replace("x2000", "×2000"), "", f"**{_us(r['run_us_per_step'])}**", "",
+                              _us(r["bare_us_per_step"]), f"{r['ratio']:.2f}×"])
+            scene = a.make_scene()
+            dt = scene.shortest_period() / 50
+            per_um = 1e-6 / dt
+            n16 = scene.lower.count if hasattr(scene.lower, "count") else 16
+            c16 = fa + fb * n16
+            worst = max(abs(fa + fb * r["N"] - r["run_us_per_step"]) / r["run_us_per_step"] for r in rows)
+            out = [f"The fitted line: **c(N) = {fa:.1f} µs + {fb:.2f} µs × N** a step (N lower asperities, the "
+                   f"slider carrying max(3, N/25) tips), within {100 * worst:.0f} % of each measured point. The "
+                   "cost follows the contacts more than the count: the steel scenes below, with their slider "
+                   "pressed into more asperities, cost more than the line says for their N.", ""]
+            out += list_table(["lower asperities N", "slider tips", "a step of a run (measured)", "the line",
+                               "a bare pymunk loop", "run / bare"], table, cls="benchmark-table")
+            out += [f"Worked example, the default scene (``make_scene()``: {n16} lower asperities, 4 tips): its "
+                    f"shortest natural period is {scene.shortest_period() * 1e12:.0f} ps, so the default step "
+                    f"is {dt * 1e12:.1f} ps and 1 µs of simulated time is {per_um:,.0f} steps: about "
+                    f"**{_secs(per_um * c16 * 1e-6)}** of CPU at {_us(c16)} a step.", ""]
+            return out
+        if what == "measures":
+            rows = []
+            for key, r in res["critical"]["rows"].items():
+                setup, start = key.split("/")
+                rows.append([f"``critical_force(scene, start=\"{start}\")``",
+                             "fixed track" if setup == "fixed" else "free slider",
+                             f"{r['steps']:,}", f"**{_secs(r['new_cpu_s'])}**",
+                             f"{1e6 * r['new_cpu_s'] / r['steps']:.0f} µs"])
+            return list_table(["measure (default scene, constant force)", "set-up", "steps", "CPU time",
+                               "a step, all included"], rows, cls="benchmark-table")
+        if what == "workers":
+            sw = res["sweep"]
+            thr = sw["throughput"]["cpu"]
+            over = sw["overhead"]["cpu"]
+            rows = [["runs a second, 1 worker", f"{thr['runs_per_s_1']:.2f}"],
+                    ["runs a second, 2 workers", f"{thr['runs_per_s_2']:.2f} (×{thr['runs_per_s_2'] / thr['runs_per_s_1']:.2f})"],
+                    ["starting a pool of 2 workers", _secs(sw["pool_start_2_workers_s"])],
+                    ["overhead a run, in this process", f"{over['in-process']['per_run_ms']:.1f} ms"],
+                    ["overhead a run, a warm worker", f"{over['pool1-warm']['per_run_ms']:.1f} ms"],
+                    ["overhead a run, a cold worker (first run: start-up and imports)",
+                     f"{over['pool1-cold']['per_run_ms']:.0f} ms"]]
+            return ([f"Runs of about {sw['run_seconds']:g} s of CPU each, the sweep engine's own measurement "
+                     f"(``benchmarks/bench_sweep.py``):", ""]
+                    + list_table(["", "measured"], rows, widths="60 40", cls="benchmark-table"))
+        if what == "others":
+            belt = res["belt"]["speed"]
+            gif = res["gif"]
+            start = res["startup"]["rows"]
+            basin = res["basins"]["per_run"]["base"]
+            rows = [["a belt chain (2 masses, 10 s), exact solver", _secs(belt["10s"]["cpu_s"]["exact"]),
+                     f"{belt['10s']['cpu_s']['solve_ivp+events'] / belt['10s']['cpu_s']['exact']:.1f}× faster than "
+                     "the best ``solve_ivp`` with events"],
+                    ["… 1000 s", _secs(belt["1000s"]["cpu_s"]["exact"]),
+                     f"{belt['1000s']['cpu_s']['solve_ivp+events'] / belt['1000s']['cpu_s']['exact']:.0f}× faster"],
+                    ["a basin-map point (3-DOF chain, 100 s)", f"{basin['ms_per_run_median']:.1f} ms", ""],
+                    [f"a GIF frame with meters ({gif['width']} × {gif['height']})", _secs(gif["ours_s_per_frame"]),
+                     f"{gif['speedup']:.0f}× faster than matplotlib blitting"],
+                    ["``import asperity2d``", f"{start['import asperity2d']['wall_ms']:.0f} ms",
+                     f"``import pymunk`` alone: {start['import pymunk']['wall_ms']:.0f} ms"],
+                    ["``asperity2d --help``", f"{start['asperity2d --help']['wall_ms']:.0f} ms", ""]]
+            return list_table(["what", "time", "compared"], rows, widths="45 20 35", cls="benchmark-table")
+        raise self.error(f"benchmark-tables: unknown table {what!r}")
 
 
 # -- mutation scores ---------------------------------------------------------------------------
@@ -218,14 +468,13 @@ class MutationTable(_Generated):
                                                       if data["unknown"] else "")
             rows.append([f"``{data['module'].removeprefix('asperity2d/')}``", cell(", ".join(tests)),
                          str(data["mutants"]), f"{data['killed']} ({data.get('timeouts', '?')})", survived,
-                         f"**{100 * data['killed'] / judged:.1f} %**" if judged else "—",
-                         f"``{data.get('commit', '?')}``"])
+                         f"**{100 * data['killed'] / judged:.1f} %**" if judged else "—"])
             dates.add(data.get("date", "an unrecorded date"))
             sampled = sampled or data["run"] < data["mutants"]
         lines = []
         if rows:
-            lines = list_table(["module", "its tests", "mutants", "killed (time-outs)", "survived", "score",
-                                "commit"], rows, widths="14 34 9 12 9 10 12", cls="mutation-table")
+            lines = list_table(["module", "its tests", "mutants", "killed (time-outs)", "survived", "score"],
+                               rows, widths="16 38 10 14 10 12", cls="mutation-table")
             extent = "a seeded sample of the mutants of some modules" if sampled else "every mutant of each module"
             lines += [f"Measured on {', '.join(sorted(dates))}, {extent}.", ""]
         if missing:
@@ -264,6 +513,91 @@ class CliHelp(_Generated):
 
         walk(parser, ["asperity2d"])
         return out
+
+
+# -- constants as tables ------------------------------------------------------------------------
+def _short(value) -> str:
+    """A value as a reader writes it: a function by name, a record by its fields, no addresses."""
+    import functools
+    import inspect
+
+    if isinstance(value, functools.partial):
+        args = ", ".join([repr(a) for a in value.args] + [f"{k}={v!r}" for k, v in value.keywords.items()])
+        return f"{_short(value.func)}({args})"
+    if inspect.isfunction(value) or inspect.isclass(value) or inspect.isbuiltin(value):
+        name = value.__name__
+        return "a function" if name == "<lambda>" else f"{name}"
+    if isinstance(value, tuple) and not hasattr(value, "_fields"):
+        return ", ".join(_short(v) for v in value)
+    if hasattr(value, "_fields"):
+        return "; ".join(f"{f} {_short(getattr(value, f))}" for f in value._fields)
+    if isinstance(value, (set, frozenset)):
+        return ", ".join(sorted(map(str, value)))
+    if isinstance(value, str):  # a word (a choice, a unit) as code, prose as prose
+        return value if " " in value or len(value) > 30 else f"``{value!r}``" if value else "``''``"
+    return repr(value)
+
+
+class ConstantValue(_Generated):
+    required_arguments = 1
+
+    def lines(self):
+        import dataclasses
+        import importlib
+
+        module_name, name = self.arguments[0].rsplit(".", 1)
+        value = getattr(importlib.import_module(module_name), name)
+        records = isinstance(value, (tuple, list)) and value and all(
+            hasattr(v, "_fields") or dataclasses.is_dataclass(v) for v in value)
+        if records:
+            fields = (value[0]._fields if hasattr(value[0], "_fields")
+                      else [f.name for f in dataclasses.fields(value[0])])
+            rows = [[cell(_short(getattr(v, f))) if f != "name" else f"``{getattr(v, f)}``" for f in fields]
+                    for v in value]
+            return [f"{len(value)} records:", ""] + list_table(list(fields), rows, cls="constant-table")
+        if isinstance(value, dict):
+            rows = [[f"``{k!r}``", cell(_short(v))] for k, v in value.items()]
+            return [f"{len(value)} entries:", ""] + list_table(["key", "value"], rows, widths="25 75",
+                                                                 cls="constant-table")
+        if isinstance(value, (tuple, list, set, frozenset)):
+            items = sorted(value, key=str) if isinstance(value, (set, frozenset)) else value
+            return ["Value: " + ", ".join(f"``{v!r}``" for v in items), ""]
+        return [f"Value: ``{value!r}``", ""]
+
+
+def _drop_type_docstring(app, what, name, obj, options, lines) -> None:
+    """A constant without its own ``#:`` comment would show its type's docstring (tuple's, str's):
+    nothing instead. A named tuple's field shows no "Alias for field number N"."""
+    text = "\n".join(lines).strip()
+    if what in ("data", "attribute") and text and text == (type(obj).__doc__ or "").strip():
+        lines.clear()
+    elif text.startswith("Alias for field number"):
+        lines.clear()
+
+
+def type_aliases() -> dict[str, str]:
+    """numpydoc's type links: common short forms and every public class of the package by its
+    bare name (the first module listing it wins: the top level before the subpackages)."""
+    import importlib
+    import inspect
+
+    aliases = {"Path": "pathlib.Path", "pathlib.Path": "pathlib.Path", "os.PathLike": "os.PathLike",
+               "path-like": ":term:`python:path-like object`", "Generator": "numpy.random.Generator",
+               "numpy.random.Generator": "numpy.random.Generator", "Figure": "matplotlib.figure.Figure",
+               "matplotlib.figure.Figure": "matplotlib.figure.Figure", "Axes": "matplotlib.axes.Axes",
+               "matplotlib.axes.Axes": "matplotlib.axes.Axes", "numpy.ndarray": "numpy.ndarray",
+               "complex": ":class:`python:complex`", "object": ":class:`python:object`",
+               "Mapping": "collections.abc.Mapping", "Sequence": "collections.abc.Sequence",
+               "Iterable": "collections.abc.Iterable", "Callable": "collections.abc.Callable",
+               "pymunk.Space": "pymunk.Space", "pymunk.Body": "pymunk.Body"}
+    for module_name, _title, _what in API:
+        module = importlib.import_module(module_name)
+        for name in public_names(module):
+            obj = getattr(module, name, None)
+            if inspect.isclass(obj):
+                aliases.setdefault(name, f"{module_name}.{name}")
+                aliases.setdefault(f"{module_name}.{name}", f"{module_name}.{name}")
+    return aliases
 
 
 # -- the API reference, generated from the packages' public names ------------------------------
@@ -333,7 +667,8 @@ def write_api(app, config=None) -> None:
             first = (group.__doc__ or "").strip().split("\n\n")[0]
             if first:
                 lines += [" ".join(first.split()), ""]
-            lines += [".. currentmodule:: " + group_name, "", ".. autosummary::", "   :toctree: generated",
+            directive = "currentmodule" if group_name == name else "module"  # a submodule is a link target
+            lines += [f".. {directive}:: {group_name}", "", ".. autosummary::", "   :toctree: generated",
                       "   :nosignatures:", ""]
             lines += [f"   {n}" for n in members] + [""]
             expected.update(f"{group_name}.{n}.rst" for n in members)
@@ -360,6 +695,11 @@ def setup(app):
     app.add_directive("parameter-table", ParameterTable)
     app.add_directive("validation-table", ValidationTable)
     app.add_directive("claims-table", ClaimsTable)
+    app.add_directive("claims-summary", ClaimsSummary)
     app.add_directive("mutation-table", MutationTable)
     app.add_directive("cli-help", CliHelp)
+    app.add_directive("constant-value", ConstantValue)
+    app.add_role("claim-seeds", claim_seeds_role)
+    app.add_directive("benchmark-tables", BenchmarkTables)
+    app.connect("autodoc-process-docstring", _drop_type_docstring)
     return {"version": "1", "parallel_read_safe": True, "parallel_write_safe": True}
