@@ -344,6 +344,8 @@ class Stage:
             raster.draw_text(img, (x, 5), shapes["slow"], colour="spring", size=13, bold=True)
         if shapes["counter"]:
             raster.draw_text(img, (W - 8, 5), shapes["counter"], colour="grey", size=11, anchor="ra")
+        if shapes.get("note"):  # why this frame jumps more than a pitch (over the caption)
+            raster.draw_text(img, (8, HEADER), shapes["note"], colour="slider_slip", size=11, bold=True, box=True)
 
 
 __all__ = ["CAMERAS", "Stage", "force_shares", "slip_mask"]
