@@ -342,7 +342,7 @@
                     measure: null };
     state.t = tStart();
     ui.title.textContent = D.title;
-    if (D.kind === "chain") ui.meters.classList.add("chain");
+    if (D.kind === "chain") { ui.meters.classList.add("chain"); ui.track.style.height = (18 + 8 * G.n) + "px"; }
     function foot() {
       ui.foot.textContent = "asperity2d " + D.version + " \u00b7 " + N + (finished ? " of " + D.recorded : "") +
         " recorded samples" + (finished && D.recorded > N ? " (every sample inside a slip kept)" : "") +
@@ -365,13 +365,17 @@
         [[C.sliderStick, "slider sticking"], [C.sliderSlip, "slider slipping"], [C.touching, "lower tip touching"],
          [C.lower, "lower tip free"], [C.arrow, "contact force on the slider"], [C.band, "slip (meters, timeline)"]] :
         [[C.massStick, "stuck to the belt"], [C.massFast, "slipping, faster than the belt"],
-         [C.massSlow, "slipping, slower than the belt"], [C.arrow, "friction force on the mass"],
-         [C.band, "any mass slipping (meters)"]];
+         [C.massSlow, "slipping, slower than the belt"], [C.arrow, "friction force on the mass"]];
       ui.legend.innerHTML = "";
       for (const [colour, text] of items) {
         const row = document.createElement("div"); row.className = "ap-key";
         const sw = document.createElement("span"); sw.className = "ap-swatch"; sw.style.background = colour;
         row.appendChild(sw); row.appendChild(document.createTextNode(text)); ui.legend.appendChild(row);
+      }
+      if (D.kind === "chain") {
+        const note = document.createElement("div"); note.className = "ap-key-note";
+        note.textContent = "timeline and meters: one strip per mass (m1 on top), coloured while it slips";
+        ui.legend.appendChild(note);
       }
     }
     legend();
@@ -704,18 +708,29 @@
       const a = tStart(), b = tEnd();
       return [a, b > a ? b : a + 1e-12];
     }
-    function meterPlot(W, H, m) { return { x0: 52, y0: m.spec.traces.length > 1 ? 38 : 24, x1: W - 10, y1: H - 20 }; }
+    const LEGEND_MAX = 6; // legend entries at most (the largest values at the cursor when there are more)
+    function legendLayout(ctx, m, W) { // slots of equal width, as many rows as they need
+      const n = Math.min(m.spec.traces.length, LEGEND_MAX);
+      if (m.spec.traces.length < 2) return { rows: 0, cols: 1, slot: 0 };
+      ctx.font = "12px system-ui, sans-serif";
+      const label = Math.max(...m.spec.traces.map((tr) => ctx.measureText(tr.label).width));
+      const slot = 16 + label + 6 + ctx.measureText("▲ -888 mN").width + 10;
+      const cols = Math.max(1, Math.min(n, Math.floor((W - 12) / slot)));
+      return { rows: Math.ceil(n / cols), cols, slot };
+    }
+    function meterPlot(W, H, m, legend) { return { x0: 52, y0: 24 + (legend.rows ? 15 * legend.rows : 0), x1: W - 10, y1: H - 20 }; }
     function meterX(p, t, view) { view = view || timeView(); return p.x0 + (t - view[0]) / ((view[1] - view[0]) || 1) * (p.x1 - p.x0); }
     function meterY(p, lim, v) { return p.y1 - (v - lim[0]) / (lim[1] - lim[0]) * (p.y1 - p.y0); }
     function meterStatic(ctx, m, W, H) { // axes, slip bands and whole traces, clipped values marked
       const traces = meterTraces(m), lim = meterLimits(m, traces), view = timeView();
       const [factor, unitLabel] = prefixed(Math.max(Math.abs(lim[0]), Math.abs(lim[1])), m.spec.unit);
       const [tfactor, tunit] = prefixed(Math.max(Math.abs(view[0]), Math.abs(view[1])), "s");
-      const p = meterPlot(W, H, m); m.plot = p; m.limits = lim; m.unitLabel = unitLabel;
+      m.legend = legendLayout(ctx, m, W);
+      const p = meterPlot(W, H, m, m.legend); m.plot = p; m.limits = lim; m.unitLabel = unitLabel;
       ctx.fillStyle = "#fafafc"; ctx.fillRect(0, 0, W, H);
       ctx.fillStyle = "#fff"; ctx.fillRect(p.x0, p.y0, p.x1 - p.x0, p.y1 - p.y0);
       ctx.fillStyle = C.band;
-      for (const [a, b] of D.slips || []) {
+      for (const [a, b] of D.kind === "chain" ? [] : D.slips || []) {
         if (b < view[0] || a > view[1]) continue;
         const xa = Math.max(p.x0, meterX(p, a, view)), xb = Math.min(p.x1, Math.max(meterX(p, b, view), xa + 1));
         ctx.fillRect(xa, p.y0, xb - xa, p.y1 - p.y0);
@@ -758,6 +773,19 @@
         ctx.stroke();
       }
       ctx.restore(); ctx.setLineDash([]);
+      if (D.kind === "chain" && N) { // each mass's state as a strip along the plot's foot (the legend's colours)
+        const n = G.n, h = 4;
+        for (let j = 0; j < n; j++) {
+          const st = S.state[j], y = p.y1 - (n - j) * h;
+          let start = i0;
+          for (let i = i0 + 1; i <= i1 + 1; i++) {
+            if (i <= i1 && st[i] === st[start]) continue;
+            const xa = Math.max(p.x0, meterX(p, T[start], view)), xb = Math.min(p.x1, meterX(p, T[Math.min(i, i1)], view));
+            if (st[start] !== 0 && xb > xa - 1) { ctx.fillStyle = STATE_COLOURS[st[start]]; ctx.fillRect(xa, y, Math.max(1, xb - xa), h - 1); }
+            start = i;
+          }
+        }
+      }
       for (const [x, dir, colour] of marks) { // a value off the axis: a triangle on the edge it left by
         const y = dir > 0 ? p.y0 : p.y1;
         ctx.fillStyle = colour; ctx.strokeStyle = C.clip; ctx.lineWidth = 0.8; ctx.beginPath();
@@ -770,7 +798,7 @@
       if (m.clipped) {
         const w = ctx.measureText(title).width;
         ctx.font = "11px system-ui, sans-serif"; ctx.fillStyle = "#a01010";
-        ctx.fillText("\u25B2\u25BC " + m.clipped + " sample" + (m.clipped > 1 ? "s" : "") + " off the axis", 14 + w, 6);
+        ctx.fillText("\u25B2\u25BC " + m.clipped + " off the axis", 14 + w, 6);
       }
       m.traces = traces;
     }
@@ -786,7 +814,11 @@
       }
       ctx.font = "12px system-ui, sans-serif"; ctx.textBaseline = "top";
       const many = m.traces.length > 1;
-      let lx = 8, row = 20;
+      let shown = m.traces;
+      if (m.traces.length > LEGEND_MAX) { // the largest at the cursor
+        shown = m.traces.slice().sort((p1, p2) => (Math.abs(p2.values[i]) || 0) - (Math.abs(p1.values[i]) || 0)).slice(0, LEGEND_MAX);
+      }
+      let slotIndex = 0;
       ctx.textAlign = many ? "left" : "right";
       for (const tr of m.traces) {
         const v = tr.values[i], off = v > lim[1] ? 1 : (v < lim[0] ? -1 : 0);
@@ -802,11 +834,16 @@
           (off && !many ? " (off the axis)" : "");
         ctx.fillStyle = tr.colour;
         if (many) {
-          const w = ctx.measureText(text).width;
-          if (lx + w + 16 > W - 8 && lx > 8) { lx = 8; row += 0; }
-          if (lx + w + 16 <= W - 4) { ctx.fillRect(lx, row + 5, 12, 3); ctx.fillText(text, lx + 16, row); }
-          lx += w + 30;
+          if (!shown.includes(tr)) continue;
+          const L = m.legend, c = slotIndex % L.cols, r = Math.floor(slotIndex / L.cols);
+          const lx = 8 + c * L.slot, row = 21 + 15 * r;
+          ctx.fillRect(lx, row + 5, 12, 3); ctx.fillText(text, lx + 16, row);
+          slotIndex++;
         } else { ctx.font = "bold 12px system-ui, sans-serif"; ctx.fillText(text, W - 10, 5); }
+      }
+      if (m.traces.length > LEGEND_MAX) {
+        ctx.fillStyle = "#777"; ctx.font = "11px system-ui, sans-serif"; ctx.textAlign = "right";
+        ctx.fillText(LEGEND_MAX + " of " + m.traces.length + " (largest)", W - 10, 6);
       }
       if (hoverT !== undefined && hoverT !== null) {
         const hx = meterX(p, hoverT, view);
