@@ -490,6 +490,14 @@ def test_streamed_run_linked_cursors_and_destroy(browser, run, tmp_path):
     e = a.stick_slip_events(run)[1]
     landed = browser.execute_script("return window.players[0].api.jumpToEvent(1)")
     assert e.t_slip < landed <= e.t_end
+    # once finished, the slip flags are the whole run's (a partial record's last slip may end later)
+    from asperity2d.renderers.stage import slip_mask
+
+    mask = slip_mask(run)
+    for k in np.linspace(0, len(run.t) - 1, 60).astype(int).tolist() + [int(np.searchsorted(run.t, e.t_slip))]:
+        state = browser.execute_script("window.players[0].api.seek(arguments[0]);"
+                                       "return window.players[0].api.state()", float(run.t[k]))
+        assert state["slipping"] == bool(mask[k])
     browser.execute_script("window.players[1].destroy()")
     assert browser.execute_script("return document.getElementById('two').children.length") == 0
     browser.execute_script("window.players[0].api.seek(0)")  # its listener to the destroyed one is harmless

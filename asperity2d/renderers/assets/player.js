@@ -270,6 +270,16 @@
       for (let j = 0; j < n; j++) if (S.lower_contact[j][i]) shares[j] = total > 0 ? shares[j] / total : 1 / count;
       return shares;
     }
+    let liveScale = { n: -1, value: 0 };
+    function liveForceScale() { // while a run streams: the arrows' scale from the samples held (as tip_force_scale)
+      if (liveScale.n === N) return liveScale.value;
+      const rows = derived("tip_force"), vals = [];
+      const stride = Math.max(1, Math.floor(N / 4000));
+      for (let i = 0; i < N; i += stride) { let big = 0; for (const r of rows) big = Math.max(big, r[i]); if (big > 0) vals.push(big); }
+      vals.sort((p1, p2) => p1 - p2);
+      liveScale = { n: N, value: vals.length ? vals[Math.min(vals.length - 1, Math.round(0.99 * (vals.length - 1)))] : 0 };
+      return liveScale.value;
+    }
     function derived(name) {
       if (derivedCache[name]) return derivedCache[name];
       if (name === "tip_force") {
@@ -298,6 +308,20 @@
         derivedCache[name] = { work, kin, drive: drv, track: trk, rest };
       }
       return derivedCache[name];
+    }
+    let slipCache = { n: -1, list: [] };
+    function slipsNow() { // the slips: the run's (once finished), else read off the samples' slip flags
+      if (finished || (D.slips && D.slips.length) || !S.slipping) return D.slips || [];
+      if (slipCache.n === N) return slipCache.list;
+      const list = [];
+      let start = -1;
+      for (let i = 0; i <= N; i++) {
+        const on = i < N && S.slipping[i] > 0;
+        if (on && start < 0) start = i;
+        if (!on && start >= 0) { list.push([T[Math.max(0, start - 1)], T[i - 1]]); start = -1; }
+      }
+      slipCache = { n: N, list };
+      return list;
     }
     function traceValues(tr) {
       if (tr.derived) { const d = derived(tr.derived); return tr.row !== undefined && tr.row !== null ? d[tr.row] : d[tr.key]; }
@@ -545,7 +569,7 @@
         ctx.fillStyle = C.spring; ctx.fillRect(end, sy - 0.6 * bar, 0.72 * bar, 1.2 * bar);
         drawn.drive_end_px = end;
       }
-      const forceScale = G.force_scale || (D.force_scale_live || 0);
+      const forceScale = G.force_scale || liveForceScale();
       if (state.arrows && forceScale > 0) {
         const shares = forceShares(i, new Float64Array(n)), k = G.arrow_px / forceScale;
         const fx = -S.friction_force[i] * k, fy = S.normal_force[i] * k;
@@ -730,7 +754,7 @@
       ctx.fillStyle = "#fafafc"; ctx.fillRect(0, 0, W, H);
       ctx.fillStyle = "#fff"; ctx.fillRect(p.x0, p.y0, p.x1 - p.x0, p.y1 - p.y0);
       ctx.fillStyle = C.band;
-      for (const [a, b] of D.kind === "chain" ? [] : D.slips || []) {
+      for (const [a, b] of D.kind === "chain" ? [] : slipsNow()) {
         if (b < view[0] || a > view[1]) continue;
         const xa = Math.max(p.x0, meterX(p, a, view)), xb = Math.min(p.x1, Math.max(meterX(p, b, view), xa + 1));
         ctx.fillRect(xa, p.y0, xb - xa, p.y1 - p.y0);
@@ -918,7 +942,7 @@
         }
       } else {
         ctx.fillStyle = "#f19a92";
-        for (const [sa, sb] of D.slips || []) ctx.fillRect(X(sa), 8, Math.max(2, X(sb) - X(sa)), H - 16);
+        for (const [sa, sb] of slipsNow()) ctx.fillRect(X(sa), 8, Math.max(2, X(sb) - X(sa)), H - 16);
       }
       if (state.view) { // the meters' zoomed window
         ctx.strokeStyle = C.ruler; ctx.lineWidth = 1.5; ctx.strokeRect(X(state.view[0]), 7, Math.max(2, X(state.view[1]) - X(state.view[0])), H - 14);
@@ -1172,6 +1196,11 @@
       if (final.limits) for (const c of channels) if (final.limits[c.id]) c.limits = final.limits[c.id];
       if (D.recorded === undefined) D.recorded = N;
       finished = true;
+      if (D.kind === "asperity" && S.slipping && final.slips) { // the flags streamed with a partial record's events: redone
+        const flags = new Int8Array(N);
+        for (const [a, b] of D.slips) for (let i = firstAfter(a); i < N && T[i] <= b; i++) if (T[i] > a) flags[i] = 1;
+        S.slipping = flags;
+      }
       for (const m of meters) { m.cache = null; m.autoLimits = null; }
       ui.title.textContent = D.title; buildEvents(); foot(); requestRender();
     }
