@@ -243,15 +243,26 @@ def catch_downloads(browser):
     browser.execute_script(
         "window.__blobs = []; const make = URL.createObjectURL.bind(URL);"
         "URL.createObjectURL = (b) => { window.__blobs.push(b); return make(b); };"
-        "HTMLAnchorElement.prototype.click = function () { window.__names = (window.__names || []).concat([this.download]); };")
+        "window.__clicks = 0; window.__names = [];"
+        "HTMLAnchorElement.prototype.click = function () { window.__names = window.__names.concat([this.download]); };")
 
 
 def last_download(browser, as_text=True):
+    """The download the last click started (waits for it: a PNG is encoded asynchronously)."""
     return browser.execute_async_script(
-        "const done = arguments[arguments.length - 1]; const b = window.__blobs[window.__blobs.length - 1];"
+        "const done = arguments[arguments.length - 1];"
+        "const wait = () => { if ((window.__names || []).length < window.__clicks) return setTimeout(wait, 20);"
+        "const b = window.__blobs[window.__blobs.length - 1];"
         "const name = window.__names[window.__names.length - 1];"
         + ("b.text().then((t) => done([b.type, name, t]));" if as_text else
-           "b.arrayBuffer().then((buf) => done([b.type, name, Array.from(new Uint8Array(buf).slice(0, 8)), buf.byteLength]));"))
+           "b.arrayBuffer().then((buf) => done([b.type, name, Array.from(new Uint8Array(buf).slice(0, 8)), buf.byteLength]));")
+        + "}; wait();")
+
+
+def click(browser, element):
+    """Click an export button, counting the downloads it should start."""
+    browser.execute_script("window.__clicks = (window.__clicks || 0) + 1")
+    element.click()
 
 
 def meter_box(browser, k):
@@ -342,7 +353,7 @@ def test_csv_export_gives_the_results_numbers(browser, main_run, main_player):
             browser.execute_script("arguments[0].value = arguments[1];"
                                    "arguments[0].dispatchEvent(new Event('change'))", select, channel)
         button = browser.find_elements("css selector", ".ap-meter")[k].find_element("css selector", '[data-act="csv"]')
-        button.click()
+        click(browser, button)
         kind, name, text = last_download(browser)
         assert kind == "text/csv" and name.endswith(".csv")
         lines = text.strip().split("\n")
@@ -363,18 +374,17 @@ def test_meter_and_frame_export_as_png_and_svg(browser, main_player):
     open_player(browser, main_player)
     catch_downloads(browser)
     meter = browser.find_elements("css selector", ".ap-meter")[0]
-    meter.find_element("css selector", '[data-act="svg"]').click()
+    click(browser, meter.find_element("css selector", '[data-act="svg"]'))
     kind, name, text = last_download(browser)
     assert kind == "image/svg+xml" and name == "drive-force.svg"
     svg = ET.fromstring(text)
     texts = " ".join(t.text or "" for t in svg.iter("{http://www.w3.org/2000/svg}text"))
     assert "drive force (mN)" in texts and len(list(svg.iter("{http://www.w3.org/2000/svg}path"))) > 5
     for selector in ('.ap-meter [data-act="png"]', '.ap-bar [data-act="png"]'):
-        browser.find_element("css selector", selector).click()
-        browser.execute_script("return new Promise(r => setTimeout(r, 300))")
+        click(browser, browser.find_element("css selector", selector))
         kind, name, head, size = last_download(browser, as_text=False)
         assert kind == "image/png" and head == [137, 80, 78, 71, 13, 10, 26, 10] and size > 2000
-    browser.find_element("css selector", '.ap-bar [data-act="svg"]').click()
+    click(browser, browser.find_element("css selector", '.ap-bar [data-act="svg"]'))
     kind, name, text = last_download(browser)
     frame = ET.fromstring(text)
     assert name == "frame.svg" and len(list(frame.iter("{http://www.w3.org/2000/svg}path"))) > 16
