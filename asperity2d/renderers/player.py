@@ -233,7 +233,7 @@ def scene_payload(scene, *, camera: str = "follow", duration: float | None = Non
     :func:`chunk_payload` and closed with :func:`final_payload`): geometry, channels (their axes
     fitted to the samples as they come), a human title. ``duration`` (s): the time axes' span
     while the run streams (default: the samples so far)."""
-    from .notebook import rest_record
+    from .stage import rest_record
 
     rest = rest_record(scene)
     geometry, _ = _asperity_geometry(rest, camera, None)
