@@ -538,3 +538,23 @@ def test_belt_player_in_a_hidden_notebook_cell_draws_when_shown_with_a_legend(br
         assert console_errors(browser) == []
     finally:
         browser.switch_to.default_content()
+
+
+def test_stepping_through_the_largest_slip_moves_less_than_a_pitch_a_frame(browser, main_run, main_player):
+    """The player's frame step in a slip follows the GIF's slow motion (slower where the slider is
+    fast): stepping frame by frame shows the tips climb the flanks."""
+    open_player(browser, main_player)
+    events = a.stick_slip_events(main_run)
+    k = max(range(len(events)), key=lambda i: events[i].slip_distance)
+    e, pitch = events[k], main_run.scene.lower.spacing.mean_pitch
+    browser.execute_script("window.asperityPlayer.seek(arguments[0])", e.t_slip)
+    xs, steps = [browser.execute_script("return window.asperityPlayer.state().slider.x")], 0
+    while True:
+        state = browser.execute_script("window.asperityPlayer.step(1); return window.asperityPlayer.state()")
+        xs.append(state["slider"]["x"])
+        steps += 1
+        if state["t"] > e.t_end or steps > 2000:
+            break
+    jumps = np.abs(np.diff(xs)) / pitch
+    assert steps >= e.slip_distance / pitch and jumps.max() < 1.0, (steps, jumps.max())
+    assert console_errors(browser) == []

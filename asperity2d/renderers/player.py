@@ -272,9 +272,14 @@ def final_payload(result, *, slips=None) -> dict:
 
     t = np.asarray(result.t, dtype=float)
     slips = slip_intervals(result) if slips is None else slips
-    plan = schedule(t, slips, max(2, int(PLAYBACK_SECONDS * 20)))
+    frames = max(2, int(PLAYBACK_SECONDS * 20))
+    if is_chain(result):
+        plan = schedule(t, slips, frames)
+    else:  # the GIF's slow motion: slower still where the slider moves fast (a frame step < a pitch)
+        plan = schedule(t, slips, frames, x=result.x, pitch=result.scene.lower.spacing.mean_pitch)
+    slow = plan.rates or plan.intervals
     out = {"events": _events(result), "slips": [[float(a), float(b)] for a, b in slips],
-           "slow": [[a, b, s] for a, b, s in plan.intervals], "frame_step": plan.normal_step, "fps": 20,
+           "slow": [[a, b, s] for a, b, s in slow if s > 1], "frame_step": plan.normal_step, "fps": 20,
            "recorded": int(len(t))}
     if is_chain(result):
         out["title"] = f"belt chain, {result.n} masses"

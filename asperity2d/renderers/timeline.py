@@ -41,7 +41,9 @@ class Schedule:
     ``slow`` is larger). With positions given (``x``, ``pitch``): ``jumps`` (F,)
     the slider's displacement since the previous frame in pitches, ``jump_limit``
     the most a frame inside a slow interval was planned to move (pitches), and
-    ``coarse_reason`` why some frame moves more than a pitch ("" if none does).
+    ``coarse_reason`` why some frame moves more than a pitch ("" if none does);
+    ``rates`` the playback rate piece by piece inside the slowed intervals,
+    ``(start, end, S)`` with equal neighbours merged (a player's slow motion).
     """
 
     index: np.ndarray
@@ -52,6 +54,7 @@ class Schedule:
     jumps: np.ndarray | None = None
     jump_limit: float | None = None
     coarse_reason: str = ""
+    rates: tuple = ()
 
     def __len__(self) -> int:
         return len(self.index)
@@ -208,11 +211,17 @@ def _moving(t, x, pitch, frames, merged, rates, jump) -> Schedule:
     K = hi
     knots_t, knots_tau, knot_rate, tau = [t0], [0.0], [1.0], 0.0
     last = t0
+    rates_out: list[list[float]] = []
     for a, b, r, dt, dx, knots in pieces:
         tau += a - last
         with np.errstate(divide="ignore", invalid="ignore"):
             rho = np.where(dt > 0, np.maximum(r, K * dx / np.where(dt > 0, dt, 1.0)), r)
         rho = np.array([nice_up(v) for v in rho])
+        for k, v in enumerate(rho):
+            if rates_out and rates_out[-1][2] == v and rates_out[-1][1] == knots[k]:
+                rates_out[-1][1] = float(knots[k + 1])
+            else:
+                rates_out.append([float(knots[k]), float(knots[k + 1]), float(v)])
         cum = tau + np.r_[0.0, np.cumsum(rho * dt)]
         knots_t += knots.tolist()
         knots_tau += cum.tolist()
@@ -244,7 +253,8 @@ def _moving(t, x, pitch, frames, merged, rates, jump) -> Schedule:
         else:
             reason = "a frame's nearest recorded sample"
     return Schedule(index=plan.index, time=plan.time, slow=plan.slow, normal_step=plan.normal_step,
-                    intervals=plan.intervals, jumps=jumps, jump_limit=float(limit), coarse_reason=reason)
+                    intervals=plan.intervals, jumps=jumps, jump_limit=float(limit), coarse_reason=reason,
+                    rates=tuple(tuple(piece) for piece in rates_out))
 
 
 def _finish(t, wanted, slow, normal_step, intervals) -> Schedule:

@@ -435,6 +435,22 @@
       for (const [a, b, s] of D.slow || []) if (t >= a && t <= b) return s;
       return 1;
     }
+    function advance(t, dtau, dir) { // t moved by playback time dtau through the slow-motion pieces
+      const segs = ui.slowmo.checked ? (D.slow || []) : [];
+      let rem = dtau, guard = 0;
+      while (rem > 0 && guard++ < 100000) {
+        let rate = 1, bound = dir > 0 ? Infinity : -Infinity;
+        for (const [a, b, sl] of segs) {
+          if (dir > 0 ? (t >= a && t < b) : (t > a && t <= b)) { rate = sl; bound = dir > 0 ? b : a; break; }
+          if (dir > 0 && a > t && a < bound) bound = a;
+          if (dir < 0 && b < t && b > bound) bound = b;
+        }
+        const span = Math.abs(bound - t) * rate;
+        if (!isFinite(span) || span >= rem) return t + dir * rem / rate;
+        rem -= span; t = bound;
+      }
+      return t;
+    }
     function frameStep() { return D.frame_step || (tEnd() - tStart()) / 600 || 1e-9; }
 
     // ---- the asperity scene ---------------------------------------------------------------
@@ -1016,8 +1032,7 @@
       pause();
       const dir = n < 0 ? -1 : 1;
       for (let k = 0; k < Math.abs(n); k++) {
-        const t = T[state.index], dt = frameStep() / slowAt(t);
-        let j = indexAt(t + dir * dt);
+        let j = indexAt(advance(T[state.index], frameStep(), dir));
         if (j === state.index) j = Math.min(N - 1, Math.max(0, j + dir));
         state.index = j; state.t = T[j];
       }
@@ -1029,7 +1044,7 @@
       if (!state.playing || destroyed) { last = null; return; }
       if (last !== null) {
         const wall = Math.min(0.1, (now - last) / 1000);
-        state.t += wall * 20 * frameStep() * state.speed / slowAt(state.t);
+        state.t = advance(state.t, wall * 20 * frameStep() * state.speed, 1);
         const end = N ? T[N - 1] : 0;
         if (state.t >= end) { state.t = end; if (finished) state.playing = false; }
         state.index = indexAt(state.t);
