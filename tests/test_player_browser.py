@@ -558,3 +558,34 @@ def test_stepping_through_the_largest_slip_moves_less_than_a_pitch_a_frame(brows
     jumps = np.abs(np.diff(xs)) / pitch
     assert steps >= e.slip_distance / pitch and jumps.max() < 1.0, (steps, jumps.max())
     assert console_errors(browser) == []
+
+
+def test_energy_book_and_per_tip_force_channels(browser, main_run, main_player):
+    """The derived channels, exported: the energy book's terms from the kept samples (drive work by
+    the trapezoid rule, 0.5 m v^2, 0.5 k s^2, 0.5 sum k_i dy_i^2, the rest) and each tip's share of
+    the contact force, as numpy computes them from the result (1e-12: float64 summation order)."""
+    from asperity2d.renderers.stage import force_shares
+
+    open_player(browser, main_player)
+    keep = kept(main_run, browser)
+    r, scene = main_run, main_run.scene
+    browser.execute_script("window.asperityPlayer.setChannel(1, 'energy'); window.asperityPlayer.setChannel(2, 'tip_force_5')")
+    table = lambda k: np.array([[float(v) for v in line.split(",")] for line in browser.execute_script(
+        "return window.asperityPlayer.exportMeter(arguments[0], 'csv')", k).strip().split("\n")[1:]])
+    energy = table(1)
+    v, vy, x, dx = r.v[keep], r.vy[keep], r.x[keep], r.drive_x[keep]
+    kin = 0.5 * scene.slider.mass * (v ** 2 + vy ** 2)
+    spring = 0.5 * scene.drive.stiffness * (dx - x) ** 2
+    track = 0.5 * (np.asarray(scene.lower.stiffness)[:, None] * r.lower_dy[:, keep] ** 2).sum(axis=0)
+    f = r.drive_force[keep]
+    work = np.r_[0.0, np.cumsum(0.5 * (f[1:] + f[:-1]) * np.diff(dx))]
+    rest = work - (kin + spring + track - kin[0] - spring[0] - track[0])
+    scale = np.max(np.abs(work))
+    for j, expected in enumerate((work, kin, spring, track, rest)):
+        np.testing.assert_allclose(energy[:, j + 1], expected, rtol=0, atol=1e-12 * scale)
+    assert rest[-1] > 0.5 * work[-1]  # most of the drive's work is dissipated by the end of the run
+    tip = table(2)
+    expected = [force_shares(r, k)[5] * np.hypot(r.friction_force[k], r.normal_force[k]) for k in keep]
+    np.testing.assert_allclose(tip[:, 1], expected, rtol=1e-12, atol=1e-18)
+    assert np.count_nonzero(tip[:, 1]) > 10
+    assert console_errors(browser) == []

@@ -342,7 +342,7 @@
                         note: "the recorded total shared by track-spring load, as the arrows",
                         traces: [{ label: "tip " + (j + 1), derived: "tip_force", row: j, colour: PALETTE[j % 10] }] });
       if (G.slider_mass) channels.push({ id: "energy", title: "energy book", unit: "J", group: "energy",
-        note: "from the kept samples: drive work (trapezoid), slider kinetic, drive spring, track springs; the rest is dissipated or in the lower asperities' motion",
+        note: "from the kept samples: drive work (trapezoid rule), slider kinetic, drive spring, vertical track springs; the rest is dissipated, or in the lower asperities' motion and lateral springs",
         traces: [{ label: "drive work", derived: "energy", key: "work", colour: "#000000" },
                  { label: "slider kinetic", derived: "energy", key: "kin", colour: PALETTE[3] },
                  { label: "drive spring", derived: "energy", key: "drive", colour: PALETTE[1] },
@@ -707,7 +707,7 @@
       for (const c of channels) {
         const g = c.group || "run";
         if (!groups[g]) { groups[g] = document.createElement("optgroup"); groups[g].label = g; select.appendChild(groups[g]); }
-        const o = document.createElement("option"); o.value = c.id; o.textContent = c.title; groups[g].appendChild(o);
+        const o = document.createElement("option"); o.value = c.id; o.textContent = c.title; if (c.note) o.title = c.note; groups[g].appendChild(o);
       }
       head.appendChild(select);
       const tools = document.createElement("span"); tools.className = "ap-meter-tools";
@@ -734,7 +734,7 @@
     function setChannel(m, id) {
       const spec = channelById[id] || channels[0];
       m.spec = spec; m.select.value = spec.id; m.zoomY = null; m.cache = null; m.autoLimits = null;
-      m.canvas.setAttribute("aria-label", spec.title);
+      m.canvas.setAttribute("aria-label", spec.title); m.select.title = spec.note || "channel";
     }
     function meterTraces(m) { return m.spec.traces.map((tr) => ({ ...tr, values: traceValues(tr) })); }
     function meterLimits(m, traces) {
