@@ -508,6 +508,13 @@ def test_streamed_run_linked_cursors_and_destroy(browser, run, tmp_path):
         state = browser.execute_script("window.players[0].api.seek(arguments[0]);"
                                        "return window.players[0].api.state()", float(run.t[k]))
         assert state["slipping"] == bool(mask[k])
+    # linked time windows: a box zoom on one player's meters zooms the other's
+    browser.execute_script("window.players[0].onView((v) => window.players[1].setView(v));"
+                           "window.players[0].api.zoomMeter(0, arguments[0], arguments[1], null, null)",
+                           float(run.t[10]), float(run.t[200]))
+    assert browser.execute_script("return window.players[1].api.state().view") == [run.t[10], run.t[200]]
+    browser.execute_script("window.players[0].api.resetZoom()")
+    assert browser.execute_script("return window.players[1].api.state().view") == [run.t[0], run.t[-1]]
     browser.execute_script("window.players[1].destroy()")
     assert browser.execute_script("return document.getElementById('two').children.length") == 0
     browser.execute_script("window.players[0].api.seek(0)")  # its listener to the destroyed one is harmless

@@ -17,6 +17,8 @@
                               scrub, play, step, event jump); returns a function that unsubscribes.
      player.setCursor(t)      move the cursor to the sample nearest t without calling back
                               (link several players: a.onCursor(t => b.setCursor(t)) and back).
+     player.onView(cb) / player.setView([t0, t1] | null)   the same for the meters' time window
+                              (box zoom; null: the whole run), to zoom compared runs together.
      player.destroy()         stop playing, remove listeners and observers, empty rootElement.
      player.api               the scripting/test interface (state(), seek(t), play(), pause(),
                               step(n), setSpeed(x), meters(), zoomMeter(...), exportMeter(...),
@@ -931,11 +933,15 @@
       }
       return lines.join("\n") + "\n";
     }
-    function resetZoom(m) { state.view = null; if (m) m.zoomY = null; else for (const q of meters) q.zoomY = null; requestRender(); }
+    const viewListeners = [];
+    function emitView() { for (const cb of viewListeners.slice()) { try { cb(state.view ? state.view.slice() : null); } catch (err) { setTimeout(() => { throw err; }); } } }
+    function resetZoom(m) { state.view = null; if (m) m.zoomY = null; else for (const q of meters) q.zoomY = null; requestRender(); emitView(); }
     function zoomMeter(m, ta, tb, lo, hi) { // box zoom: time for every meter (linked), value for this one
-      if (ta !== null && tb !== null && tb > ta) state.view = [ta, tb];
+      const timed = ta !== null && tb !== null && tb > ta;
+      if (timed) state.view = [ta, tb];
       if (lo !== null && hi !== null && hi > lo) m.zoomY = [lo, hi];
       requestRender();
+      if (timed) emitView();
     }
 
     // ---- timeline --------------------------------------------------------------------------
@@ -1230,7 +1236,7 @@
       if (rafId !== null) cancelAnimationFrame(rafId);
       if (ro) ro.disconnect(); if (io) io.disconnect();
       for (const c of cleanups.splice(0)) c();
-      cursorListeners.length = 0;
+      cursorListeners.length = 0; viewListeners.length = 0;
       root.innerHTML = ""; root.classList.remove("ap");
     }
 
@@ -1267,6 +1273,8 @@
       api, append, finish, destroy,
       onCursor(cb) { cursorListeners.push(cb); return () => { const k = cursorListeners.indexOf(cb); if (k >= 0) cursorListeners.splice(k, 1); }; },
       setCursor(t) { if (!destroyed && N) { state.playing = false; seek(t); } },
+      onView(cb) { viewListeners.push(cb); return () => { const k = viewListeners.indexOf(cb); if (k >= 0) viewListeners.splice(k, 1); }; },
+      setView(view) { if (destroyed) return; state.view = view && view[1] > view[0] ? [view[0], view[1]] : null; requestRender(); },
       get samples() { return N; },
     };
   }
