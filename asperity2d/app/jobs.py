@@ -9,7 +9,6 @@ measures' metadata is read in one place, :func:`measure_info`.
 from __future__ import annotations
 
 import math
-import multiprocessing
 import os
 import threading
 import time
@@ -150,50 +149,57 @@ def measure_scene(name: str, params: dict):
     return make_scene(**{**params, "drive": measure_info(name)["drive"]})
 
 
-def _measure_child(conn, name: str, params: dict) -> None:
-    """In the child process: measure, send ``("ok", value)`` or ``("error", text)``."""
+def _measure_main() -> None:
+    """The child process's side (``python -c``): read ``{"name", "params"}`` as JSON on stdin,
+    write ``{"value"}`` or ``{"error"}`` as JSON on stdout."""
+    import json
+    import sys
+
+    request = json.loads(sys.stdin.read())
     try:
-        value = float(measure_info(name)["fn"](measure_scene(name, params)))
-        conn.send(("ok", value))
+        value = float(measure_info(request["name"])["fn"](measure_scene(request["name"], request["params"])))
+        answer = {"value": value if math.isfinite(value) else None}
     except BaseException as exc:  # noqa: BLE001 -- the parent shows it as one line
-        conn.send(("error", error_text(exc)))
-    finally:
-        conn.close()
+        answer = {"error": error_text(exc)}
+    sys.stdout.write(json.dumps(answer))
+    sys.stdout.flush()
 
 
 def measure_in_child(name: str, params: dict, job: Job, on_progress, *, poll: float = 0.25) -> float:
-    """Measure in a child process (spawned: the server's threads are not forked), reporting the
-    elapsed time every ``poll`` s; a cancelled job kills the child at once."""
-    ctx = multiprocessing.get_context("spawn")
-    parent, child = ctx.Pipe(duplex=False)
-    proc = ctx.Process(target=_measure_child, args=(child, name, params), daemon=True,
-                       name=f"asperity2d-measure-{name}")
+    """Measure in a child process (a fresh interpreter: nothing of the server is inherited),
+    reporting the elapsed time every ``poll`` s; a cancelled job kills the child at once."""
+    import json
+    import subprocess
+    import sys
+    import tempfile
+
     start = time.monotonic()
-    proc.start()
-    child.close()
-    try:
-        while True:
-            if job.cancelled:
-                raise Cancelled
-            if parent.poll(poll):
+    with tempfile.TemporaryFile() as out:
+        proc = subprocess.Popen([sys.executable, "-c", "from asperity2d.app.jobs import _measure_main; _measure_main()"],
+                                stdin=subprocess.PIPE, stdout=out, stderr=subprocess.DEVNULL)
+        try:
+            proc.stdin.write(json.dumps({"name": name, "params": params}).encode())
+            proc.stdin.close()
+            while proc.poll() is None:
+                if job.cancelled:
+                    raise Cancelled
                 try:
-                    status, value = parent.recv()
-                except EOFError:
-                    raise SimulationError("the measure's process ended without an answer") from None
-                if status == "ok":
-                    return value
-                raise SceneError(value)
-            if not proc.is_alive() and not parent.poll(0):
-                raise SimulationError(f"the measure's process ended (exit code {proc.exitcode})")
-            on_progress(time.monotonic() - start)
-    finally:
-        if proc.is_alive():
-            proc.terminate()
-        proc.join(2.0)
-        if proc.is_alive():
-            proc.kill()
-            proc.join(1.0)
-        parent.close()
+                    proc.wait(poll)
+                except subprocess.TimeoutExpired:
+                    on_progress(time.monotonic() - start)
+        finally:
+            if proc.poll() is None:
+                proc.kill()
+                proc.wait(5)
+        out.seek(0)
+        text = out.read().decode(errors="replace")
+    try:
+        answer = json.loads(text)
+    except ValueError:
+        raise SimulationError(f"the measure's process ended without an answer (exit code {proc.returncode})") from None
+    if "error" in answer:
+        raise SceneError(answer["error"])
+    return math.nan if answer["value"] is None else answer["value"]
 
 
 # -- ensemble comparison ----------------------------------------------------------------------------

@@ -253,6 +253,8 @@ class Session:
         if len(result.t) > sent:
             self.emit({"type": chunk, "job": job.id, **extra, "chunk": chunk_payload(result, sent),
                        "t": float(result.t[-1])})
+        if start == "run-start":
+            self.result = result  # before the page hears it has ended (it may ask to save it)
         self.emit({"type": end, "job": job.id, **extra, "final": final_payload(result),
                    "summary": _summary(result)})
         return result
@@ -260,12 +262,10 @@ class Session:
     def _run(self, job) -> None:
         scene, duration = job.request
         try:
-            result = self._stream(scene, duration, job, ("run-start", "run-chunk", "run-end"), {})
+            self._stream(scene, duration, job, ("run-start", "run-chunk", "run-end"), {})
         except SceneError as exc:  # e.g. a duration over the step budget: the control's message
             text = str(exc).splitlines()[0]
             self.emit({"type": "invalid", "errors": {controls.blame(text, {"duration": 1, **self.params}): text}})
-            return
-        self.result = result
 
     def _variants(self, job) -> None:
         scenes, duration = job.request

@@ -24,6 +24,8 @@ function si(value, unit, digits) {  // the rule of asperity2d._format.si
   return text + sep + (PREFIX[e] || "") + base;
 }
 
+function fix(v) { return v === null || v === undefined || !isFinite(v) ? "\u2013" : v.toFixed(3); }
+
 function h(tag, attrs, ...children) {
   const el = document.createElement(tag);
   for (const [k, v] of Object.entries(attrs || {})) {
@@ -323,7 +325,7 @@ function render({ model, el }) {
       ens.stats.replaceChildren(h("div", {}, `${E.label} \u2014 ${m.seeds_done} of ${E.seeds.length} seeds done`),
         ...Object.entries(m.summary).map(([v, s]) => h("div", {}, `${v}: mean ${si(s.mean, E.unit, 4)}, 95 % CI [${si(s.ci_low, E.unit, 3)}, ${si(s.ci_high, E.unit, 3)}]`)),
         ...m.versus.map((c) => h("div", { class: "aw-verdict", "data-verdict": c.verdict },
-          `${c.variant} / ${c.reference}: ratio \u00d7${(c.ratio ?? NaN).toFixed(3)} [${(c.ratio_ci[0] ?? NaN).toFixed(3)}, ${(c.ratio_ci[1] ?? NaN).toFixed(3)}], Wilcoxon p = ${c.p_wilcoxon === null ? "\u2013" : c.p_wilcoxon.toPrecision(2)}`,
+          `${c.variant} / ${c.reference}: ratio \u00d7${fix(c.ratio)}, 95 % interval ${c.ratio_ci[0] === null ? "not yet (too few seeds)" : `[${fix(c.ratio_ci[0])}, ${fix(c.ratio_ci[1])}]`}, Wilcoxon p = ${c.p_wilcoxon === null ? "\u2013" : c.p_wilcoxon.toPrecision(2)}, ${c.n} seeds`,
           h("br"), c.line)));
     } else if (m.type === "ensemble-end") {
       E.done = true; ens.progress.classList.remove("aw-busy"); ens.progress.firstChild.style.width = "100%";
