@@ -348,6 +348,21 @@ class Run:
         and the divergence guard still see the state, exactly as when recording (so the
         run stops at the same step), but no sample is added to :meth:`result` (the
         critical force's bisection runs, which only need their outcome)."""
+        for _ in self.advancing(duration, stop=stop, progress=progress, record_every=record_every,
+                                record=record, observers=observers):
+            pass
+        return self.status
+
+    def advancing(self, duration: float, *, stop: Callable | Iterable[Callable] | None = None,
+                  progress: bool | None = None, record_every: int | None = None,
+                  record: bool = True, observers: Iterable[Callable] = (), every: int | None = None):
+        """:meth:`advance` in pieces, a generator: the same steps and samples (the same loop:
+        :meth:`advance` exhausts it), yielding this run each time ``every`` more samples have
+        been recorded (``None``: never), so the caller can read the partial record
+        (:meth:`result`, :attr:`samples`) or stop early by closing the generator (the run
+        keeps what it recorded). Sets ``status`` as :meth:`advance` does when it ends."""
+        if every is not None:
+            every = check_int("every", every, minimum=1, maximum=None)
         from tqdm.auto import tqdm
 
         check_finite("duration", duration)
@@ -379,7 +394,7 @@ class Run:
         self.status, self.message = "duration", "reached the requested duration"
         disable = (None if n_steps > 200_000 else True) if progress is None else not progress
         bar = tqdm(total=n_steps, unit="step", disable=disable, leave=False, mininterval=0.5)
-        done = 0
+        done, held = 0, rec.size
         try:
             while done < n_steps:
                 n = min(k, n_steps - done)
@@ -387,6 +402,9 @@ class Run:
                 done += n
                 sample()
                 bar.update(n)
+                if every and record and rec.size - held >= every:
+                    held = rec.size
+                    yield self
                 if look:
                     rec.probe(probe)
                     for observe in observers:
@@ -594,6 +612,62 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
         The run diverged: non-finite state, kinetic energy far beyond what the
         scene held and was given, or deep penetration.
     """
+    gen = _simulation(scene, duration, dt=dt, record_every=record_every, stop=stop, settle=settle,
+                      iterations=iterations, unsafe_dt=unsafe_dt, progress=progress, energy=energy,
+                      max_steps=max_steps, observers=observers, contact_work=contact_work,
+                      record_lower=record_lower, record_to=record_to, every=None)
+    while True:
+        try:
+            next(gen)
+        except StopIteration as done:
+            return done.value
+
+
+class Simulation:
+    """:func:`simulate` in pieces: the same run (the same loop, the same numbers to the bit),
+    yielding the :class:`Run` each time ``every`` more samples have been recorded, so a caller
+    can read the partial record as it grows (``run.samples``, ``run.result(start=k)``) and stop
+    early (``close()``, or stop iterating)::
+
+        sim = Simulation(scene, every=200)
+        for run in sim:
+            show(run.result(start=shown))   # a view of the samples so far
+        result = sim.result                 # what simulate(scene) returns
+
+    Takes :func:`simulate`'s arguments. ``result`` is None until the iteration has ended.
+    """
+
+    def __init__(self, scene: Scene, duration: float | None = None, *, every: int = 200, **options):
+        every = check_int("every", every, minimum=1, maximum=None)
+        self._gen = _simulation(scene, duration, every=every, **options)
+        self.result: Result | None = None
+        self.run: Run | None = None
+
+    def __iter__(self):
+        return self
+
+    def __next__(self) -> Run:
+        try:
+            self.run = next(self._gen)
+        except StopIteration as done:
+            self.result = done.value
+            raise StopIteration from None
+        return self.run
+
+    def close(self) -> None:
+        """Stop the run where it is (a streamed record keeps its samples)."""
+        self._gen.close()
+
+
+def _simulation(scene: Scene, duration: float | None = None, *, dt: float | None = None,
+                record_every: int = 10, stop: Callable | Iterable[Callable] | None = None,
+                settle: bool | None = None, iterations: int = 20, unsafe_dt: bool = False,
+                progress: bool | None = None, energy: bool = False, max_steps: int = MAX_STEPS,
+                observers: Iterable[Callable] = (), contact_work: bool = False,
+                record_lower: bool = True, record_to: str | os.PathLike | None = None,
+                every: int | None = None):
+    """The body of :func:`simulate` as a generator (it returns the Result): yields the Run once
+    built and settled, then every ``every`` samples (:meth:`Run.advancing`)."""
     if not isinstance(scene, Scene):
         raise SceneError(f"`scene` must be a Scene (see make_scene), got {type(scene).__name__}")
     stops = [] if stop is None else ([stop] if callable(stop) else list(stop))
@@ -619,7 +693,12 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
             run.settle(progress=progress)
         meter = run.meter_energy() if energy else None
         books = run.meter_contact_work() if contact_work else None
-        run.advance(duration, stop=stops, progress=progress, observers=observers)
+        if every is not None:
+            yield run
+        yield from run.advancing(duration, stop=stops, progress=progress, observers=observers, every=every)
+    except GeneratorExit:  # the caller stopped iterating: the run keeps what it recorded
+        run.abort("stopped by the caller")
+        raise
     except BaseException as exc:  # a streamed record keeps its samples, saying why it stopped
         run.abort(f"{type(exc).__name__}: {exc}")
         raise

@@ -105,6 +105,11 @@ def positive_int(text: str) -> int:
     return _checked(lambda name, value: check_int(name, value, minimum=1, maximum=None), int, text)
 
 
+def port(text: str) -> int:
+    """An argparse type: a TCP port, 0 (a free one) to 65535."""
+    return _checked(lambda name, value: check_int(name, value, minimum=0, maximum=65535), int, text)
+
+
 def workers(text: str) -> int | None:
     """An argparse type: ``auto`` (None: decided by cost,
     :func:`asperity2d.sweep.engine.decide_workers`) or an integer >= 1."""
