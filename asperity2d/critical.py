@@ -108,6 +108,34 @@ class CriticalForce:
     ``passes`` stopped), else None. ``checked`` is the relative window below
     and above ``passes`` that the bracket check scanned at ``SCAN_STEP``;
     ``tried`` every (force, passed) pair, in the order run.
+
+    Attributes
+    ----------
+    stops, passes : float
+        The bracket (N): the largest force that stopped, the smallest that passed.
+    runs : int
+        Simulations used.
+    start : {"rest", "entry", "run-up"}
+        How each run began.
+    band : tuple of float or None
+        ``(lowest passing, highest stopping)`` force (N) when passing is not monotone.
+    checked : float
+        Relative window scanned around ``passes``.
+    tried : tuple of (float, bool)
+        Every force tried (N) and whether it passed.
+
+    See Also
+    --------
+    critical_force_bracket : makes one.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> bracket = a.critical_force_bracket(a.make_scene(lower_count=4, upper_count=2))
+    >>> f"{bracket.stops * 1e3:.4g} mN < F_c <= {bracket.passes * 1e3:.4g} mN"
+    '7.59 mN < F_c <= 7.607 mN'
+    >>> bracket.monotone, bracket.runs
+    (True, 20)
     """
 
     stops: float
@@ -282,6 +310,44 @@ def critical_force_bracket(scene: Scene, *, start: str = "rest", rel_tol: float 
     default step from rest, a quarter with a run-up: converged to 0.3 %);
     ``iterations`` and ``max_steps`` (per run) are those of
     :func:`asperity2d.simulate`.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene; its drive is replaced by constant forces.
+    start : {"rest", "entry", "run-up"}, default "rest"
+        How each run begins (see :func:`critical_force`).
+    rel_tol : float, default 0.0025
+        Relative width of the bracket, in (0, 1).
+    max_runs : int, default 80
+        Most simulations allowed (>= 2).
+    dt : float, optional
+        Step (s); default :func:`measure_dt`.
+    iterations : int, default 20
+        pymunk solver iterations.
+    max_steps : int, optional
+        Step budget of each run.
+
+    Returns
+    -------
+    CriticalForce
+        The bracket, the runs used and every force tried.
+
+    Raises
+    ------
+    SceneError
+        A bad parameter (named), or more than ``max_runs`` runs needed.
+
+    See Also
+    --------
+    critical_force : the value alone, warning when passing is not monotone.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> bracket = a.critical_force_bracket(a.make_scene(lower_count=4, upper_count=2))
+    >>> f"{bracket.value * 1e3:.4g} mN, {bracket.relative_width:.1%} wide"
+    '7.607 mN, 0.2% wide'
     """
     if not isinstance(scene, Scene):
         raise SceneError(f"`scene` must be a Scene, got {type(scene).__name__}")
@@ -321,6 +387,56 @@ def critical_force(scene: Scene, *, start: str = "rest", rel_tol: float = REL_TO
     monotone in the force (some force above the returned one stops) it warns
     with :class:`NonMonotoneWarning`, naming the band; see
     :func:`critical_force_bracket` for the record.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene (:func:`make_scene`); its drive is replaced by constant forces, so a
+        spring-driven scene gives the same value as its ``drive="force"`` twin.
+    start : {"rest", "entry", "run-up"}, default "rest"
+        How each run begins (above).
+    rel_tol : float, default 0.0025
+        Relative width of the bisection bracket, in (0, 1).
+    max_runs : int, default 80
+        Most simulations allowed (>= 2).
+    dt : float, optional
+        Step (s); default :func:`measure_dt`.
+    iterations : int, default 20
+        pymunk solver iterations.
+    max_steps : int, optional
+        Step budget of each run.
+
+    Returns
+    -------
+    float
+        The smallest force seen to pass (N).
+
+    Raises
+    ------
+    SceneError
+        A bad parameter (named), or more than ``max_runs`` runs needed.
+
+    Warns
+    -----
+    NonMonotoneWarning
+        Some force above the returned one stopped.
+
+    See Also
+    --------
+    critical_force_bracket : the bracket and every force tried.
+    peak_stick_force, mean_stick_force : the spring-driven measures.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> scene = a.make_scene(lower_count=4, upper_count=2, drive="force")
+    >>> f"{a.critical_force(scene) * 1e3:.3g} mN"
+    '7.61 mN'
+
+    From rest against the first flank only, the entry force is smaller:
+
+    >>> f"{a.critical_force(scene, start='entry') * 1e3:.3g} mN"
+    '3.83 mN'
     """
     bracket = critical_force_bracket(scene, start=start, rel_tol=rel_tol, max_runs=max_runs, dt=dt,
                                      iterations=iterations, max_steps=max_steps)

@@ -88,6 +88,28 @@ class Result:
         Run settings and diagnostics: ``dt``, ``record_every``, ``status``,
         ``message``, ``max_overlap_fraction``, ``max_track_drift_fraction``,
         ``units`` (internal scale), versions.
+
+    See Also
+    --------
+    simulate : makes one.
+    load : reads a saved one.
+    stick_slip_events, peak_stick_force, render : what to do with one.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> result = a.simulate(a.make_scene(lower_count=4, upper_count=2))
+    >>> result.status, result.success, len(result)
+    ('passed', True, 3731)
+    >>> f"slider moved {(result.x[-1] - result.x[0]) * 1e6:.3g} um in {result.t[-1] * 1e9:.3g} ns"
+    'slider moved 6.76 um in 412 ns'
+    >>> result.lower_dy.shape  # one row per lower asperity
+    (4, 3731)
+
+    Saved as ``.npz`` (read back by :func:`asperity2d.load`) or exported for MATLAB:
+
+    >>> result.export("run.mat").name
+    'run.mat'
     """
 
     t: np.ndarray
@@ -204,7 +226,37 @@ class Result:
                         format=FORMAT)
 
     def export(self, path: str | os.PathLike) -> Path:
-        """Export the slider time series as ``.csv`` or MATLAB ``.mat`` (by extension)."""
+        """Export the slider time series as ``.csv`` or MATLAB ``.mat`` (by extension).
+
+        ``.mat`` holds every series of :class:`Result` (SI; ``load("run.mat")`` in MATLAB gives
+        row vectors ``t``, ``x``, ``drive_force``, ... and the ``lower_*`` matrices) and a
+        ``metadata`` JSON string; ``.csv`` the slider's eleven series, one column each, with a
+        header line.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            Ending in ``.mat`` or ``.csv``.
+
+        Returns
+        -------
+        pathlib.Path
+            The path written (atomically).
+
+        Raises
+        ------
+        SceneError
+            Another extension.
+
+        Examples
+        --------
+        >>> import scipy.io
+        >>> import asperity2d as a
+        >>> result = a.simulate(a.make_scene(lower_count=4, upper_count=2))
+        >>> path = result.export("run.mat")
+        >>> scipy.io.loadmat(path)["drive_force"].shape
+        (1, 3731)
+        """
         path = Path(path)
         suffix = path.suffix.lower()
         if suffix == ".csv":

@@ -534,14 +534,16 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
 
     Parameters
     ----------
-    duration : float or None
+    scene : Scene
+        What to run (:func:`make_scene`); SI units throughout.
+    duration : float or None, default None
         Simulated time (s) after settling. ``None``: until the slider has
         passed the lower surface, or (constant force) is stuck for good, or a
         time limit long enough to cross it has run out (``status`` says which).
     dt : float, optional
         Step (s). Default: 1/50 of the shortest natural period. A step coarser
         than 1/20 of it is refused unless ``unsafe_dt=True``.
-    record_every : int
+    record_every : int, default 10
         Record every k-th step (the first sample is the settled state).
     stop : callable or list of callables, optional
         ``stop(probe) -> bool`` evaluated at every sample; extra to the
@@ -551,28 +553,31 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
         Let a free slider settle under its load (x held, damped) first, until
         its motion has decayed (at most 10 slowest periods). Default: True for
         a free slider.
-    iterations : int
+    iterations : int, default 20
         pymunk solver iterations.
+    unsafe_dt : bool, default False
+        Accept a ``dt`` coarser than 1/20 of the shortest natural period (the
+        run's ``checks`` then report ``step_size`` as not passed).
     progress : bool, optional
         Show a progress bar (default: only on a terminal, for long runs).
-    energy : bool
+    energy : bool, default False
         Meter every step's energy flows from the settled state on
         (:class:`asperity2d.engine.energy.EnergyMeter`) and store its report
         in ``result.meta["energy"]`` (a metered step costs about 7 plain steps).
-    contact_work : bool
+    contact_work : bool, default False
         Book the work of the slider's contacts by what each does, from the settled
         state on (:class:`asperity2d.engine.energy.ContactWork`), in
         ``result.meta["contact_work"]`` (J).
-    max_steps : int
+    max_steps : int, default 10_000_000
         Step budget (settling included), checked before anything runs.
-    observers : list of callables
+    observers : list of callables, default ()
         ``observer(probe)`` called at every sample (the settled state included),
         with the SI view of the state (:class:`Probe`: time, slider position and
         velocity, drive force, the start position; ``probe.energy()`` the energy
         books so far when ``energy=True``), before the stop conditions. For
         studies that watch a run as it goes (e.g. the books when the slider
         first got somewhere); an observer watches, it must not change the run.
-    record_lower : bool
+    record_lower : bool, default True
         Keep the lower asperities' displacements and contacts (``lower_dx``, ``lower_dy``,
         ``lower_contact``; 17 B per asperity and sample) besides the slider's eleven series
         (88 B a sample). False keeps only the slider's (the three then have no samples; the
@@ -585,6 +590,12 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
         that is killed leaves the samples written so far, loaded with status
         ``"interrupted"``; one that raises leaves them too, its message saying why.
 
+    Returns
+    -------
+    Result
+        The recorded run: time series in SI (``t``, ``x``, ``v``, ``drive_force``, ...),
+        ``status`` (``"passed"``, ``"stuck"``, ``"duration"``, ...) and the scene it ran.
+
     Raises
     ------
     SceneError
@@ -593,6 +604,36 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
     SimulationError
         The run diverged: non-finite state, kinetic energy far beyond what the
         scene held and was given, or deep penetration.
+
+    See Also
+    --------
+    make_scene : the scene.
+    stick_slip_events, peak_stick_force, mean_stick_force, breakaway_force : measures of the run.
+    critical_force : bisection over constant-force runs.
+    render : pictures, animations and sounds of the run.
+    Run : the same run step by step (fork, change the drive, advance).
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> scene = a.make_scene(lower_count=4, upper_count=2)
+    >>> result = a.simulate(scene)
+    >>> result
+    Result(3731 samples, t_end=412.4 ns, status='passed')
+    >>> f"{result.drive_force.max() * 1e3:.3g} mN"
+    '17.2 mN'
+
+    A fixed duration instead of "until the slider has passed":
+
+    >>> a.simulate(scene, 100e-9).status
+    'duration'
+
+    Bad input is one line naming the parameter:
+
+    >>> a.simulate("scene.toml")
+    Traceback (most recent call last):
+    ...
+    asperity2d.errors.SceneError: `scene` must be a Scene (see make_scene), got str
     """
     if not isinstance(scene, Scene):
         raise SceneError(f"`scene` must be a Scene (see make_scene), got {type(scene).__name__}")

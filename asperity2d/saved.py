@@ -46,8 +46,39 @@ def load(path: str | os.PathLike):
     :class:`~asperity2d.belt.BeltResult`, chosen by the file's format tag; or a record streamed
     to a directory (``simulate(..., record_to=path)``), read lazily.
 
-    A file that is neither (missing, empty, foreign, damaged, malformed) raises one
-    :class:`~asperity2d._io.FileError` (a ``SceneError``) naming ``path``.
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A ``.npz`` file written by ``Result.save`` or ``BeltResult.save``, or a directory
+        written by ``simulate(..., record_to=path)``.
+
+    Returns
+    -------
+    Result or BeltResult
+        The run as it was saved, bit for bit.
+
+    Raises
+    ------
+    FileError
+        A file that is neither (missing, empty, foreign, damaged, malformed), naming
+        ``path`` (a subclass of :class:`~asperity2d.SceneError`).
+
+    See Also
+    --------
+    Result.save, Result.export : write a result; ``export`` for MATLAB (``.mat``) or CSV.
+    render : draws a saved result without re-simulating.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import asperity2d as a
+    >>> result = a.simulate(a.make_scene(lower_count=4, upper_count=2))
+    >>> path = result.save("run.npz")
+    >>> again = a.load(path)
+    >>> again
+    Result(3731 samples, t_end=412.4 ns, status='passed')
+    >>> np.array_equal(again.x, result.x)
+    True
     """
     if kind_of(path) == "belt":
         from .belt.result import load as load_belt
