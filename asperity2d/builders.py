@@ -225,6 +225,12 @@ def make_scene(*, spacing: str = "regular", seed: int = 0, profile: str = "full"
     SceneError
         An unknown, mistyped, out-of-range or contradictory parameter, named.
 
+    See Also
+    --------
+    simulate : runs the scene.
+    Scene : what it returns; change a part with :func:`dataclasses.replace`.
+    asperity2d.surface.self_affine_profile : a rough surface for ``lower_surface=``.
+
     Notes
     -----
     Rough surfaces: ``height_std`` (m; ``lower_height_std`` / ``upper_height_std`` override
@@ -245,6 +251,35 @@ def make_scene(*, spacing: str = "regular", seed: int = 0, profile: str = "full"
     and ``density`` (rho b^2 h / 3). With a profile surface, a fixed track's
     ``interference`` defaults to a quarter of the median lower height, below
     the highest lower tip.
+
+    Examples
+    --------
+    Ooten's set-up, made small for a quick run:
+
+    >>> import asperity2d as a
+    >>> scene = a.make_scene(lower_count=4, upper_count=2)
+    >>> scene.name, scene.lower.count, scene.slider.count
+    ('regular-full-spring-fixed-seed0', 4, 2)
+
+    Random spacing (one surface per seed) and the free slider under a 5 mN load:
+
+    >>> a.make_scene(spacing="random", seed=3, lower_count=4, upper_count=2, track="free",
+    ...              normal_load=5e-3).name
+    'random-full-spring-free-seed3'
+
+    A rough lower surface: its summits become the asperities:
+
+    >>> from asperity2d.surface import self_affine_profile
+    >>> profile = self_affine_profile(n=512, length=20e-6, rms_height=0.2e-6, hurst=0.8, seed=1)
+    >>> a.make_scene(lower_surface=profile, upper_count=2).lower.count
+    16
+
+    A misspelt parameter is one line, with the likely one:
+
+    >>> a.make_scene(lower_cont=4)
+    Traceback (most recent call last):
+    ...
+    asperity2d.errors.SceneError: unknown scene parameter `lower_cont` (did you mean `lower_count`?)
     """
     unknown = sorted(set(overrides) - set(DEFAULTS), key=str)
     if unknown:

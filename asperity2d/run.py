@@ -74,7 +74,21 @@ class Probe:
 
 
 class Passed:
-    """Stop when the slider's rear tip is half a base past the last lower apex."""
+    """Stop when the slider's rear tip is half a base past the last lower apex.
+
+    A stop condition for :func:`simulate`'s ``stop`` (a default when ``duration`` is None).
+
+    See Also
+    --------
+    Stuck, Travelled
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> scene = a.make_scene(lower_count=4, upper_count=2)
+    >>> a.simulate(scene, 1e-6, stop=a.Passed()).status
+    'passed'
+    """
 
     name = "passed"
 
@@ -88,6 +102,26 @@ class Stuck:
     It remembers when the slider became slow; :meth:`reset` (called by the run
     at the start of every :meth:`Run.advance`) forgets it, so one instance can
     serve several runs.
+
+    Parameters
+    ----------
+    speed : float
+        Speed (m/s) below which the slider counts as slow, > 0.
+    dwell : float
+        How long (s) it must stay slow, >= 0.
+
+    See Also
+    --------
+    Passed, Travelled
+
+    Examples
+    --------
+    The spring-driven slider rests until the spring has pulled hard enough:
+
+    >>> import asperity2d as a
+    >>> scene = a.make_scene(lower_count=4, upper_count=2)
+    >>> a.simulate(scene, stop=a.Stuck(speed=1.0, dwell=20e-9))
+    Result(1190 samples, t_end=131.5 ns, status='stuck')
     """
 
     name = "stuck"
@@ -110,7 +144,24 @@ class Stuck:
 
 
 class Travelled:
-    """Stop once the slider has moved ``distance`` (m) from its start."""
+    """Stop once the slider has moved ``distance`` (m) from its start.
+
+    Parameters
+    ----------
+    distance : float
+        Distance (m), > 0.
+
+    See Also
+    --------
+    Passed, Stuck
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> scene = a.make_scene(lower_count=4, upper_count=2)
+    >>> a.simulate(scene, stop=a.Travelled(1e-6)).status
+    'travelled'
+    """
 
     name = "travelled"
 
@@ -232,6 +283,39 @@ class Run:
     bit-identical to each other). ``engaged=True`` starts a fixed-track slider
     over the surface instead of before it (:meth:`settle` lowers its track
     into contact); a free slider always starts on the surface.
+
+    Parameters
+    ----------
+    scene : Scene
+        What to run.
+    dt, record_every, iterations, unsafe_dt, max_steps, record_lower, record_to
+        As for :func:`simulate`.
+    engaged : bool, default False
+        Start a fixed-track slider over the surface rather than before it.
+
+    Raises
+    ------
+    SceneError
+        Bad arguments, named (as :func:`simulate`).
+
+    See Also
+    --------
+    simulate : the whole run in one call.
+
+    Examples
+    --------
+    Run, then reverse the drive on a fork of the same state:
+
+    >>> import asperity2d as a
+    >>> run = a.Run(a.make_scene(lower_count=4, upper_count=2))
+    >>> run.advance(100e-9, stop=a.Passed())
+    'duration'
+    >>> back = run.fork()
+    >>> back.set_drive_velocity(-5.0)
+    >>> back.advance(50e-9)
+    'duration'
+    >>> back.result()
+    Result(454 samples, t_end=150.0 ns, status='duration')
     """
 
     def __init__(self, scene: Scene, *, dt: float | None = None, record_every: int = 10,
