@@ -34,16 +34,6 @@ NOT_CALLABLE = {"asperity2d.__version__", "asperity2d.belt.presets", "asperity2d
 
 #: Public names still without an Examples section (shrinks; never grows).
 WITHOUT_EXAMPLES: set[str] = {
-    "asperity2d.belt.BeltResult",
-    "asperity2d.belt.ChainSpec",
-    "asperity2d.belt.ContactResult",
-    "asperity2d.belt.Event",
-    "asperity2d.belt.MinimalModel",
-    "asperity2d.belt.NormalContact",
-    "asperity2d.belt.load",
-    "asperity2d.belt.load_contact",
-    "asperity2d.belt.simulate_chain",
-    "asperity2d.belt.steady_sliding",
     "asperity2d.dynamics.Cycle",
     "asperity2d.dynamics.Floquet",
     "asperity2d.dynamics.Lyapunov",

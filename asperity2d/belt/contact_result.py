@@ -42,6 +42,19 @@ class ContactResult(BeltResult):
     impact_dissipation : (T,) cumulative kinetic energy lost in impacts (J).
     separation_intervals : per mass, the (t_open, t_close) intervals (s) out of contact.
     contact : the :class:`~.normal.ContactSpec` (normal parameters and initial gaps).
+
+    See Also
+    --------
+    NormalContact, simulate_chain, load_contact
+
+    Examples
+    --------
+    >>> from asperity2d import belt
+    >>> r = belt.simulate_chain([1.0], [100.0, 0.0], [0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...                         v_belt=0.1, x0=[0.0], v0=[0.1], t_end=2.0,
+    ...                         normal=belt.NormalContact(stiffness=1e4, contact_stiffness=1e5))
+    >>> r.separation_intervals  # the mass never leaves the belt
+    [[]]
     """
 
     y: np.ndarray = None
@@ -97,7 +110,31 @@ class ContactResult(BeltResult):
 
 
 def load_contact(path: str | os.PathLike) -> ContactResult:
-    """Read a :class:`ContactResult` written by :meth:`ContactResult.save`."""
+    """Read a :class:`ContactResult` written by :meth:`ContactResult.save`.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A ``.npz`` file written by ``ContactResult.save``.
+
+    Returns
+    -------
+    ContactResult
+
+    Raises
+    ------
+    FileError
+        Not such a file, naming ``path``.
+
+    Examples
+    --------
+    >>> from asperity2d import belt
+    >>> r = belt.simulate_chain([1.0], [100.0, 0.0], [0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...                         v_belt=0.1, x0=[0.0], v0=[0.1], t_end=2.0,
+    ...                         normal=belt.NormalContact(stiffness=1e4, contact_stiffness=1e5))
+    >>> belt.load_contact(r.save("contact.npz"))
+    ContactResult(n=1, 2006 samples, t_end=2 s, events=5, separations=0)
+    """
     names = ("t",) + MASS_SERIES + ENERGY_SERIES + CONTACT_SERIES + CONTACT_ENERGY
     arrays, meta = load_npz(path, names, kind="a belt contact result file", meta_keys=("chain", "normal"))
     events = [Event(**e) for e in meta.pop("events")]
