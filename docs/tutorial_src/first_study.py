@@ -81,7 +81,8 @@ for e in events:
 #   that carries the slider, at rest on the surface, all the way across. No spring, no
 #   chaos: one number per surface, found by bisection over constant-force runs.
 
-print(f"first breakaway  {a.breakaway_force(result) * 1e3:6.2f} mN")
+print(f"first breakaway  {a.breakaway_force(result) * 1e3:6.2f} mN"
+      f"   (regular surface: {a.breakaway_force(a.simulate(regular)) * 1e3:.2f} mN)")
 print(f"peak stick force {a.peak_stick_force(result) * 1e3:6.2f} mN")
 print(f"mean stick force {a.mean_stick_force(result) * 1e3:6.2f} mN")
 print(f"critical force   {a.critical_force(rough) * 1e3:6.2f} mN")
