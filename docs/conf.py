@@ -77,7 +77,7 @@ if os.environ.get("ASPERITY2D_DOCS_INTERSPHINX", "0") != "1":
 # -- the gallery of scene scripts ----------------------------------------------------------------
 sphinx_gallery_conf = {
     # the scene scripts in sections (copied from scenes/ by gallery.stage()), and the tutorial
-    "examples_dirs": [str(gallery.stage()), str(DOCS / "tutorial_src")],
+    "examples_dirs": [gallery.stage().relative_to(DOCS).as_posix(), "tutorial_src"],
     "gallery_dirs": ["auto_scenes", "tutorial"],
     "subsection_order": gallery.subsection_order(),
     "first_notebook_cell": gallery.FIRST_NOTEBOOK_CELL,

@@ -98,8 +98,9 @@ def stage() -> Path:
 
 
 def subsection_order() -> list[str]:
-    """The sections' folders in :data:`SECTIONS`' order, as sphinx-gallery's ExplicitOrder wants."""
-    return [str(STAGED / folder) for folder, *_ in SECTIONS]
+    """The sections' folders in :data:`SECTIONS`' order, relative to ``docs/`` as sphinx-gallery's
+    explicit order wants them."""
+    return [(STAGED / folder).relative_to(DOCS).as_posix() for folder, *_ in SECTIONS]
 
 
 class ScriptOrder:

@@ -36,8 +36,10 @@ out.mkdir(exist_ok=True)
 size = {"lower_count": 8, "upper_count": 3}
 regular = a.make_scene(**size)
 rough = a.make_scene(**size, spacing="random", seed=2)
-print(regular.name, "| tips (um):", np.round(regular.lower.tips() * 1e6, 2))
-print(rough.name, " | tips (um):", np.round(rough.lower.tips() * 1e6, 2))
+print(regular.name)
+print("  tips (um):", np.round(regular.lower.tips() * 1e6, 2))
+print(rough.name)
+print("  tips (um):", np.round(rough.lower.tips() * 1e6, 2))
 
 # %%
 # A measured or synthetic profile works too: its summits become the asperities (here a
@@ -45,8 +47,10 @@ print(rough.name, " | tips (um):", np.round(rough.lower.tips() * 1e6, 2))
 
 from asperity2d.surface import self_affine_profile
 
-profile = self_affine_profile(n=512, length=20e-6, rms_height=0.2e-6, hurst=0.8, seed=1)
-print(a.make_scene(lower_surface=profile, upper_count=3).lower.count, "asperities from the profile")
+profile = self_affine_profile(n=512, length=20e-6, rms_height=0.2e-6,
+                              hurst=0.8, seed=1)
+scene = a.make_scene(lower_surface=profile, upper_count=3)
+print(scene.lower.count, "asperities from the profile")
 
 # %%
 # 2. A run
@@ -60,8 +64,9 @@ result = a.simulate(rough)
 events = a.stick_slip_events(result)
 print(result)
 for e in events:
-    print(f"  stuck {e.stick_duration * 1e9:5.1f} ns, broke loose at {e.force_peak * 1e3:5.2f} mN, "
-          f"slipped {e.slip_distance * 1e6:4.2f} um")
+    print(f"  stuck {e.stick_duration * 1e9:5.1f} ns,"
+          f" broke loose at {e.force_peak * 1e3:5.2f} mN,"
+          f" slipped {e.slip_distance * 1e6:4.2f} um")
 
 # %%
 # 3. Which force? Choose the measure before you compare
@@ -81,11 +86,13 @@ for e in events:
 #   that carries the slider, at rest on the surface, all the way across. No spring, no
 #   chaos: one number per surface, found by bisection over constant-force runs.
 
-print(f"first breakaway  {a.breakaway_force(result) * 1e3:6.2f} mN"
-      f"   (regular surface: {a.breakaway_force(a.simulate(regular)) * 1e3:.2f} mN)")
-print(f"peak stick force {a.peak_stick_force(result) * 1e3:6.2f} mN")
-print(f"mean stick force {a.mean_stick_force(result) * 1e3:6.2f} mN")
-print(f"critical force   {a.critical_force(rough) * 1e3:6.2f} mN")
+mN = 1e3  # newtons to millinewtons
+first_regular = a.breakaway_force(a.simulate(regular))
+print(f"first breakaway  {a.breakaway_force(result) * mN:6.2f} mN"
+      f"  (regular: {first_regular * mN:.2f} mN)")
+print(f"peak stick force {a.peak_stick_force(result) * mN:6.2f} mN")
+print(f"mean stick force {a.mean_stick_force(result) * mN:6.2f} mN")
+print(f"critical force   {a.critical_force(rough) * mN:6.2f} mN")
 
 # %%
 # For a question about the surface, the critical force is the measure to choose: it is a
@@ -100,11 +107,14 @@ print(f"critical force   {a.critical_force(rough) * 1e3:6.2f} mN")
 # same for every seed; the random one changes.
 
 seeds = range(7)
-comparison = a.compare("critical", {"regular": {"spacing": "regular"}, "random": {"spacing": "random"}},
-                       seeds, base=size, progress=False, workers=1)
+variants = {"regular": {"spacing": "regular"},
+            "random": {"spacing": "random"}}
+comparison = a.compare("critical", variants, seeds, base=size,
+                       progress=False, workers=1)
 reference = comparison.values["regular"][0]
-print(f"regular: {reference * 1e3:.2f} mN")
-print("random: ", ", ".join(f"{f * 1e3:.2f}" for f in comparison.values["random"]), "mN")
+forces = comparison.values["random"]  # one per seed
+print(f"regular: {reference * mN:.2f} mN")
+print("random: ", ", ".join(f"{f * mN:.2f}" for f in forces), "mN")
 
 # %%
 # The test is one-sided Wilcoxon signed-rank of the random values against the regular one
@@ -118,22 +128,24 @@ print("random: ", ", ".join(f"{f * 1e3:.2f}" for f in comparison.values["random"
 
 alpha, min_effect = 0.01, 0.01
 test = comparison.versus("random", "regular", alternative="less")
-effect = a.stats.relative_effect(comparison.values["random"], reference)
-n = test["n"]
+effect = a.stats.relative_effect(forces, reference)
+n, p = test["n"], test["p_wilcoxon"]
 if 0.5 ** n >= alpha:
-    verdict = f"not testable with {n} seeds (the smallest p is {0.5 ** n:.3g}; 7 seeds are the fewest)"
-elif test["p_wilcoxon"] < alpha and -effect["estimate"] >= min_effect:
+    verdict = (f"not testable with {n} seeds (the smallest p is "
+               f"{0.5 ** n:.3g}; 7 seeds are the fewest)")
+elif p < alpha and -effect["estimate"] >= min_effect:
     verdict = "holds"
 else:
     verdict = "does not hold"
-print(f"random / regular = x{effect['ratio']:.2f} [{1 + effect['ci_low']:.2f}, {1 + effect['ci_high']:.2f}], "
-      f"p = {test['p_wilcoxon']:.3g} over {n} seeds")
+low, high = 1 + effect["ci_low"], 1 + effect["ci_high"]
+print(f"random / regular = x{effect['ratio']:.2f} [{low:.2f}, {high:.2f}],"
+      f" p = {p:.3g} over {n} seeds")
 print("Random spacing lowers the critical force:", verdict)
 
 # %%
 # The interval is wide: 7 small surfaces say *that* random spacing lowers the force on this
 # set-up, not by how much. The full-size study (Ooten's 16 and 4 asperities, 24 seeds) is on
-# the page of Ooten's thesis in the studies section.
+# :doc:`the page of Ooten's thesis </studies/ooten>`.
 
 # %%
 # 5. A plot
@@ -143,15 +155,20 @@ print("Random spacing lowers the critical force:", verdict)
 # "run.png")`` draws the package's own (and ``.gif``, ``.html``, ``.wav`` an animation, an
 # interactive player, a sound).
 
-fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(9, 3.4), layout="constrained")
-ax1.plot(result.t * 1e9, result.drive_force * 1e3, lw=1)
-ax1.plot([e.t_slip * 1e9 for e in events], [e.force_peak * 1e3 for e in events], "v", label="slip")
-ax1.set(xlabel="time (ns)", ylabel="drive force (mN)", title="one run, random spacing")
-ax1.legend()
-ax2.axhline(reference * 1e3, color="k", lw=1, label="regular")
-ax2.plot(list(seeds), np.array(comparison.values["random"]) * 1e3, "o", label="random")
-ax2.set(xlabel="seed", ylabel="critical force (mN)", ylim=(0, None), title="over seeds")
-ax2.legend(loc="lower right")
+ns = 1e9  # seconds to nanoseconds
+fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(9, 3.6),
+                               layout="constrained")
+ax1.plot(result.t * ns, result.drive_force * mN, lw=1)
+ax1.plot([e.t_slip * ns for e in events],
+         [e.force_peak * mN for e in events], "v", label="slip")
+ax1.set(xlabel="time (ns)", ylabel="drive force (mN)",
+        title="one run, random spacing")
+ax1.legend(loc="upper left")
+ax2.axhline(reference * mN, color="k", lw=1, label="regular")
+ax2.plot(list(seeds), np.array(forces) * mN, "o", label="random")
+ax2.set(xlabel="seed", ylabel="critical force (mN)",
+        ylim=(0, 1.4 * reference * mN), title="over seeds")
+ax2.legend(loc="upper right", ncols=2)
 fig.savefig(out / "first_study.png", dpi=120)
 
 # %%
@@ -164,8 +181,9 @@ fig.savefig(out / "first_study.png", dpi=120)
 
 path = result.save(out / "run.npz")
 again = a.load(path)
-print(again, "| identical:", np.array_equal(again.drive_force, result.drive_force))
-print(f"peak stick force from the file: {a.peak_stick_force(again) * 1e3:.2f} mN")
+print(again)
+print("identical:", np.array_equal(again.drive_force, result.drive_force))
+print(f"peak stick force: {a.peak_stick_force(again) * mN:.2f} mN")
 comparison.save(out / "critical.json")
 print(a.Comparison.load(out / "critical.json") == comparison)
 
@@ -180,14 +198,17 @@ print(a.Comparison.load(out / "critical.json") == comparison)
 from scipy.io import loadmat
 
 mat = loadmat(result.export(out / "run.mat"))
-print(sorted(k for k in mat if not k.startswith("__")))
-print(mat["drive_force"].shape, f"{mat['drive_force'].max() * 1e3:.2f} mN")
+for name in sorted(k for k in mat if not k.startswith("__")):
+    print(f"{name:17s}", mat[name].shape)
+print(f"largest drive force: {mat['drive_force'].max() * mN:.2f} mN")
 
 # %%
 # Where next
 # ----------
 #
-# * The gallery: each scene script as a lesson, from the quickstart to rough surfaces, belt
-#   chains and dynamics.
-# * The parameter table: every keyword of ``make_scene`` with its unit and default.
-# * The API reference: every function used here, with its parameters and examples.
+# * :doc:`The gallery </auto_scenes/index>`: each scene script as a lesson, from the quickstart
+#   to rough surfaces, belt chains and dynamics.
+# * :doc:`The parameter table </parameters>`: every keyword of ``make_scene`` with its unit
+#   and default.
+# * :doc:`The API reference </reference>`: every function used here, with its parameters and
+#   examples.
