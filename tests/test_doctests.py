@@ -33,31 +33,7 @@ PUBLIC = {
 NOT_CALLABLE = {"asperity2d.__version__", "asperity2d.belt.presets", "asperity2d.belt.METHODS"}
 
 #: Public names still without an Examples section (shrinks; never grows).
-WITHOUT_EXAMPLES: set[str] = {
-    "asperity2d.sweep.CallFailed",
-    "asperity2d.sweep.CorruptRunWarning",
-    "asperity2d.sweep.DaskExecutor",
-    "asperity2d.sweep.LocalExecutor",
-    "asperity2d.sweep.Outcome",
-    "asperity2d.sweep.ResultStore",
-    "asperity2d.sweep.RunRecord",
-    "asperity2d.sweep.RunSpec",
-    "asperity2d.sweep.StoreStatus",
-    "asperity2d.sweep.Study",
-    "asperity2d.sweep.Summary",
-    "asperity2d.sweep.SweepSummary",
-    "asperity2d.sweep.VariantStats",
-    "asperity2d.sweep.VariantTest",
-    "asperity2d.sweep.decide_workers",
-    "asperity2d.sweep.execute_run",
-    "asperity2d.sweep.load_study",
-    "asperity2d.sweep.make_executor",
-    "asperity2d.sweep.map_calls",
-    "asperity2d.sweep.run_calls",
-    "asperity2d.sweep.run_key",
-    "asperity2d.sweep.run_study",
-    "asperity2d.sweep.summarize",
-}
+WITHOUT_EXAMPLES: set[str] = set()
 
 FLAGS = doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE
 
