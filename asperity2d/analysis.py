@@ -72,7 +72,7 @@ class Event:
 
     See Also
     --------
-    stick_slip_events : the events of a run.
+    asperity2d.stick_slip_events : the events of a run.
 
     Examples
     --------
@@ -159,8 +159,10 @@ def stick_slip_events(result, *, stick_speed: float | None = None, slip_speed: f
 
     See Also
     --------
-    breakaway_force, peak_stick_force, mean_stick_force : one force out of these events.
-    event_statistics : their counts, means and regularity.
+    asperity2d.breakaway_force : one force out of these events.
+    asperity2d.peak_stick_force
+    asperity2d.mean_stick_force
+    asperity2d.event_statistics : their counts, means and regularity.
 
     Examples
     --------
@@ -255,7 +257,7 @@ def event_statistics(events: list[Event]) -> dict:
     Parameters
     ----------
     events : list of Event
-        The events of one run, in time order (:func:`stick_slip_events`).
+        The events of one run, in time order (:func:`~asperity2d.stick_slip_events`).
 
     Returns
     -------
@@ -264,7 +266,7 @@ def event_statistics(events: list[Event]) -> dict:
 
     See Also
     --------
-    stick_slip_events : the events.
+    asperity2d.stick_slip_events : the events.
 
     Examples
     --------
@@ -306,7 +308,7 @@ def breakaway_force(result, *, stick_speed: float | None = None, slip_speed: flo
     slider under load L on 45° flanks and regular spacing breaks away at the
     quasi-static L tan(45° + atan mu_s). On Ooten's fixed track the first
     breakaway is the front tip entering the surface alone, the same for every
-    spacing: see :func:`peak_stick_force` and :func:`mean_stick_force` for the
+    spacing: see :func:`~asperity2d.peak_stick_force` and :func:`~asperity2d.mean_stick_force` for the
     engaged slider.
 
     Parameters
@@ -314,7 +316,7 @@ def breakaway_force(result, *, stick_speed: float | None = None, slip_speed: flo
     result : Result
         A spring-driven run (``make_scene(drive="spring")``, the default).
     stick_speed, slip_speed, min_stick, min_slip, min_slip_distance : float, optional
-        The event thresholds (m/s, s, m) of :func:`stick_slip_events`, with its defaults.
+        The event thresholds (m/s, s, m) of :func:`~asperity2d.stick_slip_events`, with its defaults.
 
     Returns
     -------
@@ -328,9 +330,9 @@ def breakaway_force(result, *, stick_speed: float | None = None, slip_speed: flo
 
     See Also
     --------
-    peak_stick_force : the largest force at a transition (the engaged slider).
-    mean_stick_force : their mean.
-    critical_force : the smallest constant force that carries the slider across.
+    asperity2d.peak_stick_force : the largest force at a transition (the engaged slider).
+    asperity2d.mean_stick_force : their mean.
+    asperity2d.critical_force : the smallest constant force that carries the slider across.
 
     Examples
     --------
@@ -359,7 +361,7 @@ def peak_stick_force(result, *, stick_speed: float | None = None, slip_speed: fl
     """Largest drive force (N) at a stick-to-slip transition over the run: the force that
     breaks the slider loose at its worst position on the surface.
 
-    On Ooten's fixed track the first breakaway (:func:`breakaway_force`)
+    On Ooten's fixed track the first breakaway (:func:`~asperity2d.breakaway_force`)
     happens while only the front tip has entered the surface; this is the
     measure of the engaged slider. On a regular surface all n tips meet their
     lower asperities at once and it is the quasi-static flank law for all of
@@ -370,7 +372,7 @@ def peak_stick_force(result, *, stick_speed: float | None = None, slip_speed: fl
     result : Result
         A spring-driven run (``make_scene(drive="spring")``, the default).
     stick_speed, slip_speed, min_stick, min_slip, min_slip_distance : float, optional
-        The event thresholds (m/s, s, m) of :func:`stick_slip_events`, with its defaults.
+        The event thresholds (m/s, s, m) of :func:`~asperity2d.stick_slip_events`, with its defaults.
 
     Returns
     -------
@@ -384,8 +386,8 @@ def peak_stick_force(result, *, stick_speed: float | None = None, slip_speed: fl
 
     See Also
     --------
-    breakaway_force : the first transition only.
-    mean_stick_force : the mean over the transitions.
+    asperity2d.breakaway_force : the first transition only.
+    asperity2d.mean_stick_force : the mean over the transitions.
 
     Examples
     --------
@@ -412,7 +414,7 @@ def mean_stick_force(result, *, stick_speed: float | None = None, slip_speed: fl
     """Mean drive force (N) at the stick-to-slip transitions of the run: the typical force
     at which the slider breaks loose over a pass.
 
-    Less sensitive than :func:`peak_stick_force` to the one worst position of a pass (which
+    Less sensitive than :func:`~asperity2d.peak_stick_force` to the one worst position of a pass (which
     position a pass sticks at is chaotic), so it needs fewer seeds for a verdict.
 
     Parameters
@@ -420,7 +422,7 @@ def mean_stick_force(result, *, stick_speed: float | None = None, slip_speed: fl
     result : Result
         A spring-driven run (``make_scene(drive="spring")``, the default).
     stick_speed, slip_speed, min_stick, min_slip, min_slip_distance : float, optional
-        The event thresholds (m/s, s, m) of :func:`stick_slip_events`, with its defaults.
+        The event thresholds (m/s, s, m) of :func:`~asperity2d.stick_slip_events`, with its defaults.
 
     Returns
     -------
@@ -434,7 +436,7 @@ def mean_stick_force(result, *, stick_speed: float | None = None, slip_speed: fl
 
     See Also
     --------
-    peak_stick_force, breakaway_force, stick_slip_events
+    asperity2d.peak_stick_force, asperity2d.breakaway_force, asperity2d.stick_slip_events
 
     Examples
     --------
@@ -602,7 +604,7 @@ class ContactStates:
 def contact_states(result, *, stick_speed: float | None = None) -> ContactStates:
     """Separated / sliding / sticking time fractions, hops and touching tips of an asperity run.
 
-    ``stick_speed`` (m/s) defaults to 0.5 x the drive velocity (as :func:`stick_slip_events`); a
+    ``stick_speed`` (m/s) defaults to 0.5 x the drive velocity (as :func:`~asperity2d.stick_slip_events`); a
     constant-force run needs it given.
     """
     t = np.asarray(result.t, dtype=float)

@@ -1,6 +1,6 @@
-"""Scene builders: named physical parameters in, a validated :class:`Scene` out.
+"""Scene builders: named physical parameters in, a validated :class:`~asperity2d.Scene` out.
 
-:func:`make_scene` is a pure function of its arguments: random spacings and
+:func:`~asperity2d.make_scene` is a pure function of its arguments: random spacings and
 random heights are reproducible from ``seed`` (each surface gets independent
 streams derived from it with ``numpy.random.SeedSequence``: the spacings from
 ``generate_state(2)`` as always, the heights from its two spawned children).
@@ -13,7 +13,7 @@ is its dict; Ooten's fixed track comes from
 use, so ``make_scene()`` builds ``Scene()``.
 Every argument is checked (type, finiteness, range) before any arithmetic,
 whether or not the chosen drive or spacing uses it; an unknown one raises
-:class:`SceneError` with the closest known name, and two that contradict each
+:class:`~asperity2d.SceneError` with the closest known name, and two that contradict each
 other (``mu`` with ``mu_static``) are refused.
 """
 
@@ -227,8 +227,8 @@ def make_scene(*, spacing: str = "regular", seed: int = 0, profile: str = "full"
 
     See Also
     --------
-    simulate : runs the scene.
-    Scene : what it returns; change a part with :func:`dataclasses.replace`.
+    asperity2d.simulate : runs the scene.
+    asperity2d.Scene : what it returns; change a part with :func:`dataclasses.replace`.
     asperity2d.surface.self_affine_profile : a rough surface for ``lower_surface=``.
 
     Notes

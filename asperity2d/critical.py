@@ -86,7 +86,7 @@ DT_FRACTION = {"rest": 0.5, "entry": 0.5, "run-up": 0.25}
 
 
 def measure_dt(scene: Scene, start: str) -> float:
-    """The step (s) :func:`critical_force` uses from ``start`` when given none."""
+    """The step (s) :func:`~asperity2d.critical_force` uses from ``start`` when given none."""
     check_choice("start", start, STARTS)
     return DT_FRACTION[start] * default_dt(scene)
 
@@ -126,7 +126,7 @@ class CriticalForce:
 
     See Also
     --------
-    critical_force_bracket : makes one.
+    asperity2d.critical_force_bracket : makes one.
 
     Examples
     --------
@@ -232,7 +232,7 @@ def smallest_passing(test, estimate: float, *, rel_tol: float = REL_TOL, scan_st
        upper end, down to ``window`` below it; if one passes, bisect again below the lowest
        such force and check below that. Then try as many above it, for the band.
 
-    ``test`` is any predicate of a force (the simulations of :func:`critical_force_bracket`,
+    ``test`` is any predicate of a force (the simulations of :func:`~asperity2d.critical_force_bracket`,
     or a toy with a known answer). Returns ``(stops, passes, band, tried)``: the final
     bracket, ``(lowest passing, highest stopping)`` if some force above ``passes`` stopped
     (else None), and every ``(force, passed)`` pair in the order tried.
@@ -305,7 +305,7 @@ def critical_force_bracket(scene: Scene, *, start: str = "rest", rel_tol: float 
     ... 10 % below and above it (:func:`smallest_passing`): with inertia
     passing is not always monotone in the force, and a smaller force that
     passes moves the search there. ``band`` reports the forces with mixed
-    outcomes. Raises :class:`SceneError` if more than ``max_runs`` runs are
+    outcomes. Raises :class:`~asperity2d.SceneError` if more than ``max_runs`` runs are
     needed. ``dt`` (s) defaults to :func:`measure_dt` (half the simulation's
     default step from rest, a quarter with a run-up: converged to 0.3 %);
     ``iterations`` and ``max_steps`` (per run) are those of
@@ -316,7 +316,7 @@ def critical_force_bracket(scene: Scene, *, start: str = "rest", rel_tol: float 
     scene : Scene
         The scene; its drive is replaced by constant forces.
     start : {"rest", "entry", "run-up"}, default "rest"
-        How each run begins (see :func:`critical_force`).
+        How each run begins (see :func:`~asperity2d.critical_force`).
     rel_tol : float, default 0.0025
         Relative width of the bracket, in (0, 1).
     max_runs : int, default 80
@@ -340,7 +340,7 @@ def critical_force_bracket(scene: Scene, *, start: str = "rest", rel_tol: float 
 
     See Also
     --------
-    critical_force : the value alone, warning when passing is not monotone.
+    asperity2d.critical_force : the value alone, warning when passing is not monotone.
 
     Examples
     --------
@@ -386,12 +386,12 @@ def critical_force(scene: Scene, *, start: str = "rest", rel_tol: float = REL_TO
     has passed, then checked 2-10 % below and above. When passing is not
     monotone in the force (some force above the returned one stops) it warns
     with :class:`NonMonotoneWarning`, naming the band; see
-    :func:`critical_force_bracket` for the record.
+    :func:`~asperity2d.critical_force_bracket` for the record.
 
     Parameters
     ----------
     scene : Scene
-        The scene (:func:`make_scene`); its drive is replaced by constant forces, so a
+        The scene (:func:`~asperity2d.make_scene`); its drive is replaced by constant forces, so a
         spring-driven scene gives the same value as its ``drive="force"`` twin.
     start : {"rest", "entry", "run-up"}, default "rest"
         How each run begins (above).
@@ -423,8 +423,8 @@ def critical_force(scene: Scene, *, start: str = "rest", rel_tol: float = REL_TO
 
     See Also
     --------
-    critical_force_bracket : the bracket and every force tried.
-    peak_stick_force, mean_stick_force : the spring-driven measures.
+    asperity2d.critical_force_bracket : the bracket and every force tried.
+    asperity2d.peak_stick_force, asperity2d.mean_stick_force : the spring-driven measures.
 
     Examples
     --------

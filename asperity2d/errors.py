@@ -14,7 +14,7 @@ class SceneError(ValueError):
 
     See Also
     --------
-    SimulationError : a run that went wrong, not its parameters.
+    asperity2d.SimulationError : a run that went wrong, not its parameters.
 
     Examples
     --------
@@ -34,7 +34,7 @@ class SimulationError(RuntimeError):
 
     ``time`` is the simulated time in seconds at which it was detected. A
     ``RuntimeError``. A step the package knows to be too coarse is refused earlier, as a
-    :class:`SceneError`; one forced through with ``unsafe_dt=True`` may diverge.
+    :class:`~asperity2d.SceneError`; one forced through with ``unsafe_dt=True`` may diverge.
 
     Parameters
     ----------
@@ -45,8 +45,8 @@ class SimulationError(RuntimeError):
 
     See Also
     --------
-    SceneError : bad parameters.
-    simulate : its ``dt`` and ``unsafe_dt``.
+    asperity2d.SceneError : bad parameters.
+    asperity2d.simulate : its ``dt`` and ``unsafe_dt``.
 
     Examples
     --------

@@ -65,7 +65,7 @@ class Profile:
 
     See Also
     --------
-    make_scene : ``profile=``, ``base=``, ``flank_angle=`` build it for you.
+    asperity2d.make_scene : ``profile=``, ``base=``, ``flank_angle=`` build it for you.
 
     Examples
     --------
@@ -229,8 +229,8 @@ class RegularSpacing:
 
     See Also
     --------
-    RandomSpacing
-    make_scene : ``spacing="regular"`` with ``lower_count``, ``pitch``, ...
+    asperity2d.RandomSpacing
+    asperity2d.make_scene : ``spacing="regular"`` with ``lower_count``, ``pitch``, ...
 
     Examples
     --------
@@ -284,8 +284,8 @@ class RandomSpacing:
 
     See Also
     --------
-    RegularSpacing
-    make_scene : ``spacing="random"`` and ``seed=`` build it for you.
+    asperity2d.RegularSpacing
+    asperity2d.make_scene : ``spacing="random"`` and ``seed=`` build it for you.
 
     Examples
     --------

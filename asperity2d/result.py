@@ -1,6 +1,6 @@
 """The outcome of one asperity run: SI time series plus the metadata to reproduce it.
 
-A :class:`Result` is plain NumPy arrays in SI units on a small object that can
+A :class:`~asperity2d.Result` is plain NumPy arrays in SI units on a small object that can
 save and load itself (one ``.npz`` file holding the arrays and a JSON metadata
 record: the scene, the run settings, package and pymunk versions), so a run is
 simulated once and then re-analysed or re-rendered any number of times.
@@ -91,9 +91,11 @@ class Result:
 
     See Also
     --------
-    simulate : makes one.
-    load : reads a saved one.
-    stick_slip_events, peak_stick_force, render : what to do with one.
+    asperity2d.simulate : makes one.
+    asperity2d.load : reads a saved one.
+    asperity2d.stick_slip_events : what to do with one.
+    asperity2d.peak_stick_force
+    asperity2d.render
 
     Examples
     --------
@@ -228,7 +230,7 @@ class Result:
     def export(self, path: str | os.PathLike) -> Path:
         """Export the slider time series as ``.csv`` or MATLAB ``.mat`` (by extension).
 
-        ``.mat`` holds every series of :class:`Result` (SI; ``load("run.mat")`` in MATLAB gives
+        ``.mat`` holds every series of :class:`~asperity2d.Result` (SI; ``load("run.mat")`` in MATLAB gives
         row vectors ``t``, ``x``, ``drive_force``, ... and the ``lower_*`` matrices) and a
         ``metadata`` JSON string; ``.csv`` the slider's eleven series, one column each, with a
         header line.
@@ -281,7 +283,7 @@ class Result:
 
 
 def load(path: str | os.PathLike) -> Result:
-    """Read a :class:`Result` written by :meth:`Result.save` (this release's :data:`FORMAT`, or
+    """Read a :class:`~asperity2d.Result` written by :meth:`Result.save` (this release's :data:`FORMAT`, or
     the previous release's untagged file).
 
     A file that is not one (missing, empty, foreign -- a belt result included --, truncated,

@@ -76,11 +76,11 @@ class Probe:
 class Passed:
     """Stop when the slider's rear tip is half a base past the last lower apex.
 
-    A stop condition for :func:`simulate`'s ``stop`` (a default when ``duration`` is None).
+    A stop condition for :func:`~asperity2d.simulate`'s ``stop`` (a default when ``duration`` is None).
 
     See Also
     --------
-    Stuck, Travelled
+    asperity2d.Stuck, asperity2d.Travelled
 
     Examples
     --------
@@ -112,7 +112,7 @@ class Stuck:
 
     See Also
     --------
-    Passed, Travelled
+    asperity2d.Passed, asperity2d.Travelled
 
     Examples
     --------
@@ -153,7 +153,7 @@ class Travelled:
 
     See Also
     --------
-    Passed, Stuck
+    asperity2d.Passed, asperity2d.Stuck
 
     Examples
     --------
@@ -242,7 +242,7 @@ def check_budget(scene: Scene, dt: float, max_steps: int, *, done: int = 0, sett
                  duration: float = 0.0) -> None:
     """Refuse a settle of up to ``settle`` s and a run of ``duration`` s at step ``dt`` (s), after
     ``done`` steps, that would exceed ``max_steps`` (SceneError naming what makes it long). Each
-    step counts :func:`step_cost`. Needs no engine: :func:`simulate` checks before building."""
+    step counts :func:`step_cost`. Needs no engine: :func:`~asperity2d.simulate` checks before building."""
     cost = step_cost(scene)
     steps_settle = settle / dt
     steps_run = duration / dt
@@ -289,18 +289,18 @@ class Run:
     scene : Scene
         What to run.
     dt, record_every, iterations, unsafe_dt, max_steps, record_lower, record_to
-        As for :func:`simulate`.
+        As for :func:`~asperity2d.simulate`.
     engaged : bool, default False
         Start a fixed-track slider over the surface rather than before it.
 
     Raises
     ------
     SceneError
-        Bad arguments, named (as :func:`simulate`).
+        Bad arguments, named (as :func:`~asperity2d.simulate`).
 
     See Also
     --------
-    simulate : the whole run in one call.
+    asperity2d.simulate : the whole run in one call.
 
     Examples
     --------
@@ -350,7 +350,7 @@ class Run:
         self.status, self.message = "duration", "nothing run yet"
         self._meter = None
         self._sink = None
-        #: Entries added to the result's ``meta`` (e.g. the energy books of :func:`simulate`).
+        #: Entries added to the result's ``meta`` (e.g. the energy books of :func:`~asperity2d.simulate`).
         self.extra_meta: dict = {}
         self._reset_record()
         if record_to is not None:
@@ -554,7 +554,7 @@ class Run:
         return meta
 
     def result(self, *, start: int = 0) -> Result:
-        """The samples recorded so far (from sample ``start`` on) as a :class:`Result` (SI):
+        """The samples recorded so far (from sample ``start`` on) as a :class:`~asperity2d.Result` (SI):
         views of the record, not copies. A run streamed to disk (``record_to``) writes what it
         has not written yet and returns the record read back from its files (memory maps)."""
         meta = self._meta()
@@ -614,12 +614,12 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
              progress: bool | None = None, energy: bool = False, max_steps: int = MAX_STEPS,
              observers: Iterable[Callable] = (), contact_work: bool = False,
              record_lower: bool = True, record_to: str | os.PathLike | None = None) -> Result:
-    """Run ``scene`` with a fixed step and return its :class:`Result`.
+    """Run ``scene`` with a fixed step and return its :class:`~asperity2d.Result`.
 
     Parameters
     ----------
     scene : Scene
-        What to run (:func:`make_scene`); SI units throughout.
+        What to run (:func:`~asperity2d.make_scene`); SI units throughout.
     duration : float or None, default None
         Simulated time (s) after settling. ``None``: until the slider has
         passed the lower surface, or (constant force) is stuck for good, or a
@@ -691,11 +691,14 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
 
     See Also
     --------
-    make_scene : the scene.
-    stick_slip_events, peak_stick_force, mean_stick_force, breakaway_force : measures of the run.
-    critical_force : bisection over constant-force runs.
-    render : pictures, animations and sounds of the run.
-    Run : the same run step by step (fork, change the drive, advance).
+    asperity2d.make_scene : the scene.
+    asperity2d.stick_slip_events : measures of the run.
+    asperity2d.peak_stick_force
+    asperity2d.mean_stick_force
+    asperity2d.breakaway_force
+    asperity2d.critical_force : bisection over constant-force runs.
+    asperity2d.render : pictures, animations and sounds of the run.
+    asperity2d.Run : the same run step by step (fork, change the drive, advance).
 
     Examples
     --------

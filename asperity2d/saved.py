@@ -1,4 +1,4 @@
-"""Saved results of either kind, read by their format tag: :func:`load` (``asperity2d.load``).
+"""Saved results of either kind, read by their format tag: :func:`~asperity2d.load` (``asperity2d.load``).
 
 A record streamed to disk as its run went (a directory, :mod:`asperity2d.streamed`) is an
 asperity run too, read lazily. An asperity run (:class:`asperity2d.result.Result`,
@@ -65,8 +65,9 @@ def load(path: str | os.PathLike):
 
     See Also
     --------
-    Result.save, Result.export : write a result; ``export`` for MATLAB (``.mat``) or CSV.
-    render : draws a saved result without re-simulating.
+    asperity2d.Result.save : write a result; ``export`` for MATLAB (``.mat``) or CSV.
+    asperity2d.Result.export
+    asperity2d.render : draws a saved result without re-simulating.
 
     Examples
     --------

@@ -1,6 +1,6 @@
 """Scene specification: frozen, validated dataclasses in SI units.
 
-A :class:`Scene` is pure data; it round-trips through plain dicts (JSON,
+A :class:`~asperity2d.Scene` is pure data; it round-trips through plain dicts (JSON,
 TOML). :data:`OOTEN_DEFAULTS` holds Ooten's fixed track (the Working Model
 set-up of E. Ooten's thesis, see :data:`OOTEN_PARAMETERS`), the defaults of
 both these dataclasses and :func:`asperity2d.make_scene` (in
@@ -132,7 +132,7 @@ class LowerSurface(SurfaceGeometry):
     link), with ``lateral_damping`` (N s/m) in parallel. Track travel limits
     do not apply to the lattice.
 
-    Each field is one of :func:`make_scene`'s keywords (``lower_count``, ``stiffness``,
+    Each field is one of :func:`~asperity2d.make_scene`'s keywords (``lower_count``, ``stiffness``,
     ``mass``, ``damping_ratio``, ...), with its unit and default in the parameter table.
 
     Raises
@@ -142,8 +142,8 @@ class LowerSurface(SurfaceGeometry):
 
     See Also
     --------
-    make_scene : builds one from named parameters.
-    Slider : the body above it.
+    asperity2d.make_scene : builds one from named parameters.
+    asperity2d.Slider : the body above it.
 
     Examples
     --------
@@ -238,9 +238,9 @@ class Slider(SurfaceGeometry):
     (with varied heights: the tallest lower summit; with equal ones, every
     lower tip). ``track="free"``: free to move vertically, pressed down by
     ``normal_load`` (N). ``shapes`` gives each upper asperity its own shape
-    (heights and levels measured downwards), as for :class:`LowerSurface`.
+    (heights and levels measured downwards), as for :class:`~asperity2d.LowerSurface`.
 
-    Each field is one of :func:`make_scene`'s keywords (``upper_count``, ``slider_mass``,
+    Each field is one of :func:`~asperity2d.make_scene`'s keywords (``upper_count``, ``slider_mass``,
     ``track``, ``normal_load``, ``interference``, ...).
 
     Raises
@@ -250,8 +250,8 @@ class Slider(SurfaceGeometry):
 
     See Also
     --------
-    make_scene : builds one from named parameters.
-    LowerSurface : the surface below it.
+    asperity2d.make_scene : builds one from named parameters.
+    asperity2d.LowerSurface : the surface below it.
 
     Examples
     --------
@@ -307,9 +307,9 @@ class ConstantForce:
 
     See Also
     --------
-    SpringDrive : the other drive.
-    make_scene : ``drive="force", drive_force=...``.
-    critical_force : the smallest such force that carries the slider across.
+    asperity2d.SpringDrive : the other drive.
+    asperity2d.make_scene : ``drive="force", drive_force=...``.
+    asperity2d.critical_force : the smallest such force that carries the slider across.
 
     Examples
     --------
@@ -334,7 +334,7 @@ class SpringDrive:
     Parameters
     ----------
     stiffness : float, default 3720.0
-        Spring stiffness (N/m), > 0 (``drive_stiffness`` in :func:`make_scene`).
+        Spring stiffness (N/m), > 0 (``drive_stiffness`` in :func:`~asperity2d.make_scene`).
     velocity : float, default 20.0
         Speed of the spring's far end (m/s), > 0 (``drive_velocity``).
     damping : float, default 0.0
@@ -344,8 +344,8 @@ class SpringDrive:
 
     See Also
     --------
-    ConstantForce : the other drive.
-    stick_slip_events : what a spring drive makes.
+    asperity2d.ConstantForce : the other drive.
+    asperity2d.stick_slip_events : what a spring drive makes.
 
     Examples
     --------
@@ -449,7 +449,7 @@ class Contact:
 class Scene:
     """A complete asperity contact scene (SI units throughout).
 
-    Frozen: change a part with :func:`dataclasses.replace`. :func:`make_scene` builds one
+    Frozen: change a part with :func:`dataclasses.replace`. :func:`~asperity2d.make_scene` builds one
     from named parameters; this class is for changing one part of a built scene.
 
     Parameters
@@ -469,7 +469,7 @@ class Scene:
 
     See Also
     --------
-    make_scene, simulate
+    asperity2d.make_scene, asperity2d.simulate
 
     Examples
     --------

@@ -53,7 +53,7 @@ class Event:
 
     See Also
     --------
-    simulate_chain : ``result.events`` lists them.
+    asperity2d.belt.simulate_chain : ``result.events`` lists them.
 
     Examples
     --------

@@ -45,7 +45,7 @@ class ContactResult(BeltResult):
 
     See Also
     --------
-    NormalContact, simulate_chain, load_contact
+    asperity2d.belt.NormalContact, asperity2d.belt.simulate_chain, asperity2d.belt.load_contact
 
     Examples
     --------

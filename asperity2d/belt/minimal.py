@@ -89,7 +89,7 @@ class MinimalModel:
 
     See Also
     --------
-    simulate_chain, steady_sliding
+    asperity2d.belt.simulate_chain, asperity2d.belt.steady_sliding
 
     Examples
     --------

@@ -83,8 +83,8 @@ class NormalContact:
 
     See Also
     --------
-    simulate_chain : ``normal=`` takes it.
-    steady_sliding : the linearisation about steady sliding.
+    asperity2d.belt.simulate_chain : ``normal=`` takes it.
+    asperity2d.belt.steady_sliding : the linearisation about steady sliding.
 
     Examples
     --------

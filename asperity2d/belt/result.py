@@ -51,8 +51,8 @@ class BeltResult:
 
     See Also
     --------
-    simulate_chain : makes one.
-    load : reads a saved one (so does :func:`asperity2d.load`).
+    asperity2d.belt.simulate_chain : makes one.
+    asperity2d.belt.load : reads a saved one (so does :func:`asperity2d.load`).
     asperity2d.render : ``render(result, "chain.png")`` plots it.
 
     Examples

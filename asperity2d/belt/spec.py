@@ -47,7 +47,7 @@ class ChainSpec:
 
     See Also
     --------
-    simulate_chain : builds one and runs it; ``result.chain`` is the spec it ran.
+    asperity2d.belt.simulate_chain : builds one and runs it; ``result.chain`` is the spec it ran.
 
     Examples
     --------

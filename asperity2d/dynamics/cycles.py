@@ -39,7 +39,7 @@ class Cycle:
 
     See Also
     --------
-    chain_cycle, limit_cycle : find one.
+    asperity2d.dynamics.chain_cycle, asperity2d.dynamics.limit_cycle : find one.
 
     Examples
     --------
@@ -85,7 +85,7 @@ def detect_period(points, times=None, *, scale=None, rtol: float = 1e-4, max_mul
 
     See Also
     --------
-    limit_cycle, chain_cycle : on a series or a belt run.
+    asperity2d.dynamics.limit_cycle, asperity2d.dynamics.chain_cycle : on a series or a belt run.
 
     Examples
     --------
@@ -178,7 +178,7 @@ def limit_cycle(t, y, *, level: float | None = None, rtol: float = 1e-4, max_mul
 
     See Also
     --------
-    chain_cycle : exact, for belt runs.
+    asperity2d.dynamics.chain_cycle : exact, for belt runs.
 
     Examples
     --------
@@ -269,8 +269,8 @@ def chain_cycle(result, *, mass: int | None = None, rtol: float = 1e-6, max_mult
 
     See Also
     --------
-    limit_cycle : of any series.
-    floquet : the stability of the cycle.
+    asperity2d.dynamics.limit_cycle : of any series.
+    asperity2d.dynamics.floquet : the stability of the cycle.
 
     Examples
     --------
@@ -333,7 +333,7 @@ class SteadyState:
 
     See Also
     --------
-    steady_state : computes one.
+    asperity2d.dynamics.steady_state : computes one.
 
     Examples
     --------

@@ -77,7 +77,7 @@ class Floquet:
 
     See Also
     --------
-    floquet : computes one.
+    asperity2d.dynamics.floquet : computes one.
 
     Examples
     --------
@@ -140,7 +140,7 @@ def flow_map(chain: dict, state, duration: float) -> np.ndarray:
 
     See Also
     --------
-    monodromy
+    asperity2d.dynamics.monodromy
 
     Examples
     --------
@@ -198,7 +198,7 @@ def monodromy(chain: dict, state, period: float, *, step: float = 1e-6, scale=No
 
     See Also
     --------
-    floquet
+    asperity2d.dynamics.floquet
 
     Examples
     --------
@@ -258,7 +258,7 @@ def floquet(chain: dict, *, mass: int | None = None, step: float = 1e-6, rtol: f
 
     See Also
     --------
-    monodromy, flow_map
+    asperity2d.dynamics.monodromy, asperity2d.dynamics.flow_map
 
     Examples
     --------

@@ -47,7 +47,7 @@ class Lyapunov:
 
     See Also
     --------
-    chain_lyapunov, lyapunov_series : compute one.
+    asperity2d.dynamics.chain_lyapunov, asperity2d.dynamics.lyapunov_series : compute one.
 
     Examples
     --------
@@ -107,7 +107,7 @@ def lyapunov_series(t, y, *, emb_dim: int = 6, lag: int | None = None, min_tsep:
 
     See Also
     --------
-    chain_lyapunov : exact, for belt chains.
+    asperity2d.dynamics.chain_lyapunov : exact, for belt chains.
 
     Examples
     --------
@@ -238,7 +238,7 @@ def chain_lyapunov(chain: dict, *, steps: int = 200, interval: float = 1.0, d0: 
 
     See Also
     --------
-    lyapunov_series : from a measured series.
+    asperity2d.dynamics.lyapunov_series : from a measured series.
 
     Examples
     --------

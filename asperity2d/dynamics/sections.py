@@ -26,7 +26,9 @@ class Section:
 
     See Also
     --------
-    chain_section, poincare_section, opening_section : make one.
+    asperity2d.dynamics.chain_section : make one.
+    asperity2d.dynamics.poincare_section
+    asperity2d.dynamics.opening_section
 
     Examples
     --------
@@ -72,7 +74,7 @@ def crossings(t, s, *, direction: int = 1, hysteresis: float = 0.0) -> np.ndarra
 
     See Also
     --------
-    poincare_section
+    asperity2d.dynamics.poincare_section
 
     Examples
     --------
@@ -191,7 +193,7 @@ def chain_section(result, *, mass: int = 0, direction: int = 1) -> Section:
 
     See Also
     --------
-    chain_cycle : the cycle on this section.
+    asperity2d.dynamics.chain_cycle : the cycle on this section.
 
     Examples
     --------
@@ -240,7 +242,7 @@ def opening_section(result, *, mass: int = 0) -> Section:
 
     See Also
     --------
-    chain_section
+    asperity2d.dynamics.chain_section
 
     Examples
     --------

@@ -39,7 +39,7 @@ class Peak:
 
     See Also
     --------
-    spectrum : ``Spectrum.peaks`` lists them.
+    asperity2d.dynamics.spectrum : ``Spectrum.peaks`` lists them.
 
     Examples
     --------
@@ -68,7 +68,7 @@ class Spectrum:
 
     See Also
     --------
-    spectrum : computes one.
+    asperity2d.dynamics.spectrum : computes one.
 
     Examples
     --------
@@ -120,7 +120,7 @@ def spectrum(t, y, *, method: str = "welch", segment: float | None = None, dt: f
 
     See Also
     --------
-    Spectrum, Peak
+    asperity2d.dynamics.Spectrum, asperity2d.dynamics.Peak
     asperity2d.surface.power_spectrum : of a surface profile.
 
     Examples

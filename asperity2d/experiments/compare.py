@@ -82,7 +82,7 @@ class Comparison:
 
     See Also
     --------
-    compare : makes one by running the scenes.
+    asperity2d.compare : makes one by running the scenes.
     asperity2d.stats.relative_effect : the Hodges-Lehmann ratio and its interval.
 
     Examples
@@ -224,11 +224,11 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
     ------
     SceneError
         An unknown measure, empty or malformed ``variants``, no seeds, or a scene
-        argument that :func:`make_scene` refuses (named).
+        argument that :func:`~asperity2d.make_scene` refuses (named).
 
     See Also
     --------
-    Comparison.versus : the one-sided Wilcoxon test of a variant against a reference.
+    asperity2d.Comparison.versus : the one-sided Wilcoxon test of a variant against a reference.
     asperity2d.stats.relative_effect : the Hodges-Lehmann ratio and its interval.
     asperity2d.sweep.run_study : larger grids, resumable, on a cluster.
 

@@ -46,7 +46,12 @@ class FrictionLaw:
 
     See Also
     --------
-    Coulomb, StaticKinetic, CoulombViscous, Stribeck, Dahl, LuGre : the laws.
+    asperity2d.friction.Coulomb : the laws.
+    asperity2d.friction.StaticKinetic
+    asperity2d.friction.CoulombViscous
+    asperity2d.friction.Stribeck
+    asperity2d.friction.Dahl
+    asperity2d.friction.LuGre
     asperity2d.belt.simulate_chain : ``friction=`` takes any of them.
 
     Examples
@@ -150,7 +155,7 @@ class Coulomb(FrictionLaw):
 
     See Also
     --------
-    StaticKinetic : a higher coefficient while stuck.
+    asperity2d.friction.StaticKinetic : a higher coefficient while stuck.
 
     Examples
     --------
@@ -190,7 +195,7 @@ class StaticKinetic(FrictionLaw):
 
     See Also
     --------
-    Coulomb, Stribeck
+    asperity2d.friction.Coulomb, asperity2d.friction.Stribeck
     asperity2d.belt.simulate_chain : ``mu_s=``, ``mu_k=`` build this law.
 
     Examples
@@ -240,7 +245,7 @@ class CoulombViscous(FrictionLaw):
 
     See Also
     --------
-    Coulomb, Stribeck
+    asperity2d.friction.Coulomb, asperity2d.friction.Stribeck
 
     Examples
     --------
@@ -292,7 +297,7 @@ class Stribeck(FrictionLaw):
 
     See Also
     --------
-    LuGre : the same steady curve with pre-sliding dynamics.
+    asperity2d.friction.LuGre : the same steady curve with pre-sliding dynamics.
     asperity2d.friction.fits : fitting it to the virtual tribometer's data.
 
     Examples
@@ -357,7 +362,7 @@ class Dahl(FrictionLaw):
 
     See Also
     --------
-    LuGre, Coulomb
+    asperity2d.friction.LuGre, asperity2d.friction.Coulomb
 
     Examples
     --------
@@ -414,7 +419,7 @@ class LuGre(FrictionLaw):
 
     See Also
     --------
-    Stribeck : its steady state.
+    asperity2d.friction.Stribeck : its steady state.
     asperity2d.belt.simulate_chain : ``friction=LuGre(...)`` integrates it as a smooth stiff ODE.
 
     Examples

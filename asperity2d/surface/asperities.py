@@ -69,7 +69,7 @@ class Asperities:
 
     See Also
     --------
-    find_asperities : makes one from a profile.
+    asperity2d.surface.find_asperities : makes one from a profile.
     asperity2d.make_scene : ``lower_surface=asperities`` builds a scene on them.
 
     Examples
@@ -203,7 +203,7 @@ def table1_stiffness(bases, modulus: float) -> np.ndarray:
 
     See Also
     --------
-    pyramid_mass
+    asperity2d.surface.pyramid_mass
 
     Examples
     --------
@@ -237,7 +237,7 @@ def pyramid_mass(bases, heights, density: float) -> np.ndarray:
 
     See Also
     --------
-    table1_stiffness
+    asperity2d.surface.table1_stiffness
 
     Examples
     --------
@@ -281,7 +281,8 @@ def find_asperities(profile: SurfaceProfile, *, min_prominence: float, min_width
     See Also
     --------
     asperity2d.make_scene : does this for ``lower_surface=profile``.
-    table1_stiffness, pyramid_mass : the rules behind ``modulus`` and ``density``.
+    asperity2d.surface.table1_stiffness : the rules behind ``modulus`` and ``density``.
+    asperity2d.surface.pyramid_mass
 
     Examples
     --------

@@ -66,7 +66,7 @@ def random_heights(count: int, *, mean: float, std: float, distribution: str = "
 
     See Also
     --------
-    fraction_above : the share above a level, in closed form.
+    asperity2d.surface.fraction_above : the share above a level, in closed form.
     asperity2d.make_scene : ``height_std=`` draws them for a scene.
 
     Examples
@@ -170,7 +170,7 @@ def fraction_above(level: float, *, mean: float, std: float, distribution: str =
 
     See Also
     --------
-    random_heights
+    asperity2d.surface.random_heights
 
     Examples
     --------

@@ -61,7 +61,9 @@ class SurfaceProfile:
 
     See Also
     --------
-    self_affine_profile, gaussian_profile, read_profile : make one.
+    asperity2d.surface.self_affine_profile : make one.
+    asperity2d.surface.gaussian_profile
+    asperity2d.surface.read_profile
     asperity2d.make_scene : ``lower_surface=profile`` turns its summits into asperities.
 
     Examples
@@ -189,8 +191,8 @@ def self_affine_profile(*, n: int, length: float, rms_height: float, hurst: floa
 
     See Also
     --------
-    fit_hurst : measures H back.
-    gaussian_profile : another random profile.
+    asperity2d.surface.fit_hurst : measures H back.
+    asperity2d.surface.gaussian_profile : another random profile.
 
     Examples
     --------
@@ -269,7 +271,7 @@ def gaussian_profile(*, n: int, length: float, rms_height: float, correlation_le
 
     See Also
     --------
-    self_affine_profile
+    asperity2d.surface.self_affine_profile
 
     Examples
     --------

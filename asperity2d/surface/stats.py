@@ -71,7 +71,7 @@ def rms_height(profile: SurfaceProfile) -> float:
 
     See Also
     --------
-    rms_slope, power_spectrum
+    asperity2d.surface.rms_slope, asperity2d.surface.power_spectrum
 
     Examples
     --------
@@ -100,7 +100,7 @@ def rms_slope(profile: SurfaceProfile) -> float:
 
     See Also
     --------
-    rms_height
+    asperity2d.surface.rms_height
 
     Examples
     --------
@@ -130,8 +130,8 @@ class PowerSpectrum:
 
     See Also
     --------
-    power_spectrum : computes one.
-    fit_hurst : fits it.
+    asperity2d.surface.power_spectrum : computes one.
+    asperity2d.surface.fit_hurst : fits it.
 
     Examples
     --------
@@ -186,7 +186,7 @@ def power_spectrum(profile: SurfaceProfile, *, method: str = "periodogram",
 
     See Also
     --------
-    fit_hurst, asperity2d.renderers.surface.plot_spectrum
+    asperity2d.surface.fit_hurst, asperity2d.renderers.surface.plot_spectrum
 
     Examples
     --------
@@ -235,7 +235,7 @@ class HurstFit:
 
     See Also
     --------
-    fit_hurst : makes one.
+    asperity2d.surface.fit_hurst : makes one.
 
     Examples
     --------
@@ -284,7 +284,7 @@ def fit_hurst(profile: SurfaceProfile | PowerSpectrum, *, q_min: float | None = 
 
     See Also
     --------
-    self_affine_profile, power_spectrum
+    asperity2d.surface.self_affine_profile, asperity2d.surface.power_spectrum
 
     Examples
     --------

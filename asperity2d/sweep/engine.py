@@ -76,7 +76,7 @@ class CallFailed(RuntimeError):
 
     See Also
     --------
-    Outcome.raise_failure, map_calls
+    asperity2d.sweep.Outcome.raise_failure, asperity2d.sweep.map_calls
 
     Examples
     --------
@@ -94,7 +94,7 @@ class Outcome:
 
     See Also
     --------
-    run_calls : yields them.
+    asperity2d.sweep.run_calls : yields them.
 
     Examples
     --------
@@ -222,7 +222,7 @@ def run_calls(fn: Callable, calls: Sequence[tuple], *, workers: int | str | None
 
     See Also
     --------
-    map_calls : the values in order.
+    asperity2d.sweep.map_calls : the values in order.
 
     Examples
     --------
@@ -315,7 +315,7 @@ def map_calls(fn: Callable, kwargs_list: Sequence[Mapping[str, Any]], *,
 
     See Also
     --------
-    run_calls : outcomes as they complete, failures included.
+    asperity2d.sweep.run_calls : outcomes as they complete, failures included.
 
     Examples
     --------

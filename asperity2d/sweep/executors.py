@@ -227,7 +227,7 @@ class LocalExecutor:
 
     See Also
     --------
-    make_executor, DaskExecutor
+    asperity2d.sweep.make_executor, asperity2d.sweep.DaskExecutor
 
     Examples
     --------
@@ -355,7 +355,7 @@ class DaskExecutor:
 
     See Also
     --------
-    make_executor, LocalExecutor
+    asperity2d.sweep.make_executor, asperity2d.sweep.LocalExecutor
 
     Examples
     --------

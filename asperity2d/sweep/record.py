@@ -28,7 +28,7 @@ class CorruptRunWarning(UserWarning):
 
     See Also
     --------
-    ResultStore, run_study
+    asperity2d.sweep.ResultStore, asperity2d.sweep.run_study
 
     Examples
     --------
@@ -57,7 +57,7 @@ class RunRecord:
 
     See Also
     --------
-    ResultStore
+    asperity2d.sweep.ResultStore
 
     Examples
     --------

@@ -33,7 +33,7 @@ class VariantStats:
 
     See Also
     --------
-    summarize
+    asperity2d.sweep.summarize
 
     Examples
     --------
@@ -62,7 +62,7 @@ class VariantTest:
 
     See Also
     --------
-    summarize
+    asperity2d.sweep.summarize
 
     Examples
     --------
@@ -91,7 +91,7 @@ class Summary:
 
     See Also
     --------
-    summarize : makes one.
+    asperity2d.sweep.summarize : makes one.
     asperity2d.renderers.sweep.plot_summary : draws one.
 
     Examples

@@ -38,7 +38,7 @@ class SweepSummary:
 
     See Also
     --------
-    run_study : returns one.
+    asperity2d.sweep.run_study : returns one.
 
     Examples
     --------
@@ -144,7 +144,7 @@ def run_study(
 
     See Also
     --------
-    summarize, ResultStore
+    asperity2d.sweep.summarize, asperity2d.sweep.ResultStore
     asperity2d.compare : one measure over variants and seeds, without a store.
 
     Examples

@@ -52,7 +52,7 @@ class StoreStatus:
 
     See Also
     --------
-    ResultStore.status
+    asperity2d.sweep.ResultStore.status
 
     Examples
     --------
@@ -86,8 +86,8 @@ class ResultStore:
 
     See Also
     --------
-    run_study : fills it.
-    summarize : reads it.
+    asperity2d.sweep.run_study : fills it.
+    asperity2d.sweep.summarize : reads it.
 
     Examples
     --------

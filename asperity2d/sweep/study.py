@@ -99,7 +99,7 @@ class RunSpec:
 
     See Also
     --------
-    Study.runs : lists them.
+    asperity2d.sweep.Study.runs : lists them.
 
     Examples
     --------
@@ -154,7 +154,7 @@ class Study:
 
     See Also
     --------
-    run_study, load_study
+    asperity2d.sweep.run_study, asperity2d.sweep.load_study
 
     Examples
     --------
