@@ -478,10 +478,6 @@ def friction_traces(result, *, bins: int = 40, dynamic_range: float = 1e4) -> di
     SceneError
         ``bins`` < 1 or ``dynamic_range`` <= 1.
 
-    See Also
-    --------
-    asperity2d.friction.fits : friction laws fitted to such curves.
-
     Examples
     --------
     >>> import asperity2d as a

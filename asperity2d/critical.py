@@ -322,7 +322,8 @@ def critical_force_bracket(scene: Scene, *, start: str = "rest", rel_tol: float 
     max_runs : int, default 80
         Most simulations allowed (>= 2).
     dt : float, optional
-        Step (s); default :func:`measure_dt`.
+        Step (s); default half the simulation's default step from rest, a quarter with a
+        run-up.
     iterations : int, default 20
         pymunk solver iterations.
     max_steps : int, optional
@@ -400,7 +401,8 @@ def critical_force(scene: Scene, *, start: str = "rest", rel_tol: float = REL_TO
     max_runs : int, default 80
         Most simulations allowed (>= 2).
     dt : float, optional
-        Step (s); default :func:`measure_dt`.
+        Step (s); default half the simulation's default step from rest, a quarter with a
+        run-up.
     iterations : int, default 20
         pymunk solver iterations.
     max_steps : int, optional

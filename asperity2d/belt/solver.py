@@ -156,7 +156,6 @@ def simulate_chain(
     See Also
     --------
     asperity2d.belt.presets : the thesis' tables as keyword arguments.
-    asperity2d.belt.regime : steady sliding, stick-slip or quasi-harmonic.
     asperity2d.dynamics : spectra, Poincaré sections, limit cycles, Lyapunov exponents.
 
     Examples

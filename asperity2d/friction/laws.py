@@ -298,7 +298,6 @@ class Stribeck(FrictionLaw):
     See Also
     --------
     asperity2d.friction.LuGre : the same steady curve with pre-sliding dynamics.
-    asperity2d.friction.fits : fitting it to the virtual tribometer's data.
 
     Examples
     --------

@@ -101,8 +101,8 @@ def render(result, path: str | os.PathLike, **options) -> Path:
 
     See Also
     --------
-    asperity2d.renderers.plots.plot_run : the time-series plot, on a figure you can change.
-    asperity2d.renderers.plots.plot_comparison : a comparison over seeds.
+    asperity2d.load : a saved run, rendered again without re-simulating.
+    asperity2d.stick_slip_events : the events a plot marks (``events=``).
 
     Examples
     --------

@@ -186,7 +186,7 @@ def power_spectrum(profile: SurfaceProfile, *, method: str = "periodogram",
 
     See Also
     --------
-    asperity2d.surface.fit_hurst, asperity2d.renderers.surface.plot_spectrum
+    asperity2d.surface.fit_hurst
 
     Examples
     --------

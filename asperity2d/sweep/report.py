@@ -92,7 +92,6 @@ class Summary:
     See Also
     --------
     asperity2d.sweep.summarize : makes one.
-    asperity2d.renderers.sweep.plot_summary : draws one.
 
     Examples
     --------
@@ -165,7 +164,7 @@ def summarize(store: str | Path | ResultStore, *, confidence: float = 0.95) -> S
 
     See Also
     --------
-    asperity2d.renderers.sweep.plot_summary
+    asperity2d.sweep.run_study : fills the store.
 
     Examples
     --------
