@@ -478,6 +478,10 @@ def friction_traces(result, *, bins: int = 40, dynamic_range: float = 1e4) -> di
     SceneError
         ``bins`` < 1 or ``dynamic_range`` <= 1.
 
+    See Also
+    --------
+    asperity2d.stick_slip_events : the same run cut into cycles.
+
     Examples
     --------
     >>> import asperity2d as a

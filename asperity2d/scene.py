@@ -410,6 +410,10 @@ class Contact:
     SceneError
         A value out of range, or ``mu_kinetic > mu_static``.
 
+    See Also
+    --------
+    asperity2d.make_scene : ``mu_static=``, ``mu_kinetic=``, ``restitution=`` build it.
+
     Examples
     --------
     >>> from asperity2d import Contact

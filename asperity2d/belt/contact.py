@@ -108,6 +108,11 @@ def steady_sliding(**chain) -> SteadySliding:
     SceneError
         No ``normal``, a zero belt speed, or a bad parameter.
 
+    See Also
+    --------
+    asperity2d.belt.MinimalModel : Hoffmann's model in closed form.
+    asperity2d.belt.NormalContact
+
     Examples
     --------
     >>> import numpy as np

@@ -126,6 +126,10 @@ def load_contact(path: str | os.PathLike) -> ContactResult:
     FileError
         Not such a file, naming ``path``.
 
+    See Also
+    --------
+    asperity2d.load : reads either kind of result.
+
     Examples
     --------
     >>> from asperity2d import belt

@@ -379,6 +379,10 @@ def steady_state(t, y, *, windows: int | None = None, rtol: float = 0.05) -> Ste
     -------
     SteadyState
 
+    See Also
+    --------
+    asperity2d.dynamics.limit_cycle : the cycle after it.
+
     Examples
     --------
     >>> from asperity2d import belt, dynamics

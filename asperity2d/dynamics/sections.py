@@ -149,6 +149,11 @@ def poincare_section(t, states, *, plane: int = 0, level: float = 0.0, direction
     -------
     Section
 
+    See Also
+    --------
+    asperity2d.dynamics.chain_section : exact, for belt runs.
+    asperity2d.dynamics.crossings
+
     Examples
     --------
     >>> import numpy as np

@@ -64,6 +64,10 @@ def signal(result, name: str = "v", *, mass: int = 0) -> tuple[np.ndarray, np.nd
     SceneError
         An unknown name or mass.
 
+    See Also
+    --------
+    asperity2d.dynamics.spectrum, asperity2d.dynamics.limit_cycle : what to do with it.
+
     Examples
     --------
     >>> from asperity2d import belt, dynamics
@@ -131,6 +135,10 @@ def resample(t, y, *, dt: float | None = None) -> tuple[np.ndarray, np.ndarray]:
     -------
     tuple of numpy.ndarray
         The uniform times and the values there.
+
+    See Also
+    --------
+    asperity2d.dynamics.spectrum : resamples first.
 
     Examples
     --------

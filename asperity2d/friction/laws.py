@@ -123,6 +123,10 @@ def law_from_dict(record: dict) -> FrictionLaw:
     SceneError
         An unknown law or bad parameters.
 
+    See Also
+    --------
+    asperity2d.friction.FrictionLaw : ``to_dict``.
+
     Examples
     --------
     >>> from asperity2d.friction import Stribeck, law_from_dict

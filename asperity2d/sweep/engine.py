@@ -176,6 +176,10 @@ def decide_workers(workers: int | str | None, calls: int, *, cost: float | None 
     SceneError
         A bad ``workers``.
 
+    See Also
+    --------
+    asperity2d.sweep.run_calls : uses it.
+
     Examples
     --------
     >>> from asperity2d import sweep

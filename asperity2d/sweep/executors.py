@@ -83,6 +83,10 @@ def execute_run(run: str, params: Mapping[str, Any], seed: int, quantities: Sequ
     Exception
         The run's own, or a ``SceneError`` for a result that is not a mapping of numbers.
 
+    See Also
+    --------
+    asperity2d.sweep.run_study : calls it for every run.
+
     Examples
     --------
     >>> from asperity2d import sweep
@@ -493,6 +497,11 @@ def make_executor(
     Returns
     -------
     LocalExecutor or DaskExecutor
+
+    See Also
+    --------
+    asperity2d.sweep.LocalExecutor
+    asperity2d.sweep.DaskExecutor
 
     Examples
     --------

@@ -72,6 +72,10 @@ def run_key(run: str, params: Mapping[str, Any], seed: int) -> str:
     str
         16 hex digits.
 
+    See Also
+    --------
+    asperity2d.sweep.RunSpec : carries it.
+
     Examples
     --------
     >>> from asperity2d import sweep
@@ -319,6 +323,11 @@ def load_study(path: str | os.PathLike) -> Study:
     ------
     FileError
         A missing or malformed file, naming ``path``.
+
+    See Also
+    --------
+    asperity2d.sweep.Study : what it returns.
+    asperity2d.sweep.run_study : takes the path too.
 
     Examples
     --------
