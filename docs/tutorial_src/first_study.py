@@ -137,9 +137,10 @@ elif p < alpha and -effect["estimate"] >= min_effect:
     verdict = "holds"
 else:
     verdict = "does not hold"
+ratio = effect["ratio"]
 low, high = 1 + effect["ci_low"], 1 + effect["ci_high"]
-print(f"random / regular = x{effect['ratio']:.2f} [{low:.2f}, {high:.2f}],"
-      f" p = {p:.3g} over {n} seeds")
+print(f"random / regular = x{ratio:.2f} [{low:.2f}, {high:.2f}]")
+print(f"p = {p:.3g} over {n} seeds")
 print("Random spacing lowers the critical force:", verdict)
 
 # %%
