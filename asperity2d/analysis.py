@@ -56,6 +56,31 @@ class Event:
     ``t_slip``; ``force_drop`` (N): peak minus the lowest drive force during
     the slip; ``slip_distance`` (m): slider travel from ``t_slip`` to ``t_end``;
     ``stick_duration`` (s) = ``t_slip - t_stick``.
+
+    Attributes
+    ----------
+    t_stick, t_slip, t_end : float
+        Start of the stick, the stick-to-slip transition, end of the slip (s).
+    force_peak, force_drop : float
+        Drive force at ``t_slip`` and its fall during the slip (N).
+    slip_distance : float
+        Slider travel during the slip (m).
+    stick_duration : float
+        ``t_slip - t_stick`` (s).
+    complete : bool, default True
+        False when the run ended during the slip.
+
+    See Also
+    --------
+    asperity2d.stick_slip_events : the events of a run.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> result = a.simulate(a.make_scene(lower_count=4, upper_count=2))
+    >>> event = a.stick_slip_events(result)[0]
+    >>> event.complete, f"{event.force_drop * 1e3:.3g} mN"
+    (True, '9.21 mN')
     """
 
     t_stick: float
@@ -135,6 +160,31 @@ def stick_slip_events(result, *, stick_speed: float | None = None, slip_speed: f
         In time order. The last one has ``complete=False`` when the run ended
         during its slip. A slip needs a stick before it: motion before the
         first stick is not an event.
+
+    Raises
+    ------
+    SceneError
+        A threshold is negative or not finite, ``slip_speed`` is not above
+        ``stick_speed``, or a default is needed for a run without a spring drive.
+
+    See Also
+    --------
+    asperity2d.breakaway_force : one force out of these events.
+    asperity2d.peak_stick_force
+    asperity2d.mean_stick_force
+    asperity2d.event_statistics : their counts, means and regularity.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> result = a.simulate(a.make_scene(lower_count=4, upper_count=2))
+    >>> events = a.stick_slip_events(result)
+    >>> len(events)
+    2
+    >>> first = events[0]
+    >>> print(f"slips at {first.t_slip:.3g} s under {first.force_peak * 1e3:.3g} mN, "
+    ...       f"moves {first.slip_distance * 1e6:.3g} um")
+    slips at 1.39e-07 s under 6.33 mN, moves 2.43 um
     """
     speed, period = _drive_scales(result)
     defaults = {"stick_speed": (stick_speed, STICK_SPEED_FRACTION, speed),
@@ -213,6 +263,30 @@ def event_statistics(events: list[Event]) -> dict:
     variation (std / mean) of the intervals between successive ``t_slip``
     (0 for perfectly periodic stick–slip). Standard deviations use ddof=1;
     quantities with too few events are NaN.
+
+    Parameters
+    ----------
+    events : list of Event
+        The events of one run, in time order (:func:`~asperity2d.stick_slip_events`).
+
+    Returns
+    -------
+    dict
+        The keys above, each a float (``count``: an int); SI units.
+
+    See Also
+    --------
+    asperity2d.stick_slip_events : the events.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> result = a.simulate(a.make_scene(lower_count=4, upper_count=2))
+    >>> stats = a.event_statistics(a.stick_slip_events(result))
+    >>> stats["count"], f"{stats['force_drop_mean'] * 1e3:.3g} mN"
+    (2, '9.21 mN')
+    >>> stats["regularity"]  # two events make one interval: no spread to measure
+    nan
     """
     def mean_std(values):
         a = np.asarray(values, dtype=float)
@@ -240,17 +314,42 @@ def breakaway_force(result, *, stick_speed: float | None = None, slip_speed: flo
     """The first breakaway: drive force (N) at the first stick-to-slip transition of a
     spring-driven run.
 
-    The keyword arguments are those of :func:`stick_slip_events`. A free
+    A free
     slider under load L on 45° flanks and regular spacing breaks away at the
     quasi-static L tan(45° + atan mu_s). On Ooten's fixed track the first
     breakaway is the front tip entering the surface alone, the same for every
-    spacing: see :func:`peak_stick_force` and :func:`mean_stick_force` for the
+    spacing: see :func:`~asperity2d.peak_stick_force` and :func:`~asperity2d.mean_stick_force` for the
     engaged slider.
+
+    Parameters
+    ----------
+    result : Result
+        A spring-driven run (``make_scene(drive="spring")``, the default).
+    stick_speed, slip_speed, min_stick, min_slip, min_slip_distance : float, optional
+        The event thresholds (m/s, s, m) of :func:`~asperity2d.stick_slip_events`, with its defaults.
+
+    Returns
+    -------
+    float
+        The drive force (N) at the first stick-to-slip transition.
 
     Raises
     ------
     SceneError
         The run is not spring-driven, or never breaks away (named `result`).
+
+    See Also
+    --------
+    asperity2d.peak_stick_force : the largest force at a transition (the engaged slider).
+    asperity2d.mean_stick_force : their mean.
+    asperity2d.critical_force : the smallest constant force that carries the slider across.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> result = a.simulate(a.make_scene(lower_count=4, upper_count=2))
+    >>> f"{a.breakaway_force(result) * 1e3:.3g} mN"
+    '6.33 mN'
     """
     return _spring_events(result, stick_speed, slip_speed, min_stick, min_slip, min_slip_distance)[0].force_peak
 
@@ -272,11 +371,48 @@ def peak_stick_force(result, *, stick_speed: float | None = None, slip_speed: fl
     """Largest drive force (N) at a stick-to-slip transition over the run: the force that
     breaks the slider loose at its worst position on the surface.
 
-    On Ooten's fixed track the first breakaway (:func:`breakaway_force`)
+    On Ooten's fixed track the first breakaway (:func:`~asperity2d.breakaway_force`)
     happens while only the front tip has entered the surface; this is the
     measure of the engaged slider. On a regular surface all n tips meet their
     lower asperities at once and it is the quasi-static flank law for all of
-    them, n k delta tan(theta + atan mu_s). Keywords as :func:`stick_slip_events`.
+    them, n k delta tan(theta + atan mu_s).
+
+    Parameters
+    ----------
+    result : Result
+        A spring-driven run (``make_scene(drive="spring")``, the default).
+    stick_speed, slip_speed, min_stick, min_slip, min_slip_distance : float, optional
+        The event thresholds (m/s, s, m) of :func:`~asperity2d.stick_slip_events`, with its defaults.
+
+    Returns
+    -------
+    float
+        The largest drive force (N) at a stick-to-slip transition.
+
+    Raises
+    ------
+    SceneError
+        The run is not spring-driven, or never breaks away (named `result`).
+
+    See Also
+    --------
+    asperity2d.breakaway_force : the first transition only.
+    asperity2d.mean_stick_force : the mean over the transitions.
+
+    Examples
+    --------
+    On a regular surface the peak is, within 1 %, the flank law for both tips at once:
+
+    >>> import math
+    >>> import asperity2d as a
+    >>> scene = a.make_scene(lower_count=4, upper_count=2)
+    >>> result = a.simulate(scene)
+    >>> f"{a.peak_stick_force(result) * 1e3:.3g} mN"
+    '17.2 mN'
+    >>> flank = math.tan(math.radians(45) + math.atan(scene.contact.mu_static))
+    >>> law = scene.slider.count * scene.lower.stiffness[0] * scene.slider.interference * flank
+    >>> f"{law * 1e3:.3g} mN"
+    '17.3 mN'
     """
     events = _spring_events(result, stick_speed, slip_speed, min_stick, min_slip, min_slip_distance)
     return max(e.force_peak for e in events)
@@ -286,7 +422,39 @@ def mean_stick_force(result, *, stick_speed: float | None = None, slip_speed: fl
                      min_stick: float | None = None, min_slip: float | None = None,
                     min_slip_distance: float | None = None) -> float:
     """Mean drive force (N) at the stick-to-slip transitions of the run: the typical force
-    at which the slider breaks loose over a pass. Keywords as :func:`stick_slip_events`."""
+    at which the slider breaks loose over a pass.
+
+    Less sensitive than :func:`~asperity2d.peak_stick_force` to the one worst position of a pass (which
+    position a pass sticks at is chaotic), so it needs fewer seeds for a verdict.
+
+    Parameters
+    ----------
+    result : Result
+        A spring-driven run (``make_scene(drive="spring")``, the default).
+    stick_speed, slip_speed, min_stick, min_slip, min_slip_distance : float, optional
+        The event thresholds (m/s, s, m) of :func:`~asperity2d.stick_slip_events`, with its defaults.
+
+    Returns
+    -------
+    float
+        The mean drive force (N) at the stick-to-slip transitions.
+
+    Raises
+    ------
+    SceneError
+        The run is not spring-driven, or never breaks away (named `result`).
+
+    See Also
+    --------
+    asperity2d.peak_stick_force, asperity2d.breakaway_force, asperity2d.stick_slip_events
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> result = a.simulate(a.make_scene(lower_count=4, upper_count=2))
+    >>> f"{a.mean_stick_force(result) * 1e3:.3g} mN"
+    '11.8 mN'
+    """
     events = _spring_events(result, stick_speed, slip_speed, min_stick, min_slip, min_slip_distance)
     return float(np.mean([e.force_peak for e in events]))
 
@@ -300,6 +468,40 @@ def friction_traces(result, *, bins: int = 40, dynamic_range: float = 1e4) -> di
     velocities from ``dynamic_range`` below the fastest one up to it
     (log-spaced bins; slower samples are left out): ``velocity_centers``
     (m/s), ``friction_mean`` (N) and ``bin_count``.
+
+    Parameters
+    ----------
+    result : Result
+        Any run.
+    bins : int, default 40
+        Number of log-spaced velocity bins (empty bins are dropped).
+    dynamic_range : float, default 1e4
+        Ratio of the fastest velocity to the slowest one binned (> 1).
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        The arrays above.
+
+    Raises
+    ------
+    SceneError
+        ``bins`` < 1 or ``dynamic_range`` <= 1.
+
+    See Also
+    --------
+    asperity2d.stick_slip_events : the same run cut into cycles.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> result = a.simulate(a.make_scene(lower_count=4, upper_count=2))
+    >>> traces = a.friction_traces(result, bins=8)
+    >>> sorted(traces)  # doctest: +NORMALIZE_WHITESPACE
+    ['bin_count', 'displacement', 'drive_force', 'friction_force', 'friction_mean', 'tangential_force',
+     'time', 'velocity', 'velocity_centers']
+    >>> len(traces["velocity_centers"]) <= 8
+    True
     """
     _asperity_run(result)
     if int(bins) < 1:
@@ -413,7 +615,7 @@ class ContactStates:
 def contact_states(result, *, stick_speed: float | None = None) -> ContactStates:
     """Separated / sliding / sticking time fractions, hops and touching tips of an asperity run.
 
-    ``stick_speed`` (m/s) defaults to 0.5 x the drive velocity (as :func:`stick_slip_events`); a
+    ``stick_speed`` (m/s) defaults to 0.5 x the drive velocity (as :func:`~asperity2d.stick_slip_events`); a
     constant-force run needs it given.
     """
     _asperity_run(result)

@@ -5,14 +5,7 @@ tag, its class, its loader, its exporter and the renderers that draw it. :func:`
 file's tag and calls that kind's loader; the protocol tests run over every entry, so a kind that
 is registered is a kind that is tested. The kinds of this release:
 
-============  ======================================  =============================================
-name          tag                                     class
-============  ======================================  =============================================
-asperity      ``asperity2d.result/2``                 :class:`asperity2d.result.Result`
-belt          ``asperity2d.belt-result/2``            :class:`asperity2d.belt.BeltResult`
-belt-contact  ``asperity2d.belt-contact-result/2``    :class:`asperity2d.belt.ContactResult`
-============  ======================================  =============================================
-
+============  ======================================  ======================================
 A record streamed to disk as its run went (a directory, :mod:`asperity2d.streamed`) is an
 asperity run too, read lazily. The previous release wrote no tag; its files are told apart by
 their metadata's records (a ``scene``; a ``chain`` and a ``normal``; a ``chain``) and still load.
@@ -156,8 +149,40 @@ def load(path: str | os.PathLike):
     :class:`~asperity2d.belt.ContactResult`; or a record streamed to a directory
     (``simulate(..., record_to=path)``), read lazily.
 
-    A file that is none (missing, empty, foreign, damaged, malformed) raises one
-    :class:`~asperity2d._io.FileError` (a ``SceneError``) naming ``path``.
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A ``.npz`` file written by a result's ``save``, or a directory
+        written by ``simulate(..., record_to=path)``.
+
+    Returns
+    -------
+    Result, BeltResult or ContactResult
+        The run as it was saved, every array bit for bit.
+
+    Raises
+    ------
+    FileError
+        A file that is neither (missing, empty, foreign, damaged, malformed), naming
+        ``path`` (a subclass of :class:`~asperity2d.SceneError`).
+
+    See Also
+    --------
+    asperity2d.Result.save : write a result; ``export`` for MATLAB (``.mat``) or CSV.
+    asperity2d.Result.export
+    asperity2d.render : draws a saved result without re-simulating.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import asperity2d as a
+    >>> result = a.simulate(a.make_scene(lower_count=4, upper_count=2))
+    >>> path = result.save("run.npz")
+    >>> again = a.load(path)
+    >>> again
+    Result(3731 samples, t_end=412.4 ns, status='passed')
+    >>> np.array_equal(again.x, result.x)
+    True
     """
     from .streamed import is_record, load as load_streamed
 

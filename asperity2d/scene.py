@@ -1,6 +1,6 @@
 """Scene specification: frozen, validated dataclasses in SI units.
 
-A :class:`Scene` is pure data; it round-trips through plain dicts (JSON,
+A :class:`~asperity2d.Scene` is pure data; it round-trips through plain dicts (JSON,
 TOML). :data:`OOTEN_DEFAULTS` holds Ooten's fixed track (the Working Model
 set-up of E. Ooten's thesis, see :data:`OOTEN_PARAMETERS`), the defaults of
 both these dataclasses and :func:`asperity2d.make_scene` (in
@@ -131,6 +131,28 @@ class LowerSurface(SurfaceGeometry):
     peak 1-peak 2, ..., peak n-wall; a scalar applies to all, 0 removes a
     link), with ``lateral_damping`` (N s/m) in parallel. Track travel limits
     do not apply to the lattice.
+
+    Each field is one of :func:`~asperity2d.make_scene`'s keywords (``lower_count``, ``stiffness``,
+    ``mass``, ``damping_ratio``, ...), with its unit and default in the parameter table.
+
+    Raises
+    ------
+    SceneError
+        A value out of range or of the wrong length, named.
+
+    See Also
+    --------
+    asperity2d.make_scene : builds one from named parameters.
+    asperity2d.Slider : the body above it.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> lower = a.make_scene(lower_count=4, upper_count=2).lower
+    >>> lower.count, lower.stiffness[0], lower.mass[0]  # N/m, kg: Ooten's Table 1
+    (4, 37200.0, 2.88e-16)
+    >>> f"{lower.damping[0]:.3g} N s/m"  # 0.1 of the critical damping 2 sqrt(k m)
+    '6.55e-07 N s/m'
     """
 
     profile: Profile = field(default_factory=lambda: _FULL)
@@ -265,7 +287,29 @@ class Slider(SurfaceGeometry):
     (with varied heights: the tallest lower summit; with equal ones, every
     lower tip). ``track="free"``: free to move vertically, pressed down by
     ``normal_load`` (N). ``shapes`` gives each upper asperity its own shape
-    (heights and levels measured downwards), as for :class:`LowerSurface`.
+    (heights and levels measured downwards), as for :class:`~asperity2d.LowerSurface`.
+
+    Each field is one of :func:`~asperity2d.make_scene`'s keywords (``upper_count``, ``slider_mass``,
+    ``track``, ``normal_load``, ``interference``, ...).
+
+    Raises
+    ------
+    SceneError
+        A value out of range, named.
+
+    See Also
+    --------
+    asperity2d.make_scene : builds one from named parameters.
+    asperity2d.LowerSurface : the surface below it.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> slider = a.make_scene(lower_count=4, upper_count=2, track="free").slider
+    >>> slider.count, slider.track, slider.normal_load  # N
+    (2, 'free', 0.01)
+    >>> f"interference {slider.interference * 1e9:.3g} nm"  # a quarter of the 500 nm height
+    'interference 125 nm'
     """
 
     _upper = True
@@ -303,7 +347,25 @@ class Slider(SurfaceGeometry):
 
 @dataclass(frozen=True)
 class ConstantForce:
-    """A constant horizontal force on the slider (N), as in Working Model."""
+    """A constant horizontal force on the slider (N), as in Working Model.
+
+    Parameters
+    ----------
+    force : float, default 0.02
+        The force (N); finite.
+
+    See Also
+    --------
+    asperity2d.SpringDrive : the other drive.
+    asperity2d.make_scene : ``drive="force", drive_force=...``.
+    asperity2d.critical_force : the smallest such force that carries the slider across.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> a.make_scene(drive="force", drive_force=0.01).drive
+    ConstantForce(force=0.01)
+    """
 
     force: float = OOTEN_DEFAULTS["drive_force"]
 
@@ -317,6 +379,32 @@ class SpringDrive:
 
     The pull is horizontal. The spring starts stretched to hold ``preload``
     (N, default 0: unstretched).
+
+    Parameters
+    ----------
+    stiffness : float, default 3720.0
+        Spring stiffness (N/m), > 0 (``drive_stiffness`` in :func:`~asperity2d.make_scene`).
+    velocity : float, default 20.0
+        Speed of the spring's far end (m/s), > 0 (``drive_velocity``).
+    damping : float, default 0.0
+        Parallel damper (N s/m), >= 0 (``drive_damping``).
+    preload : float, default 0.0
+        Initial spring force (N) (``drive_preload``).
+
+    See Also
+    --------
+    asperity2d.ConstantForce : the other drive.
+    asperity2d.stick_slip_events : what a spring drive makes.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> a.make_scene().drive
+    SpringDrive(stiffness=3720.0, velocity=20.0, damping=0.0, preload=0.0)
+    >>> a.SpringDrive(stiffness=-1.0)
+    Traceback (most recent call last):
+    ...
+    asperity2d.errors.SceneError: `drive_stiffness` must be > 0, got -1.0
     """
 
     stiffness: float = OOTEN_DEFAULTS["drive_stiffness"]
@@ -352,6 +440,38 @@ class Contact:
     normal relative speed after an impact to that before: 0 (the default) is
     a perfectly inelastic impact, which loses the normal part of the relative
     kinetic energy; 1 loses nothing.
+
+    Parameters
+    ----------
+    mu_static : float, default 0.3
+        Static friction coefficient, >= 0.
+    mu_kinetic : float, optional
+        Kinetic coefficient, <= ``mu_static`` (default two thirds of it).
+    slip_distance : float, optional
+        Slip (m) before a stuck contact drops to ``mu_kinetic``.
+    stick_speed : float, optional
+        Slip speed (m/s) below which a sliding contact sticks again.
+    restitution : float, default 0.0
+        Normal coefficient of restitution, in [0, 1].
+
+    Raises
+    ------
+    SceneError
+        A value out of range, or ``mu_kinetic > mu_static``.
+
+    See Also
+    --------
+    asperity2d.make_scene : ``mu_static=``, ``mu_kinetic=``, ``restitution=`` build it.
+
+    Examples
+    --------
+    >>> from asperity2d import Contact
+    >>> Contact(mu_static=0.3)
+    Contact(mu_static=0.3, mu_kinetic=0.2, slip_distance=None, stick_speed=None, restitution=0.0)
+    >>> Contact(mu_static=0.2, mu_kinetic=0.3)
+    Traceback (most recent call last):
+    ...
+    asperity2d.errors.SceneError: `mu_static` (0.2) must be >= `mu_kinetic` (0.3)
     """
 
     mu_static: float = OOTEN_DEFAULTS["mu_static"]
@@ -380,7 +500,41 @@ class Contact:
 
 @dataclass(frozen=True)
 class Scene:
-    """A complete asperity contact scene (SI units throughout)."""
+    """A complete asperity contact scene (SI units throughout).
+
+    Frozen: change a part with :func:`dataclasses.replace`. :func:`~asperity2d.make_scene` builds one
+    from named parameters; this class is for changing one part of a built scene.
+
+    Parameters
+    ----------
+    lower : LowerSurface
+        The lower asperities on their tracks.
+    slider : Slider
+        The upper body and its asperities.
+    drive : SpringDrive or ConstantForce
+        What pulls the slider.
+    contact : Contact
+        Friction at the asperity contacts.
+    gravity : float, default 0.0
+        Downward acceleration (m/s^2), >= 0.
+    name : str, default ""
+        A label (``make_scene`` names it by its parameters).
+
+    See Also
+    --------
+    asperity2d.make_scene, asperity2d.simulate
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> import asperity2d as a
+    >>> scene = a.make_scene(lower_count=4, upper_count=2)
+    >>> scene.name
+    'regular-full-spring-fixed-seed0'
+    >>> pushed = dataclasses.replace(scene, drive=a.ConstantForce(0.01))
+    >>> pushed.drive
+    ConstantForce(force=0.01)
+    """
 
     lower: LowerSurface = field(default_factory=LowerSurface)
     slider: Slider = field(default_factory=Slider)

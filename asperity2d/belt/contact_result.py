@@ -42,7 +42,20 @@ class ContactResult(BeltResult):
     load_energy : (T,) Σ W_i·y_i (J), the work done against the weights and preloads.
     impact_dissipation : (T,) cumulative kinetic energy lost in impacts (J).
     separation_intervals : per mass, the (t_open, t_close) intervals (s) out of contact.
-    contact : the ``ContactSpec`` (normal parameters and initial gaps).
+    contact : the :class:`~.normal.ContactSpec` (normal parameters and initial gaps).
+
+    See Also
+    --------
+    asperity2d.belt.NormalContact, asperity2d.belt.simulate_chain, asperity2d.belt.load_contact
+
+    Examples
+    --------
+    >>> from asperity2d import belt
+    >>> r = belt.simulate_chain([1.0], [100.0, 0.0], [0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...                         v_belt=0.1, x0=[0.0], v0=[0.1], t_end=2.0,
+    ...                         normal=belt.NormalContact(stiffness=1e4, contact_stiffness=1e5))
+    >>> r.separation_intervals  # the mass never leaves the belt
+    [[]]
     """
 
     y: np.ndarray = None
@@ -101,6 +114,33 @@ def load_contact(path: str | os.PathLike) -> ContactResult:
     A file that is not one (missing, foreign, a plain belt result, damaged, arrays that do not
     fit together, time running backwards, a malformed chain or normal record) raises one
     :class:`~asperity2d._io.FileError` naming ``path``; never a KeyError.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A ``.npz`` file written by ``ContactResult.save``.
+
+    Returns
+    -------
+    ContactResult
+
+    Raises
+    ------
+    FileError
+        Not such a file, naming ``path``.
+
+    See Also
+    --------
+    asperity2d.load : reads either kind of result.
+
+    Examples
+    --------
+    >>> from asperity2d import belt
+    >>> r = belt.simulate_chain([1.0], [100.0, 0.0], [0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...                         v_belt=0.1, x0=[0.0], v0=[0.1], t_end=2.0,
+    ...                         normal=belt.NormalContact(stiffness=1e4, contact_stiffness=1e5))
+    >>> belt.load_contact(r.save("contact.npz"))
+    ContactResult(n=1, 2006 samples, t_end=2 s, events=5, separations=0)
     """
     kind = "a belt contact result file"
     arrays, meta = load_npz(path, ContactResult.SAVED, kind=kind,

@@ -48,6 +48,22 @@ class BeltResult:
     events : list of :class:`Event`.
     chain : the :class:`ChainSpec` (None when loaded with a callable belt speed).
     meta : run settings and diagnostics.
+
+    See Also
+    --------
+    asperity2d.belt.simulate_chain : makes one.
+    asperity2d.belt.load : reads a saved one (so does :func:`asperity2d.load`).
+    asperity2d.render : ``render(result, "chain.png")`` plots it.
+
+    Examples
+    --------
+    >>> from asperity2d import belt
+    >>> r = belt.simulate_chain([1.0], [100.0, 0.0], [0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...                         v_belt=0.1, x0=[0.0], v0=[0.1], t_end=2.0)
+    >>> r.x.shape, r.state[0, :3]  # one row per mass; 0 = stuck to the belt
+    ((1, 2006), array([0, 0, 0], dtype=int8))
+    >>> f"{r.belt_work[-1]:.3g} J from the belt, {r.friction_dissipation[-1]:.3g} J dissipated"
+    '...J from the belt, ...J dissipated'
     """
 
     t: np.ndarray
@@ -345,6 +361,33 @@ def load(path: str | os.PathLike) -> BeltResult:
     truncated, damaged, arrays that do not fit together, time running backwards, metadata
     that is not a chain's) raises one :class:`~asperity2d._io.FileError` naming ``path``;
     never a KeyError. :func:`asperity2d.load` reads every kind of result by its tag.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A ``.npz`` file written by ``BeltResult.save``.
+
+    Returns
+    -------
+    BeltResult
+
+    Raises
+    ------
+    FileError
+        Not such a file, naming ``path``.
+
+    See Also
+    --------
+    asperity2d.load : reads either kind of result.
+
+    Examples
+    --------
+    >>> from asperity2d import belt
+    >>> r = belt.simulate_chain([1.0], [100.0, 0.0], [0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...                         v_belt=0.1, x0=[0.0], v0=[0.1], t_end=2.0)
+    >>> path = r.save("chain.npz")
+    >>> belt.load(path).events == r.events
+    True
     """
     kind = "a belt result file"
     arrays, meta = load_npz(path, BeltResult.SAVED, kind=kind,

@@ -34,6 +34,33 @@ class ChainSpec:
     ``v_belt`` is a constant (m/s) or a callable ``v_belt(t)`` (ramps);
     ``mu_k`` defaults to ``mu_s``; ``friction`` (a law from
     :mod:`asperity2d.friction`) replaces (mu_s, mu_k) -- give one or the other.
+
+    Parameters
+    ----------
+    masses, springs, dampers, mu_s, mu_k, v_belt, x0, v0, t_end, g, normal_load, friction
+        As for :func:`simulate_chain` (tuples here).
+
+    Raises
+    ------
+    SceneError
+        A bad parameter, named.
+
+    See Also
+    --------
+    asperity2d.belt.simulate_chain : builds one and runs it; ``result.chain`` is the spec it ran.
+
+    Examples
+    --------
+    >>> from asperity2d import belt
+    >>> spec = belt.ChainSpec(masses=(1.0,), springs=(100.0, 0.0), dampers=(0.0, 0.0), mu_s=0.4,
+    ...                       mu_k=None, v_belt=0.1, x0=(0.0,), v0=(0.1,), t_end=2.0)
+    >>> spec.n, spec.mu_k  # mu_k defaults to mu_s
+    (1, 0.4)
+    >>> belt.ChainSpec(masses=(1.0,), springs=(100.0,), dampers=(0.0, 0.0), mu_s=0.4, mu_k=None,
+    ...                v_belt=0.1, x0=(0.0,), v0=(0.1,), t_end=2.0)
+    Traceback (most recent call last):
+    ...
+    asperity2d.errors.SceneError: `springs` must have 2 entries, got 1
     """
 
     masses: tuple

@@ -93,11 +93,47 @@ def render(result, path: str | os.PathLike, **options) -> Path:
     ``plot_chain`` (``.png``, ``.svg``, ``.pdf``)
     or ``write_wav`` (``.wav``).
 
+    Parameters
+    ----------
+    result : Result, BeltResult, str or os.PathLike
+        A run, or the path of one saved with ``save`` (read with :func:`asperity2d.load`).
+    path : str or os.PathLike
+        The output file; its extension picks the renderer (:data:`RENDERERS`): ``.gif``,
+        ``.mp4``, ``.html``, ``.png``, ``.svg``, ``.pdf`` or ``.wav``.
+    **options
+        Passed to the renderer (e.g. ``frames=40`` for an animation, ``events=`` for a plot).
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
     Raises
     ------
     SceneError
         Unknown extension, or one this kind of result has no renderer for (named `path`), or
         bad options.
+
+    See Also
+    --------
+    asperity2d.load : a saved run, rendered again without re-simulating.
+    asperity2d.stick_slip_events : the events a plot marks (``events=``).
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> result = a.simulate(a.make_scene(lower_count=4, upper_count=2))
+    >>> a.render(result, "timeseries.png", events=a.stick_slip_events(result)).name
+    'timeseries.png'
+    >>> a.render(result, "run.gif", frames=10).stat().st_size > 0
+    True
+
+    The extension decides; one this package cannot write is one line:
+
+    >>> a.render(result, "run.jpg")
+    Traceback (most recent call last):
+    ...
+    asperity2d.errors.SceneError: `path` must end in one of .gif, .mp4, .html, .png, .svg, .pdf, .wav, got 'run.jpg'
     """
     path = Path(path)
     renderer = RENDERERS.get(path.suffix.lower())

@@ -64,7 +64,40 @@ def execute_run(run: str, params: Mapping[str, Any], seed: int, quantities: Sequ
                 ) -> dict[str, float]:
     """Call a study's run function once (``run`` a dotted path) and return its quantities
     (name -> float); raise if it raises, returns something else than a mapping of numbers, or
-    lacks one of ``quantities`` (the engine records the failure)."""
+    lacks one of ``quantities`` (the engine records the failure).
+
+    Parameters
+    ----------
+    run : str
+        ``"module:function"``.
+    params : mapping
+        Keyword arguments.
+    seed : int
+        Passed as ``seed=``.
+    quantities : sequence of str, optional
+        Names the result must hold.
+
+    Returns
+    -------
+    dict of str to float
+
+    Raises
+    ------
+    Exception
+        The run's own, or a ``SceneError`` for a result that is not a mapping of numbers.
+
+    See Also
+    --------
+    asperity2d.sweep.run_study : calls it for every run.
+
+    Examples
+    --------
+    >>> from asperity2d import sweep
+    >>> values = sweep.execute_run('asperity2d.studies.ooten:critical_force_run', {'lower_count': 4, 'upper_count': 2}, 0,
+    ...                          ['critical_force_N'])
+    >>> f"{values['critical_force_N'] * 1e3:.3g} mN"
+    '7.61 mN'
+    """
     raw = resolve_run(run)(**params, seed=seed)
     if not isinstance(raw, Mapping):
         raise TypeError(f"run function must return a mapping, got {type(raw).__name__}")
@@ -280,6 +313,18 @@ class LocalExecutor:
         the calling process, which is the easiest to debug.
     in_process : bool, optional
         Override: ``False`` uses a pool even for one worker (benchmarks).
+
+    See Also
+    --------
+    asperity2d.sweep.make_executor, asperity2d.sweep.DaskExecutor
+
+    Examples
+    --------
+    >>> from asperity2d import sweep
+    >>> executor = sweep.LocalExecutor(workers=1)
+    >>> executor.in_process, executor.workers
+    (True, 1)
+    >>> executor.close()
     """
 
     def __init__(self, *, workers: int | None = None, in_process: bool | None = None):
@@ -435,6 +480,18 @@ class DaskExecutor:
         able to import asperity2d and the study's run function.
     workers : int, optional
         Worker processes for ``scheduler="local"`` (default ``os.cpu_count()``).
+
+    See Also
+    --------
+    asperity2d.sweep.make_executor, asperity2d.sweep.LocalExecutor
+
+    Examples
+    --------
+    Skipped when the examples run: it needs a Dask scheduler listening at that address.
+
+    >>> from asperity2d import sweep
+    >>> executor = sweep.DaskExecutor(scheduler="tcp://127.0.0.1:8786")  # doctest: +SKIP
+    >>> sweep.run_study("study.toml", store="results", scheduler="tcp://127.0.0.1:8786")  # doctest: +SKIP
     """
 
     def __init__(self, *, scheduler: str, workers: int | None = None):
@@ -569,7 +626,30 @@ def check_executor_args(*, workers: int | None = None, scheduler: str | None = N
 def make_executor(
     *, workers: int | None = None, scheduler: str | None = None
 ) -> LocalExecutor | DaskExecutor:
-    """A :class:`DaskExecutor` if ``scheduler`` is given, else a :class:`LocalExecutor`."""
+    """A :class:`DaskExecutor` if ``scheduler`` is given, else a :class:`LocalExecutor`.
+
+    Parameters
+    ----------
+    workers : int, optional
+        Local worker processes.
+    scheduler : str, optional
+        A Dask scheduler address, or ``"local"``.
+
+    Returns
+    -------
+    LocalExecutor or DaskExecutor
+
+    See Also
+    --------
+    asperity2d.sweep.LocalExecutor
+    asperity2d.sweep.DaskExecutor
+
+    Examples
+    --------
+    >>> from asperity2d import sweep
+    >>> type(sweep.make_executor(workers=1)).__name__
+    'LocalExecutor'
+    """
     check_executor_args(workers=workers, scheduler=scheduler)
     if scheduler is None:
         return LocalExecutor(workers=workers)
