@@ -164,7 +164,36 @@ def load_contact(path: str | os.PathLike) -> ContactResult:
 def load(path: str | os.PathLike) -> BeltResult:
     """Read a saved belt chain of either kind (``asperity2d.belt.load``): a
     :class:`ContactResult` when the file holds a normal contact (its tag, or the previous
-    release's ``normal`` record), else a :class:`BeltResult`."""
+    release's ``normal`` record), else a :class:`BeltResult`.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A ``.npz`` file written by ``BeltResult.save`` or ``ContactResult.save``.
+
+    Returns
+    -------
+    BeltResult or ContactResult
+        The kind that was saved, with every array.
+
+    Raises
+    ------
+    FileError
+        Not a saved belt chain, naming ``path``.
+
+    See Also
+    --------
+    asperity2d.load : reads every kind of result.
+
+    Examples
+    --------
+    >>> from asperity2d import belt
+    >>> r = belt.simulate_chain([1.0], [100.0, 0.0], [0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...                         v_belt=0.1, x0=[0.0], v0=[0.1], t_end=2.0,
+    ...                         normal=belt.NormalContact(stiffness=1e4, contact_stiffness=1e5))
+    >>> type(belt.load(r.save("contact.npz"))).__name__
+    'ContactResult'
+    """
     _, meta = load_npz(path, (), kind="a belt result file")
     if meta.get("format") == FORMAT or (meta.get("format") is None and "normal" in meta):
         return load_contact(path)
