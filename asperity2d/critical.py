@@ -107,7 +107,7 @@ class CriticalForce:
     stopping)`` force when passing is not monotone in the force (a force above
     ``passes`` stopped), else None. ``checked`` is the relative window below
     and above ``passes`` that the bracket check scanned at ``SCAN_STEP``;
-    ``tried`` every (force, passed) pair, in the order run.
+    ``tried`` every (force, passed) pair, in the order run. ``dt`` is the step every run used (s).
     """
 
     stops: float
@@ -117,6 +117,7 @@ class CriticalForce:
     band: tuple[float, float] | None = None
     checked: float = 0.0
     tried: tuple[tuple[float, bool], ...] = ()
+    dt: float = math.nan
 
     @property
     def value(self) -> float:
@@ -304,7 +305,7 @@ def critical_force_bracket(scene: Scene, *, start: str = "rest", rel_tol: float 
     lo, hi, band, tried = smallest_passing(test, flank_estimate(scene), rel_tol=rel_tol,
                                            first=FIRST_POWER[scene.slider.track, start])
     return CriticalForce(stops=lo, passes=hi, runs=runs, start=start, band=band, checked=SCAN_WINDOW,
-                         tried=tuple(tried))
+                         tried=tuple(tried), dt=float(base.dt))
 
 
 def critical_force(scene: Scene, *, start: str = "rest", rel_tol: float = REL_TOL, max_runs: int = 80,
