@@ -73,7 +73,7 @@ STICK_DT_FRACTION = 0.5
 #: with dt/8 within 1 % (one more within 1.1 %); the other three move 21-33 % (where a stuck slider stops is decided at
 #: a flank it barely reaches, as chaotic as a pass's sticks), so the travel of one random seed is
 #: a distribution and a comparison is made over seeds. The full slider, which passes, moves
-#: <= 0.5 % from dt/2 on (one seed stopped at dt and passed from dt/2).
+#: under 1 % from dt/4 to dt/8 on every seed (one seed stopped at dt and passed from dt/2).
 TRAVEL_DT_FRACTION = dict(CRITICAL_DT_FRACTION)
 #: What halving a measure's step may move it by (relative): the deterministic measures 1 %; the
 #: stick-force distributions and the travel: their ensemble means over seeds (see the findings).
