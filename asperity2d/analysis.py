@@ -15,6 +15,10 @@ Slips shorter than ``min_slip`` or moving the slider less than
 the slider is slow for less than ``min_stick`` inside a slip are bounces off
 asperities, not re-sticking. Both rules look at time and distance, not at
 sample counts, so the events do not depend on how often the run was recorded.
+The distance rule follows the scene's own scale (:func:`slip_scale`): a tenth
+of the smallest of the asperity base, the lower surface's mean pitch and the
+drive spring's stretch over one slip, so a flat block's 30 nm slips count
+while an asperity's nanometre micro-slips do not.
 """
 
 from __future__ import annotations
@@ -37,12 +41,44 @@ SLIP_SPEED_FRACTION = 3.0
 #: Default minimum durations as fractions of the slider's period on the drive spring.
 MIN_STICK_PERIODS = 0.5
 MIN_SLIP_PERIODS = 0.1
-#: Default minimum slip distance as a fraction of the asperity base. A real slip on seed
-#: 000's scenes moves the slider 0.4-10 um; a contact letting go of one flank moves it
-#: 2-30 nm in under a nanosecond, near the 0.55 ns ``min_slip``, so whether it counted
-#: depended on where the samples fell (measured: two extra "events" at record_every=10
-#: that record_every=1 did not see, on the same trajectory).
-MIN_SLIP_BASES = 0.1
+#: Default minimum slip distance as a fraction of the scene's slip scale (:func:`slip_scale`).
+#: A real slip on seed 000's scenes moves the slider 0.4-10 um; a contact letting go of one
+#: flank moves it 2-30 nm in under a nanosecond, near the 0.55 ns ``min_slip``, so whether it
+#: counted depended on where the samples fell (measured: two extra "events" at
+#: record_every=10 that record_every=1 did not see, on the same trajectory). On an asperity
+#: surface the scale is the base (0.1 base = 100 nm: above those micro-slips); on a flat block
+#: the drive spring's stretch over a slip is far smaller (27 nm on a 3 mN block, mu 0.5/0.35,
+#: on 37.2 kN/m) and sets it.
+MIN_SLIP_FRACTION = 0.1
+
+
+def slip_scale(scene) -> float:
+    """The length (m) a stick-slip of ``scene`` is measured against: the smallest of the asperity
+    base, the lower surface's mean pitch and, on a spring drive, the drive spring's stretch over
+    one slip, ``2 (F_peak - F_kinetic) / k`` (Den Hartog's stick-slip: the spring force swings
+    symmetrically about the kinetic level).
+
+    ``F_peak`` is the static barrier plus the overshoot ``V sqrt(k m)`` (the force keeps rising
+    until the slider catches up with the drive): the barrier is the flank law ``L tan(theta + atan
+    mu_s)`` for the free slider under load ``L`` (``mu_s L`` on flat blocks, theta = 0) and ``n k_l
+    delta tan(theta + atan mu_s)`` on the fixed track. ``F_kinetic`` is the sliding friction
+    ``mu_k L`` of the free slider (0 on the fixed track, which carries no load). On Ooten's
+    asperity scenes the stretch is micrometres and the base sets the scale; on a flat block the
+    stretch does.
+    """
+    base = scene.base
+    scale = min(base, scene.lower.spacing.mean_pitch)
+    drive = scene.drive
+    if not isinstance(drive, SpringDrive):
+        return scale
+    theta = math.radians(scene.lower.profile.flank_angle)
+    wedge = math.tan(min(theta + math.atan(scene.contact.mu_static), math.radians(89.0)))
+    if scene.slider.track == "free":
+        barrier, kinetic = scene.slider.normal_load * wedge, scene.contact.mu_kinetic * scene.slider.normal_load
+    else:
+        barrier, kinetic = scene.slider.count * max(scene.lower.stiffness) * scene.slider.interference * wedge, 0.0
+    peak = barrier + drive.velocity * math.sqrt(drive.stiffness * scene.slider.mass)
+    return min(scale, 2.0 * (peak - kinetic) / drive.stiffness)
 
 
 @dataclass(frozen=True)
@@ -131,6 +167,29 @@ def _merge(runs: list[list[int]]) -> list[list[int]]:
     return out
 
 
+def _thresholds(result, stick_speed, slip_speed, min_stick, min_slip, min_slip_distance) -> dict:
+    """The detector's thresholds (SI): the given ones, the scene's defaults for the rest."""
+    speed, period = _drive_scales(result)
+    defaults = {"stick_speed": (stick_speed, STICK_SPEED_FRACTION, speed),
+                "slip_speed": (slip_speed, SLIP_SPEED_FRACTION, speed),
+                "min_stick": (min_stick, MIN_STICK_PERIODS, period),
+                "min_slip": (min_slip, MIN_SLIP_PERIODS, period),
+                "min_slip_distance": (min_slip_distance, MIN_SLIP_FRACTION, slip_scale(result.scene))}
+    values = {}
+    for name, (given, fraction, scale) in defaults.items():
+        if given is None:
+            if scale is None:
+                raise SceneError(f"`{name}` must be given for a run without a spring drive")
+            given = fraction * scale
+        if not math.isfinite(given) or given < 0:
+            raise SceneError(f"`{name}` must be a finite number >= 0, got {given!r}")
+        values[name] = float(given)
+    if values["slip_speed"] <= values["stick_speed"]:
+        raise SceneError(f"`slip_speed` ({values['slip_speed']!r}) must be > "
+                         f"`stick_speed` ({values['stick_speed']!r})")
+    return values
+
+
 def stick_slip_events(result, *, stick_speed: float | None = None, slip_speed: float | None = None,
                       min_stick: float | None = None, min_slip: float | None = None,
                       min_slip_distance: float | None = None) -> list[Event]:
@@ -152,7 +211,8 @@ def stick_slip_events(result, *, stick_speed: float | None = None, slip_speed: f
         A slip shorter than this (s) is ignored. Default: 0.1 of that period.
     min_slip_distance : float, optional
         A slip moving the slider less than this (m) is ignored. Default: 0.1
-        of the asperity base.
+        of :func:`slip_scale` (the asperity base on Ooten's scenes, the drive
+        spring's stretch over a slip on a flat block).
 
     Returns
     -------
@@ -186,24 +246,8 @@ def stick_slip_events(result, *, stick_speed: float | None = None, slip_speed: f
     ...       f"moves {first.slip_distance * 1e6:.3g} um")
     slips at 1.39e-07 s under 6.33 mN, moves 2.43 um
     """
-    speed, period = _drive_scales(result)
-    defaults = {"stick_speed": (stick_speed, STICK_SPEED_FRACTION, speed),
-                "slip_speed": (slip_speed, SLIP_SPEED_FRACTION, speed),
-                "min_stick": (min_stick, MIN_STICK_PERIODS, period),
-                "min_slip": (min_slip, MIN_SLIP_PERIODS, period),
-                "min_slip_distance": (min_slip_distance, MIN_SLIP_BASES, result.scene.base)}
-    values = {}
-    for name, (given, fraction, scale) in defaults.items():
-        if given is None:
-            if scale is None:
-                raise SceneError(f"`{name}` must be given for a run without a spring drive")
-            given = fraction * scale
-        if not math.isfinite(given) or given < 0:
-            raise SceneError(f"`{name}` must be a finite number >= 0, got {given!r}")
-        values[name] = float(given)
-    if values["slip_speed"] <= values["stick_speed"]:
-        raise SceneError(f"`slip_speed` ({values['slip_speed']!r}) must be > "
-                         f"`stick_speed` ({values['stick_speed']!r})")
+    values = _thresholds(result, stick_speed, slip_speed, min_stick, min_slip, min_slip_distance)
+    speed, _ = _drive_scales(result)
     t, v, x, force = (np.asarray(a, dtype=float) for a in (result.t, result.v, result.x,
                                                              result.drive_force))
     if len(t) < 2:
@@ -361,6 +405,15 @@ def _spring_events(result, stick_speed, slip_speed, min_stick, min_slip, min_sli
                                min_stick=min_stick, min_slip=min_slip,
                                min_slip_distance=min_slip_distance)
     if not events:
+        small = stick_slip_events(result, stick_speed=stick_speed, slip_speed=slip_speed,
+                                  min_stick=min_stick, min_slip=min_slip, min_slip_distance=0.0)
+        if small:
+            limit = _thresholds(result, stick_speed, slip_speed, min_stick, min_slip,
+                                min_slip_distance)["min_slip_distance"]
+            longest = max(e.slip_distance for e in small)
+            raise SceneError(f"`result` has {len(small)} stick-to-slip transition(s), every one moving the "
+                             f"slider less than `min_slip_distance` = {limit:.3g} m (the longest "
+                             f"{longest:.3g} m): pass a smaller `min_slip_distance` to count them")
         raise SceneError("`result` has no stick-to-slip transition (the slider never broke away)")
     return events
 

@@ -107,7 +107,7 @@ class CriticalForce:
     stopping)`` force when passing is not monotone in the force (a force above
     ``passes`` stopped), else None. ``checked`` is the relative window below
     and above ``passes`` that the bracket check scanned at ``SCAN_STEP``;
-    ``tried`` every (force, passed) pair, in the order run.
+    ``tried`` every (force, passed) pair, in the order run. ``dt`` is the step every run used (s).
 
     Attributes
     ----------
@@ -123,6 +123,8 @@ class CriticalForce:
         Relative window scanned around ``passes``.
     tried : tuple of (float, bool)
         Every force tried (N) and whether it passed.
+    dt : float
+        The step every run used (s).
 
     See Also
     --------
@@ -145,6 +147,7 @@ class CriticalForce:
     band: tuple[float, float] | None = None
     checked: float = 0.0
     tried: tuple[tuple[float, bool], ...] = ()
+    dt: float = math.nan
 
     @property
     def value(self) -> float:
@@ -373,7 +376,7 @@ def critical_force_bracket(scene: Scene, *, start: str = "rest", rel_tol: float 
     lo, hi, band, tried = smallest_passing(test, flank_estimate(scene), rel_tol=rel_tol,
                                            first=FIRST_POWER[scene.slider.track, start])
     return CriticalForce(stops=lo, passes=hi, runs=runs, start=start, band=band, checked=SCAN_WINDOW,
-                         tried=tuple(tried))
+                         tried=tuple(tried), dt=float(base.dt))
 
 
 def critical_force(scene: Scene, *, start: str = "rest", rel_tol: float = REL_TOL, max_runs: int = 80,
