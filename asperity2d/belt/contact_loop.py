@@ -34,8 +34,8 @@ import numpy as np
 from ..errors import SimulationError
 from .backend import Event
 from .contact_modes import resolve_contact
-from .contact_phase import ContactPhase, ContactTemplate
-from .finder import find_event
+from .contact_phase import GAP, NORMAL, SLIP, STICK, ContactPhase, ContactTemplate
+from .finder import SWITCH_TOL, find_event
 from .normal import SEPARATED
 
 #: bounded memory: at most this many cached mode patterns
@@ -162,8 +162,11 @@ def run_contact(spec, options) -> ContactRun:
 
 
 def _record(phase, taus, t0, length, work, rec):
-    """Append samples at ``taus`` (s from the phase start); return the cumulative work (4,) and Z at ``length``."""
+    """Append samples at ``taus`` (s from the phase start); return the cumulative work (4,) and Z at ``length``.
+
+    Every sample and the end state are checked against the phase's own modes (:func:`check_modes`)."""
     Z, F, N, w = phase.sample(np.append(taus, length))
+    check_modes(phase.template, Z, t0 + np.append(taus, length))
     w = np.vstack([w, np.zeros((1, w.shape[1]))]) + work[:, None]
     m = taus.size
     if m:
@@ -174,3 +177,38 @@ def _record(phase, taus, t0, length, work, rec):
         rec["N"].append(N[:, :m])
         rec["work"].append(w[:, :m])
     return w[:, -1], Z[:, -1]
+
+
+#: a mode's own condition may be off by its touch band (a located crossing stops on the far side of
+#: the zero, a touch is anywhere within the band): twice the band is a switch the scan missed
+VIOLATION = 2 * SWITCH_TOL
+
+
+def check_modes(template, Z, times):
+    """Raise SimulationError where a state ``Z`` (4n, T) at ``times`` (s) breaks its phase's modes.
+
+    The validity check of every contact run, as the asperity model's tunnelling check: each mode's
+    event function (:mod:`.contact_phase`: the gap of a separated mass, the normal force of one in
+    contact, the relative velocity of a slipping one, the static margin of a stuck one) must not be
+    below zero by more than :data:`VIOLATION` (twice the touch band). Beyond it a switch was missed
+    -- a separated mass inside a rigid belt (or inside a compliant one, whose contact spring never
+    took up the load), a contact that pulls, a slip the wrong way, a static force beyond its
+    limit -- and the run is wrong whatever its energy books say: it fails, naming the mass and the
+    time, rather than return.
+    """
+    G = template.ev_map @ Z + template.ev_offset[:, None]
+    broken = (G < -VIOLATION).any(axis=0)
+    if not broken.any():
+        return
+    col = int(np.argmax(broken))  # the first time at which a mode is broken, and its worst row there
+    r = int(np.argmin(G[:, col]))
+    spec, i, role, t = template.spec, int(template.owner[r]), template.role[r], float(times[col])
+    n, D = spec.n, 2 * spec.n
+    what = {GAP: f"is {-Z[n + i, col]:.3g} m inside the belt while separated (a landing was missed)",
+            NORMAL: f"is held by a contact force of {float(G[r, col]) * spec.normal_scale:.3g} N that pulls "
+                    "(a lift-off was missed)",
+            SLIP: f"slips against its friction at {abs(Z[D + i, col] - template.V):.3g} m/s from the belt speed "
+                  "(a stick or reversal was missed)",
+            STICK: "is held stuck beyond its static friction limit (a slip was missed)"}[role]
+    raise SimulationError(f"invalid contact state at t = {t:.9g} s: mass {i} {what}; the run is refused rather "
+                          "than returned wrong", time=t)
