@@ -204,3 +204,18 @@ def test_a_preset_is_the_callers_own_copy():
     first["v0"].append(1.0)
     again = presets.preset("table2-3dof")
     assert again["x0"] == [0.05, 0.06, 0.07] and again["v0"] == [0.04, 0.03, 0.05]
+
+
+def test_a_stiff_chain_stops_at_its_wall_time_inside_the_scan():
+    """Found by a fuzzing round: a 1e-9 kg mass between 1000 kg and 1 kg (scan step 2e-6 s, a Taylor
+    grid of 5e-11 s steps in one long phase) ran 200 s and more past a 30 s `max_wall_time`, which
+    was read only between phases. The scan and the grid watch the clock now: it must stop within
+    1 s of a 2 s limit (the check runs every scan chunk and every 4,096 grid steps, well under 0.1 s
+    each), naming the parameter."""
+    import time
+
+    clock = time.perf_counter()
+    with pytest.raises(SimulationError, match="`max_wall_time` = 2 s"):
+        simulate_chain(masses=[1000.0, 1e-9, 1.0], springs=[10.0] * 4, dampers=[0.0] * 4, mu_s=0.2, v_belt=0.1,
+                       x0=[0.0] * 3, v0=[0.0] * 3, t_end=1.5, max_wall_time=2.0)
+    assert time.perf_counter() - clock < 3.0

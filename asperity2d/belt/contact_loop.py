@@ -84,63 +84,64 @@ def run_contact(spec, options) -> ContactRun:
     sticks: list[list] = [[] for _ in range(n)]
     seps: list[list] = [[] for _ in range(n)]
     events += [Event(t=0.0, mass=int(i), kind=kind, x=float(Z[i])) for i, kind in first if kind == "impact"]
-    while True:
-        key = np.asarray(modes, dtype=np.int8).tobytes()
-        template = templates.get(key)
-        if template is None:
-            template = templates[key] = ContactTemplate(spec, modes)
-            if len(templates) > CACHE_SIZE:
-                templates.pop(next(iter(templates)))
-        phase = ContactPhase(template, Z)
-        rows = phase.events()
-        horizon = min(chain.t_end - t, phase.cap)
-        found = find_event(rows, horizon, phase.step)
-        restart = found is None and horizon < chain.t_end - t
-        tau_e, touching, contradicted = (None, (), ()) if found is None else found
-        end = tau_e if tau_e is not None else horizon
-        last = tau_e is None and not restart
-        t1 = chain.t_end if last else t + end
-        stop = np.searchsorted(samples, t1, side="right" if last else "left")
-        taus = samples[next_sample:stop] - t
-        next_sample = stop
-        if opened and options.include_events and (not taus.size or taus[0] > 0):
-            taus = np.concatenate([[0.0], taus])
-        work, Z = _record(phase, taus, t, end, work, rec)
-        if last:
-            break
-        if restart:
-            restarts += 1
-            t, opened = float(t1), False
-            continue
-        switches += 1
-        options.check_clock(t1)
-        zero_steps = zero_steps + 1 if tau_e <= 1e-12 * min(phase.step, chain.t_end) else 0
-        if zero_steps > 64:
-            raise SimulationError(f"switching did not progress at t = {t1:.17g} s (65 switches in a row); hint: "
-                                  "check for a degenerate chain (coincident switches, forces on the friction limit, "
-                                  "a contact held at zero force)", time=t1)
-        if switches > options.max_events:
-            raise SimulationError(f"more than `max_events` = {options.max_events:,} switches before t = {t1:.6g} s; "
-                                  "raise `max_events` or shorten `t_end`", time=t1)
-        t = float(t1)
-        label = [(template.role[r], int(template.owner[r])) for r in range(len(template.role))]
-        new, Z, changes, impulse = resolve_contact(spec, Z, modes, [label[r] for r in touching],
-                                                   [label[r] for r in contradicted])
-        work = work + np.concatenate([impulse[:2], [0.0, impulse[2]]])
-        for i, kind in changes:
-            events.append(Event(t=t, mass=int(i), kind=kind, x=float(Z[i])))
-        for i in range(n):
-            if modes[i] == 0 and new[i] != 0:
-                sticks[i].append((stick_start[i], t))
-                stick_start[i] = None
-            if modes[i] != 0 and new[i] == 0:
-                stick_start[i] = t
-            if modes[i] != SEPARATED and new[i] == SEPARATED:
-                sep_start[i] = t
-            if modes[i] == SEPARATED and new[i] != SEPARATED:
-                seps[i].append((sep_start[i], t))
-                sep_start[i] = None
-        modes, opened = new, True
+    with options.watching(lambda: t):  # loops deep in a phase watch the wall clock too
+        while True:
+            key = np.asarray(modes, dtype=np.int8).tobytes()
+            template = templates.get(key)
+            if template is None:
+                template = templates[key] = ContactTemplate(spec, modes)
+                if len(templates) > CACHE_SIZE:
+                    templates.pop(next(iter(templates)))
+            phase = ContactPhase(template, Z)
+            rows = phase.events()
+            horizon = min(chain.t_end - t, phase.cap)
+            found = find_event(rows, horizon, phase.step, clock=lambda tau, t=t: options.check_clock(t + tau))
+            restart = found is None and horizon < chain.t_end - t
+            tau_e, touching, contradicted = (None, (), ()) if found is None else found
+            end = tau_e if tau_e is not None else horizon
+            last = tau_e is None and not restart
+            t1 = chain.t_end if last else t + end
+            stop = np.searchsorted(samples, t1, side="right" if last else "left")
+            taus = samples[next_sample:stop] - t
+            next_sample = stop
+            if opened and options.include_events and (not taus.size or taus[0] > 0):
+                taus = np.concatenate([[0.0], taus])
+            work, Z = _record(phase, taus, t, end, work, rec)
+            if last:
+                break
+            if restart:
+                restarts += 1
+                t, opened = float(t1), False
+                continue
+            switches += 1
+            options.check_clock(t1)
+            zero_steps = zero_steps + 1 if tau_e <= 1e-12 * min(phase.step, chain.t_end) else 0
+            if zero_steps > 64:
+                raise SimulationError(f"switching did not progress at t = {t1:.17g} s (65 switches in a row); "
+                                      "hint: check for a degenerate chain (coincident switches, forces on the "
+                                      "friction limit, a contact held at zero force)", time=t1)
+            if switches > options.max_events:
+                raise SimulationError(f"more than `max_events` = {options.max_events:,} switches before "
+                                      f"t = {t1:.6g} s; raise `max_events` or shorten `t_end`", time=t1)
+            t = float(t1)
+            label = [(template.role[r], int(template.owner[r])) for r in range(len(template.role))]
+            new, Z, changes, impulse = resolve_contact(spec, Z, modes, [label[r] for r in touching],
+                                                       [label[r] for r in contradicted])
+            work = work + np.concatenate([impulse[:2], [0.0, impulse[2]]])
+            for i, kind in changes:
+                events.append(Event(t=t, mass=int(i), kind=kind, x=float(Z[i])))
+            for i in range(n):
+                if modes[i] == 0 and new[i] != 0:
+                    sticks[i].append((stick_start[i], t))
+                    stick_start[i] = None
+                if modes[i] != 0 and new[i] == 0:
+                    stick_start[i] = t
+                if modes[i] != SEPARATED and new[i] == SEPARATED:
+                    sep_start[i] = t
+                if modes[i] == SEPARATED and new[i] != SEPARATED:
+                    seps[i].append((sep_start[i], t))
+                    sep_start[i] = None
+            modes, opened = new, True
     for i in range(n):
         if stick_start[i] is not None:
             sticks[i].append((stick_start[i], chain.t_end))

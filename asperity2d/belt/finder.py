@@ -45,8 +45,12 @@ _EPS = float(np.finfo(float).eps)  # (a plain float: the scalar root search does
 _SUBDIVISIONS = 64
 
 
-def find_event(events, horizon: float, step: float, chunk: int = 16):
+def find_event(events, horizon: float, step: float, chunk: int = 16, clock=None):
     """(tau, touching masses, contradicted masses) of the first switch or velocity touch in (0, horizon] (s).
+
+    ``clock(tau)``, when given, is called before each chunk of the scan with the time reached (s
+    from the phase start): a long phase of a stiff chain is scanned in thousands of chunks, so the
+    run's wall-clock budget is watched inside the scan, not only between phases.
 
     None when nothing happens before ``horizon``. Contradicted masses left the zero of
     their event function the wrong way at once (:func:`.modes.resolve_modes` reverses them).
@@ -64,6 +68,8 @@ def find_event(events, horizon: float, step: float, chunk: int = 16):
         g_prev, d_prev = g[:, 0], d[:, 0]
     t_prev, first = 0.0, True
     while t_prev < horizon:
+        if clock is not None:
+            clock(t_prev)
         # the chunk's grid from its start (t_prev + 0·step is t_prev itself, below the horizon)
         tg = t_prev + step * np.arange(chunk + 1)
         # (the grid increases: the times below the limit are its first ones, as many as searchsorted counts)
