@@ -118,7 +118,7 @@ def test_a_missed_landing_fails_the_run_naming_the_mass_and_the_time(monkeypatch
     through the rigid belt, which the energy books alone would not see (gravity's work is booked).
     The check on every sample and phase end must refuse the run, naming mass 0 and the first sample
     after its landing at sqrt(2·h/g) = 45.2 ms (samples every 0.25 ms), never return it."""
-    monkeypatch.setattr(contact_loop, "find_event", lambda rows, horizon, step: None)
+    monkeypatch.setattr(contact_loop, "find_event", lambda rows, horizon, step, clock=None: None)
     with pytest.raises(SimulationError, match=r"mass 0 is .* m inside the belt while separated") as err:
         simulate_chain(masses=[1.0], springs=[10.0, 0.0], dampers=[0.0, 0.0], mu_s=0.3, v_belt=0.1, x0=[0.0],
                        v0=[0.0], t_end=0.5, normal=NormalContact(restitution=0.5), y0=[0.01], vy0=[0.0])
