@@ -32,13 +32,14 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import SimulationError
+from . import limits
 from .backend import Event
 from .contact_modes import resolve_contact
 from .contact_phase import GAP, NORMAL, SLIP, STICK, ContactPhase, ContactTemplate
 from .finder import SWITCH_TOL, find_event
 from .normal import SEPARATED
 
-#: bounded memory: at most this many cached mode patterns
+#: bounded memory: at most this many cached mode patterns (and at most :data:`~.limits.CACHE_BYTES`)
 CACHE_SIZE = 512
 
 
@@ -66,6 +67,7 @@ def run_contact(spec, options) -> ContactRun:
     n = spec.n
     chain = spec.chain
     templates: dict = {}
+    sizes: dict = {}
     samples = options.samples
     Z = np.concatenate([chain.x0, spec.y0, chain.v0, spec.vy0]).astype(float)
     V = float(chain.v_belt)
@@ -90,8 +92,8 @@ def run_contact(spec, options) -> ContactRun:
             template = templates.get(key)
             if template is None:
                 template = templates[key] = ContactTemplate(spec, modes)
-                if len(templates) > CACHE_SIZE:
-                    templates.pop(next(iter(templates)))
+                sizes[key] = limits.nbytes(template)
+                limits.bound_cache(templates, sizes, CACHE_SIZE)
             phase = ContactPhase(template, Z)
             rows = phase.events()
             horizon = min(chain.t_end - t, phase.cap)
