@@ -204,3 +204,50 @@ def test_a_preset_is_the_callers_own_copy():
     first["v0"].append(1.0)
     again = presets.preset("table2-3dof")
     assert again["x0"] == [0.05, 0.06, 0.07] and again["v0"] == [0.04, 0.03, 0.05]
+
+
+def test_a_stiff_chain_stops_at_its_wall_time_inside_the_scan():
+    """Found by a fuzzing round: a 1e-9 kg mass between 1000 kg and 1 kg (scan step 2e-6 s, a Taylor
+    grid of 5e-11 s steps in one long phase) ran 200 s and more past a 30 s `max_wall_time`, which
+    was read only between phases. The scan and the grid watch the clock now: it must stop within
+    1 s of a 2 s limit (the check runs every scan chunk and every 4,096 grid steps, well under 0.1 s
+    each), naming the parameter."""
+    import time
+
+    clock = time.perf_counter()
+    with pytest.raises(SimulationError, match="`max_wall_time` = 2 s"):
+        simulate_chain(masses=[1000.0, 1e-9, 1.0], springs=[10.0] * 4, dampers=[0.0] * 4, mu_s=0.2, v_belt=0.1,
+                       x0=[0.0] * 3, v0=[0.0] * 3, t_end=1.5, max_wall_time=2.0)
+    assert time.perf_counter() - clock < 3.0
+
+
+@pytest.mark.parametrize("n, normal, which", [(2000, False, "`masses`"), (1000, True, "`masses`"),
+                                              (1000, False, "`n_samples`")])
+def test_a_chain_too_large_for_memory_is_refused_up_front(n, normal, which):
+    """Found by a fuzzing round: a 2,000-mass chain took 3-5 GB. The run's peak memory is estimated
+    from n and the samples (limits.memory_estimate) and refused beyond 4 GiB at once, in one line
+    naming the parameter (no array is built first: this takes milliseconds)."""
+    from asperity2d.belt.normal import NormalContact
+
+    samples = 19_000 if which == "`n_samples`" else 2001  # (19 million values: within MAX_VALUES)
+    kw = dict(masses=[1.0] * n, springs=[10.0] * (n + 1), dampers=[0.0] * (n + 1), mu_s=0.2, v_belt=0.1,
+              x0=[0.0] * n, v0=[0.0] * n, t_end=1.0, n_samples=samples)
+    if normal:
+        kw["normal"] = NormalContact()
+    with pytest.raises(SceneError, match=rf"^{which}.*needs ~\d+\.\d GiB \(estimated\), over the limit of 4 GiB"):
+        simulate_chain(**kw)
+
+
+def test_a_bounded_cache_changes_memory_only(monkeypatch):
+    """The caches of mode patterns and segments are held to CACHE_BYTES; an entry dropped and built
+    again gives the same bits. With the limit at one byte (every pattern rebuilt each time) a
+    chain's every output must equal the default run's to the bit."""
+    from asperity2d.belt import limits
+
+    kw = presets.preset("table2-3dof", t_end=20.0)
+    first = simulate_chain(**kw)
+    monkeypatch.setattr(limits, "CACHE_BYTES", 1)
+    again = simulate_chain(**kw)
+    for name in ("t", "x", "v", "friction_force", "belt_work", "friction_dissipation"):
+        np.testing.assert_array_equal(getattr(first, name), getattr(again, name))
+    assert first.events == again.events and len(first.events) > 10

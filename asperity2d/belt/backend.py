@@ -14,6 +14,8 @@ Back-ends never print, never write files and raise only ``SceneError`` (bad inpu
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import math
 import time
 from dataclasses import dataclass, field
@@ -115,6 +117,17 @@ class RunOptions:
             deadline=time.perf_counter() + max_wall_time,
         )
 
+    @contextlib.contextmanager
+    def watching(self, now):
+        """Within this block :func:`watch` checks the wall-clock budget (``now()``: the simulated time
+        reached, s): the event loops set it, so that loops deep inside a phase (a Taylor grid
+        propagated over millions of steps) stop in time too."""
+        token = _WATCH.set(lambda: self.check_clock(now()))
+        try:
+            yield
+        finally:
+            _WATCH.reset(token)
+
     def check_clock(self, t: float) -> None:
         """Raise SimulationError naming ``max_wall_time`` once the run's wall-clock budget is spent
         (``t``: the simulated time reached, s)."""
@@ -123,6 +136,18 @@ class RunOptions:
                 f"the run used its wall-clock budget `max_wall_time` = {self.max_wall_time:g} s and had "
                 f"reached t = {t:.6g} s; raise `max_wall_time`, shorten `t_end`, or make the chain less "
                 "stiff (its rates, friction law and belt speed set the work per simulated second)", time=t)
+
+
+#: the running solve's wall-clock check (:meth:`RunOptions.watching`), None outside a solve
+_WATCH: contextvars.ContextVar = contextvars.ContextVar("asperity2d_belt_watch", default=None)
+
+
+def watch() -> None:
+    """Raise SimulationError naming ``max_wall_time`` if the running solve is over its wall-clock
+    budget (nothing outside a solve). Cheap (~0.1 us): call it every few thousand steps of a loop."""
+    check = _WATCH.get()
+    if check is not None:
+        check()
 
 
 def _sample_times(spec, n_samples, t_eval) -> np.ndarray:

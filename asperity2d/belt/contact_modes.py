@@ -5,7 +5,8 @@ functions (``SWITCH_TOL`` times the gap, velocity, normal-force and
 static-limit scales):
 
 1. **Impacts** (rigid contact). A separated mass at the surface (y within the
-   tolerance of 0) that moves towards it (y' < 0) collides: y'+ = -e·y'-
+   tolerance of 0) that moves towards it faster than the velocity tolerance collides (slower, it
+   lands: the sign of a speed within the tolerance is rounding's, and decides nothing): y'+ = -e·y'-
    (Newton), the normal impulse is P_n = m·(y'+ - y'-), the kinetic energy
    ½·m·(y'-² - y'+²) is booked as the impact loss. A Coulomb friction impulse
    -sign(u)·mu_k·P_n acts on the tangential relative velocity u = v - V, unless
@@ -88,7 +89,7 @@ def resolve_contact(spec, Z, previous, touched=(), contradicted=()):
                 N, dN = required(i)
                 contact[i] = not ((NORMAL, i) in contradicted or N < -tol_n or (N <= tol_n and dN < 0))
                 continue
-            if y[i] <= tol_y and vy[i] < 0:
+            if y[i] <= tol_y and vy[i] < -tol_v:
                 y[i] = 0.0
                 pull = required(i)[0] / m[i]  # the pull back onto the surface (m/s²) once the rebound starts
                 work += _impact(spec, i, Z, V, mu_k if frictional else 0.0, tol_v, pull * tol_y)
@@ -100,6 +101,11 @@ def resolve_contact(spec, Z, previous, touched=(), contradicted=()):
                 contact[i] = (GAP, i) in contradicted or N > tol_n or (N >= -tol_n and dN > 0)
                 if not contact[i]:
                     y[i], vy[i] = max(y_keep, 0.0), max(vy_keep, 0.0)
+                elif vy_keep < 0:
+                    # an approach within the velocity tolerance is no impact (its sign is rounding's
+                    # choice: an event kind must not hang on it); its kinetic energy, at most
+                    # ½·m·tol_v², is booked as impact loss all the same
+                    work[2] += 0.5 * m[i] * vy_keep * vy_keep
             continue
         if (GAP, i) in contradicted or (NORMAL, i) in contradicted:
             contact[i] = not was[i]

@@ -25,7 +25,10 @@ Each contact is then classified by the depth of its dip -- the **touch rule**:
   scan goes on.
 
 Round-off therefore never decides whether a tangential contact happened:
-the tolerance does, and the same way every time.
+the tolerance does, and the same way every time. Nor does it decide what a
+phase that opens at a zero does next: the opening zero is known (the state
+there is exact), and the row's next contact is searched after it has left
+that zero, whether the closed form gives +1e-16 or -1e-16 there.
 """
 
 from __future__ import annotations
@@ -42,14 +45,19 @@ _EPS = float(np.finfo(float).eps)  # (a plain float: the scalar root search does
 _SUBDIVISIONS = 64
 
 
-def find_event(events, horizon: float, step: float, chunk: int = 16):
+def find_event(events, horizon: float, step: float, chunk: int = 16, clock=None):
     """(tau, touching masses, contradicted masses) of the first switch or velocity touch in (0, horizon] (s).
+
+    ``clock(tau)``, when given, is called before each chunk of the scan with the time reached (s
+    from the phase start): a long phase of a stiff chain is scanned in thousands of chunks, so the
+    run's wall-clock budget is watched inside the scan, not only between phases.
 
     None when nothing happens before ``horizon``. Contradicted masses left the zero of
     their event function the wrong way at once (:func:`.modes.resolve_modes` reverses them).
 
-    Rows that start within SWITCH_TOL of zero (the switch that opened this phase)
-    count as positive; in the first interval only a crossing of theirs counts.
+    Rows that start within SWITCH_TOL of zero (the switch that opened this phase) start at
+    a known zero, whatever the sign of the rounding leftover their closed form gives at 0:
+    their next contact is looked for after they have left it (:func:`_after_opening`).
     """
     if len(events) == 0 or horizon <= 0:
         return None
@@ -60,6 +68,8 @@ def find_event(events, horizon: float, step: float, chunk: int = 16):
         g_prev, d_prev = g[:, 0], d[:, 0]
     t_prev, first = 0.0, True
     while t_prev < horizon:
+        if clock is not None:
+            clock(t_prev)
         # the chunk's grid from its start (t_prev + 0·step is t_prev itself, below the horizon)
         tg = t_prev + step * np.arange(chunk + 1)
         # (the grid increases: the times below the limit are its first ones, as many as searchsorted counts)
@@ -132,13 +142,14 @@ def _earliest(events, rows, a, b, ga, gb, da, db, opening, horizon, depth=0):
     g, d = events.values(np.array([mid]))
     gm, dm = g[:, 0], d[:, 0]
     b4 = None if events.bound4 is None else events.bound4[rows]
-    for lo, hi, g0, g1, d0, d1 in ((a, mid, ga, gm, da, dm), (mid, b, gm, gb, dm, db)):
-        op = None if opening is None else opening[rows]
-        sub = rows[_flags(g0[rows], g1[rows], d0[rows], d1[rows], hi - lo, b4, op)]
+    # only the half that starts at the phase's start holds the opening zeros: in the other half an
+    # opening row is an ordinary row (its touches count)
+    for lo, hi, g0, g1, d0, d1, op in ((a, mid, ga, gm, da, dm, opening), (mid, b, gm, gb, dm, db, None)):
+        sub = rows[_flags(g0[rows], g1[rows], d0[rows], d1[rows], hi - lo, b4, None if op is None else op[rows])]
         if not sub.size:
             continue
         search = _rows_event if sub.size == rows.size else partial(_earliest, depth=depth + 1)
-        if found := search(events, sub, lo, hi, g0, g1, d0, d1, opening, horizon):
+        if found := search(events, sub, lo, hi, g0, g1, d0, d1, op, horizon):
             return found
     return None
 
@@ -194,32 +205,66 @@ def _lower(ga, gb, da, db, h, bound4):
 def _row_event(events, r, a, b, ga, gb, da, db, opening, horizon):
     """(switch time, "cross" | "touch" | "now") of row r in [a, b] under the touch rule, or None."""
     f = events.point(r)
-    if ga <= 0:  # an opening row, at zero: only a crossing deeper than the tolerance counts
-        if gb >= -SWITCH_TOL:
-            return None
-        # did it leave zero the right way (even to second order, g' = 0 at a border) and
-        # cross back within this interval? then the crossing is the switch; else switch at once
-        ts = np.linspace(a, b, 33)[1:-1]
-        if da > 0 > db:
-            # a short excursion (g' > 0 at the start, the return within one sample spacing)
-            # can fall between the samples: its top, where g' = 0, is sampled too (fuzz: a
-            # mass pushed 4e-4 over the Coulomb limit flipped between +/-1 at one instant)
-            ts = np.sort(np.append(ts, _zero(lambda t: f(t)[1:], a, b, da, db)))
-        gs = np.array([f(t)[0] for t in ts])
-        up = np.flatnonzero(gs > 0)
-        if up.size:
-            down = np.flatnonzero(gs[up[0]:] <= 0)  # the first return to zero after leaving it
-            i = up[0] + (down[0] if down.size else ts.size - up[0]) - 1
-            t_hi, g_hi = (ts[i + 1], gs[i + 1]) if i + 1 < ts.size else (b, gb)
-            return _zero(lambda t: f(t)[:2], ts[i], t_hi, gs[i], g_hi), "cross"
-        return a, "now"  # the motion contradicts the mode at once (below the resolution of g)
+    if opening or ga <= 0:
+        return _after_opening(f, a, b, gb, da, db, events.bound4, r, events.kind[r])
     found = _first_contact(f, a, b, ga, gb, da, db, events.bound4, r, [_SUBDIVISIONS])
     if found is None or found[1] > horizon:
         return None
     what, t = found
-    if what == "touch" and (opening or events.kind[r] != 0):
-        return None  # the opening zero itself, or a static force touching its limit: no switch
+    if what == "touch" and events.kind[r] != 0:
+        return None  # a static force touching its limit: no switch
     return t, what
+
+
+def _after_opening(f, a, b, gb, da, db, bound4, r, kind):
+    """The first switch of a row that opened its phase at ``a`` (g(a) within the tolerance of zero), on [a, b].
+
+    The opening zero is known: it is a, whatever the sign of the leftover (~1e-16) the closed
+    form gives there, so the row's value at ``a`` is not looked at. What counts is its next
+    contact with zero *after it has left it*:
+
+    * the row ends the interval deeper than the tolerance (``gb < -SWITCH_TOL``): if it rose
+      above zero first, the crossing where it came back; else it never left: "now" (the mode
+      contradicted at once, below the resolution of the resolver's tests);
+    * it ends above zero: nothing on [a, b] (the next intervals are screened as usual);
+    * it ends within the tolerance at or below zero: if it rose above the tolerance on the way
+      (a hop that lands at the interval's end), its contact after the rise; else it hovered
+      within the tolerance all along, and the modes are decided again at ``b`` (a "cross"
+      there) -- left alone, a row at or below zero would never be screened again.
+    """
+    if gb > 0:
+        return None
+    if gb >= -SWITCH_TOL:
+        ts, gs = _samples(f, a, b, da, db)
+        up = np.flatnonzero(gs > SWITCH_TOL)
+        if up.size:
+            t_up, g_up = float(ts[up[0]]), float(gs[up[0]])
+            found = _first_contact(f, t_up, b, g_up, gb, f(t_up)[1], db, bound4, r, [_SUBDIVISIONS])
+            if found is not None:
+                what, t = found
+                return None if what == "touch" and kind != 0 else (t, what)
+        return None if kind != 0 else (b, "cross")
+    # did it leave zero the right way (even to second order, g' = 0 at a border) and
+    # cross back within this interval? then the crossing is the switch; else switch at once
+    ts, gs = _samples(f, a, b, da, db)
+    up = np.flatnonzero(gs > 0)
+    if up.size:
+        down = np.flatnonzero(gs[up[0]:] <= 0)  # the first return to zero after leaving it
+        i = up[0] + (down[0] if down.size else ts.size - up[0]) - 1
+        t_hi, g_hi = (ts[i + 1], gs[i + 1]) if i + 1 < ts.size else (b, gb)
+        return _zero(lambda t: f(t)[:2], ts[i], t_hi, gs[i], g_hi), "cross"
+    return a, "now"  # the motion contradicts the mode at once (below the resolution of g)
+
+
+def _samples(f, a, b, da, db):
+    """(times, values) of a row at 31 interior points of [a, b], and at its top when it has one there."""
+    ts = np.linspace(a, b, 33)[1:-1]
+    if da > 0 > db:
+        # a short excursion (g' > 0 at the start, the return within one sample spacing)
+        # can fall between the samples: its top, where g' = 0, is sampled too (fuzz: a
+        # mass pushed 4e-4 over the Coulomb limit flipped between +/-1 at one instant)
+        ts = np.sort(np.append(ts, _zero(lambda t: f(t)[1:], a, b, da, db)))
+    return ts, np.array([f(t)[0] for t in ts])
 
 
 def _first_contact(f, a, b, ga, gb, da, db, bound4, r, budget):

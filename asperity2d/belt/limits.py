@@ -9,7 +9,10 @@ real, finite, within the magnitude window ``TINY`` .. ``HUGE``). Here:
 * budgets (overridable): ``max_steps`` bounds the work of a run, counted as scan steps of
   the exact solver (``t_end`` over 1/16 of the fastest period) or right-hand-side
   evaluations of an integrator; at most ``MAX_MASSES`` masses; at most ``MAX_VALUES``
-  sampled values (masses x samples).
+  sampled values (masses x samples); at most ``MAX_MEMORY`` (4 GiB) of estimated peak memory
+  (:func:`memory_estimate`: ~1,000 bytes per mass² and ~200 per mass and sample; a 1,800-mass
+  chain with 2,001 samples is about the largest that fits), with each cache of a run held to
+  ``CACHE_BYTES``.
 """
 
 from __future__ import annotations
@@ -25,6 +28,24 @@ SCALE_LIMIT = 1e150
 MAX_MASSES = 2000
 #: masses x output samples (each result holds ~8 such arrays of doubles)
 MAX_VALUES = 20_000_000
+#: the largest estimated peak memory of one run (bytes, :func:`memory_estimate`), refused up front beyond
+MAX_MEMORY = 4 * 2**30
+#: per cache of a run (mode patterns, segments' eigendecompositions): the oldest entries are dropped
+#: beyond this many bytes (recomputed when needed again, to the same bits)
+CACHE_BYTES = 256 * 2**20
+
+
+def memory_estimate(n: int, n_values: int, dof: int = 1) -> float:
+    """Estimated peak memory (bytes) of a run of ``n`` masses and ``n_values`` output samples.
+
+    ~1,000 bytes per mass² -- the mode pattern in use: the eigenvectors of its 2n x 2n phase matrix
+    and their inverse, its mode shapes for positions, velocities and accelerations, its event and
+    power rows (complex), the phase's amplitudes and LAPACK's workspace -- plus ~200 bytes per mass
+    and sample: the result's eight series, the recorded copies they are joined from and a phase's
+    sampling temporaries (25 doubles); the caches add at most ``CACHE_BYTES`` each. ``dof``: 2 for a
+    chain with a normal degree of freedom (its phase matrices are 4n x 4n: four times the first term).
+    A 2,000-mass chain with 2,001 samples was reported to take 3-5 GB (estimate 4.8 GB)."""
+    return 1000.0 * (dof * n) ** 2 + 200.0 * n * n_values
 
 
 def scales(spec) -> None:
@@ -52,6 +73,12 @@ def budget(spec, n_values: int, max_steps: int) -> int:
     if n_values * spec.n > MAX_VALUES:
         raise SceneError(f"`n_samples` (or `t_eval`) asks for {n_values:,} samples of {spec.n} masses, over the "
                          f"budget of {MAX_VALUES:,} values")
+    dof = 2 if hasattr(spec, "chain") else 1  # a ContactSpec (it wraps a chain): x and y per mass
+    need = memory_estimate(spec.n, n_values, dof)
+    if need > MAX_MEMORY:
+        which = "`masses`" if 1000.0 * dof * dof * spec.n > 200.0 * n_values else "`n_samples` (or `t_eval`)"
+        raise SceneError(f"{which}: a run of {spec.n} masses with {n_values:,} samples needs ~{need / 2**30:.1f} GiB "
+                         f"(estimated), over the limit of {MAX_MEMORY / 2**30:g} GiB; use fewer masses or samples")
     steps = spec.t_end / spec.scan_step
     if steps > max_steps:
         raise SceneError(
@@ -59,3 +86,18 @@ def budget(spec, n_values: int, max_steps: int) -> int:
             f"({2 * math.pi / spec.rate_bound:.3g} s, from `masses`, `springs`, `dampers`), over the budget "
             f"`max_steps` = {max_steps:,}; shorten `t_end` or raise `max_steps`")
     return int(math.ceil(steps))
+
+
+def nbytes(entry) -> int:
+    """Bytes of the NumPy arrays an object holds as attributes (a cache entry's size)."""
+    return sum(v.nbytes for v in vars(entry).values() if hasattr(v, "nbytes"))
+
+
+def bound_cache(cache: dict, sizes: dict, count: int) -> None:
+    """Drop the oldest entries of ``cache`` (``sizes``: their bytes) beyond ``count`` entries or
+    ``CACHE_BYTES`` in all, the newest always kept. A dropped entry is recomputed when needed again,
+    to the same bits: only memory changes."""
+    while len(cache) > 1 and (len(cache) > count or sum(sizes.values()) > CACHE_BYTES):
+        key = next(iter(cache))
+        cache.pop(key)
+        sizes.pop(key, None)

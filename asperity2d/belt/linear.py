@@ -22,11 +22,13 @@ from .backend import RawRun
 from .energy import modal_work, power_maps, quadrature_work
 from .events import event_map
 from .loop import event_loop
+from . import limits
 from .modal import ModalForm, block_matrix, scale_columns
 from .segment import Segment, SegmentModes
 from .spec import link_force
 
-#: bounded memory on long chains: at most this many cached segments and mode patterns
+#: bounded memory on long chains: at most this many cached segments and mode patterns (and at most
+#: :data:`~.limits.CACHE_BYTES` of each)
 CACHE_SIZE = 512
 
 
@@ -34,21 +36,23 @@ def run_closed_form(spec, options) -> RawRun:
     """Event-driven run with closed-form phases (constant belt speed, piecewise-constant friction)."""
     segments: dict = {}
     templates: dict = {}
+    sizes: dict = {}
 
     def make_phase(modes, x, v, t):
         key = np.asarray(modes, dtype=np.int8).tobytes()
         template = templates.get(key)
         if template is None:
             template = templates[key] = Template(spec, modes, segments)
-            _bound(templates)
+            sizes[key] = limits.nbytes(template)
+            limits.bound_cache(templates, sizes, CACHE_SIZE)
         return LinearPhase(template, x, v)
 
     return event_loop(spec, options, make_phase)
 
 
 def _bound(cache):
-    if len(cache) > CACHE_SIZE:
-        cache.pop(next(iter(cache)))
+    """Hold the segments' cache to ``CACHE_SIZE`` entries and :data:`~.limits.CACHE_BYTES`."""
+    limits.bound_cache(cache, {key: limits.nbytes(entry) for key, entry in cache.items()}, CACHE_SIZE)
 
 
 class Template:

@@ -40,47 +40,48 @@ def event_loop(spec, options, make_phase) -> RawRun:
     events: list[Event] = []
     stick_start = [0.0 if modes[i] == 0 else None for i in range(spec.n)]
     intervals: list[list] = [[] for _ in range(spec.n)]
-    while True:
-        phase = make_phase(modes, x, v, t)
-        rows = ModalEvents(phase) if phase.motion is not None else SampledEvents(phase)
-        horizon = spec.t_end - t
-        found = find_event(rows, horizon, phase.step)
-        tau_e, touching, contradicted = (None, (), ()) if found is None else found
-        t1 = spec.t_end if tau_e is None else t + tau_e
-        stop = samples.searchsorted(t1, side="right" if tau_e is None else "left")
-        taus = samples[next_sample:stop] - t
-        next_sample = stop
-        if opened and options.include_events and (not taus.size or taus[0] > 0):
-            taus = np.concatenate([[0.0], taus])
-        work, x, v = _record(phase, taus, t, horizon if tau_e is None else tau_e, work, rec)
-        if tau_e is None:
-            break
-        switches += 1
-        options.check_clock(t1)
-        # switches that do not move time on (below 1e-12 of the sampling step): a few happen when
-        # several masses switch at one instant; a long run of them is a cycle of modes at one
-        # instant, refused at once rather than after max_events switches
-        zero_steps = zero_steps + 1 if tau_e <= 1e-12 * phase.step else 0
-        if zero_steps > 64:
-            raise SimulationError(f"switching did not progress at t = {t1:.17g} s (65 switches in a row, "
-                                  f"each moving time less than {1e-12 * phase.step:.1g} s); hint: check for a degenerate chain "
-                                  "(coincident switches of many masses, forces on the friction limit)", time=t1)
-        if switches > options.max_events:
-            raise SimulationError(f"more than `max_events` = {options.max_events:,} switches before t = {t1:.6g} s; "
-                                  "raise `max_events` or shorten `t_end`", time=t1)
-        t = float(t1)
-        new, v, grazing = resolve_modes(spec, x, v, spec.belt_velocity(t), spec.belt_acceleration(t), modes, v_scale,
-                                        touching, contradicted)
-        for i in ((new != modes) & spec.frictional).nonzero()[0]:  # a frictionless mass's mode is moot
-            kind = "stick" if new[i] == 0 else ("slip" if modes[i] == 0 else "reverse")
-            events.append(Event(t=t, mass=int(i), kind=kind, x=float(x[i])))
-            if new[i] == 0:
-                stick_start[i] = t
-            elif modes[i] == 0:
-                intervals[i].append((stick_start[i], t))
-                stick_start[i] = None
-        events += [Event(t=t, mass=int(i), kind="graze", x=float(x[i])) for i in grazing]
-        modes, opened = new, True
+    with options.watching(lambda: t):  # loops deep in a phase watch the wall clock too
+        while True:
+            phase = make_phase(modes, x, v, t)
+            rows = ModalEvents(phase) if phase.motion is not None else SampledEvents(phase)
+            horizon = spec.t_end - t
+            found = find_event(rows, horizon, phase.step, clock=lambda tau, t=t: options.check_clock(t + tau))
+            tau_e, touching, contradicted = (None, (), ()) if found is None else found
+            t1 = spec.t_end if tau_e is None else t + tau_e
+            stop = samples.searchsorted(t1, side="right" if tau_e is None else "left")
+            taus = samples[next_sample:stop] - t
+            next_sample = stop
+            if opened and options.include_events and (not taus.size or taus[0] > 0):
+                taus = np.concatenate([[0.0], taus])
+            work, x, v = _record(phase, taus, t, horizon if tau_e is None else tau_e, work, rec)
+            if tau_e is None:
+                break
+            switches += 1
+            options.check_clock(t1)
+            # switches that do not move time on (below 1e-12 of the sampling step): a few happen when
+            # several masses switch at one instant; a long run of them is a cycle of modes at one
+            # instant, refused at once rather than after max_events switches
+            zero_steps = zero_steps + 1 if tau_e <= 1e-12 * phase.step else 0
+            if zero_steps > 64:
+                raise SimulationError(f"switching did not progress at t = {t1:.17g} s (65 switches in a row, "
+                                      f"each moving time less than {1e-12 * phase.step:.1g} s); hint: check for a degenerate chain "
+                                      "(coincident switches of many masses, forces on the friction limit)", time=t1)
+            if switches > options.max_events:
+                raise SimulationError(f"more than `max_events` = {options.max_events:,} switches before "
+                                      f"t = {t1:.6g} s; raise `max_events` or shorten `t_end`", time=t1)
+            t = float(t1)
+            new, v, grazing = resolve_modes(spec, x, v, spec.belt_velocity(t), spec.belt_acceleration(t), modes,
+                                            v_scale, touching, contradicted)
+            for i in ((new != modes) & spec.frictional).nonzero()[0]:  # a frictionless mass's mode is moot
+                kind = "stick" if new[i] == 0 else ("slip" if modes[i] == 0 else "reverse")
+                events.append(Event(t=t, mass=int(i), kind=kind, x=float(x[i])))
+                if new[i] == 0:
+                    stick_start[i] = t
+                elif modes[i] == 0:
+                    intervals[i].append((stick_start[i], t))
+                    stick_start[i] = None
+            events += [Event(t=t, mass=int(i), kind="graze", x=float(x[i])) for i in grazing]
+            modes, opened = new, True
     for i in range(spec.n):
         if stick_start[i] is not None:
             intervals[i].append((stick_start[i], spec.t_end))

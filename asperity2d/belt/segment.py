@@ -29,6 +29,7 @@ from functools import cached_property
 
 import numpy as np
 
+from .backend import watch
 from .modal import cmatmul, damped
 
 
@@ -193,6 +194,8 @@ class TaylorGrid:
                 self.grid = grown
             for i in range(self.filled, need):
                 self.grid[:, i] = self.P @ self.grid[:, i - 1]
+                if not i % 4096:  # a stiff chain's grid step can be 1e-11 s: millions of steps
+                    watch()
             self.filled = need
         base = self.grid[:, k]
         out = base
