@@ -171,7 +171,7 @@ def test_the_workbench_as_a_person_uses_it(server, browser):
     from asperity2d.critical import critical_force
 
     assert value == critical_force(a.make_scene(lower_count=6, upper_count=2, drive="force"))
-    shown = browser.execute_script('return document.querySelector(\'td[data-measure="critical"]\').textContent')
+    shown = browser.execute_script('return document.querySelector(\'.aw-value[data-measure="critical"]\').textContent')
     assert shown.endswith(" mN"), shown
     shot(browser, "app_measure.png")
 
