@@ -132,8 +132,11 @@ def measure_info(name: str) -> dict:
     if name not in MEASURES:
         raise SceneError(f"`measure` must be one of {', '.join(MEASURES)}, got {str(name)[:60]!r}")
     entry = MEASURES[name]
-    fn, label = (entry[0], entry[1]) if isinstance(entry, tuple) else (entry, name)
-    meta = {k: getattr(entry, k) for k in ("unit", "drive", "kind") if hasattr(entry, k)}
+    # a (function, label) pair, or a record with named fields (fn / function, label, unit, drive, kind)
+    fn = getattr(entry, "fn", None) or getattr(entry, "function", None) or (
+        entry[0] if isinstance(entry, tuple) else entry)
+    label = getattr(entry, "label", None) or (entry[1] if isinstance(entry, tuple) and len(entry) > 1 else name)
+    meta = {k: getattr(entry, k) for k in ("unit", "drive", "kind") if getattr(entry, k, None) is not None}
     if isinstance(entry, tuple) and len(entry) > 2 and isinstance(entry[2], dict):
         meta.update(entry[2])
     force = name.startswith("critical") or name in ("quasi-static-breakaway", "travel")
