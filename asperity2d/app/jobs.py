@@ -158,6 +158,15 @@ def _measure_main() -> None:
     import json
     import sys
 
+    parent = os.getppid()
+
+    def orphaned() -> None:  # the server went away (killed, Ctrl-C): stop computing for no one
+        while True:
+            time.sleep(0.5)
+            if os.getppid() != parent:
+                os._exit(3)
+
+    threading.Thread(target=orphaned, daemon=True).start()
     request = json.loads(sys.stdin.read())
     try:
         value = float(measure_info(request["name"])["fn"](measure_scene(request["name"], request["params"])))
