@@ -291,8 +291,10 @@ def test_requests_without_the_token_or_from_elsewhere_are_refused(client):
         assert r.status_code == 403, (path, headers)
         assert TOKEN not in r.text
     # the token as a cookie (what the page's own requests carry) is accepted, a wrong one not
-    assert client.get("/assets/app.css", cookies={"asperity2d_token": TOKEN}).status_code == 200
-    assert client.get("/assets/app.css", cookies={"asperity2d_token": "nope"}).status_code == 403
+    for cookie, status in ((TOKEN, 200), ("nope", 403)):
+        client.cookies.clear()
+        client.cookies.set("asperity2d_token", cookie)
+        assert client.get("/assets/app.css").status_code == status
     from starlette.websockets import WebSocketDisconnect
 
     client.cookies.clear()
@@ -361,6 +363,17 @@ def test_explore_serves_on_loopback_prints_one_url_and_stops_on_ctrl_c():
 
         assert httpx.get(url, timeout=10).status_code == 200
         assert httpx.get(f"http://127.0.0.1:{port}/", timeout=10).status_code == 403
+        assert httpx.get(url, headers={"origin": "http://evil.example"}, timeout=10).status_code == 403
+        websocket = pytest.importorskip("websocket", reason="websocket-client (selenium's) checks the WebSocket")
+        token = match.group(2)
+        for ws_url, origin in [(f"ws://127.0.0.1:{port}/ws?token={token}", "http://evil.example"),
+                               (f"ws://127.0.0.1:{port}/ws?token=wrong", f"http://127.0.0.1:{port}")]:
+            with pytest.raises(websocket.WebSocketBadStatusException) as refused:
+                websocket.create_connection(ws_url, origin=origin, timeout=10)
+            assert refused.value.status_code == 403
+        ok = websocket.create_connection(f"ws://127.0.0.1:{port}/ws?token={token}", origin=f"http://127.0.0.1:{port}",
+                                         timeout=10)
+        ok.close()
         proc.send_signal(signal.SIGINT)
         out, err = proc.communicate(timeout=20)
     finally:

@@ -171,7 +171,7 @@ def test_the_workbench_as_a_person_uses_it(server, browser):
     from asperity2d.critical import critical_force
 
     assert value == critical_force(a.make_scene(lower_count=6, upper_count=2, drive="force"))
-    shown = browser.execute_script('return document.querySelector(\'td[data-measure="critical"]\').textContent')
+    shown = browser.execute_script('return document.querySelector(\'.aw-value[data-measure="critical"]\').textContent')
     assert shown.endswith(" mN"), shown
     shot(browser, "app_measure.png")
 
@@ -223,8 +223,14 @@ def test_the_widget_module_renders_in_chromium(server, browser, tmp_path):
                           on: (ev, cb) => { if (ev === 'msg:custom') cbs.push(cb); }, get: () => null };
           window.widgetCleanup = mod.default.render({ model, el: document.getElementById('w') });
         });""", widget._esm, widget._css, f"ws://127.0.0.1:{port_token.group(1)}/ws?token={port_token.group(2)}")
-    wait_for(browser, "s.run.finished", timeout=60)
+    wait_for(browser, "s.schema && s.run.job !== null")
+    browser.execute_script("window.asperityWorkbench.send({type: 'set', values: arguments[0]})", CHANGE)
+    wait_for(browser, "s.run.finished && s.run.samples > 1000", timeout=90)
     assert browser.execute_script("return typeof window.widgetCleanup") == "function"
+    from asperity2d.builders import KEYWORDS, PARAMETERS
+
+    controls = browser.execute_script("return document.querySelectorAll('#w .aw-control').length")
+    assert controls == len(KEYWORDS + PARAMETERS) + 1  # every parameter, and the run's duration
     shot(browser, "widget.png")
     assert console_errors(browser) == []
     widget.close()

@@ -38,7 +38,7 @@ def test_toml_chain_and_outputs(tmp_path, capsys):
     (["belt", "--preset", "nope"], "`preset`"),
     (["belt"], "`--preset`"),
     (["belt", "missing.toml"], "`chain` does not exist"),
-    (["belt", "--preset", "table2-3dof", "-o", "x.gif"], "`--output` must end in"),
+    (["belt", "--preset", "table2-3dof", "-o", "x.xyz"], "`--output` must end in"),
     (["belt", "--preset", "table2-3dof", "--t-end", "-1"], "argument --t-end"),
 ])
 def test_bad_input_exits_2_with_one_line(argv, needle, capsys):

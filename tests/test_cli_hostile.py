@@ -173,7 +173,7 @@ CASES = [
     ("belt method = 5", ["belt", "{chain_method.toml}"], "`method`"),
     ("belt friction = 3", ["belt", "{chain_friction.toml}"], "`friction`"),
     ("belt --t-end inf", ["belt", "{chain.toml}", "--t-end", "inf"], "--t-end"),
-    ("belt -o wrong suffix", ["belt", "{chain.toml}", "-o", "{root}/x.gif"], "`--output`"),
+    ("belt -o wrong suffix", ["belt", "{chain.toml}", "-o", "{root}/x.gifx"], "`--output`"),
     ("compare --load missing", ["compare", "--load", "{missing}.json"], "`--load` does not exist"),
     ("compare --load DIR", ["compare", "--load", "{adir.json}"], "`--load` is a directory"),
     ("compare --load text", ["compare", "--load", "{notes.txt}"], "`--load`"),

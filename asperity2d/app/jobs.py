@@ -132,8 +132,11 @@ def measure_info(name: str) -> dict:
     if name not in MEASURES:
         raise SceneError(f"`measure` must be one of {', '.join(MEASURES)}, got {str(name)[:60]!r}")
     entry = MEASURES[name]
-    fn, label = (entry[0], entry[1]) if isinstance(entry, tuple) else (entry, name)
-    meta = {k: getattr(entry, k) for k in ("unit", "drive", "kind") if hasattr(entry, k)}
+    # a (function, label) pair, or a record with named fields (fn / function, label, unit, drive, kind)
+    fn = getattr(entry, "fn", None) or getattr(entry, "function", None) or (
+        entry[0] if isinstance(entry, tuple) else entry)
+    label = getattr(entry, "label", None) or (entry[1] if isinstance(entry, tuple) and len(entry) > 1 else name)
+    meta = {k: getattr(entry, k) for k in ("unit", "drive", "kind") if getattr(entry, k, None) is not None}
     if isinstance(entry, tuple) and len(entry) > 2 and isinstance(entry[2], dict):
         meta.update(entry[2])
     force = name.startswith("critical") or name in ("quasi-static-breakaway", "travel")
@@ -155,6 +158,15 @@ def _measure_main() -> None:
     import json
     import sys
 
+    parent = os.getppid()
+
+    def orphaned() -> None:  # the server went away (killed, Ctrl-C): stop computing for no one
+        while True:
+            time.sleep(0.5)
+            if os.getppid() != parent:
+                os._exit(3)
+
+    threading.Thread(target=orphaned, daemon=True).start()
     request = json.loads(sys.stdin.read())
     try:
         value = float(measure_info(request["name"])["fn"](measure_scene(request["name"], request["params"])))

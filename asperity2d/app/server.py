@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import asyncio
 import html
-import logging
 import secrets
 import socket
 import sys

@@ -146,7 +146,7 @@ class Session:
             self.emit({"type": "invalid", "errors": errors})
             return
         self.values, self.params, self.run_settings = dict(values), params, run
-        self.emit({"type": "valid", "python": controls.to_python(params, run)})
+        self.emit({"type": "valid", "python": controls.to_python(params, run), "values": self.values})
         self.lanes["run"].submit((scene, run.get("duration")))
 
     def _on_cancel(self, message) -> None:

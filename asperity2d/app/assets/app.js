@@ -229,13 +229,13 @@ function render({ model, el }) {
     panes.measure.replaceChildren(h("p", { class: "aw-help" }, "Each measure runs on the scene as the controls set it, under the drive it needs, in its own process; Cancel stops it at once."));
     const table = h("table", { class: "aw-table aw-measures" }, h("tr", {}, h("th", {}, "measure"), h("th", {}, "drive"), h("th", {}, "value"), h("th", {}, "")));
     for (const m of list) {
-      const value = h("td", { class: "aw-value", "data-measure": m.name, text: "\u2013" });
+      const value = h("span", { class: "aw-value", "data-measure": m.name, text: "\u2013" });
       const go = h("button", { class: "aw-btn", "data-measure": m.name, onclick: () => model.send({ type: "measure", name: m.name }) }, "Measure");
       const stop = h("button", { class: "aw-btn", hidden: true, onclick: () => model.send({ type: "cancel", lane: "measure" }) }, "Cancel");
       const prog = h("div", { class: "aw-bar aw-small", hidden: true }, h("div", { class: "aw-bar-fill" }));
       measureRows[m.name] = { value, go, stop, prog };
       table.append(h("tr", {}, h("td", { title: `${m.kind}; ${m.name}` }, m.label), h("td", {}, m.drive === "force" ? "constant force" : "spring"),
-                     h("td", {}, value, prog), h("td", {}, go, stop)));
+                     h("td", { class: "aw-value-cell" }, value, prog), h("td", {}, go, stop)));
     }
     panes.measure.append(table);
   }
@@ -344,7 +344,13 @@ function render({ model, el }) {
       case "measures": buildMeasures(m.measures); buildCompare(m.presets); buildEnsemble(m.measures, m.presets); break;
       case "values": setValues(m.values); break;
       case "invalid": S.valid = false; showErrors(m.errors); break;
-      case "valid": S.valid = true; S.python = m.python; note.textContent = m.python; showErrors({}); break;
+      case "valid":
+        S.valid = true; S.python = m.python; note.textContent = m.python; showErrors({});
+        if (m.values) {  // the scene now running (a change from elsewhere shows in the controls too)
+          S.values = { ...m.values };
+          for (const [name, input] of Object.entries(inputs)) if (input !== document.activeElement) input.value = S.values[name] || "";
+        }
+        break;
       case "export": {
         S.exports.push({ what: m.what, filename: m.filename, text: m.text, size: m.text ? m.text.length : m.base64.length });
         const blob = m.text !== undefined ? new Blob([m.text], { type: m.mime })
