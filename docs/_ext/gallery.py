@@ -33,8 +33,8 @@ SECTIONS = (
      "a spring drive's stick-slip cycles and a constant force's stop-or-run.",
      ("quickstart", "stick_slip", "constant_force")),
     ("ooten", "Ooten's thesis",
-     "E. Ooten, *Precision Motion Control at Low Velocities in the Presence of Friction* (senior "
-     "thesis, Texas A&M University, 1997-98): each of its comparisons, then what lies beyond it "
+     "The senior thesis of E. Ooten, *Precision Motion Control at Low Velocities in the Presence "
+     "of Friction* (Texas A&M University, 1997-98): each of its comparisons, then what lies beyond it "
      "(steel micro-asperities, the MATLAB lattice, a virtual tribometer and the friction law it finds).",
      ("ooten_spacing", "ooten_profiles", "ooten_damping", "ooten_drive", "ooten_stickslip",
       "micro_spacing", "steel_table1", "matlab_lattice", "tribometer", "stick_slip_law")),
