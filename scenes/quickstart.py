@@ -29,14 +29,14 @@ Run::
     python scenes/quickstart.py [--seeds 8] [--workers auto|N]
 """
 
-from __future__ import annotations
-
 # %%
 # The lesson is in three functions, each made only of the package's public calls; ``main`` at
 # the bottom reads the command line and prints. The gallery ran it with ``--quick`` (8 lower and
 # 3 upper asperities, 2 seeds), so its verdicts below say "not testable": a one-sided
 # signed-rank test over n seeds cannot give p below 1/2**n, and 2 seeds give at best 0.25; the
 # claim needs 7 seeds or more (the default run uses 8).
+
+from __future__ import annotations
 
 import math
 

@@ -16,8 +16,6 @@ import shutil
 from pathlib import Path
 
 DOCS = Path(__file__).resolve().parent.parent
-#: Where the scripts write during the build (outside the source tree's committed files).
-OUTPUTS = DOCS / "_build" / "scene_outputs"
 #: File kinds shown as images, and offered as downloads.
 IMAGES = (".gif", ".png", ".svg")
 DOWNLOADS = (".html", ".wav")
@@ -35,8 +33,8 @@ SECTIONS = (
      "a spring drive's stick-slip cycles and a constant force's stop-or-run.",
      ("quickstart", "stick_slip", "constant_force")),
     ("ooten", "Ooten's thesis",
-     "E. Ooten, *Precision Motion Control at Low Velocities in the Presence of Friction* (senior "
-     "thesis, Texas A&M University, 1997-98): each of its comparisons, then what lies beyond it "
+     "The senior thesis of E. Ooten, *Precision Motion Control at Low Velocities in the Presence "
+     "of Friction* (Texas A&M University, 1997-98): each of its comparisons, then what lies beyond it "
      "(steel micro-asperities, the MATLAB lattice, a virtual tribometer and the friction law it finds).",
      ("ooten_spacing", "ooten_profiles", "ooten_damping", "ooten_drive", "ooten_stickslip",
       "micro_spacing", "steel_table1", "matlab_lattice", "tribometer", "stick_slip_law")),
@@ -119,8 +117,10 @@ class ScriptOrder:
 
 
 def output_dir(src_file) -> Path:
-    """The directory the gallery run of ``src_file`` writes to."""
-    return OUTPUTS / Path(src_file).stem
+    """The directory the gallery run of ``src_file`` writes to: beside the staged copy it runs
+    as, named after it, so the script is given a relative ``-o`` (sphinx-gallery runs each
+    script in its own folder) and what it prints names no folder of the build machine."""
+    return Path(src_file).parent / Path(src_file).stem
 
 
 def arguments(gallery_conf, script_vars) -> list[str]:
@@ -134,7 +134,7 @@ def arguments(gallery_conf, script_vars) -> list[str]:
         return []
     script_vars["example_globals"]["__file__"] = str(SCENES / src.name)  # its data are there
     text = src.read_text(encoding="utf-8")
-    argv = ["--quick", "-o", str(output_dir(src))]
+    argv = ["--quick", "-o", output_dir(src).name]
     if "--workers" in text or "study_args(" in text:
         argv += ["--workers", "1"]
     if src.stem in WANTS_PLOTS:
@@ -142,13 +142,34 @@ def arguments(gallery_conf, script_vars) -> list[str]:
     return argv
 
 
+def quiet_progress_bars() -> None:
+    """No tqdm progress bar in the pages: the scripts ask for bars (``progress=True``), which
+    ``TQDM_DISABLE`` does not override, and sphinx-gallery would show them as output."""
+    import tqdm
+
+    if getattr(tqdm.tqdm.__init__, "_asperity2d_quiet", False):
+        return
+    original = tqdm.tqdm.__init__
+
+    def init(self, *args, **kwargs):
+        kwargs["disable"] = True
+        original(self, *args, **kwargs)
+
+    init._asperity2d_quiet = True
+    tqdm.tqdm.__init__ = init
+
+
 def reset(gallery_conf, fname, when=None) -> None:
-    """Before each script: an empty output directory, no open matplotlib figures."""
+    """Before each script: an empty output directory, no open matplotlib figures, no progress
+    bars (in the process that runs it)."""
     import matplotlib.pyplot as plt
 
+    quiet_progress_bars()
     plt.close("all")
-    if when in (None, "before"):
-        out = output_dir(fname)
+    stem = Path(fname).stem  # sphinx-gallery passes the script's file name only
+    folder = next((folder for folder, *_, names in SECTIONS if stem in names), None)
+    if folder is not None and when in (None, "before"):
+        out = output_dir(STAGED / folder / f"{stem}.py")
         shutil.rmtree(out, ignore_errors=True)
         out.mkdir(parents=True, exist_ok=True)
         _SEEN.pop(str(out), None)
