@@ -36,21 +36,12 @@ import math
 import asperity2d as a
 from asperity2d._format import si
 from asperity2d.cli import scripting
-from asperity2d.experiments.measures import measure_label
+from asperity2d.experiments.measures import MEASURES as NAMED, measure_label
 from asperity2d.renderers.plots import plot_comparison
 from asperity2d.studies import claims
 
 MEASURES = ("critical", "peak-stick")
-ALPHA = 0.01
-
-
-def verdict(comparison, setup: str) -> dict:
-    numbers = comparison.versus("random", "regular", alternative="less")
-    e = a.stats.relative_effect(comparison.values["random"], comparison.values["regular"][0])
-    numbers.update(ratio_hl=e["ratio"], ratio_ci_low=1 + e["ci_low"], ratio_ci_high=1 + e["ci_high"])
-    return claims.claim(f"random spacing lowers the {measure_label(comparison.measure)}",
-                        claims.judge(numbers, ALPHA), numbers,
-                        f"{numbers['test']}, one-sided (lower); holds if p < {ALPHA} and the change is at least {100 * claims.MIN_EFFECT:g} %", setup=setup)
+ALPHA = NAMED["critical"].rule.alpha  # every measure's rule: p < 0.01
 
 
 def main(argv=None) -> int:
@@ -75,13 +66,14 @@ def main(argv=None) -> int:
     verdicts = {}
     for setup in ("fixed", "free"):
         for name in MEASURES:
-            drive = "force" if name.startswith("critical") else "spring"
+            drive = NAMED[name].drive
             comparison = a.compare(name, variants, range(args.seeds), progress=not args.json,
                                    base={**size, "track": setup, "drive": drive}, workers=args.workers)
             comparison.save(out / f"{setup}_{name}.json")
             plot_comparison(comparison, out / f"{setup}_{name}.png",
                             label=f"{measure_label(name)} (mN), {setup} set-up")
-            record = verdict(comparison, setup)
+            # the measure's own rule: one-sided Wilcoxon, holds if p < 0.01 and the change >= 1 %
+            record = comparison.verdict("random", "regular", subject="random spacing", setup=setup)
             summary["comparisons"][f"{setup}/{name}"] = comparison.summary()
             summary["claims"].append(record)
             verdicts[setup, name] = record

@@ -225,19 +225,11 @@ def _parse_set(items: list[str]) -> dict:
     return out
 
 
-#: Units of the named measures that are not forces (N): issue 25's travel is a distance.
-_MEASURE_UNITS = {"travel": "m"}
-
-
-def _measure_unit(name: str) -> str:
-    return _MEASURE_UNITS.get(name, "N")
-
-
 def compare(args) -> int:
     """``asperity2d compare``: a measure of each spacing over seeds, with statistics."""
     save = None if args.save is None else _io.output_path("--save", args.save, suffixes=(".json",))
     output = None if args.output is None else _io.output_path("--output", args.output, suffixes=PLOT_SUFFIXES)
-    from ..experiments.compare import Comparison, measure_label
+    from ..experiments.compare import Comparison
     from ..experiments.compare import compare as run_compare
 
     if args.load:
@@ -252,8 +244,11 @@ def compare(args) -> int:
                                  f"`--variants` sets `spacing`, and `--seeds` the seeds")
         check_runs(len(variants) * args.seeds, args.max_runs,
                    f"`--variants` ({len(variants)}) x `--seeds` ({args.seeds:,})")
-        force = args.measure.startswith("critical") or args.measure in ("quasi-static-breakaway", "travel")
-        base.setdefault("drive", "force" if force else "spring")
+        from ..experiments.measures import MEASURES
+
+        if args.measure not in MEASURES:  # the registry, not a list here: a new measure is known at once
+            raise SceneError(f"`--measure` must be one of {', '.join(MEASURES)}, got {args.measure!r}")
+        base.setdefault("drive", MEASURES[args.measure].drive)
         comparison = run_compare(args.measure, variants, range(args.seeds), base=base, progress=not args.json,
                                  workers=args.workers, scheduler=args.scheduler)
     if save:
@@ -264,27 +259,19 @@ def compare(args) -> int:
 
         with _io.argument("--output"), _io.writing("--output", output):
             plot_comparison(comparison, output)
-    stats = comparison.summary()
-    summary = {"measure": comparison.measure, "seeds": len(comparison.seeds), "variants": stats}
-    names = list(comparison.values)
-    if len(names) >= 2:
-        summary["mann_whitney_p"] = {f"{names[0]} vs {other}": comparison.mann_whitney(names[0], other)
-                                     for other in names[1:]}
-    label, unit = measure_label(comparison.measure), _measure_unit(comparison.measure)
-    lines = [f"{label}, {len(comparison.seeds)} seeds:"]
-    lines += [f"  {name}: mean {si(s['mean'], unit, 4)}, 95 % CI [{si(s['ci_low'], unit, 4)}, "
-              f"{si(s['ci_high'], unit, 4)}] (n = {s['n']})" for name, s in stats.items()]
-    lines += [f"Mann-Whitney U {pair}: p = {p:.3g}" for pair, p in summary.get("mann_whitney_p", {}).items()]
-    if "regular" in names:  # each other spacing against regular, in words
-        from ..studies import claims
-
-        summary["claims"] = []
-        for other in (n for n in names if n != "regular"):
-            numbers = comparison.versus(other, "regular", alternative="less")
-            record = claims.claim(f"{other} spacing lowers the {measure_label(comparison.measure)}",
-                                  claims.judge(numbers, 0.01), numbers,
-                                  f"{numbers['test']}, one-sided (lower); holds if p < 0.01")
-            summary["claims"].append(record)
-            lines.append(claims.verdict_line(record))
+    reference = "regular" if "regular" in comparison.values else None  # each other spacing against it
+    summary, lines = comparison.report(reference, subject="{name} spacing")
     _emit(args, summary, lines)
+    return 0
+
+
+def measures(args) -> int:
+    """``asperity2d measures``: the named measures, each with its unit, drive, kind and label."""
+    from ..experiments.measures import MEASURES
+
+    entries = [m.to_dict() for m in MEASURES.values()]
+    width = max(len(m["name"]) for m in entries)
+    lines = [f"{m['name']:<{width}}  [{m['unit']}]  {m['drive']} drive, {m['kind']}: {m['label']}"
+             for m in entries]
+    _emit(args, {"measures": entries}, lines)
     return 0
