@@ -133,9 +133,9 @@ def _run_script(path: Path, args) -> int:
 
 
 def _render_suffixes() -> tuple[str, ...]:
-    from ..renderers import RENDERERS
+    from ..renderers import FORMATS
 
-    return tuple(RENDERERS)
+    return tuple(FORMATS)
 
 
 def _load_result(arg: str, path):

@@ -21,6 +21,8 @@ import sys
 import warnings
 
 from ..errors import SceneError, SimulationError
+from ..renderers import FORMATS
+from ..renderers import describe as describe_formats
 from . import asperity, basins, belt, sweep
 from .args import MAX_RUNS, PLOT_SUFFIXES, PROG, WORKERS_HELP, Parser, Subcommands, fail, positive_float
 from .args import positive_int
@@ -65,7 +67,7 @@ def build_parser() -> Parser:
     p.add_argument("scene", nargs="?",
                    help="scene script (.py; other arguments go to its main()) or .toml")
     p.add_argument("-o", "--output",
-                   help="render to this file (.gif, .mp4, .html, .png, .svg, .pdf, .wav); a script's output directory")
+                   help=f"render to this file ({', '.join(FORMATS)}); a script's output directory")
     p.add_argument("--save", help="save the Result (.npz) (TOML scenes)")
     p.add_argument("--duration", type=positive_float, help="simulated time in s (TOML scenes)")
     _json_flag(p)
@@ -80,8 +82,7 @@ def build_parser() -> Parser:
     p = sub.add_parser("render", help="render a saved result; the extension picks the renderer")
     p.add_argument("result", help="a result saved with --save / Result.save / BeltResult.save (.npz)")
     p.add_argument("-o", "--output", required=True,
-                   help=".gif, .mp4 (needs the video extra), .html (the interactive player), .png, .svg, .pdf "
-                        "or .wav (the slider's sound); a belt chain: the same")
+                   help=f"the extension picks the format: {describe_formats()}")
     _json_flag(p)
     p.set_defaults(handler=asperity.render)
 
