@@ -443,6 +443,57 @@ class Scene:
     def from_dict(cls, data: dict) -> "Scene":
         return _from_plain(data)
 
+    def to_toml(self, path, *, run: dict | None = None):
+        """Write the whole scene as a TOML scene file (``asperity2d run FILE`` runs it, bit for
+        bit as :func:`~asperity2d.simulate` runs this scene); ``run`` is its ``[run]`` table
+        (``duration`` in s). Every number is written exactly (shortest round-trip text); a
+        field left at None is left out (it reads back as its default). Returns the path."""
+        from ._io import atomic_write_text, toml_text
+
+        tables = {"format": TOML_FORMAT, **({"run": dict(run)} if run else {}), "spec": _drop_none(self.to_dict())}
+        return atomic_write_text(path, toml_text(tables, header="asperity2d scene, written by Scene.to_toml"))
+
+    @classmethod
+    def from_toml(cls, path) -> "Scene":
+        """The scene of a TOML file written by :meth:`to_toml` (``SceneError`` if it is not one;
+        a file of ``make_scene`` arguments is read by :func:`asperity2d.scene_io.read_scene`)."""
+        from ._io import read_toml
+
+        data = read_toml("path", path)
+        return spec_from_toml(data, path)
+
+
+#: The format tag of a whole-scene TOML file (:meth:`Scene.to_toml`).
+TOML_FORMAT = "asperity2d.scene/1"
+
+
+def spec_from_toml(data: dict, path) -> Scene:
+    """The :class:`Scene` of a parsed whole-scene TOML document (``format``, ``spec``, ``run``)."""
+    if data.get("format") != TOML_FORMAT or not isinstance(data.get("spec"), dict):
+        raise SceneError(f"`path` {str(path)!r} is not a scene file written by Scene.to_toml (format "
+                         f"{TOML_FORMAT!r} and a [spec] table)")
+    extra = sorted(set(data) - {"format", "spec", "run"})
+    if extra:
+        raise SceneError(f"`{extra[0]}` in {str(path)!r} is not part of a scene file (format, [run], [spec])")
+    try:
+        scene = _from_plain(data["spec"])
+    except TypeError as exc:  # a field the component does not have
+        raise SceneError(f"`spec` in {str(path)!r} is invalid: {exc}") from None
+    if not isinstance(scene, Scene):
+        raise SceneError(f"`spec` in {str(path)!r} must describe a Scene, got {type(scene).__name__}")
+    return scene
+
+
+def _drop_none(data):
+    """``data`` without the None fields (TOML has no null; each such field defaults to None)."""
+    if isinstance(data, dict):
+        return {k: _drop_none(v) for k, v in data.items() if v is not None}
+    if isinstance(data, list):
+        if any(v is None for v in data):
+            raise SceneError("a scene with None inside a list cannot be written as TOML")
+        return [_drop_none(v) for v in data]
+    return data
+
 
 _KINDS = {"full": "full triangles", "half": "half triangles", "flat": "flat blocks"}
 

@@ -9,7 +9,6 @@ them as one line and exits with status 2. The parser is in :mod:`asperity2d.cli.
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 from .. import _io
@@ -17,50 +16,9 @@ from .._format import lines as text_lines
 from .._format import si
 from .args import PLOT_SUFFIXES, check_runs, load_script
 from ..errors import SceneError
-
-#: Keys of a TOML scene's ``[run]`` table.
-RUN_KEYS = ("duration",)
-
-
-def scene_from_toml(path, *, arg: str = "scene"):
-    """``(Scene, run settings)`` from a TOML scene file.
-
-    The file holds ``make_scene``'s arguments, at top level or under
-    ``[scene]``, and optionally a ``[run]`` table (``duration`` in s). Every
-    problem -- the file, its TOML, a table of the wrong type, an unknown key --
-    is a ``SceneError`` naming it.
-    """
-    data = _io.read_toml(arg, path)
-    run = data.pop("run", {})
-    if not isinstance(run, dict):
-        raise SceneError(f"`run` in {str(path)!r} must be a [run] table, got {_kind(run)}")
-    for key in run:
-        if key not in RUN_KEYS:
-            raise SceneError(f"`{key}` in [run] of {str(path)!r} is not a run setting "
-                             f"(allowed: {', '.join(RUN_KEYS)})")
-    if "duration" in run:
-        d = run["duration"]
-        if isinstance(d, bool) or not isinstance(d, (int, float)) or not (math.isfinite(d) and d > 0):
-            raise SceneError(f"`duration` in [run] of {str(path)!r} must be a number > 0, got {d!r}")
-    if "scene" in data:
-        params = data.pop("scene")
-        if not isinstance(params, dict):
-            raise SceneError(f"`scene` in {str(path)!r} must be a [scene] table of make_scene "
-                             f"arguments, got {_kind(params)}")
-        if data:
-            raise SceneError(f"`{next(iter(data))}` in {str(path)!r} is outside [scene]: put every "
-                             "make_scene argument under [scene] (or all at top level)")
-    else:
-        params = data
-    from ..builders import make_scene
-    from ..surface.source import resolve_paths  # profile files named relative to the TOML file
-
-    return make_scene(**resolve_paths(params, Path(path).parent)), run
-
-
-def _kind(value) -> str:
-    return f"{type(value).__name__} {value!r}"[:80]
-
+# reading a TOML scene is the model's business; the CLI's name for it stays for callers
+from ..scene_io import RUN_KEYS  # noqa: F401
+from ..scene_io import read_scene as scene_from_toml
 
 def _emit(args, summary: dict, lines: list[str]) -> None:
     if args.json:
