@@ -20,6 +20,7 @@ from ._format import si
 from ._validate import (check_choice, check_finite, check_nonnegative, check_positive, check_text,
                         per_item, show)
 from .errors import SceneError
+from .friction.asperity import DEFAULT_CONTACT_LAW, contact_law
 from .geometry import ExplicitSpacing, Profile, RandomSpacing, RegularSpacing, Spacing
 from .shapes import Shapes, SurfaceGeometry, check_substrate
 
@@ -310,9 +311,12 @@ class Contact:
     slip_distance: float | None = None
     stick_speed: float | None = None
     restitution: float = 0.0
+    #: The per-contact friction law, by its name in :data:`asperity2d.friction.asperity.LAWS`.
+    law: str = DEFAULT_CONTACT_LAW
 
     def __post_init__(self):
         s = object.__setattr__
+        contact_law(self.law)  # a registered asperity-model law (SceneError naming `law` if not)
         s(self, "mu_static", check_nonnegative("mu_static", self.mu_static))
         if self.mu_kinetic is None:
             s(self, "mu_kinetic", kinetic_default(self.mu_static))
@@ -547,6 +551,8 @@ def _to_plain(obj):
     if dataclasses.is_dataclass(obj):
         out = {"type": type(obj).__name__}
         for f in dataclasses.fields(obj):
+            if isinstance(obj, Contact) and f.name == "law" and obj.law == DEFAULT_CONTACT_LAW:
+                continue  # the default law is left out: saved scenes read as they did before it was named
             out[f.name] = _to_plain(getattr(obj, f.name))
         return out
     if isinstance(obj, tuple):
