@@ -20,7 +20,7 @@ from ._format import si
 from ._validate import (check_choice, check_finite, check_nonnegative, check_positive, check_text,
                         per_item, show)
 from .errors import SceneError
-from .friction.asperity import DEFAULT_CONTACT_LAW, contact_law
+from .contact_laws import DEFAULT_CONTACT_LAW, contact_law
 from .geometry import ExplicitSpacing, Profile, RandomSpacing, RegularSpacing, Spacing
 from .shapes import Shapes, SurfaceGeometry, check_substrate
 
@@ -311,7 +311,7 @@ class Contact:
     slip_distance: float | None = None
     stick_speed: float | None = None
     restitution: float = 0.0
-    #: The per-contact friction law, by its name in :data:`asperity2d.friction.asperity.LAWS`.
+    #: The per-contact friction law, by its name in :data:`asperity2d.contact_laws.LAWS`.
     law: str = DEFAULT_CONTACT_LAW
 
     def __post_init__(self):

@@ -1,5 +1,6 @@
-"""The extension points, used from outside the package: a toy measure, a toy output format and
-a toy belt back end, each added through its registry alone and run end to end, then removed.
+"""The extension points, used from outside the package: a toy measure, a toy output format, a toy
+contact law and a toy belt back end, each added through its registry alone and run end to end,
+then removed.
 
 Nothing here edits a package file: if one of these needs a second file touched, the
 extension point is not one.
@@ -7,6 +8,7 @@ extension point is not one.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 
 import numpy as np
@@ -138,3 +140,66 @@ def test_a_back_end_added_to_methods_runs_through_simulate_chain(toy_backend):
     with pytest.raises(a.SceneError, match="`method`"):
         a.belt.simulate_chain([1.0], [1.0, 0.0], [0.0, 0.0], mu_s=0.5, mu_k=0.3, v_belt=0.1, x0=[0.0], v0=[0.1],
                               t_end=1.0, method="nope")
+
+
+# -- a friction law of the asperity model ---------------------------------------------------------
+from dataclasses import dataclass  # noqa: E402
+
+from asperity2d.contact_laws import LAWS, ContactLaw, LawEntry, register_law, unregister_law  # noqa: E402
+
+
+@dataclass(frozen=True)
+class AlwaysKinetic(ContactLaw):
+    """Coulomb friction at ``mu_kinetic`` whatever the contact does (no sticking)."""
+
+    mu: float
+
+    @classmethod
+    def from_contact(cls, contact, stick_speed, slip_distance, dt):
+        return cls(contact.mu_kinetic)
+
+    @property
+    def active(self) -> bool:
+        return False  # the coefficient never changes
+
+    @property
+    def idle(self) -> float:
+        return self.mu
+
+    def coefficient(self, stuck):
+        return self.mu
+
+    def step(self, stuck, slid, slip, new):
+        return False, 0.0
+
+
+@pytest.fixture
+def toy_law():
+    entry = register_law(LawEntry("always-kinetic", "asperity", AlwaysKinetic, "Coulomb at mu_kinetic"))
+    yield entry
+    unregister_law("always-kinetic")
+    assert "always-kinetic" not in LAWS
+
+
+def test_a_contact_law_added_through_the_registry_runs_in_the_python_loop(toy_law):
+    from asperity2d.engine import Engine
+    from asperity2d.run import default_dt
+
+    scene = a.make_scene(**TINY, mu_static=0.3, mu_kinetic=0.2)  # a spring drive: it sticks and slips
+    mine = scene.replace(contact=dataclasses.replace(scene.contact, law="always-kinetic"))
+    engine = Engine(mine, default_dt(mine))
+    engine.step(50)
+    assert engine._kernel is None and "AlwaysKinetic has no C implementation" in engine.loop_reason
+    assert set(engine.switch.mu.tolist()) == {0.2}
+    # the same friction everywhere as the built-in switch with mu_static = mu_kinetic (which never
+    # switches): the two runs are the same run, to the bit
+    coulomb = scene.replace(contact=dataclasses.replace(scene.contact, mu_static=0.2))
+    from asperity2d.run import default_duration
+
+    duration = 0.2 * default_duration(scene)
+    ours, theirs = a.simulate(mine, duration, progress=False), a.simulate(coulomb, duration, progress=False)
+    assert np.count_nonzero(ours.friction_force) > 100  # it rubbed over the asperities
+    np.testing.assert_array_equal(ours.x, theirs.x)
+    np.testing.assert_array_equal(ours.friction_force, theirs.friction_force)
+    with pytest.raises(a.SceneError, match="`law`"):
+        dataclasses.replace(scene.contact, law="nope")

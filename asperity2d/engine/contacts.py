@@ -23,7 +23,7 @@ import math
 import numpy as np
 from pymunk import batch
 
-from ..friction.asperity import contact_law
+from ..contact_laws import contact_law
 from ..scene import SpringDrive
 from .native import friction_setter
 
@@ -155,7 +155,7 @@ class StickSlip:
             self.stick_speed = 1e-4
             if isinstance(scene.drive, SpringDrive):
                 self.stick_speed = min(self.stick_speed, 0.1 * scene.drive.velocity / units.velocity)
-        #: the per-contact law (friction.asperity): its step() is the reference the C loop is held to
+        #: the per-contact law (asperity2d.contact_laws): its step() is the reference the C loop is held to
         self.law = contact_law(contact.law).from_contact(contact, self.stick_speed, self.slip_distance, dt)
         self.active = self.law.active
         self._mu = [self.law.idle] * n
@@ -256,7 +256,7 @@ class StickSlip:
                         self._set_friction(i, idle)
                         mu_now[i] = idle
         for i, slip in slips.items():
-            # the law's reference step (friction.asperity), which the C loop is held to
+            # the law's reference step (asperity2d.contact_laws), which the C loop is held to
             stuck[i], slid[i] = step(stuck[i], slid[i], slip, i not in present)
             mu = coefficient(stuck[i])
             if mu_now[i] != mu:

@@ -10,16 +10,16 @@ and is held to the reference's bits (``tests/test_engine_kernel.py``). For any o
 engine steps in Python and says why (:attr:`asperity2d.engine.Engine.loop_reason`).
 
 :data:`LAWS` lists every friction law of the package with the model it serves: the belt
-chains' laws (:mod:`.laws`: a slip force of the relative speed) and the asperity model's
-contact laws (here).
+chains' laws (:mod:`asperity2d.friction.laws`: a slip force of the relative speed; that module
+registers them) and the asperity model's contact laws (here). This module sits low in the layers
+(the scene names its law) and imports nothing of the models.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..errors import SceneError
-from . import laws as belt_laws
+from .errors import SceneError
 
 
 class ContactLaw:
@@ -136,9 +136,11 @@ def register_law(entry: LawEntry, *, replace: bool = False) -> LawEntry:
         raise SceneError(f"`entry` must be a LawEntry, got {type(entry).__name__}")
     if entry.model not in ("belt", "asperity"):
         raise SceneError(f"`model` must be 'belt' or 'asperity', got {entry.model!r}")
-    base = belt_laws.FrictionLaw if entry.model == "belt" else ContactLaw
-    if not (isinstance(entry.law, type) and issubclass(entry.law, base)):
-        raise SceneError(f"`law` of {entry.name!r} must be a {base.__name__} subclass, got {entry.law!r}")
+    belt = entry.model == "belt"
+    if not isinstance(entry.law, type) or (belt and not hasattr(entry.law, "piecewise_constant")) or (
+            not belt and not issubclass(entry.law, ContactLaw)):
+        raise SceneError(f"`law` of {entry.name!r} must be a {'FrictionLaw' if belt else 'ContactLaw'} "
+                         f"subclass, got {entry.law!r}")
     if entry.name in LAWS and not replace:
         raise SceneError(f"`entry` {entry.name!r} is already registered (pass replace=True)")
     LAWS[entry.name] = entry
@@ -163,7 +165,3 @@ def contact_law(name: str) -> type:
 
 register_law(LawEntry("static-kinetic", "asperity", StaticKineticSwitch,
                       "per-contact static/kinetic switch with a slip distance"))
-for _cls in (belt_laws.Coulomb, belt_laws.StaticKinetic, belt_laws.CoulombViscous, belt_laws.Stribeck,
-             belt_laws.Dahl, belt_laws.LuGre):
-    register_law(LawEntry(_cls.__name__, "belt", _cls, (_cls.__doc__ or "").strip().splitlines()[0]))
-del _cls
