@@ -16,7 +16,7 @@ import os
 import stat
 import tempfile
 from decimal import Decimal
-from numbers import Real
+from numbers import Integral, Real
 from pathlib import Path
 from typing import IO, Callable, Iterator
 
@@ -109,6 +109,51 @@ def read_toml(arg: str, path) -> dict:
     except RecursionError:  # tomllib parses nested arrays and tables recursively
         raise FileError(arg, path, "is nested too deeply", "arrays or inline tables nested "
                         "thousands deep; no scene or chain needs more than a few levels") from None
+
+
+def toml_text(tables: dict, *, header: str = "") -> str:
+    """A TOML document of ``tables``: top-level scalars first, then one ``[table]`` per dict
+    value (nested dicts and lists inline). Floats are written with ``repr`` (the shortest text
+    that reads back to the same bits; ``inf``/``nan`` as TOML spells them), so a document
+    read back with ``tomllib`` gives the same numbers. TOML has no null: a ``None`` raises
+    ``ValueError`` naming its key (leave such keys out)."""
+    lines = [f"# {line}" for line in header.splitlines()]
+    plain = {k: v for k, v in tables.items() if not isinstance(v, dict)}
+    lines += [f"{_toml_key(k)} = {_toml_value(v, k)}" for k, v in plain.items()]
+    for name, table in tables.items():
+        if isinstance(table, dict):
+            lines += ["", f"[{_toml_key(name)}]"]
+            lines += [f"{_toml_key(k)} = {_toml_value(v, f'{name}.{k}')}" for k, v in table.items()]
+    return "\n".join(lines) + "\n"
+
+
+def _toml_key(key) -> str:
+    import json
+    import re
+
+    key = str(key)
+    return key if re.fullmatch(r"[A-Za-z0-9_-]+", key) else json.dumps(key)
+
+
+def _toml_value(value, where: str) -> str:
+    import json
+
+    if value is None:
+        raise ValueError(f"`{where}` is None, which TOML cannot hold")
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, Integral):
+        return str(int(value))
+    if isinstance(value, Real):
+        x = float(value)
+        return ("nan" if math.isnan(x) else "inf" if x > 0 else "-inf") if not math.isfinite(x) else repr(x)
+    if isinstance(value, str):
+        return json.dumps(value, ensure_ascii=False)  # JSON's string escapes are TOML's
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{_toml_key(k)} = {_toml_value(v, f'{where}.{k}')}" for k, v in value.items()) + "}"
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_toml_value(v, f"{where}[{i}]") for i, v in enumerate(value)) + "]"
+    raise ValueError(f"`{where}` is a {type(value).__name__}, which TOML cannot hold")
 
 
 # -- writing -----------------------------------------------------------------

@@ -20,6 +20,7 @@ from ._format import si
 from ._validate import (check_choice, check_finite, check_nonnegative, check_positive, check_text,
                         per_item, show)
 from .errors import SceneError
+from .contact_laws import DEFAULT_CONTACT_LAW, contact_law
 from .geometry import ExplicitSpacing, Profile, RandomSpacing, RegularSpacing, Spacing
 from .shapes import Shapes, SurfaceGeometry, check_substrate
 
@@ -479,9 +480,12 @@ class Contact:
     slip_distance: float | None = None
     stick_speed: float | None = None
     restitution: float = 0.0
+    #: The per-contact friction law, by its name in :data:`asperity2d.contact_laws.LAWS`.
+    law: str = DEFAULT_CONTACT_LAW
 
     def __post_init__(self):
         s = object.__setattr__
+        contact_law(self.law)  # a registered asperity-model law (SceneError naming `law` if not)
         s(self, "mu_static", check_nonnegative("mu_static", self.mu_static))
         if self.mu_kinetic is None:
             s(self, "mu_kinetic", kinetic_default(self.mu_static))
@@ -654,6 +658,57 @@ class Scene:
         except TypeError as exc:  # a missing or unknown field of a component
             raise SceneError(f"`scene` record does not fit: {exc}") from None
 
+    def to_toml(self, path, *, run: dict | None = None):
+        """Write the whole scene as a TOML scene file (``asperity2d run FILE`` runs it, bit for
+        bit as :func:`~asperity2d.simulate` runs this scene); ``run`` is its ``[run]`` table
+        (``duration`` in s). Every number is written exactly (shortest round-trip text); a
+        field left at None is left out (it reads back as its default). Returns the path."""
+        from ._io import atomic_write_text, toml_text
+
+        tables = {"format": TOML_FORMAT, **({"run": dict(run)} if run else {}), "spec": _drop_none(self.to_dict())}
+        return atomic_write_text(path, toml_text(tables, header="asperity2d scene, written by Scene.to_toml"))
+
+    @classmethod
+    def from_toml(cls, path) -> "Scene":
+        """The scene of a TOML file written by :meth:`to_toml` (``SceneError`` if it is not one;
+        a file of ``make_scene`` arguments is read by :func:`asperity2d.scene_io.read_scene`)."""
+        from ._io import read_toml
+
+        data = read_toml("path", path)
+        return spec_from_toml(data, path)
+
+
+#: The format tag of a whole-scene TOML file (:meth:`Scene.to_toml`).
+TOML_FORMAT = "asperity2d.scene/1"
+
+
+def spec_from_toml(data: dict, path) -> Scene:
+    """The :class:`Scene` of a parsed whole-scene TOML document (``format``, ``spec``, ``run``)."""
+    if data.get("format") != TOML_FORMAT or not isinstance(data.get("spec"), dict):
+        raise SceneError(f"`path` {str(path)!r} is not a scene file written by Scene.to_toml (format "
+                         f"{TOML_FORMAT!r} and a [spec] table)")
+    extra = sorted(set(data) - {"format", "spec", "run"})
+    if extra:
+        raise SceneError(f"`{extra[0]}` in {str(path)!r} is not part of a scene file (format, [run], [spec])")
+    try:
+        scene = _from_plain(data["spec"])
+    except TypeError as exc:  # a field the component does not have
+        raise SceneError(f"`spec` in {str(path)!r} is invalid: {exc}") from None
+    if not isinstance(scene, Scene):
+        raise SceneError(f"`spec` in {str(path)!r} must describe a Scene, got {type(scene).__name__}")
+    return scene
+
+
+def _drop_none(data):
+    """``data`` without the None fields (TOML has no null; each such field defaults to None)."""
+    if isinstance(data, dict):
+        return {k: _drop_none(v) for k, v in data.items() if v is not None}
+    if isinstance(data, list):
+        if any(v is None for v in data):
+            raise SceneError("a scene with None inside a list cannot be written as TOML")
+        return [_drop_none(v) for v in data]
+    return data
+
 
 _KINDS = {"full": "full triangles", "half": "half triangles", "flat": "flat blocks"}
 
@@ -707,6 +762,8 @@ def _to_plain(obj):
     if dataclasses.is_dataclass(obj):
         out = {"type": type(obj).__name__}
         for f in dataclasses.fields(obj):
+            if isinstance(obj, Contact) and f.name == "law" and obj.law == DEFAULT_CONTACT_LAW:
+                continue  # the default law is left out: saved scenes read as they did before it was named
             out[f.name] = _to_plain(getattr(obj, f.name))
         return out
     if isinstance(obj, tuple):

@@ -41,13 +41,11 @@ from __future__ import annotations
 import math
 
 import asperity2d as a
-from asperity2d.experiments.measures import measure_label
+from asperity2d.experiments.measures import MEASURES as NAMED, measure_label
 from asperity2d.renderers.plots import plot_comparison
 
 MEASURES = ("critical", "peak-stick")
-ALPHA = 0.01
-#: The smallest relative change a verdict counts as an effect: twice the model's force resolution.
-MIN_EFFECT = 0.01
+ALPHA = NAMED["critical"].rule.alpha  # every measure's verdict rule: p < 0.01
 
 
 # %%
@@ -85,7 +83,7 @@ def stick_slip_run(out, size: dict, frames: int | None, progress: bool):
 def spacing_comparison(measure: str, setup: str, size: dict, seeds: int, workers, progress: bool):
     """Regular against random spacing: one ``measure`` per variant and seed."""
     variants = {"regular": {"spacing": "regular"}, "random": {"spacing": "random"}}
-    drive = "force" if measure.startswith("critical") else "spring"
+    drive = NAMED[measure].drive  # the drive the measure needs, from its registry entry
     return a.compare(measure, variants, range(seeds), progress=progress,
                      base={**size, "track": setup, "drive": drive}, workers=workers)
 
@@ -94,28 +92,15 @@ def spacing_comparison(measure: str, setup: str, size: dict, seeds: int, workers
 # 3. The verdict
 # --------------
 #
-# One-sided Wilcoxon of the random values against the regular one
-# (:meth:`asperity2d.Comparison.versus`) and the Hodges-Lehmann ratio random / regular with its
-# 95 % interval (:func:`asperity2d.stats.relative_effect`). The claim holds if p < 0.01 and the
-# change is at least 1 %; it is not testable when even every seed below could not reach p < 0.01.
+# Each measure carries its verdict rule (``asperity2d.experiments.measures.MEASURES``):
+# a one-sided Wilcoxon test of the random values against the regular one, and the
+# Hodges-Lehmann ratio random / regular with its 95 % interval. The claim holds if p < 0.01 and
+# the change is at least 1 % (twice the model's force resolution); it is not testable when even
+# every seed below could not reach p < 0.01. :meth:`asperity2d.Comparison.verdict` applies it.
 
 def verdict(comparison, setup: str) -> dict:
     """The claim record: the statement, its verdict and the numbers behind it."""
-    numbers = comparison.versus("random", "regular", alternative="less")
-    e = a.stats.relative_effect(comparison.values["random"], comparison.values["regular"][0])
-    numbers.update(ratio_hl=e["ratio"], ratio_ci_low=1 + e["ci_low"], ratio_ci_high=1 + e["ci_high"])
-    rel = numbers.get("relative_difference")
-    if 0.5 ** numbers["n"] >= ALPHA:
-        outcome = "not testable with so few seeds"
-    elif rel is not None and math.isfinite(rel) and abs(rel) < MIN_EFFECT:
-        outcome = "does not hold"
-    else:
-        moved = numbers["mean"] < numbers["reference"]
-        outcome = "holds" if moved and numbers["p_wilcoxon"] < ALPHA else "does not hold"
-    return {"claim": f"random spacing lowers the {measure_label(comparison.measure)}", "verdict": outcome,
-            "numbers": numbers,
-            "test": f"{numbers['test']}, one-sided (lower); holds if p < {ALPHA} and the change is at least "
-                    f"{100 * MIN_EFFECT:g} %", "setup": setup}
+    return comparison.verdict("random", "regular", subject="random spacing", setup=setup)
 
 
 # %%

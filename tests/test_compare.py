@@ -145,8 +145,46 @@ def test_bad_files_and_shapes(tmp_path):
         Comparison(values={"a": (1.0, 2.0)}, seeds=(0,))
 
 
-def test_the_command_line_offers_exactly_the_standard_measures():
-    from asperity2d.cli.main import COMPARE_MEASURES
+def test_the_command_line_lists_every_registered_measure_with_its_unit(capsys):
+    import json
+
+    from asperity2d.cli import main
     from asperity2d.experiments.measures import MEASURES
 
-    assert COMPARE_MEASURES == tuple(MEASURES)
+    assert main(["measures", "--json"]) == 0
+    listed = {m["name"]: m for m in json.loads(capsys.readouterr().out)["measures"]}
+    assert list(listed) == list(MEASURES)
+    assert listed["travel"]["unit"] == "m" and listed["critical"]["unit"] == "N"
+    assert listed["peak-stick"]["kind"] == "distribution" and listed["peak-stick"]["drive"] == "spring"
+    assert main(["measures"]) == 0
+    assert "travel  " in capsys.readouterr().out
+
+
+def test_an_unknown_measure_is_refused_in_one_line(capsys):
+    from asperity2d.cli import main
+
+    assert main(["compare", "--measure", "nope", "--seeds", "1"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "`--measure` must be one of critical," in err[0]
+
+
+def test_a_comparison_says_its_unit_and_its_verdict_in_words():
+    # regular measured once (a value), random 10 seeds all 20 % below: one-sided Wilcoxon
+    # p = 2**-10 < 0.01 and the change is far above 1 %: holds
+    c = Comparison(values={"regular": (1.0,) * 10, "random": tuple(0.8 + 0.001 * k for k in range(10))},
+                   seeds=tuple(range(10)), measure="travel_distance")
+    assert c.unit == "m" and c.label == "travel under a constant force"
+    record = c.verdict("random", "regular")
+    assert record["verdict"] == "holds" and record["claim"] == "random lowers the travel under a constant force"
+    assert record["numbers"]["p_wilcoxon"] == pytest.approx(2.0 ** -10)
+    # a change under 1 % is no effect however small p is
+    small = Comparison(values={"regular": (1.0,) * 10, "random": (0.995,) * 10}, seeds=tuple(range(10)),
+                       measure="critical")
+    assert small.verdict("random", "regular")["verdict"] == "does not hold"
+    # 5 seeds cannot reach p < 0.01 one-sided (2**-5 = 0.03)
+    few = Comparison(values={"regular": (1.0,) * 5, "random": (0.5,) * 5}, seeds=tuple(range(5)), measure="critical")
+    assert few.verdict("random", "regular")["verdict"] == "not testable with so few seeds"
+    summary, lines = c.report("regular", subject="{name} spacing")
+    assert lines[1].startswith("  regular: mean 1.000 m")
+    assert lines[-1].startswith("random spacing lowers the travel under a constant force: holds (")
+    assert summary["claims"][0]["verdict"] == "holds"

@@ -9,7 +9,6 @@ them as one line and exits with status 2. The parser is in :mod:`asperity2d.cli.
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 from .. import _io
@@ -17,52 +16,9 @@ from .._format import lines as text_lines
 from .._format import si
 from .args import PLOT_SUFFIXES, check_runs, load_script
 from ..errors import SceneError
-
-#: Keys of a TOML scene's ``[run]`` table.
-RUN_KEYS = ("duration",)
-
-
-def scene_from_toml(path, *, arg: str = "scene", overrides: dict | None = None):
-    """``(Scene, run settings)`` from a TOML scene file.
-
-    The file holds ``make_scene``'s arguments, at top level or under
-    ``[scene]``, and optionally a ``[run]`` table (``duration`` in s). Every
-    problem -- the file, its TOML, a table of the wrong type, an unknown key --
-    is a ``SceneError`` naming it. ``overrides`` (``--set KEY=VALUE``) replace or add
-    make_scene arguments.
-    """
-    data = _io.read_toml(arg, path)
-    run = data.pop("run", {})
-    if not isinstance(run, dict):
-        raise SceneError(f"`run` in {str(path)!r} must be a [run] table, got {_kind(run)}")
-    for key in run:
-        if key not in RUN_KEYS:
-            raise SceneError(f"`{key}` in [run] of {str(path)!r} is not a run setting "
-                             f"(allowed: {', '.join(RUN_KEYS)})")
-    if "duration" in run:
-        d = run["duration"]
-        if isinstance(d, bool) or not isinstance(d, (int, float)) or not (math.isfinite(d) and d > 0):
-            raise SceneError(f"`duration` in [run] of {str(path)!r} must be a number > 0, got {d!r}")
-    if "scene" in data:
-        params = data.pop("scene")
-        if not isinstance(params, dict):
-            raise SceneError(f"`scene` in {str(path)!r} must be a [scene] table of make_scene "
-                             f"arguments, got {_kind(params)}")
-        if data:
-            raise SceneError(f"`{next(iter(data))}` in {str(path)!r} is outside [scene]: put every "
-                             "make_scene argument under [scene] (or all at top level)")
-    else:
-        params = data
-    from ..builders import make_scene
-    from ..surface.source import resolve_paths  # profile files named relative to the TOML file
-
-    params = {**params, **(overrides or {})}
-    return make_scene(**resolve_paths(params, Path(path).parent)), run
-
-
-def _kind(value) -> str:
-    return f"{type(value).__name__} {value!r}"[:80]
-
+# reading a TOML scene is the model's business; the CLI's name for it stays for callers
+from ..scene_io import RUN_KEYS  # noqa: F401
+from ..scene_io import read_scene as scene_from_toml
 
 def _emit(args, summary: dict, lines: list[str]) -> None:
     if args.json:
@@ -139,9 +95,9 @@ def _run_script(path: Path, args) -> int:
 
 
 def _render_suffixes() -> tuple[str, ...]:
-    from ..renderers import RENDERERS
+    from ..renderers import FORMATS
 
-    return tuple(RENDERERS)
+    return tuple(FORMATS)
 
 
 def _load_result(arg: str, path):
@@ -231,19 +187,11 @@ def _parse_set(items: list[str]) -> dict:
     return out
 
 
-#: Units of the named measures that are not forces (N): issue 25's travel is a distance.
-_MEASURE_UNITS = {"travel": "m"}
-
-
-def _measure_unit(name: str) -> str:
-    return _MEASURE_UNITS.get(name, "N")
-
-
 def compare(args) -> int:
     """``asperity2d compare``: a measure of each spacing over seeds, with statistics."""
     save = None if args.save is None else _io.output_path("--save", args.save, suffixes=(".json",))
     output = None if args.output is None else _io.output_path("--output", args.output, suffixes=PLOT_SUFFIXES)
-    from ..experiments.compare import Comparison, measure_label
+    from ..experiments.compare import Comparison
     from ..experiments.compare import compare as run_compare
 
     if args.load:
@@ -258,8 +206,11 @@ def compare(args) -> int:
                                  f"`--variants` sets `spacing`, and `--seeds` the seeds")
         check_runs(len(variants) * args.seeds, args.max_runs,
                    f"`--variants` ({len(variants)}) x `--seeds` ({args.seeds:,})")
-        force = args.measure.startswith("critical") or args.measure in ("quasi-static-breakaway", "travel")
-        base.setdefault("drive", "force" if force else "spring")
+        from ..experiments.measures import MEASURES
+
+        if args.measure not in MEASURES:  # the registry, not a list here: a new measure is known at once
+            raise SceneError(f"`--measure` must be one of {', '.join(MEASURES)}, got {args.measure!r}")
+        base.setdefault("drive", MEASURES[args.measure].drive)
         comparison = run_compare(args.measure, variants, range(args.seeds), base=base, progress=not args.json,
                                  workers=args.workers, scheduler=args.scheduler)
     if save:
@@ -270,27 +221,19 @@ def compare(args) -> int:
 
         with _io.argument("--output"), _io.writing("--output", output):
             plot_comparison(comparison, output)
-    stats = comparison.summary()
-    summary = {"measure": comparison.measure, "seeds": len(comparison.seeds), "variants": stats}
-    names = list(comparison.values)
-    if len(names) >= 2:
-        summary["mann_whitney_p"] = {f"{names[0]} vs {other}": comparison.mann_whitney(names[0], other)
-                                     for other in names[1:]}
-    label, unit = measure_label(comparison.measure), _measure_unit(comparison.measure)
-    lines = [f"{label}, {len(comparison.seeds)} seeds:"]
-    lines += [f"  {name}: mean {si(s['mean'], unit, 4)}, 95 % CI [{si(s['ci_low'], unit, 4)}, "
-              f"{si(s['ci_high'], unit, 4)}] (n = {s['n']})" for name, s in stats.items()]
-    lines += [f"Mann-Whitney U {pair}: p = {p:.3g}" for pair, p in summary.get("mann_whitney_p", {}).items()]
-    if "regular" in names:  # each other spacing against regular, in words
-        from ..studies import claims
-
-        summary["claims"] = []
-        for other in (n for n in names if n != "regular"):
-            numbers = comparison.versus(other, "regular", alternative="less")
-            record = claims.claim(f"{other} spacing lowers the {measure_label(comparison.measure)}",
-                                  claims.judge(numbers, 0.01), numbers,
-                                  f"{numbers['test']}, one-sided (lower); holds if p < 0.01")
-            summary["claims"].append(record)
-            lines.append(claims.verdict_line(record))
+    reference = "regular" if "regular" in comparison.values else None  # each other spacing against it
+    summary, lines = comparison.report(reference, subject="{name} spacing")
     _emit(args, summary, lines)
+    return 0
+
+
+def measures(args) -> int:
+    """``asperity2d measures``: the named measures, each with its unit, drive, kind and label."""
+    from ..experiments.measures import MEASURES
+
+    entries = [m.to_dict() for m in MEASURES.values()]
+    width = max(len(m["name"]) for m in entries)
+    lines = [f"{m['name']:<{width}}  [{m['unit']}]  {m['drive']} drive, {m['kind']}: {m['label']}"
+             for m in entries]
+    _emit(args, {"measures": entries}, lines)
     return 0

@@ -21,6 +21,8 @@ import sys
 import warnings
 
 from ..errors import SceneError, SimulationError
+from ..renderers import FORMATS
+from ..renderers import describe as describe_formats
 from . import asperity, basins, belt, explore, sweep
 from .args import MAX_RUNS, PLOT_SUFFIXES, PROG, WORKERS_HELP, Parser, Subcommands, fail, positive_float, tolerance
 from .args import port as port_arg
@@ -51,12 +53,6 @@ def _json_flag(p) -> None:
     p.add_argument("--json", action="store_true", help="print one JSON object")
 
 
-#: The names of asperity2d.experiments.measures.MEASURES (kept here so --help imports nothing; a test
-#: checks they agree).
-COMPARE_MEASURES = ("critical", "critical-run-up", "quasi-static-breakaway", "first-breakaway", "peak-stick",
-                    "mean-stick", "travel")
-
-
 def build_parser() -> Parser:
     """The whole command line; each subcommand names its handler function."""
     parser = Parser(prog=PROG, description="Friction at the asperity scale in 2D (pymunk), and "
@@ -72,7 +68,7 @@ def build_parser() -> Parser:
     p.add_argument("scene", nargs="?",
                    help="scene script (.py; other arguments go to its main()) or .toml")
     p.add_argument("-o", "--output",
-                   help="render to this file (.gif, .mp4, .html, .png, .svg, .pdf, .wav); a script's output directory")
+                   help=f"render to this file ({', '.join(FORMATS)}); a script's output directory")
     p.add_argument("--save", help="save the Result (.npz) (TOML scenes)")
     p.add_argument("--duration", type=positive_float, help="simulated time in s (TOML scenes)")
     p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
@@ -101,8 +97,7 @@ def build_parser() -> Parser:
     p = sub.add_parser("render", help="render a saved result; the extension picks the renderer")
     p.add_argument("result", help="a result saved with --save / Result.save / BeltResult.save (.npz)")
     p.add_argument("-o", "--output", required=True,
-                   help=".gif, .mp4 (needs the video extra), .html (the interactive player), .png, .svg, .pdf "
-                        "or .wav (the slider's sound); a belt chain: the same")
+                   help=f"the extension picks the format: {describe_formats()}")
     _json_flag(p)
     p.set_defaults(handler=asperity.render)
 
@@ -113,12 +108,9 @@ def build_parser() -> Parser:
     p.set_defaults(handler=asperity.critical)
 
     p = sub.add_parser("compare", help="compare spacings over seeds (critical force, stick forces)")
-    p.add_argument("--measure", choices=COMPARE_MEASURES, default="critical",
-                   help="critical: constant force that moves the slider across from rest on the "
-                        "surface, a step load (default); critical-run-up; quasi-static-breakaway: "
-                        "a slowly ramped force; first-breakaway / peak-stick / mean-stick: stick "
-                        "forces of spring-driven passes; travel: distance under the scene's "
-                        "drive_force")
+    p.add_argument("--measure", default="critical",
+                   help="a named measure (default critical, the constant force that moves the slider "
+                        "across from rest); `asperity2d measures` lists them with their units")
     p.add_argument("--variants", default="regular,random", help="comma-separated spacings")
     p.add_argument("--seeds", type=positive_int, default=20)
     p.add_argument("--workers", type=workers_arg, default=None, help=WORKERS_HELP)
@@ -131,6 +123,10 @@ def build_parser() -> Parser:
     _max_runs(p)
     _json_flag(p)
     p.set_defaults(handler=asperity.compare)
+
+    p = sub.add_parser("measures", help="list the named measures of compare, with their units")
+    _json_flag(p)
+    p.set_defaults(handler=asperity.measures)
 
     _add_belt(sub)
     _add_sweep(sub)

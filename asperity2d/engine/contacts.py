@@ -23,6 +23,7 @@ import math
 import numpy as np
 from pymunk import batch
 
+from ..contact_laws import contact_law
 from ..scene import SpringDrive
 from .native import friction_setter
 
@@ -139,11 +140,10 @@ class StickSlip:
     def __init__(self, scene, units, layout, dt: float):
         contact = scene.contact
         self.mu_static, self.mu_kinetic = contact.mu_static, contact.mu_kinetic
-        self.active = self.mu_static != self.mu_kinetic
         self.dt = dt
         n = len(layout.lower_bodies)
         self._set_friction = friction_setter(layout.lower_shapes)
-        self._stuck, self._slid, self._mu = [False] * n, [0.0] * n, [self.mu_kinetic] * n
+        self._stuck, self._slid = [False] * n, [0.0] * n
         self._present = {}.keys()  # lower asperities in contact after the last update
         self._kernel = None  # the C step loop holding this state in its arrays (.kernel), if one does
         self._ints, self._touching = None, []  # the last contacts read, and what they touch
@@ -155,6 +155,10 @@ class StickSlip:
             self.stick_speed = 1e-4
             if isinstance(scene.drive, SpringDrive):
                 self.stick_speed = min(self.stick_speed, 0.1 * scene.drive.velocity / units.velocity)
+        #: the per-contact law (asperity2d.contact_laws): its step() is the reference the C loop is held to
+        self.law = contact_law(contact.law).from_contact(contact, self.stick_speed, self.slip_distance, dt)
+        self.active = self.law.active
+        self._mu = [self.law.idle] * n
 
     @property
     def stuck(self) -> np.ndarray:
@@ -242,27 +246,19 @@ class StickSlip:
             if slip > slips.get(i, -1.0):  # a lower asperity may touch two tips
                 slips[i] = slip
         stuck, slid, mu_now = self._stuck, self._slid, self._mu
-        v_stick, mu_s, mu_k = self.stick_speed, self.mu_static, self.mu_kinetic
+        law = self.law
+        step, coefficient, idle = law.step, law.coefficient, law.idle
         if present != slips.keys():  # (compared as sets) a contact may have been lost
             for i in present:
                 if i not in slips:  # contact lost
                     stuck[i], slid[i] = False, 0.0
-                    if mu_now[i] != mu_k:
-                        self._set_friction(i, mu_k)
-                        mu_now[i] = mu_k
+                    if mu_now[i] != idle:
+                        self._set_friction(i, idle)
+                        mu_now[i] = idle
         for i, slip in slips.items():
-            if i not in present:  # a new contact
-                stuck[i], slid[i] = slip < v_stick, 0.0
-            elif stuck[i]:
-                if slip > v_stick:
-                    slid[i] += slip * self.dt
-                    if slid[i] > self.slip_distance:
-                        stuck[i] = False
-                else:
-                    slid[i] = 0.0
-            elif slip < v_stick:
-                stuck[i], slid[i] = True, 0.0
-            mu = mu_s if stuck[i] else mu_k
+            # the law's reference step (asperity2d.contact_laws), which the C loop is held to
+            stuck[i], slid[i] = step(stuck[i], slid[i], slip, i not in present)
+            mu = coefficient(stuck[i])
             if mu_now[i] != mu:
                 self._set_friction(i, mu)
                 mu_now[i] = mu

@@ -30,7 +30,7 @@ from pymunk import batch
 from ..scene import Scene, SpringDrive
 from ..units import Units, check_scales
 from .contacts import ARBITER_FIELDS, Arbiters, StickSlip
-from .kernel import KERNEL, Kernel
+from .kernel import C_LAW, KERNEL, Kernel
 from .native import Native, stepper
 from .space import build
 from .validity import check_scene
@@ -99,6 +99,8 @@ class Engine:
         self.projection_hooks: list = []
         self._native = None  # raw handles of the space (.native), made with the body buffer
         self._kernel = None  # ... and the C step loop bound to them (.kernel), where it is usable
+        #: why this engine steps in Python although the C loop is built (None: it may use C)
+        self.loop_reason: str | None = None
         self._contacts = None  # the last step's contacts as read (Native.read_arbiters), if read
         self._arbiters = None  # ... and as Arbiters, made when asked for
         self._changes = 0  # counts what changes the space: forks of an unchanged engine share a snapshot
@@ -225,7 +227,10 @@ class Engine:
             rows = self.layout.lower_rows
             if not isinstance(rows, slice):  # pymunk keeps bodies in insertion order
                 raise RuntimeError("the lower asperities are not contiguous in the batch rows")
-            if KERNEL and isinstance(native, Native):
+            law = self.switch.law
+            if law.kernel != C_LAW:  # the C loop implements only its own law: this one steps in Python
+                self.loop_reason = f"the contact law {type(law).__name__} has no C implementation"
+            elif KERNEL and isinstance(native, Native):
                 self._kernel = Kernel(self, native, TRACK_TOLERANCE)
             self._lower_x = self._rows[rows, 0]  # a view: it follows every read
             # the drift check in _project: track positions as a list for a few asperities,

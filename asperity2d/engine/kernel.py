@@ -63,6 +63,9 @@ size_t asp_layout(int which);
 ffi = lib = None
 #: Why the engine steps in Python (None: the C loop is used), decided once at import.
 KERNEL_REASON: str | None = None
+#: The contact law the C loop implements (:class:`asperity2d.contact_laws.StaticKineticSwitch`'s
+#: ``kernel``): ``switch_update`` in ``_kernel.c`` is held to its Python reference ``step``.
+C_LAW = "static-kinetic"
 #: True when :class:`Kernel` is usable.
 KERNEL = False
 

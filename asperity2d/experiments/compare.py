@@ -35,6 +35,7 @@ from typing import Callable, Iterable
 import numpy as np
 
 from .. import stats
+from .._format import si
 from .._io import FileError, read_text, write_json
 from .._validate import check_int, count_seeds, show
 from ..builders import make_scene
@@ -43,7 +44,9 @@ from ..scene import Scene
 from ..sweep.engine import is_auto, run_calls
 from ..sweep.executors import check_executor_args, make_executor
 from ..sweep.progress import Progress
-from .measures import MEASURES, measure_label  # noqa: F401  (the named measures live there)
+from .measures import MEASURES, Measure, find_measure, measure_label, measure_unit  # noqa: F401
+from .verdicts import VerdictRule, verdict_line
+from .verdicts import claim as claims_record
 
 FORMAT = "asperity2d.comparison/1"
 
@@ -155,6 +158,75 @@ class Comparison:
                    test="paired Wilcoxon signed-rank (same seeds)")
         return out
 
+    # -- what it means, in words -------------------------------------------
+    @property
+    def entry(self) -> Measure | None:
+        """The registered :class:`~asperity2d.experiments.measures.Measure` measured (None for
+        a plain callable)."""
+        return find_measure(self.measure)
+
+    @property
+    def label(self) -> str:
+        """The measure's plain-language label."""
+        return measure_label(self.measure)
+
+    @property
+    def unit(self) -> str:
+        """The measure's SI unit (``""`` for a plain callable, whose unit is unknown)."""
+        return measure_unit(self.measure)
+
+    @property
+    def rule(self) -> VerdictRule:
+        """The measure's verdict rule (the default one for a plain callable)."""
+        entry = self.entry
+        return entry.rule if entry is not None else VerdictRule()
+
+    def verdict(self, name: str, reference: str, *, subject: str | None = None, setup: str | None = None,
+                rule: VerdictRule | None = None) -> dict:
+        """The claim "``subject`` lowers (raises) the <measure>" judged by the measure's rule.
+
+        Returns a claim record (:func:`asperity2d.experiments.verdicts.claim`): ``claim`` (the
+        sentence), ``verdict`` ("holds", "does not hold" or "not testable with so few seeds"),
+        ``numbers`` (:meth:`versus` in the rule's direction, and the Hodges-Lehmann ratio
+        ``ratio_hl`` with its 95 % interval ``ratio_ci_low``/``ratio_ci_high``), ``test`` (the
+        test and the criterion in words) and ``setup`` when given. ``subject`` defaults to the
+        variant's name; :func:`~asperity2d.experiments.verdicts.verdict_line` prints it.
+        """
+        rule = self.rule if rule is None else rule
+        numbers = self.versus(name, reference, alternative=rule.direction)
+        ref = self._get(reference)
+        effect = stats.relative_effect(self.values[name], float(ref[0]) if np.all(ref == ref[0]) else ref)
+        numbers.update(ratio_hl=effect["ratio"], ratio_ci_low=1 + effect["ci_low"],
+                       ratio_ci_high=1 + effect["ci_high"])
+        return claims_record(f"{subject or name} {rule.verb} the {self.label}", rule.judge(numbers), numbers,
+                             rule.describe(numbers["test"]), setup=setup)
+
+    def report(self, reference: str | None = None, *, subject: str = "{name}") -> tuple[dict, list[str]]:
+        """The comparison in numbers and in words: ``(summary, lines)``.
+
+        ``summary`` holds the measure, the seed count, each variant's statistics, the
+        Mann-Whitney p of the first variant against each other one and, when ``reference``
+        is a variant, the claim records (:meth:`verdict`) of every other variant against it
+        (``subject`` formats each claim's subject from the variant's ``name``). ``lines`` say
+        the same with units: the text ``asperity2d compare`` prints.
+        """
+        unit = self.unit
+        described = self.summary()
+        summary = {"measure": self.measure, "seeds": len(self.seeds), "variants": described}
+        names = list(self.values)
+        if len(names) >= 2:
+            summary["mann_whitney_p"] = {f"{names[0]} vs {other}": self.mann_whitney(names[0], other)
+                                         for other in names[1:]}
+        lines = [f"{self.label}, {len(self.seeds)} seeds:"]
+        lines += [f"  {name}: mean {si(s['mean'], unit, 4)}, 95 % CI [{si(s['ci_low'], unit, 4)}, "
+                  f"{si(s['ci_high'], unit, 4)}] (n = {s['n']})" for name, s in described.items()]
+        lines += [f"Mann-Whitney U {pair}: p = {p:.3g}" for pair, p in summary.get("mann_whitney_p", {}).items()]
+        if reference is not None and reference in names:
+            summary["claims"] = [self.verdict(other, reference, subject=subject.format(name=other))
+                                 for other in names if other != reference]
+            lines += [verdict_line(record) for record in summary["claims"]]
+        return summary, lines
+
     # -- persistence -------------------------------------------------------
     def to_dict(self) -> dict:
         return {"format": FORMAT, "measure": self.measure, "seeds": list(self.seeds),
@@ -252,7 +324,7 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
     if isinstance(measure, str):
         if measure not in MEASURES:
             raise SceneError(f"`measure` must be one of {', '.join(MEASURES)} or a callable, got {show(measure)}")
-        measure = MEASURES[measure][0]
+        measure = MEASURES[measure].function
     if not callable(measure):
         raise SceneError(f"`measure` must be callable, got {show(measure)}")
     if not isinstance(variants, dict) or not variants:

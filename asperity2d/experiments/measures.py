@@ -1,8 +1,9 @@
 """The named measures: one number per scene, what each one measures, and how far to trust it.
 
 Each measure is a function ``measure(scene) -> float`` (module level, so worker
-processes can run it) registered in :data:`~asperity2d.experiments.measures.MEASURES` with its plain-language
-label; :func:`asperity2d.compare` and the command line's ``--measure`` take
+processes can run it) registered in :data:`MEASURES` as a :class:`Measure`
+that carries its label, unit, drive, kind and verdict rule (the contract of a
+new one is :class:`Measure`'s docstring); :func:`asperity2d.compare` and the command line's ``--measure`` take
 them by name. The scene-level measures are named for what they do to a scene
 (``critical_force_from_rest(scene)``, ``peak_stick_force_of_passes(scene)``),
 distinct from the analysis functions of one result
@@ -37,6 +38,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 
@@ -46,6 +48,7 @@ from ..critical import DT_FRACTION as CRITICAL_DT_FRACTION, critical_force, sett
 from ..errors import SceneError
 from ..run import Run, Stuck, default_dt, default_duration, default_stops
 from ..scene import ConstantForce, Scene, SpringDrive
+from .verdicts import VerdictRule
 
 #: The pass ensemble: drive speeds V (1 + PERTURBATION_STEP (j - (K - 1) / 2)), j = 0..K-1.
 #: 2e-4 apart is far below anything the quasi-static drive resolves (the forces at the stick
@@ -382,25 +385,149 @@ def travel_distance(scene: Scene) -> float:
     return travel_under_force(scene)[0]
 
 
-#: Named measures: the CLI's ``--measure`` and ``compare(measure="...")``; each with its
-#: label for plots and verdicts.
-MEASURES = {
-    "critical": (critical_force_from_rest, "critical force from rest (step load)"),
-    "critical-run-up": (critical_force_with_run_up, "critical force with a run-up"),
-    "quasi-static-breakaway": (quasi_static_breakaway_force, "quasi-static breakaway force"),
-    "first-breakaway": (first_breakaway_of_pass, "first breakaway force"),
-    "peak-stick": (peak_stick_force_of_passes, "peak stick force over a pass"),
-    "mean-stick": (mean_stick_force_of_passes, "mean stick force over a pass"),
-    "travel": (travel_distance, "travel under a constant force"),
-}
+# -- the registry ------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Measure:
+    """A named measure and everything the rest of the package needs to know about it.
+
+    The registry :data:`MEASURES` maps each name to one of these; :func:`register_measure`
+    adds one. Contract -- a new measure must:
+
+    1. be a function ``function(scene) -> float`` of one :class:`~asperity2d.scene.Scene`
+       (NaN when the scene gives no value: the statistics skip it), defined at module level so
+       worker processes can import it (:func:`asperity2d.compare` runs it in a process pool);
+    2. depend on nothing but the scene: the same scene gives the same number (bit for bit), so
+       a comparison does not depend on the executor and a seed-independent variant is
+       measured once;
+    3. state its ``unit`` (SI symbol, ``"N"``, ``"m"``; printed with SI prefixes), a
+       ``label`` that reads in a sentence ("critical force from rest (step load)"), and the
+       ``drive`` its scenes need: ``"force"`` (a constant force) or ``"spring"`` (a spring
+       drive) -- the command line builds the scenes with it;
+    4. say its ``kind``: ``"number"`` (deterministic: the same value at dt and dt/2 within
+       about 1 %) or ``"distribution"`` (one value is chaotic; report an ensemble's mean and
+       compare over seeds as a distribution);
+    5. carry its verdict ``rule`` (:class:`~asperity2d.experiments.verdicts.VerdictRule`:
+       alpha, direction, smallest effect), fixed before any number is looked at:
+       :meth:`Comparison.verdict <asperity2d.experiments.compare.Comparison.verdict>` judges
+       by it.
+
+    Nothing else is needed: ``asperity2d measures`` lists it, ``asperity2d compare --measure
+    NAME`` and ``compare("NAME", ...)`` run it, plots and verdicts use its label and unit.
+    """
+
+    name: str
+    function: Callable[[Scene], float]
+    label: str
+    unit: str = "N"
+    drive: str = "force"
+    kind: str = "number"
+    rule: VerdictRule = VerdictRule()
+    description: str = ""
+
+    def __post_init__(self):
+        if not isinstance(self.name, str) or not self.name or self.name.strip() != self.name:
+            raise SceneError(f"`name` of a measure must be a non-empty string, got {self.name!r}")
+        if not callable(self.function):
+            raise SceneError(f"`function` of measure {self.name!r} must be callable, got {self.function!r}")
+        check_choice("drive", self.drive, DRIVES)
+        check_choice("kind", self.kind, KINDS)
+        if not isinstance(self.rule, VerdictRule):
+            raise SceneError(f"`rule` of measure {self.name!r} must be a VerdictRule, got {self.rule!r}")
+
+    @property
+    def distribution(self) -> bool:
+        """True for a measure whose single value is chaotic (compared as a distribution)."""
+        return self.kind == "distribution"
+
+    # (function, label) unpacking and indexing, as the registry's entries were before they
+    # carried metadata: ``fn, label = MEASURES[name]`` keeps working.
+    def __iter__(self):
+        return iter((self.function, self.label))
+
+    def __getitem__(self, index):
+        return (self.function, self.label)[index]
+
+    def to_dict(self) -> dict:
+        """The metadata as JSON values (the function by its qualified name)."""
+        return {"name": self.name, "label": self.label, "unit": self.unit, "drive": self.drive,
+                "kind": self.kind, "function": f"{self.function.__module__}.{self.function.__qualname__}",
+                "rule": {"alpha": self.rule.alpha, "direction": self.rule.direction,
+                         "min_effect": self.rule.min_effect},
+                "description": self.description}
+
+
+#: What a measure's scenes are driven by: a constant force or a spring.
+DRIVES = ("force", "spring")
+#: A measure's kind: one deterministic number, or the mean of a chaotic distribution.
+KINDS = ("number", "distribution")
+
+#: The registry of named measures: name -> :class:`Measure`. The CLI's ``--measure``,
+#: ``compare(measure="...")``, plots and verdicts read it; :func:`register_measure` adds one.
+MEASURES: dict[str, Measure] = {}
+
+
+def register_measure(measure: Measure, *, replace: bool = False) -> Measure:
+    """Add ``measure`` to :data:`MEASURES` under its name (see :class:`Measure` for the
+    contract); a name already taken raises ``SceneError`` unless ``replace``. Returns it."""
+    if not isinstance(measure, Measure):
+        raise SceneError(f"`measure` must be a Measure, got {type(measure).__name__}")
+    if measure.name in MEASURES and not replace:
+        raise SceneError(f"`measure` {measure.name!r} is already registered (pass replace=True)")
+    MEASURES[measure.name] = measure
+    return measure
+
+
+def unregister_measure(name: str) -> Measure:
+    """Remove the measure ``name`` from :data:`MEASURES` and return it."""
+    check_choice("name", name, tuple(MEASURES))
+    return MEASURES.pop(name)
+
+
+for _entry in (
+    Measure("critical", critical_force_from_rest, "critical force from rest (step load)",
+            description="constant force that moves the slider across from rest on the surface, a step load"),
+    Measure("critical-run-up", critical_force_with_run_up, "critical force with a run-up",
+            description="the same with the builder's run-up: a momentum threshold"),
+    Measure("quasi-static-breakaway", quasi_static_breakaway_force, "quasi-static breakaway force",
+            description="force at which a slowly ramped force breaks the slider loose"),
+    Measure("first-breakaway", first_breakaway_of_pass, "first breakaway force", drive="spring",
+            description="drive force at the first stick-to-slip transition of a spring-driven pass"),
+    Measure("peak-stick", peak_stick_force_of_passes, "peak stick force over a pass", drive="spring",
+            kind="distribution", description="largest stick force of spring-driven passes (ensemble mean)"),
+    Measure("mean-stick", mean_stick_force_of_passes, "mean stick force over a pass", drive="spring",
+            kind="distribution", description="mean stick force of spring-driven passes (ensemble mean)"),
+    Measure("travel", travel_distance, "travel under a constant force", unit="m",
+            description="distance travelled under the scene's constant drive force"),
+):
+    register_measure(_entry)
+del _entry
+
 #: Measures whose single value is chaotic (reported as the mean of an ensemble of passes,
-#: compared over seeds as a distribution).
-DISTRIBUTIONS = ("peak-stick", "mean-stick")
+#: compared over seeds as a distribution): the built-in ones (:attr:`Measure.distribution`
+#: says it of any registered measure).
+DISTRIBUTIONS = tuple(name for name, m in MEASURES.items() if m.distribution)
+
+
+def find_measure(name: str) -> Measure | None:
+    """The registered measure called ``name`` or whose function is called ``name`` (a
+    :class:`~asperity2d.experiments.compare.Comparison` records the function's name); None
+    if there is none."""
+    if name in MEASURES:
+        return MEASURES[name]
+    for entry in MEASURES.values():
+        if getattr(entry.function, "__name__", None) == name:
+            return entry
+    return None
 
 
 def measure_label(name: str) -> str:
     """A plain-language label of a measure's name (the name itself if it is not standard)."""
-    for key, (fn, label) in MEASURES.items():
-        if name in (key, fn.__name__):
-            return label
-    return name.replace("_", " ")
+    entry = find_measure(name)
+    return entry.label if entry is not None else name.replace("_", " ")
+
+
+def measure_unit(name: str) -> str:
+    """The SI unit of a measure (by its name or its function's name); ``""`` if it is not
+    registered (a plain callable's unit is unknown)."""
+    entry = find_measure(name)
+    return entry.unit if entry is not None else ""

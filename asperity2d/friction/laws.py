@@ -29,6 +29,7 @@ from dataclasses import astuple, dataclass, fields
 import numpy as np
 
 from .._validate import check_real, show
+from ..contact_laws import LawEntry, register_law
 from ..errors import SceneError
 
 __all__ = ["Coulomb", "StaticKinetic", "CoulombViscous", "Stribeck", "Dahl", "LuGre", "FrictionLaw"]
@@ -472,3 +473,9 @@ class LuGre(FrictionLaw):
     @property
     def static_coefficient(self) -> float:
         return float(self.mu_s)
+
+
+# -- in the registry of both models' friction laws (asperity2d.contact_laws.LAWS) -----------------
+for _cls in (Coulomb, StaticKinetic, CoulombViscous, Stribeck, Dahl, LuGre):
+    register_law(LawEntry(_cls.__name__, "belt", _cls, (_cls.__doc__ or "").strip().splitlines()[0]))
+del _cls

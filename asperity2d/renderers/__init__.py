@@ -11,22 +11,23 @@ spectrogram (:mod:`.sound`). ``result`` may be an asperity
 or the path of either saved with ``save`` (:func:`asperity2d.load`), so a run is
 rendered again without re-simulating.
 
-Which renderer draws what is one table, :data:`DRAWERS`: (result kind, renderer) -> the
-function; a renderer for another kind of result is one more entry.
+The output formats are one registry, :data:`FORMATS`: extension -> :class:`OutputFormat`,
+each entry carrying its description and, per result kind it accepts, the function that
+draws it. ``render()``, the command line's help and its checks read it; a new format is one
+:func:`register_format` call (the contract is :class:`OutputFormat`'s docstring).
 """
 
 from __future__ import annotations
 
 import os
+from collections.abc import Mapping
+from dataclasses import dataclass
 from pathlib import Path
+from types import MappingProxyType
+from typing import Callable
 
 from ..errors import SceneError
-from ..saved import RESULT_KINDS, kind_of_result, register_drawers
-
-#: Output extensions and the renderer each selects.
-RENDERERS = {".gif": "animation", ".mp4": "animation", ".html": "player", ".png": "plot",
-             ".svg": "plot", ".pdf": "plot", ".wav": "sound"}
-
+from ..saved import kind_of_result, register_drawers
 
 def _animation(result, path, **options):
     from .animate import render_animation
@@ -58,29 +59,136 @@ def _chain_plot(result, path, **options):
     return plot_chain(result, path, **options)
 
 
-#: (result family, renderer) -> function(result, path, **options) -> path written. Each is
-#: registered with the result kinds of its family (:func:`asperity2d.saved.register_drawers`),
-#: so a kind's drawers are its entry's in :data:`asperity2d.saved.RESULT_KINDS`.
-DRAWERS = {("asperity", "animation"): _animation, ("asperity", "player"): _player, ("asperity", "plot"): _plot,
-           ("asperity", "sound"): _sound, ("belt", "animation"): _animation, ("belt", "player"): _player,
-           ("belt", "plot"): _chain_plot, ("belt", "sound"): _sound}
-for _family in {family for family, _ in DRAWERS}:
-    register_drawers(_family, {renderer: draw for (f, renderer), draw in DRAWERS.items() if f == _family})
+@dataclass(frozen=True)
+class OutputFormat:
+    """One output format: a file extension and how each kind of result is drawn to it.
+
+    Contract -- a new output format must:
+
+    1. have an ``extension`` of its own (lower case, with the dot: ``".csv"``); the path's
+       extension (case-insensitive) selects it;
+    2. say in ``description`` what the file holds, in a few words (the command line's help
+       prints them);
+    3. map every result kind it accepts (``"asperity"``, ``"belt"``: a result's ``kind``) to a
+       function ``draw(result, path, **options) -> path written``; the function imports its
+       heavy libraries itself (matplotlib, imageio), so choosing a renderer imports nothing,
+       writes the file (atomically where it can) and refuses bad ``options`` with a
+       ``SceneError`` naming the option;
+    4. be deterministic: the same result and options give the same file (the golden and
+       picture tests rely on it).
+
+    ``renderer`` names the family (``"plot"``, ``"animation"``...) for the text.
+    """
+
+    extension: str
+    description: str
+    drawers: Mapping[str, Callable]
+    renderer: str = ""
+
+    def __post_init__(self):
+        ext = self.extension
+        if not isinstance(ext, str) or not ext.startswith(".") or len(ext) < 2 or ext != ext.lower():
+            raise SceneError(f"`extension` must be a lower-case extension with its dot ('.csv'), got {ext!r}")
+        if not self.drawers or not all(isinstance(k, str) and callable(f) for k, f in self.drawers.items()):
+            raise SceneError(f"`drawers` of {ext} must map result kinds to functions, got {self.drawers!r}")
+        object.__setattr__(self, "drawers", MappingProxyType(dict(self.drawers)))
+
+    @property
+    def kinds(self) -> tuple[str, ...]:
+        """The result kinds this format accepts."""
+        return tuple(self.drawers)
 
 
-def _drawers(kind: str) -> dict:
-    """Renderer -> function for a result kind's name or family (``"asperity"``, ``"belt"``, ...)."""
-    entry = RESULT_KINDS.get(kind)
-    if entry is not None:
-        return entry.drawers
-    return {renderer: draw for (family, renderer), draw in DRAWERS.items() if family == kind}
+#: The output formats: extension -> :class:`OutputFormat`. :func:`render` chooses by it.
+FORMATS: dict[str, OutputFormat] = {}
+
+
+def register_format(fmt: OutputFormat, *, replace: bool = False) -> OutputFormat:
+    """Add ``fmt`` to :data:`FORMATS` (see :class:`OutputFormat` for the contract); an extension
+    already taken raises ``SceneError`` unless ``replace``. Returns it."""
+    if not isinstance(fmt, OutputFormat):
+        raise SceneError(f"`fmt` must be an OutputFormat, got {type(fmt).__name__}")
+    if fmt.extension in FORMATS and not replace:
+        raise SceneError(f"`fmt` {fmt.extension} is already registered (pass replace=True)")
+    FORMATS[fmt.extension] = fmt
+    return fmt
+
+
+def unregister_format(extension: str) -> OutputFormat:
+    """Remove the format of ``extension`` from :data:`FORMATS` and return it."""
+    if extension not in FORMATS:
+        raise SceneError(f"`extension` must be one of {', '.join(FORMATS)}, got {extension!r}")
+    return FORMATS.pop(extension)
+
+
+_BOTH = ("asperity", "belt")
+for _fmt in (
+    OutputFormat(".gif", "animation with meters", dict.fromkeys(_BOTH, _animation), "animation"),
+    OutputFormat(".mp4", "the animation as a video (needs the video extra)", dict.fromkeys(_BOTH, _animation),
+                 "animation"),
+    OutputFormat(".html", "the interactive player, one self-contained page", dict.fromkeys(_BOTH, _player),
+                 "player"),
+    *(OutputFormat(ext, "time-series plot", {"asperity": _plot, "belt": _chain_plot}, "plot")
+      for ext in (".png", ".svg", ".pdf")),
+    OutputFormat(".wav", "the slider's sound", dict.fromkeys(_BOTH, _sound), "sound"),
+):
+    register_format(_fmt)
+del _fmt
+
+
+class _Renderers(Mapping):
+    """Extension -> renderer family, read from :data:`FORMATS` (the table as it was before the
+    formats carried their metadata)."""
+
+    def __getitem__(self, ext):
+        return FORMATS[ext].renderer
+
+    def __iter__(self):
+        return iter(FORMATS)
+
+    def __len__(self):
+        return len(FORMATS)
+
+
+class _Drawers(Mapping):
+    """(result kind, renderer family) -> function, read from :data:`FORMATS`."""
+
+    def _table(self):
+        return {(kind, fmt.renderer): draw for fmt in FORMATS.values() for kind, draw in fmt.drawers.items()}
+
+    def __getitem__(self, key):
+        return self._table()[key]
+
+    def __iter__(self):
+        return iter(self._table())
+
+    def __len__(self):
+        return len(self._table())
+
+
+#: Views of :data:`FORMATS`: extension -> renderer family, and (kind, family) -> function.
+RENDERERS: Mapping[str, str] = _Renderers()
+DRAWERS: Mapping[tuple[str, str], Callable] = _Drawers()
+
+
+# Each result kind's drawers (its entry in asperity2d.saved.RESULT_KINDS) are read from FORMATS: one
+# registry says how a kind is drawn; a kind registered from outside may bring drawers of its own.
+for _family in {kind for fmt in FORMATS.values() for kind in fmt.drawers}:
+    register_drawers(_family, {fmt.renderer: draw for fmt in FORMATS.values()
+                               for kind, draw in fmt.drawers.items() if kind == _family})
 
 
 def suffixes(kind: str) -> tuple[str, ...]:
-    """The output extensions a result of ``kind`` (a kind's name or family: ``"asperity"``,
-    ``"belt"``, ``"belt-contact"``) renders to."""
-    drawers = _drawers(kind)
-    return tuple(ext for ext, renderer in RENDERERS.items() if renderer in drawers)
+    """The output extensions a result of ``kind`` (``"asperity"``, ``"belt"``) renders to."""
+    return tuple(ext for ext, fmt in FORMATS.items() if kind in fmt.drawers)
+
+
+def describe() -> str:
+    """The formats in words, for a help text: ``".gif" (animation with meters), ...``."""
+    groups: dict[str, list[str]] = {}
+    for ext, fmt in FORMATS.items():
+        groups.setdefault(fmt.description, []).append(ext)
+    return "; ".join(f"{', '.join(exts)}: {text}" for text, exts in groups.items())
 
 
 def render(result, path: str | os.PathLike, **options) -> Path:
@@ -136,27 +244,25 @@ def render(result, path: str | os.PathLike, **options) -> Path:
     asperity2d.errors.SceneError: `path` must end in one of .gif, .mp4, .html, .png, .svg, .pdf, .wav, got 'run.jpg'
     """
     path = Path(path)
-    renderer = RENDERERS.get(path.suffix.lower())
-    if renderer is None:
-        raise SceneError(f"`path` must end in one of {', '.join(RENDERERS)}, got {str(path)!r}")
+    fmt = FORMATS.get(path.suffix.lower())
+    if fmt is None:
+        raise SceneError(f"`path` must end in one of {', '.join(FORMATS)}, got {str(path)!r}")
     if isinstance(result, (str, os.PathLike)):
         from ..saved import load
 
         result = load(result)
+    kind = getattr(result, "kind", None)  # the family: a contact result draws as a belt chain
+    draw = fmt.drawers.get(kind)
     entry = kind_of_result(result)
-    if entry is None:
-        kind = getattr(result, "kind", None)  # a streamed record reads as an asperity Result
-        drawers = _drawers(kind) if isinstance(kind, str) else {}
-        if not drawers:
-            raise SceneError(f"`result` must be a Result or a BeltResult, got {type(result).__name__}")
-        name = kind
-    else:
-        drawers, name = entry.drawers, entry.name
-    draw = drawers.get(renderer)
+    if draw is None and entry is not None:  # a kind from outside, with drawers of its own
+        draw = entry.drawers.get(fmt.renderer)
     if draw is None:
-        raise SceneError(f"`path` must end in one of {', '.join(suffixes(name))} for a {name} result, "
+        if kind not in {k for f in FORMATS.values() for k in f.drawers}:
+            raise SceneError(f"`result` must be a Result or a BeltResult, got {type(result).__name__}")
+        raise SceneError(f"`path` must end in one of {', '.join(suffixes(kind))} for a {kind} result, "
                          f"got {str(path)!r}")
     return draw(result, path, **options)
 
 
-__all__ = ["render", "RENDERERS", "DRAWERS", "suffixes"]
+__all__ = ["render", "FORMATS", "OutputFormat", "register_format", "unregister_format", "RENDERERS", "DRAWERS",
+           "suffixes", "describe"]

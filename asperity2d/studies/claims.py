@@ -18,69 +18,10 @@ import math
 
 from .._format import split_unit, value
 
-HOLDS, FAILS, UNTESTABLE = "holds", "does not hold", "not testable with so few seeds"
-
-
-#: The smallest relative change a verdict counts as an effect: twice the model's own force
-#: resolution (the flank laws and the quasi-static ladder agree to 0.3-0.5 %), so a change the
-#: model cannot resolve -- a deterministic +0.02 % that every seed repeats -- is no effect.
-MIN_EFFECT = 0.01
-
-
-def judge(numbers: dict, alpha: float, *, direction: str = "less", min_effect: float = MIN_EFFECT) -> str:
-    """The verdict of a one-sided Wilcoxon comparison (:func:`asperity2d.stats.versus_reference`
-    numbers): holds if the mean moved in ``direction`` by at least ``min_effect`` (relative)
-    and p < ``alpha``; untestable when even every seed on the claimed side could not reach it
-    (the exact one-sided p is then 2**-n)."""
-    if 0.5 ** numbers.get("n", 0) >= alpha:
-        return UNTESTABLE
-    moved = numbers["mean"] < numbers["reference"] if direction == "less" else numbers["mean"] > numbers["reference"]
-    rel = numbers.get("relative_difference")
-    if rel is not None and math.isfinite(rel) and abs(rel) < min_effect:
-        return FAILS
-    return HOLDS if moved and numbers["p_wilcoxon"] < alpha else FAILS
-
-
-def claim(text: str, holds: bool | str, numbers: dict, test: str, *, setup: str | None = None) -> dict:
-    """A claim record: the statement, its verdict (a bool, or a verdict from :func:`judge`), the
-    numbers behind it and the test used."""
-    verdict = holds if isinstance(holds, str) else (HOLDS if holds else FAILS)
-    out = {"claim": text, "verdict": verdict, "numbers": numbers, "test": test}
-    if setup is not None:
-        out["setup"] = setup
-    return out
-
-
-def effect(numbers: dict) -> str:
-    """``"-19 %, x0.81 [0.76, 0.85], 10/10 seeds below, Wilcoxon p = 0.001"`` from
-    :func:`asperity2d.stats.versus_reference` numbers (or whatever part of it ``numbers`` has):
-    the change of the mean, the Hodges-Lehmann ratio with its 95 % interval when the numbers
-    carry one (``ratio_hl``, ``ratio_ci_low``, ``ratio_ci_high``), the seeds below and the test."""
-    parts = []
-    rel = numbers.get("relative_difference")
-    if rel is not None and math.isfinite(rel):
-        parts.append(f"{100 * rel:+.0f} %" if abs(rel) >= 0.095 else f"{100 * rel:+.1g} %")
-    ratio = numbers.get("ratio_hl")
-    if ratio is not None and math.isfinite(ratio):
-        low, high = numbers.get("ratio_ci_low"), numbers.get("ratio_ci_high")  # None: NaN read from JSON
-        ci = (f" [{low:.3g}, {high:.3g}]" if low is not None and high is not None
-              and math.isfinite(low) and math.isfinite(high) else "")
-        parts.append(f"x{ratio:.3g}{ci}")
-    if "below" in numbers and "n" in numbers:
-        parts.append(f"{numbers['below']}/{numbers['n']} seeds below")
-    p = numbers.get("p_wilcoxon")
-    if p is not None and math.isfinite(p):
-        parts.append(f"Wilcoxon p = {p:.2g}")
-    if rel is not None and math.isfinite(rel) and abs(rel) < MIN_EFFECT:
-        parts.append(f"a change under {100 * MIN_EFFECT:g} % is no effect")
-    return ", ".join(parts)
-
-
-def verdict_line(record: dict) -> str:
-    """``"<claim>: holds (<effect>)"``, with the set-up in brackets when the record has one."""
-    setup = f"[{record['setup']}] " if record.get("setup") else ""
-    detail = effect(record.get("numbers", {}))
-    return f"{setup}{record['claim']}: {record['verdict']}" + (f" ({detail})" if detail else "")
+# The verdicts (the rule, the words, the one-line form) live with the experiments that judge them;
+# re-exported here, where every study's claims are written.
+from ..experiments.verdicts import (FAILS, HOLDS, MIN_EFFECT, UNTESTABLE, VerdictRule,  # noqa: F401
+                                    claim, effect, judge, verdict_line)
 
 
 def _value_text(x, unit: str | None, key: str) -> str:

@@ -1,0 +1,205 @@
+"""The extension points, used from outside the package: a toy measure, a toy output format, a toy
+contact law and a toy belt back end, each added through its registry alone and run end to end,
+then removed.
+
+Nothing here edits a package file: if one of these needs a second file touched, the
+extension point is not one.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+
+import numpy as np
+import pytest
+
+import asperity2d as a
+from asperity2d.cli import main
+from asperity2d.experiments.measures import MEASURES, Measure, register_measure, unregister_measure
+from asperity2d.experiments.verdicts import VerdictRule
+from asperity2d.renderers import FORMATS, OutputFormat, register_format, render, unregister_format
+
+TINY = {"lower_count": 6, "upper_count": 2}
+
+
+# -- a measure ------------------------------------------------------------------------------------
+def smallest_gap(scene) -> float:
+    """The smallest tip-to-tip gap between neighbouring lower asperities (m): geometry only, so
+    the comparison below costs no simulation."""
+    spacing = scene.lower.spacing
+    return float(np.diff(spacing.tips(*scene.lower.profile.runs(upper=False))).min())
+
+
+@pytest.fixture
+def toy_measure():
+    entry = register_measure(Measure("smallest-gap", smallest_gap, "smallest gap between lower asperities",
+                                     unit="m", drive="force", rule=VerdictRule(alpha=0.01, direction="less")))
+    yield entry
+    unregister_measure("smallest-gap")
+    assert "smallest-gap" not in MEASURES
+
+
+def test_a_measure_added_through_the_registry_is_listed_compared_and_judged(toy_measure, capsys):
+    assert main(["measures", "--json"]) == 0
+    listed = {m["name"]: m for m in json.loads(capsys.readouterr().out)["measures"]}
+    assert listed["smallest-gap"]["unit"] == "m"
+    assert listed["smallest-gap"]["label"] == "smallest gap between lower asperities"
+    assert main(["measures"]) == 0
+    assert any(line.startswith("smallest-gap") and "[m]" in line for line in capsys.readouterr().out.splitlines())
+
+    comparison = a.compare("smallest-gap", {"regular": {"spacing": "regular"}, "random": {"spacing": "random"}},
+                           range(8), base=TINY, progress=False, workers=1)
+    assert comparison.unit == "m" and comparison.label == toy_measure.label
+    record = comparison.verdict("random", "regular", subject="random spacing")
+    # random tips are drawn about the same mean pitch, so on every seed some gap is below the
+    # regular pitch: 8/8 seeds below, one-sided exact Wilcoxon p = 2**-8 = 0.0039 < 0.01, and the
+    # change (about -15 % here) is far above the 1 % no-effect band: the rule must say it holds
+    assert record["numbers"]["below"] == 8
+    assert record["numbers"]["p_wilcoxon"] == pytest.approx(2.0 ** -8)
+    assert record["verdict"] == "holds"
+    assert record["claim"] == "random spacing lowers the smallest gap between lower asperities"
+
+    # and the command line runs it by name, printing the unit and the verdict it got from the library
+    assert main(["compare", "--measure", "smallest-gap", "--seeds", "8", "--workers", "1",
+                 "--set", "lower_count=6", "--set", "upper_count=2"]) == 0
+    out = capsys.readouterr().out
+    assert "regular: mean 1.250 µm" in out
+    assert "random spacing lowers the smallest gap between lower asperities: holds" in out
+
+
+# -- an output format -----------------------------------------------------------------------------
+def write_csv(result, path, **options):
+    """The slider's track: one ``t,x`` line per sample."""
+    t, x = np.asarray(result.t), np.asarray(result.slider_x if hasattr(result, "slider_x") else result.x[0])
+    path.write_text("t,x\n" + "".join(f"{float(ti)!r},{float(xi)!r}\n" for ti, xi in zip(t, x)))
+    return path
+
+
+@pytest.fixture
+def toy_format():
+    fmt = register_format(OutputFormat(".csv", "the time series as CSV", {"belt": write_csv}, "table"))
+    yield fmt
+    unregister_format(".csv")
+    assert ".csv" not in FORMATS
+
+
+def test_a_format_added_through_the_registry_is_rendered_and_in_the_help(toy_format, tmp_path, capsys):
+    result = a.belt.simulate_chain([1.0], [10.0, 0.0], [0.1, 0.0], mu_s=0.5, mu_k=0.3, v_belt=0.1, x0=[0.0],
+                                   v0=[0.1], t_end=0.5, n_samples=11)
+    out = render(result, tmp_path / "chain.CSV")  # the extension picks it, in any case
+    rows = out.read_text().splitlines()
+    assert rows[0] == "t,x" and len(rows) == 1 + len(result.t)
+    assert float(rows[-1].split(",")[1]) == result.x[0, -1]
+    # a kind it does not accept is refused in the format's own words
+    with pytest.raises(a.SceneError, match="for a asperity result|must end in one of"):
+        render(_FakeAsperity(), tmp_path / "run.csv")
+    assert main(["render", "--help"]) == 0
+    assert ".csv: the time series as CSV" in " ".join(capsys.readouterr().out.split())  # argparse wraps lines
+
+
+class _FakeAsperity:
+    kind = "asperity"
+
+
+# -- a belt back end ------------------------------------------------------------------------------
+def run_frozen(spec, options):
+    """One mass stuck to the belt, held by a spring to the wall: x = x0 + v_belt t, the friction
+    force balances the spring (k x), the belt does the work k v (x0 t + v t^2 / 2) = the spring's
+    energy gain, and nothing slips (no dissipation). A toy: it never checks that the friction
+    limit holds. Returns the contract's RawRun."""
+    from asperity2d.belt.backend import RawRun
+    from asperity2d.errors import SceneError
+
+    if len(spec.masses) != 1:
+        raise SceneError("`masses`: the frozen back end takes one mass")
+    t = np.asarray(options.samples, dtype=float)
+    k, v, x0 = float(spec.springs[0]), float(spec.v_belt), float(spec.x0[0])
+    x = (x0 + v * t)[None, :]
+    work = np.zeros((3, t.size))
+    work[0] = k * v * (x0 * t + 0.5 * v * t * t)
+    return RawRun(t=t, x=x, v=np.full((1, t.size), v), state=np.zeros((1, t.size)), friction_force=k * x,
+                  work=work, events=[], stick_intervals=[[(float(t[0]), float(t[-1]))]], meta={})
+
+
+@pytest.fixture
+def toy_backend():
+    from asperity2d.belt.solver import METHODS, Backend
+
+    METHODS["frozen"] = (Backend("every mass stuck to the belt", lambda spec: True, run_frozen),)
+    yield METHODS["frozen"][0]
+    del METHODS["frozen"]
+    assert "frozen" not in METHODS
+
+
+def test_a_back_end_added_to_methods_runs_through_simulate_chain(toy_backend):
+    result = a.belt.simulate_chain([1.0], [2.0, 0.0], [0.0, 0.0], mu_s=0.5, mu_k=0.3, v_belt=0.2, x0=[0.1],
+                                   v0=[0.2], t_end=1.0, n_samples=21, method="frozen")
+    assert result.meta["backend"] == "every mass stuck to the belt" and result.meta["method"] == "frozen"
+    np.testing.assert_array_equal(result.x[0], 0.1 + 0.2 * result.t)  # what the back end returned, unchanged
+    with pytest.raises(a.SceneError, match="`method`"):
+        a.belt.simulate_chain([1.0], [1.0, 0.0], [0.0, 0.0], mu_s=0.5, mu_k=0.3, v_belt=0.1, x0=[0.0], v0=[0.1],
+                              t_end=1.0, method="nope")
+
+
+# -- a friction law of the asperity model ---------------------------------------------------------
+from dataclasses import dataclass  # noqa: E402
+
+from asperity2d.contact_laws import LAWS, ContactLaw, LawEntry, register_law, unregister_law  # noqa: E402
+
+
+@dataclass(frozen=True)
+class AlwaysKinetic(ContactLaw):
+    """Coulomb friction at ``mu_kinetic`` whatever the contact does (no sticking)."""
+
+    mu: float
+
+    @classmethod
+    def from_contact(cls, contact, stick_speed, slip_distance, dt):
+        return cls(contact.mu_kinetic)
+
+    @property
+    def active(self) -> bool:
+        return False  # the coefficient never changes
+
+    @property
+    def idle(self) -> float:
+        return self.mu
+
+    def coefficient(self, stuck):
+        return self.mu
+
+    def step(self, stuck, slid, slip, new):
+        return False, 0.0
+
+
+@pytest.fixture
+def toy_law():
+    entry = register_law(LawEntry("always-kinetic", "asperity", AlwaysKinetic, "Coulomb at mu_kinetic"))
+    yield entry
+    unregister_law("always-kinetic")
+    assert "always-kinetic" not in LAWS
+
+
+def test_a_contact_law_added_through_the_registry_runs_in_the_python_loop(toy_law):
+    from asperity2d.engine import Engine
+    from asperity2d.run import default_dt
+
+    scene = a.make_scene(**TINY, mu_static=0.3, mu_kinetic=0.2)  # a spring drive: it sticks and slips
+    mine = scene.replace(contact=dataclasses.replace(scene.contact, law="always-kinetic"))
+    engine = Engine(mine, default_dt(mine))
+    engine.step(50)
+    assert engine._kernel is None and "AlwaysKinetic has no C implementation" in engine.loop_reason
+    assert set(engine.switch.mu.tolist()) == {0.2}
+    # the same friction everywhere as the built-in switch with mu_static = mu_kinetic (which never
+    # switches): the two runs are the same run, to the bit
+    coulomb = scene.replace(contact=dataclasses.replace(scene.contact, mu_static=0.2))
+    from asperity2d.run import default_duration
+
+    duration = 0.2 * default_duration(scene)
+    ours, theirs = a.simulate(mine, duration, progress=False), a.simulate(coulomb, duration, progress=False)
+    assert np.count_nonzero(ours.friction_force) > 100  # it rubbed over the asperities
+    np.testing.assert_array_equal(ours.x, theirs.x)
+    np.testing.assert_array_equal(ours.friction_force, theirs.friction_force)
+    with pytest.raises(a.SceneError, match="`law`"):
+        dataclasses.replace(scene.contact, law="nope")
