@@ -42,8 +42,10 @@ class ResultKind:
     5. ``untagged`` names the metadata records that mark a file of the previous release (which
        wrote no tag), or is empty; such files keep loading.
     6. ``drawers`` maps a renderer (``"animation"``, ``"player"``, ``"plot"``, ``"sound"``) to
-       ``function(result, path, **options) -> path``; the renderers package registers its own
-       for a ``family`` (:func:`register_drawers`), and a kind from outside brings its own.
+       ``function(result, path, **options) -> path``; the renderers package fills in its own for a
+       ``family`` from its output formats (:func:`register_drawers`, called by
+       ``asperity2d.renderers.register_kind_drawers`` on first use), and a kind from outside
+       brings its own.
     7. ``saved`` lists the arrays ``save`` writes (each ``(T,)`` or per element ``(n, T)``);
        the protocol tests compare each one after a round trip.
     """

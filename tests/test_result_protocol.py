@@ -327,6 +327,9 @@ def test_files_saved_by_the_previous_release_still_load(asperity_result):
 
 @pytest.mark.parametrize("kind", KINDS)
 def test_render_and_analyze_work_on_every_kind(tmp_path, capsys, kind, example):
+    from asperity2d.renderers import register_kind_drawers
+
+    register_kind_drawers()  # what render() does first: the kinds' drawers read from the formats
     result, family = example, RESULT_KINDS[kind].family
     assert RESULT_KINDS[kind].drawers.keys() >= {"plot", "player"}
     saved = str(result.save(tmp_path / "r.npz"))

@@ -27,7 +27,6 @@ from types import MappingProxyType
 from typing import Callable
 
 from ..errors import SceneError
-from ..saved import kind_of_result, register_drawers
 
 def _animation(result, path, **options):
     from .animate import render_animation
@@ -171,11 +170,16 @@ RENDERERS: Mapping[str, str] = _Renderers()
 DRAWERS: Mapping[tuple[str, str], Callable] = _Drawers()
 
 
-# Each result kind's drawers (its entry in asperity2d.saved.RESULT_KINDS) are read from FORMATS: one
-# registry says how a kind is drawn; a kind registered from outside may bring drawers of its own.
-for _family in {kind for fmt in FORMATS.values() for kind in fmt.drawers}:
-    register_drawers(_family, {fmt.renderer: draw for fmt in FORMATS.values()
-                               for kind, draw in fmt.drawers.items() if kind == _family})
+def register_kind_drawers() -> None:
+    """Give each registered result kind (:data:`asperity2d.saved.RESULT_KINDS`) the drawers of its
+    family read from :data:`FORMATS`: one registry says how a kind is drawn, and a kind registered
+    from outside may bring drawers of its own. Imports the result kinds (NumPy), so it runs on
+    first use, not on import (``asperity2d --help`` stays light)."""
+    from ..saved import register_drawers
+
+    for family in {kind for fmt in FORMATS.values() for kind in fmt.drawers}:
+        register_drawers(family, {fmt.renderer: draw for fmt in FORMATS.values()
+                                  for kind, draw in fmt.drawers.items() if kind == family})
 
 
 def suffixes(kind: str) -> tuple[str, ...]:
@@ -253,6 +257,9 @@ def render(result, path: str | os.PathLike, **options) -> Path:
         result = load(result)
     kind = getattr(result, "kind", None)  # the family: a contact result draws as a belt chain
     draw = fmt.drawers.get(kind)
+    from ..saved import kind_of_result
+
+    register_kind_drawers()
     entry = kind_of_result(result)
     if draw is None and entry is not None:  # a kind from outside, with drawers of its own
         draw = entry.drawers.get(fmt.renderer)
@@ -265,4 +272,4 @@ def render(result, path: str | os.PathLike, **options) -> Path:
 
 
 __all__ = ["render", "FORMATS", "OutputFormat", "register_format", "unregister_format", "RENDERERS", "DRAWERS",
-           "suffixes", "describe"]
+           "suffixes", "describe", "register_kind_drawers"]
