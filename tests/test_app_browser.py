@@ -199,6 +199,12 @@ def test_the_workbench_as_a_person_uses_it(server, browser):
         const ps = window.asperityWorkbench.players();
         const t = ps.full.api.seek(ps.full.api.t1 * 0.5); return [t, ps.half.api.state().t];""")
     assert t_full[1] == pytest.approx(t_full[0], rel=0.02)
+    # and one time window: a box zoom on one variant's meter zooms the other's
+    view = browser.execute_script("""
+        const ps = window.asperityWorkbench.players();
+        ps.full.api.zoomMeter(0, ps.full.api.t1 * 0.2, ps.full.api.t1 * 0.4, null, null);
+        return [ps.full.api.state().view, ps.half.api.state().view];""")
+    assert view[1] == pytest.approx(view[0])
     shot(browser, "app_compare.png")
 
     assert console_errors(browser) == []

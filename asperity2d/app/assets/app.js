@@ -284,6 +284,7 @@ function render({ model, el }) {
       const p = newPlayer(box.lastChild, m.player, { keys: false, duration: m.player.duration, linkName: m.variant });
       players[m.variant] = p;
       p.onCursor((t) => { for (const [n, q] of Object.entries(players)) if (n !== m.variant) q.setCursor(t); });
+      if (p.onView) p.onView((view) => { for (const [n, q] of Object.entries(players)) if (n !== m.variant) q.setView(view); });
       V.players[m.variant] = { samples: 0, finished: false };
     } else if (m.type === "variant-chunk" && players[m.variant]) {
       players[m.variant].append(m.chunk); V.players[m.variant].samples = players[m.variant].samples;
