@@ -6,6 +6,7 @@ Public names (see README):
 * :func:`simulate` -> :class:`Result`, :func:`load` (an asperity or a belt result);
 * :func:`critical_force`, :func:`breakaway_force`, :func:`stick_slip_events`;
 * :mod:`asperity2d.belt` — masses on a moving belt with exact stick/slip;
+* :func:`explore` — the workbench as a notebook widget (``asperity2d explore`` in the browser);
 * :class:`SceneError`, :class:`SimulationError`.
 
 Every public name is imported on first use (PEP 562), so ``import asperity2d``
@@ -29,10 +30,11 @@ _LAZY = {
     "mean_stick_force": "analysis",
     "Comparison": "experiments.compare", "compare": "experiments.compare",
     "render": "renderers",
+    "explore": "app",
     "__version__": "_version",
 }
 _SUBPACKAGES = ("belt", "friction", "sweep", "experiments", "studies", "stats", "surface", "dynamics",
-                "renderers", "engine", "cli")
+                "renderers", "engine", "cli", "app")
 
 
 __getattr__, __dir__ = exports(__name__, globals(), _LAZY, _SUBPACKAGES)
@@ -44,5 +46,5 @@ __all__ = [
     "SpringDrive", "make_scene", "Result", "load", "simulate", "Run", "Passed", "Stuck", "Travelled",
     "CriticalForce", "critical_force", "critical_force_bracket", "Event", "breakaway_force",
     "peak_stick_force", "mean_stick_force", "event_statistics", "friction_traces", "stick_slip_events",
-    "Comparison", "compare", "render",
+    "Comparison", "compare", "render", "explore",
 ]

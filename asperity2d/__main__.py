@@ -4,4 +4,5 @@ import sys
 
 from .cli.main import main
 
-sys.exit(main())
+if __name__ == "__main__":  # a spawned worker process imports this module: it must not run the CLI
+    sys.exit(main())

@@ -106,6 +106,9 @@ def read_toml(arg: str, path) -> dict:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise FileError(arg, path, "is not valid TOML", str(exc)) from None
+    except RecursionError:  # tomllib parses nested arrays and tables recursively
+        raise FileError(arg, path, "is nested too deeply", "arrays or inline tables nested "
+                        "thousands deep; no scene or chain needs more than a few levels") from None
 
 
 # -- writing -----------------------------------------------------------------
@@ -186,9 +189,12 @@ def atomic_write(path: str | os.PathLike, write: Callable[[IO[bytes]], None]) ->
             fh.flush()
             os.fsync(fh.fileno())
         os.replace(tmp, path)
-    except BaseException:
-        with contextlib.suppress(FileNotFoundError):
+    except BaseException as exc:
+        with contextlib.suppress(OSError):
             os.unlink(tmp)
+        if isinstance(exc, OSError):  # a full disk, a quota, a device error: nothing was written
+            raise FileError("path", path, "could not be written",
+                            f"{exc.strerror or exc}; the file was left as it was") from None
         raise
     return path
 
@@ -234,6 +240,30 @@ def save_npz(path: str | os.PathLike, arrays: dict, meta: dict, *, format: str |
 _ZIP_SIGNATURES = (b"PK\x03\x04", b"PK\x05\x06")
 
 
+#: The most a saved ``.npz`` may inflate to (bytes, the sum of its members' uncompressed sizes in
+#: the zip headers), checked before anything is inflated: a result that fits in memory is far
+#: smaller, and one that does not is streamed to a directory instead (``record_to=``).
+MAX_INFLATED_BYTES = 2**30
+
+
+def _check_inflated_size(path, kind: str) -> None:
+    """Refuse an archive whose zip headers promise more than :data:`MAX_INFLATED_BYTES` (a
+    1.5 MB file can hold 1.5 GB of zeros). Reading the headers inflates nothing; a member whose
+    data turn out longer than its header says fails its CRC check when read."""
+    import zipfile
+
+    try:
+        with zipfile.ZipFile(path) as archive:
+            members = archive.infolist()
+    except (zipfile.BadZipFile, OSError, ValueError, EOFError) as exc:
+        raise FileError("path", path, f"is damaged or not {kind}", f"{type(exc).__name__}: {exc}") from None
+    total = sum(member.file_size for member in members)
+    if total > MAX_INFLATED_BYTES:
+        raise FileError("path", path, f"is too large to load as {kind}",
+                        f"its arrays inflate to {total / 2**20:.0f} MiB, more than the limit of "
+                        f"{MAX_INFLATED_BYTES / 2**20:.0f} MiB (asperity2d._io.MAX_INFLATED_BYTES)")
+
+
 def load_npz(path: str | os.PathLike, names, *, kind: str,
              meta_keys: tuple[str, ...] = ()) -> tuple[dict, dict]:
     """Read the arrays ``names`` and the JSON metadata (with ``meta_keys``) of a :func:`save_npz` file.
@@ -253,6 +283,7 @@ def load_npz(path: str | os.PathLike, names, *, kind: str,
         raise FileError("path", path, "is empty")
     if head not in _ZIP_SIGNATURES:
         raise FileError("path", path, "is not an .npz file", f"expected {kind}, a zip archive")
+    _check_inflated_size(path, kind)
     try:
         with np.load(path, allow_pickle=False) as data:
             missing = [name for name in (*names, "metadata") if name not in data.files]

@@ -82,6 +82,23 @@ def check_positive(name: str, value) -> float:
     return out
 
 
+#: The smallest relative tolerance a float can meet: four units in the last place (a double
+#: resolves relative differences of 2.2e-16; a bracket cannot be narrower than its two ends).
+MIN_TOLERANCE = 4 * 2.0 ** -52
+
+
+def check_tolerance(name: str, value) -> float:
+    """``value`` as a relative tolerance: finite, below 1 and at least :data:`MIN_TOLERANCE`
+    (one below it could never be met: a bisection would run until its budget, silently)."""
+    out = check_positive(name, value)
+    if out >= 1:
+        raise SceneError(f"`{name}` must be < 1, got {show(value)}")
+    if out < MIN_TOLERANCE:
+        raise SceneError(f"`{name}` must be >= {MIN_TOLERANCE:.2g}, got {show(value)}: a float resolves "
+                         "relative differences of 2.2e-16, so a tolerance below that can never be met")
+    return out
+
+
 def check_nonnegative(name: str, value) -> float:
     out = check_finite(name, value)
     if out < 0:

@@ -15,6 +15,10 @@ Slips shorter than ``min_slip`` or moving the slider less than
 the slider is slow for less than ``min_stick`` inside a slip are bounces off
 asperities, not re-sticking. Both rules look at time and distance, not at
 sample counts, so the events do not depend on how often the run was recorded.
+The distance rule follows the scene's own scale (:func:`slip_scale`): a tenth
+of the smallest of the asperity base, the lower surface's mean pitch and the
+drive spring's stretch over one slip, so a flat block's 30 nm slips count
+while an asperity's nanometre micro-slips do not.
 """
 
 from __future__ import annotations
@@ -37,12 +41,44 @@ SLIP_SPEED_FRACTION = 3.0
 #: Default minimum durations as fractions of the slider's period on the drive spring.
 MIN_STICK_PERIODS = 0.5
 MIN_SLIP_PERIODS = 0.1
-#: Default minimum slip distance as a fraction of the asperity base. A real slip on seed
-#: 000's scenes moves the slider 0.4-10 um; a contact letting go of one flank moves it
-#: 2-30 nm in under a nanosecond, near the 0.55 ns ``min_slip``, so whether it counted
-#: depended on where the samples fell (measured: two extra "events" at record_every=10
-#: that record_every=1 did not see, on the same trajectory).
-MIN_SLIP_BASES = 0.1
+#: Default minimum slip distance as a fraction of the scene's slip scale (:func:`slip_scale`).
+#: A real slip on seed 000's scenes moves the slider 0.4-10 um; a contact letting go of one
+#: flank moves it 2-30 nm in under a nanosecond, near the 0.55 ns ``min_slip``, so whether it
+#: counted depended on where the samples fell (measured: two extra "events" at
+#: record_every=10 that record_every=1 did not see, on the same trajectory). On an asperity
+#: surface the scale is the base (0.1 base = 100 nm: above those micro-slips); on a flat block
+#: the drive spring's stretch over a slip is far smaller (27 nm on a 3 mN block, mu 0.5/0.35,
+#: on 37.2 kN/m) and sets it.
+MIN_SLIP_FRACTION = 0.1
+
+
+def slip_scale(scene) -> float:
+    """The length (m) a stick-slip of ``scene`` is measured against: the smallest of the asperity
+    base, the lower surface's mean pitch and, on a spring drive, the drive spring's stretch over
+    one slip, ``2 (F_peak - F_kinetic) / k`` (Den Hartog's stick-slip: the spring force swings
+    symmetrically about the kinetic level).
+
+    ``F_peak`` is the static barrier plus the overshoot ``V sqrt(k m)`` (the force keeps rising
+    until the slider catches up with the drive): the barrier is the flank law ``L tan(theta + atan
+    mu_s)`` for the free slider under load ``L`` (``mu_s L`` on flat blocks, theta = 0) and ``n k_l
+    delta tan(theta + atan mu_s)`` on the fixed track. ``F_kinetic`` is the sliding friction
+    ``mu_k L`` of the free slider (0 on the fixed track, which carries no load). On Ooten's
+    asperity scenes the stretch is micrometres and the base sets the scale; on a flat block the
+    stretch does.
+    """
+    base = scene.base
+    scale = min(base, scene.lower.spacing.mean_pitch)
+    drive = scene.drive
+    if not isinstance(drive, SpringDrive):
+        return scale
+    theta = math.radians(scene.lower.profile.flank_angle)
+    wedge = math.tan(min(theta + math.atan(scene.contact.mu_static), math.radians(89.0)))
+    if scene.slider.track == "free":
+        barrier, kinetic = scene.slider.normal_load * wedge, scene.contact.mu_kinetic * scene.slider.normal_load
+    else:
+        barrier, kinetic = scene.slider.count * max(scene.lower.stiffness) * scene.slider.interference * wedge, 0.0
+    peak = barrier + drive.velocity * math.sqrt(drive.stiffness * scene.slider.mass)
+    return min(scale, 2.0 * (peak - kinetic) / drive.stiffness)
 
 
 @dataclass(frozen=True)
@@ -56,6 +92,31 @@ class Event:
     ``t_slip``; ``force_drop`` (N): peak minus the lowest drive force during
     the slip; ``slip_distance`` (m): slider travel from ``t_slip`` to ``t_end``;
     ``stick_duration`` (s) = ``t_slip - t_stick``.
+
+    Attributes
+    ----------
+    t_stick, t_slip, t_end : float
+        Start of the stick, the stick-to-slip transition, end of the slip (s).
+    force_peak, force_drop : float
+        Drive force at ``t_slip`` and its fall during the slip (N).
+    slip_distance : float
+        Slider travel during the slip (m).
+    stick_duration : float
+        ``t_slip - t_stick`` (s).
+    complete : bool, default True
+        False when the run ended during the slip.
+
+    See Also
+    --------
+    asperity2d.stick_slip_events : the events of a run.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> result = a.simulate(a.make_scene(lower_count=4, upper_count=2))
+    >>> event = a.stick_slip_events(result)[0]
+    >>> event.complete, f"{event.force_drop * 1e3:.3g} mN"
+    (True, '9.21 mN')
     """
 
     t_stick: float
@@ -68,8 +129,18 @@ class Event:
     complete: bool = True
 
 
+def _asperity_run(result) -> None:
+    """Raise SceneError unless ``result`` is an asperity run (a Result, or a record read lazily)."""
+    if getattr(result, "kind", "asperity") != "asperity" or getattr(result, "scene", None) is None:
+        what = "a belt chain" if getattr(result, "kind", None) == "belt" else type(result).__name__
+        hint = ("; a chain's sticks and slips are its `stick_intervals` and `events` (asperity2d.belt)"
+                if what == "a belt chain" else "")
+        raise SceneError(f"`result` must be an asperity run (asperity2d.simulate), got {what}{hint}")
+
+
 def _drive_scales(result) -> tuple[float | None, float | None]:
     """(drive velocity m/s, slider period on the drive spring s), or Nones."""
+    _asperity_run(result)
     drive = result.scene.drive
     if not isinstance(drive, SpringDrive):
         return None, None
@@ -96,6 +167,29 @@ def _merge(runs: list[list[int]]) -> list[list[int]]:
     return out
 
 
+def _thresholds(result, stick_speed, slip_speed, min_stick, min_slip, min_slip_distance) -> dict:
+    """The detector's thresholds (SI): the given ones, the scene's defaults for the rest."""
+    speed, period = _drive_scales(result)
+    defaults = {"stick_speed": (stick_speed, STICK_SPEED_FRACTION, speed),
+                "slip_speed": (slip_speed, SLIP_SPEED_FRACTION, speed),
+                "min_stick": (min_stick, MIN_STICK_PERIODS, period),
+                "min_slip": (min_slip, MIN_SLIP_PERIODS, period),
+                "min_slip_distance": (min_slip_distance, MIN_SLIP_FRACTION, slip_scale(result.scene))}
+    values = {}
+    for name, (given, fraction, scale) in defaults.items():
+        if given is None:
+            if scale is None:
+                raise SceneError(f"`{name}` must be given for a run without a spring drive")
+            given = fraction * scale
+        if not math.isfinite(given) or given < 0:
+            raise SceneError(f"`{name}` must be a finite number >= 0, got {given!r}")
+        values[name] = float(given)
+    if values["slip_speed"] <= values["stick_speed"]:
+        raise SceneError(f"`slip_speed` ({values['slip_speed']!r}) must be > "
+                         f"`stick_speed` ({values['stick_speed']!r})")
+    return values
+
+
 def stick_slip_events(result, *, stick_speed: float | None = None, slip_speed: float | None = None,
                       min_stick: float | None = None, min_slip: float | None = None,
                       min_slip_distance: float | None = None) -> list[Event]:
@@ -117,7 +211,8 @@ def stick_slip_events(result, *, stick_speed: float | None = None, slip_speed: f
         A slip shorter than this (s) is ignored. Default: 0.1 of that period.
     min_slip_distance : float, optional
         A slip moving the slider less than this (m) is ignored. Default: 0.1
-        of the asperity base.
+        of :func:`slip_scale` (the asperity base on Ooten's scenes, the drive
+        spring's stretch over a slip on a flat block).
 
     Returns
     -------
@@ -125,25 +220,34 @@ def stick_slip_events(result, *, stick_speed: float | None = None, slip_speed: f
         In time order. The last one has ``complete=False`` when the run ended
         during its slip. A slip needs a stick before it: motion before the
         first stick is not an event.
+
+    Raises
+    ------
+    SceneError
+        A threshold is negative or not finite, ``slip_speed`` is not above
+        ``stick_speed``, or a default is needed for a run without a spring drive.
+
+    See Also
+    --------
+    asperity2d.breakaway_force : one force out of these events.
+    asperity2d.peak_stick_force
+    asperity2d.mean_stick_force
+    asperity2d.event_statistics : their counts, means and regularity.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> result = a.simulate(a.make_scene(lower_count=4, upper_count=2))
+    >>> events = a.stick_slip_events(result)
+    >>> len(events)
+    2
+    >>> first = events[0]
+    >>> print(f"slips at {first.t_slip:.3g} s under {first.force_peak * 1e3:.3g} mN, "
+    ...       f"moves {first.slip_distance * 1e6:.3g} um")
+    slips at 1.39e-07 s under 6.33 mN, moves 2.43 um
     """
-    speed, period = _drive_scales(result)
-    defaults = {"stick_speed": (stick_speed, STICK_SPEED_FRACTION, speed),
-                "slip_speed": (slip_speed, SLIP_SPEED_FRACTION, speed),
-                "min_stick": (min_stick, MIN_STICK_PERIODS, period),
-                "min_slip": (min_slip, MIN_SLIP_PERIODS, period),
-                "min_slip_distance": (min_slip_distance, MIN_SLIP_BASES, result.scene.base)}
-    values = {}
-    for name, (given, fraction, scale) in defaults.items():
-        if given is None:
-            if scale is None:
-                raise SceneError(f"`{name}` must be given for a run without a spring drive")
-            given = fraction * scale
-        if not math.isfinite(given) or given < 0:
-            raise SceneError(f"`{name}` must be a finite number >= 0, got {given!r}")
-        values[name] = float(given)
-    if values["slip_speed"] <= values["stick_speed"]:
-        raise SceneError(f"`slip_speed` ({values['slip_speed']!r}) must be > "
-                         f"`stick_speed` ({values['stick_speed']!r})")
+    values = _thresholds(result, stick_speed, slip_speed, min_stick, min_slip, min_slip_distance)
+    speed, _ = _drive_scales(result)
     t, v, x, force = (np.asarray(a, dtype=float) for a in (result.t, result.v, result.x,
                                                              result.drive_force))
     if len(t) < 2:
@@ -203,6 +307,30 @@ def event_statistics(events: list[Event]) -> dict:
     variation (std / mean) of the intervals between successive ``t_slip``
     (0 for perfectly periodic stick–slip). Standard deviations use ddof=1;
     quantities with too few events are NaN.
+
+    Parameters
+    ----------
+    events : list of Event
+        The events of one run, in time order (:func:`~asperity2d.stick_slip_events`).
+
+    Returns
+    -------
+    dict
+        The keys above, each a float (``count``: an int); SI units.
+
+    See Also
+    --------
+    asperity2d.stick_slip_events : the events.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> result = a.simulate(a.make_scene(lower_count=4, upper_count=2))
+    >>> stats = a.event_statistics(a.stick_slip_events(result))
+    >>> stats["count"], f"{stats['force_drop_mean'] * 1e3:.3g} mN"
+    (2, '9.21 mN')
+    >>> stats["regularity"]  # two events make one interval: no spread to measure
+    nan
     """
     def mean_std(values):
         a = np.asarray(values, dtype=float)
@@ -230,17 +358,42 @@ def breakaway_force(result, *, stick_speed: float | None = None, slip_speed: flo
     """The first breakaway: drive force (N) at the first stick-to-slip transition of a
     spring-driven run.
 
-    The keyword arguments are those of :func:`stick_slip_events`. A free
+    A free
     slider under load L on 45° flanks and regular spacing breaks away at the
     quasi-static L tan(45° + atan mu_s). On Ooten's fixed track the first
     breakaway is the front tip entering the surface alone, the same for every
-    spacing: see :func:`peak_stick_force` and :func:`mean_stick_force` for the
+    spacing: see :func:`~asperity2d.peak_stick_force` and :func:`~asperity2d.mean_stick_force` for the
     engaged slider.
+
+    Parameters
+    ----------
+    result : Result
+        A spring-driven run (``make_scene(drive="spring")``, the default).
+    stick_speed, slip_speed, min_stick, min_slip, min_slip_distance : float, optional
+        The event thresholds (m/s, s, m) of :func:`~asperity2d.stick_slip_events`, with its defaults.
+
+    Returns
+    -------
+    float
+        The drive force (N) at the first stick-to-slip transition.
 
     Raises
     ------
     SceneError
         The run is not spring-driven, or never breaks away (named `result`).
+
+    See Also
+    --------
+    asperity2d.peak_stick_force : the largest force at a transition (the engaged slider).
+    asperity2d.mean_stick_force : their mean.
+    asperity2d.critical_force : the smallest constant force that carries the slider across.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> result = a.simulate(a.make_scene(lower_count=4, upper_count=2))
+    >>> f"{a.breakaway_force(result) * 1e3:.3g} mN"
+    '6.33 mN'
     """
     return _spring_events(result, stick_speed, slip_speed, min_stick, min_slip, min_slip_distance)[0].force_peak
 
@@ -252,6 +405,15 @@ def _spring_events(result, stick_speed, slip_speed, min_stick, min_slip, min_sli
                                min_stick=min_stick, min_slip=min_slip,
                                min_slip_distance=min_slip_distance)
     if not events:
+        small = stick_slip_events(result, stick_speed=stick_speed, slip_speed=slip_speed,
+                                  min_stick=min_stick, min_slip=min_slip, min_slip_distance=0.0)
+        if small:
+            limit = _thresholds(result, stick_speed, slip_speed, min_stick, min_slip,
+                                min_slip_distance)["min_slip_distance"]
+            longest = max(e.slip_distance for e in small)
+            raise SceneError(f"`result` has {len(small)} stick-to-slip transition(s), every one moving the "
+                             f"slider less than `min_slip_distance` = {limit:.3g} m (the longest "
+                             f"{longest:.3g} m): pass a smaller `min_slip_distance` to count them")
         raise SceneError("`result` has no stick-to-slip transition (the slider never broke away)")
     return events
 
@@ -262,11 +424,48 @@ def peak_stick_force(result, *, stick_speed: float | None = None, slip_speed: fl
     """Largest drive force (N) at a stick-to-slip transition over the run: the force that
     breaks the slider loose at its worst position on the surface.
 
-    On Ooten's fixed track the first breakaway (:func:`breakaway_force`)
+    On Ooten's fixed track the first breakaway (:func:`~asperity2d.breakaway_force`)
     happens while only the front tip has entered the surface; this is the
     measure of the engaged slider. On a regular surface all n tips meet their
     lower asperities at once and it is the quasi-static flank law for all of
-    them, n k delta tan(theta + atan mu_s). Keywords as :func:`stick_slip_events`.
+    them, n k delta tan(theta + atan mu_s).
+
+    Parameters
+    ----------
+    result : Result
+        A spring-driven run (``make_scene(drive="spring")``, the default).
+    stick_speed, slip_speed, min_stick, min_slip, min_slip_distance : float, optional
+        The event thresholds (m/s, s, m) of :func:`~asperity2d.stick_slip_events`, with its defaults.
+
+    Returns
+    -------
+    float
+        The largest drive force (N) at a stick-to-slip transition.
+
+    Raises
+    ------
+    SceneError
+        The run is not spring-driven, or never breaks away (named `result`).
+
+    See Also
+    --------
+    asperity2d.breakaway_force : the first transition only.
+    asperity2d.mean_stick_force : the mean over the transitions.
+
+    Examples
+    --------
+    On a regular surface the peak is, within 1 %, the flank law for both tips at once:
+
+    >>> import math
+    >>> import asperity2d as a
+    >>> scene = a.make_scene(lower_count=4, upper_count=2)
+    >>> result = a.simulate(scene)
+    >>> f"{a.peak_stick_force(result) * 1e3:.3g} mN"
+    '17.2 mN'
+    >>> flank = math.tan(math.radians(45) + math.atan(scene.contact.mu_static))
+    >>> law = scene.slider.count * scene.lower.stiffness[0] * scene.slider.interference * flank
+    >>> f"{law * 1e3:.3g} mN"
+    '17.3 mN'
     """
     events = _spring_events(result, stick_speed, slip_speed, min_stick, min_slip, min_slip_distance)
     return max(e.force_peak for e in events)
@@ -276,7 +475,39 @@ def mean_stick_force(result, *, stick_speed: float | None = None, slip_speed: fl
                      min_stick: float | None = None, min_slip: float | None = None,
                     min_slip_distance: float | None = None) -> float:
     """Mean drive force (N) at the stick-to-slip transitions of the run: the typical force
-    at which the slider breaks loose over a pass. Keywords as :func:`stick_slip_events`."""
+    at which the slider breaks loose over a pass.
+
+    Less sensitive than :func:`~asperity2d.peak_stick_force` to the one worst position of a pass (which
+    position a pass sticks at is chaotic), so it needs fewer seeds for a verdict.
+
+    Parameters
+    ----------
+    result : Result
+        A spring-driven run (``make_scene(drive="spring")``, the default).
+    stick_speed, slip_speed, min_stick, min_slip, min_slip_distance : float, optional
+        The event thresholds (m/s, s, m) of :func:`~asperity2d.stick_slip_events`, with its defaults.
+
+    Returns
+    -------
+    float
+        The mean drive force (N) at the stick-to-slip transitions.
+
+    Raises
+    ------
+    SceneError
+        The run is not spring-driven, or never breaks away (named `result`).
+
+    See Also
+    --------
+    asperity2d.peak_stick_force, asperity2d.breakaway_force, asperity2d.stick_slip_events
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> result = a.simulate(a.make_scene(lower_count=4, upper_count=2))
+    >>> f"{a.mean_stick_force(result) * 1e3:.3g} mN"
+    '11.8 mN'
+    """
     events = _spring_events(result, stick_speed, slip_speed, min_stick, min_slip, min_slip_distance)
     return float(np.mean([e.force_peak for e in events]))
 
@@ -290,7 +521,42 @@ def friction_traces(result, *, bins: int = 40, dynamic_range: float = 1e4) -> di
     velocities from ``dynamic_range`` below the fastest one up to it
     (log-spaced bins; slower samples are left out): ``velocity_centers``
     (m/s), ``friction_mean`` (N) and ``bin_count``.
+
+    Parameters
+    ----------
+    result : Result
+        Any run.
+    bins : int, default 40
+        Number of log-spaced velocity bins (empty bins are dropped).
+    dynamic_range : float, default 1e4
+        Ratio of the fastest velocity to the slowest one binned (> 1).
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        The arrays above.
+
+    Raises
+    ------
+    SceneError
+        ``bins`` < 1 or ``dynamic_range`` <= 1.
+
+    See Also
+    --------
+    asperity2d.stick_slip_events : the same run cut into cycles.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> result = a.simulate(a.make_scene(lower_count=4, upper_count=2))
+    >>> traces = a.friction_traces(result, bins=8)
+    >>> sorted(traces)  # doctest: +NORMALIZE_WHITESPACE
+    ['bin_count', 'displacement', 'drive_force', 'friction_force', 'friction_mean', 'tangential_force',
+     'time', 'velocity', 'velocity_centers']
+    >>> len(traces["velocity_centers"]) <= 8
+    True
     """
+    _asperity_run(result)
     if int(bins) < 1:
         raise SceneError(f"`bins` must be >= 1, got {bins!r}")
     x, v = np.asarray(result.x, dtype=float), np.asarray(result.v, dtype=float)
@@ -402,9 +668,10 @@ class ContactStates:
 def contact_states(result, *, stick_speed: float | None = None) -> ContactStates:
     """Separated / sliding / sticking time fractions, hops and touching tips of an asperity run.
 
-    ``stick_speed`` (m/s) defaults to 0.5 x the drive velocity (as :func:`stick_slip_events`); a
+    ``stick_speed`` (m/s) defaults to 0.5 x the drive velocity (as :func:`~asperity2d.stick_slip_events`); a
     constant-force run needs it given.
     """
+    _asperity_run(result)
     t = np.asarray(result.t, dtype=float)
     if t.size < 2:
         raise SceneError(f"`result` must have at least 2 samples, got {t.size}")

@@ -1,6 +1,6 @@
 """Scene builders: named physical parameters in, a validated :class:`~asperity2d.Scene` out.
 
-:func:`make_scene` is a pure function of its arguments: random spacings and
+:func:`~asperity2d.make_scene` is a pure function of its arguments: random spacings and
 random heights are reproducible from ``seed`` (each surface gets independent
 streams derived from it with ``numpy.random.SeedSequence``: the spacings from
 ``generate_state(2)`` as always, the heights from its two spawned children).
@@ -13,7 +13,7 @@ is its dict; Ooten's fixed track comes from
 use, so ``make_scene()`` builds ``Scene()``.
 Every argument is checked (type, finiteness, range) before any arithmetic,
 whether or not the chosen drive or spacing uses it; an unknown one raises
-:class:`SceneError` with the closest known name, and two that contradict each
+:class:`~asperity2d.SceneError` with the closest known name, and two that contradict each
 other (``mu`` with ``mu_static``) are refused.
 """
 
@@ -225,6 +225,12 @@ def make_scene(*, spacing: str = "regular", seed: int = 0, profile: str = "full"
     SceneError
         An unknown, mistyped, out-of-range or contradictory parameter, named.
 
+    See Also
+    --------
+    asperity2d.simulate : runs the scene.
+    asperity2d.Scene : what it returns; change a part with :func:`dataclasses.replace`.
+    asperity2d.surface.self_affine_profile : a rough surface for ``lower_surface=``.
+
     Notes
     -----
     Rough surfaces: ``height_std`` (m; ``lower_height_std`` / ``upper_height_std`` override
@@ -245,6 +251,35 @@ def make_scene(*, spacing: str = "regular", seed: int = 0, profile: str = "full"
     and ``density`` (rho b^2 h / 3). With a profile surface, a fixed track's
     ``interference`` defaults to a quarter of the median lower height, below
     the highest lower tip.
+
+    Examples
+    --------
+    Ooten's set-up, made small for a quick run:
+
+    >>> import asperity2d as a
+    >>> scene = a.make_scene(lower_count=4, upper_count=2)
+    >>> scene.name, scene.lower.count, scene.slider.count
+    ('regular-full-spring-fixed-seed0', 4, 2)
+
+    Random spacing (one surface per seed) and the free slider under a 5 mN load:
+
+    >>> a.make_scene(spacing="random", seed=3, lower_count=4, upper_count=2, track="free",
+    ...              normal_load=5e-3).name
+    'random-full-spring-free-seed3'
+
+    A rough lower surface: its summits become the asperities:
+
+    >>> from asperity2d.surface import self_affine_profile
+    >>> profile = self_affine_profile(n=512, length=20e-6, rms_height=0.2e-6, hurst=0.8, seed=1)
+    >>> a.make_scene(lower_surface=profile, upper_count=2).lower.count
+    16
+
+    A misspelt parameter is one line, with the likely one:
+
+    >>> a.make_scene(lower_cont=4)
+    Traceback (most recent call last):
+    ...
+    asperity2d.errors.SceneError: unknown scene parameter `lower_cont` (did you mean `lower_count`?)
     """
     unknown = sorted(set(overrides) - set(DEFAULTS), key=str)
     if unknown:

@@ -33,7 +33,7 @@ import math
 import warnings
 from dataclasses import dataclass
 
-from ._validate import check_choice, check_int, check_positive
+from ._validate import check_choice, check_int, check_positive, check_tolerance
 from .errors import SceneError
 from .scene import ConstantForce, Scene
 from .run import MAX_STEPS, Run, default_dt, default_duration, default_stops
@@ -86,7 +86,7 @@ DT_FRACTION = {"rest": 0.5, "entry": 0.5, "run-up": 0.25}
 
 
 def measure_dt(scene: Scene, start: str) -> float:
-    """The step (s) :func:`critical_force` uses from ``start`` when given none."""
+    """The step (s) :func:`~asperity2d.critical_force` uses from ``start`` when given none."""
     check_choice("start", start, STARTS)
     return DT_FRACTION[start] * default_dt(scene)
 
@@ -107,7 +107,37 @@ class CriticalForce:
     stopping)`` force when passing is not monotone in the force (a force above
     ``passes`` stopped), else None. ``checked`` is the relative window below
     and above ``passes`` that the bracket check scanned at ``SCAN_STEP``;
-    ``tried`` every (force, passed) pair, in the order run.
+    ``tried`` every (force, passed) pair, in the order run. ``dt`` is the step every run used (s).
+
+    Attributes
+    ----------
+    stops, passes : float
+        The bracket (N): the largest force that stopped, the smallest that passed.
+    runs : int
+        Simulations used.
+    start : {"rest", "entry", "run-up"}
+        How each run began.
+    band : tuple of float or None
+        ``(lowest passing, highest stopping)`` force (N) when passing is not monotone.
+    checked : float
+        Relative window scanned around ``passes``.
+    tried : tuple of (float, bool)
+        Every force tried (N) and whether it passed.
+    dt : float
+        The step every run used (s).
+
+    See Also
+    --------
+    asperity2d.critical_force_bracket : makes one.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> bracket = a.critical_force_bracket(a.make_scene(lower_count=4, upper_count=2))
+    >>> f"{bracket.stops * 1e3:.4g} mN < F_c <= {bracket.passes * 1e3:.4g} mN"
+    '7.59 mN < F_c <= 7.607 mN'
+    >>> bracket.monotone, bracket.runs
+    (True, 20)
     """
 
     stops: float
@@ -117,6 +147,7 @@ class CriticalForce:
     band: tuple[float, float] | None = None
     checked: float = 0.0
     tried: tuple[tuple[float, bool], ...] = ()
+    dt: float = math.nan
 
     @property
     def value(self) -> float:
@@ -204,7 +235,7 @@ def smallest_passing(test, estimate: float, *, rel_tol: float = REL_TOL, scan_st
        upper end, down to ``window`` below it; if one passes, bisect again below the lowest
        such force and check below that. Then try as many above it, for the band.
 
-    ``test`` is any predicate of a force (the simulations of :func:`critical_force_bracket`,
+    ``test`` is any predicate of a force (the simulations of :func:`~asperity2d.critical_force_bracket`,
     or a toy with a known answer). Returns ``(stops, passes, band, tried)``: the final
     bracket, ``(lowest passing, highest stopping)`` if some force above ``passes`` stopped
     (else None), and every ``(force, passed)`` pair in the order tried.
@@ -277,18 +308,59 @@ def critical_force_bracket(scene: Scene, *, start: str = "rest", rel_tol: float 
     ... 10 % below and above it (``smallest_passing``): with inertia
     passing is not always monotone in the force, and a smaller force that
     passes moves the search there. ``band`` reports the forces with mixed
-    outcomes. Raises :class:`SceneError` if more than ``max_runs`` runs are
-    needed. ``dt`` (s) defaults to ``measure_dt`` (half the simulation's
+    outcomes. Raises :class:`~asperity2d.SceneError` if more than ``max_runs`` runs are
+    needed. ``dt`` (s) defaults to :func:`measure_dt` (half the simulation's
     default step from rest, a quarter with a run-up: converged to 0.3 %);
     ``iterations`` and ``max_steps`` (per run) are those of
     :func:`asperity2d.simulate`.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene; its drive is replaced by constant forces.
+    start : {"rest", "entry", "run-up"}, default "rest"
+        How each run begins (see :func:`~asperity2d.critical_force`).
+    rel_tol : float, default 0.0025
+        Relative width of the bracket, in (0, 1).
+    max_runs : int, default 80
+        Most simulations allowed (>= 2).
+    dt : float, optional
+        Step (s); default half the simulation's default step from rest, a quarter with a
+        run-up.
+    iterations : int, default 20
+        pymunk solver iterations.
+    max_steps : int, optional
+        Step budget of each run.
+
+    Returns
+    -------
+    CriticalForce
+        The bracket, the runs used and every force tried.
+
+    Raises
+    ------
+    SceneError
+        A bad parameter (named), or more than ``max_runs`` runs needed.
+
+    See Also
+    --------
+    asperity2d.critical_force : the value alone, warning when passing is not monotone.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> bracket = a.critical_force_bracket(a.make_scene(lower_count=4, upper_count=2))
+    >>> f"{bracket.value * 1e3:.4g} mN, {bracket.relative_width:.1%} wide"
+    '7.607 mN, 0.2% wide'
     """
     if not isinstance(scene, Scene):
         raise SceneError(f"`scene` must be a Scene, got {type(scene).__name__}")
-    rel_tol = check_positive("rel_tol", rel_tol)
-    if rel_tol >= 1:
-        raise SceneError(f"`rel_tol` must be < 1, got {rel_tol!r}")
+    rel_tol = check_tolerance("rel_tol", rel_tol)
     max_runs = check_int("max_runs", max_runs, minimum=2)
+    halvings = math.ceil(math.log2(1.0 / rel_tol))  # bisections from a factor-2 bracket at least
+    if halvings > max_runs:
+        raise SceneError(f"`rel_tol` = {rel_tol:g} needs at least {halvings} runs to bisect, more than "
+                         f"`max_runs` = {max_runs}: raise one or the other")
     check_choice("start", start, STARTS)
     base = settled_run(scene, start=start, dt=measure_dt(scene, start) if dt is None else dt,
                        iterations=iterations, max_steps=max_steps)
@@ -304,7 +376,7 @@ def critical_force_bracket(scene: Scene, *, start: str = "rest", rel_tol: float 
     lo, hi, band, tried = smallest_passing(test, flank_estimate(scene), rel_tol=rel_tol,
                                            first=FIRST_POWER[scene.slider.track, start])
     return CriticalForce(stops=lo, passes=hi, runs=runs, start=start, band=band, checked=SCAN_WINDOW,
-                         tried=tuple(tried))
+                         tried=tuple(tried), dt=float(base.dt))
 
 
 def critical_force(scene: Scene, *, start: str = "rest", rel_tol: float = REL_TOL, max_runs: int = 80,
@@ -319,8 +391,59 @@ def critical_force(scene: Scene, *, start: str = "rest", rel_tol: float = REL_TO
     ``rel_tol`` (default 0.25 %), each stopped as soon as the slider is stuck or
     has passed, then checked 2-10 % below and above. When passing is not
     monotone in the force (some force above the returned one stops) it warns
-    with ``NonMonotoneWarning``, naming the band; see
-    :func:`critical_force_bracket` for the record.
+    with :class:`NonMonotoneWarning`, naming the band; see
+    :func:`~asperity2d.critical_force_bracket` for the record.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene (:func:`~asperity2d.make_scene`); its drive is replaced by constant forces, so a
+        spring-driven scene gives the same value as its ``drive="force"`` twin.
+    start : {"rest", "entry", "run-up"}, default "rest"
+        How each run begins (above).
+    rel_tol : float, default 0.0025
+        Relative width of the bisection bracket, in (0, 1).
+    max_runs : int, default 80
+        Most simulations allowed (>= 2).
+    dt : float, optional
+        Step (s); default half the simulation's default step from rest, a quarter with a
+        run-up.
+    iterations : int, default 20
+        pymunk solver iterations.
+    max_steps : int, optional
+        Step budget of each run.
+
+    Returns
+    -------
+    float
+        The smallest force seen to pass (N).
+
+    Raises
+    ------
+    SceneError
+        A bad parameter (named), or more than ``max_runs`` runs needed.
+
+    Warns
+    -----
+    NonMonotoneWarning
+        Some force above the returned one stopped.
+
+    See Also
+    --------
+    asperity2d.critical_force_bracket : the bracket and every force tried.
+    asperity2d.peak_stick_force, asperity2d.mean_stick_force : the spring-driven measures.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> scene = a.make_scene(lower_count=4, upper_count=2, drive="force")
+    >>> f"{a.critical_force(scene) * 1e3:.3g} mN"
+    '7.61 mN'
+
+    From rest against the first flank only, the entry force is smaller:
+
+    >>> f"{a.critical_force(scene, start='entry') * 1e3:.3g} mN"
+    '3.83 mN'
     """
     bracket = critical_force_bracket(scene, start=start, rel_tol=rel_tol, max_runs=max_runs, dt=dt,
                                      iterations=iterations, max_steps=max_steps)

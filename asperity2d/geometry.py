@@ -57,6 +57,21 @@ class Profile:
         Height from base to tip (m). See :meth:`from_angle` to give the flank
         angle instead (angle and height are separate parameters: Ooten's
         1.5 µm tip on a 1 µm base is inconsistent with 45° flanks).
+
+    Raises
+    ------
+    SceneError
+        An unknown ``kind``, or a ``base`` or ``height`` that is not > 0.
+
+    See Also
+    --------
+    asperity2d.make_scene : ``profile=``, ``base=``, ``flank_angle=`` build it for you.
+
+    Examples
+    --------
+    >>> from asperity2d import Profile
+    >>> Profile.from_angle("full", base=1e-6, flank_angle=45)
+    Profile(kind='full', base=1e-06, height=4.999999999999999e-07)
     """
 
     kind: str = "full"
@@ -201,7 +216,30 @@ def _per_tip(runs, count: int) -> np.ndarray:
 
 @dataclass(frozen=True)
 class RegularSpacing:
-    """``count`` asperity tips at ``offset + i * pitch`` (m)."""
+    """``count`` asperity tips at ``offset + i * pitch`` (m).
+
+    Parameters
+    ----------
+    count : int, default 16
+        Number of asperities.
+    pitch : float, default 1.25e-6
+        Distance between neighbouring tips (m).
+    offset : float, default 0.0
+        Position of the first tip (m).
+
+    See Also
+    --------
+    asperity2d.RandomSpacing
+    asperity2d.make_scene : ``spacing="regular"`` with ``lower_count``, ``pitch``, ...
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from asperity2d import RegularSpacing
+    >>> spacing = RegularSpacing(count=4)
+    >>> np.round(spacing.tips(0.5e-6, 0.5e-6) * 1e6, 3)  # tip positions, um
+    array([0.  , 1.25, 2.5 , 3.75])
+    """
 
     count: int = 16
     pitch: float = 1.25e-6
@@ -230,6 +268,31 @@ class RandomSpacing:
     Consecutive bases are ``min_gap + U * 2 * (mean_pitch - width - min_gap)``
     apart (``width`` the base width, ``U`` uniform on [0, 1)): the pitch
     averages ``mean_pitch`` and bases never overlap.
+
+    Parameters
+    ----------
+    count : int, default 16
+        Number of asperities.
+    mean_pitch : float, default 1.25e-6
+        Mean distance between neighbouring tips (m).
+    min_gap : float, default 0.0
+        Smallest gap between neighbouring bases (m).
+    seed : int, default 0
+        Seed of the gaps (the same seed, the same surface).
+    offset : float, default 0.0
+        Position of the first tip (m).
+
+    See Also
+    --------
+    asperity2d.RegularSpacing
+    asperity2d.make_scene : ``spacing="random"`` and ``seed=`` build it for you.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from asperity2d import RandomSpacing
+    >>> np.round(RandomSpacing(count=4, seed=1).tips(0.5e-6, 0.5e-6) * 1e6, 3)  # um
+    array([0.   , 1.256, 2.731, 3.803])
     """
 
     count: int = 16

@@ -1,6 +1,6 @@
 """The outcome of one asperity run: SI time series plus the metadata to reproduce it.
 
-A :class:`Result` is plain NumPy arrays in SI units on a small object that can
+A :class:`~asperity2d.Result` is plain NumPy arrays in SI units on a small object that can
 save and load itself (one ``.npz`` file holding the arrays and a JSON metadata
 record: the scene, the run settings, package and pymunk versions), so a run is
 simulated once and then re-analysed or re-rendered any number of times.
@@ -88,6 +88,30 @@ class Result:
         Run settings and diagnostics: ``dt``, ``record_every``, ``status``,
         ``message``, ``max_overlap_fraction``, ``max_track_drift_fraction``,
         ``units`` (internal scale), versions.
+
+    See Also
+    --------
+    asperity2d.simulate : makes one.
+    asperity2d.load : reads a saved one.
+    asperity2d.stick_slip_events : what to do with one.
+    asperity2d.peak_stick_force
+    asperity2d.render
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> result = a.simulate(a.make_scene(lower_count=4, upper_count=2))
+    >>> result.status, result.success, len(result)
+    ('passed', True, 3731)
+    >>> f"slider moved {(result.x[-1] - result.x[0]) * 1e6:.3g} um in {result.t[-1] * 1e9:.3g} ns"
+    'slider moved 6.76 um in 412 ns'
+    >>> result.lower_dy.shape  # one row per lower asperity
+    (4, 3731)
+
+    Saved as ``.npz`` (read back by :func:`asperity2d.load`) or exported for MATLAB:
+
+    >>> result.export("run.mat").name
+    'run.mat'
     """
 
     t: np.ndarray
@@ -204,7 +228,37 @@ class Result:
                         format=FORMAT)
 
     def export(self, path: str | os.PathLike) -> Path:
-        """Export the slider time series as ``.csv`` or MATLAB ``.mat`` (by extension)."""
+        """Export the slider time series as ``.csv`` or MATLAB ``.mat`` (by extension).
+
+        ``.mat`` holds every series of :class:`~asperity2d.Result` (SI; ``load("run.mat")`` in MATLAB gives
+        row vectors ``t``, ``x``, ``drive_force``, ... and the ``lower_*`` matrices) and a
+        ``metadata`` JSON string; ``.csv`` the slider's eleven series, one column each, with a
+        header line.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            Ending in ``.mat`` or ``.csv``.
+
+        Returns
+        -------
+        pathlib.Path
+            The path written (atomically).
+
+        Raises
+        ------
+        SceneError
+            Another extension.
+
+        Examples
+        --------
+        >>> import scipy.io
+        >>> import asperity2d as a
+        >>> result = a.simulate(a.make_scene(lower_count=4, upper_count=2))
+        >>> path = result.export("run.mat")
+        >>> scipy.io.loadmat(path)["drive_force"].shape
+        (1, 3731)
+        """
         path = Path(path)
         suffix = path.suffix.lower()
         if suffix == ".csv":
@@ -229,7 +283,7 @@ class Result:
 
 
 def load(path: str | os.PathLike) -> Result:
-    """Read a :class:`Result` written by :meth:`Result.save` (this release's ``FORMAT``, or
+    """Read a :class:`~asperity2d.Result` written by :meth:`Result.save` (this release's :data:`FORMAT`, or
     the previous release's untagged file).
 
     A file that is not one (missing, empty, foreign -- a belt result included --, truncated,
@@ -254,8 +308,21 @@ def load(path: str | os.PathLike) -> Result:
         if name != "drive_x" and not np.all(np.isfinite(arrays[name])):
             raise FileError("path", path, f"is damaged or not {kind}",
                             f"array {name!r} holds non-finite values (NaN or infinity)")
+    t = arrays["t"]
+    if t.size > 1 and np.any(np.diff(t) < 0):
+        at = int(np.argmax(np.diff(t) < 0))
+        raise FileError("path", path, f"is damaged or not {kind}",
+                        f"its time runs backwards (t[{at + 1}] = {t[at + 1]:.6g} s < t[{at}] = {t[at]:.6g} s)")
+    counts = arrays["contact_count"]
+    if np.any(counts < 0) or np.any(counts != np.floor(counts)):
+        raise FileError("path", path, f"is damaged or not {kind}",
+                        "array 'contact_count' holds negative or fractional counts")
     try:
         scene = Scene.from_dict(meta.pop("scene"))
     except Exception as exc:  # noqa: BLE001 - any malformed record; the file is not ours to trust
         raise FileError("path", path, f"is not {kind}", f"its scene record is invalid: {exc}") from None
+    rows = {arrays[name].shape[0] for name in LOWER_SERIES}
+    if rows != {scene.lower.count}:
+        raise FileError("path", path, f"is not {kind}", f"its lower arrays have {sorted(rows)} rows for "
+                        f"the scene's {scene.lower.count} lower asperities")
     return Result(**arrays, scene=scene, meta=meta)

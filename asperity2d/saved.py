@@ -1,62 +1,204 @@
-"""Saved results of either kind, read by their format tag: :func:`load` (``asperity2d.load``).
+"""Saved results of every kind, read by their format tag: :func:`load` (``asperity2d.load``).
 
-A record streamed to disk as its run went (a directory, ``asperity2d.streamed``) is an
-asperity run too, read lazily. An asperity run (:class:`asperity2d.result.Result`,
-``"asperity2d.result/2"``) and a belt chain
-(:class:`asperity2d.belt.BeltResult`, ``"asperity2d.belt-result/2"``) share one result protocol
-and one file layout: an ``.npz`` of arrays plus a JSON ``metadata`` entry carrying the tag. The
-previous release wrote no tag; its files are told apart by their metadata (a ``scene`` record or
-a ``chain`` record) and still load.
+Every kind of result is one entry of :data:`RESULT_KINDS` (a :class:`ResultKind`): its format
+tag, its class, its loader, its exporter and the renderers that draw it. :func:`load` reads a
+file's tag and calls that kind's loader; the protocol tests run over every entry, so a kind that
+is registered is a kind that is tested. The kinds of this release:
+
+============  ======================================  ======================================
+A record streamed to disk as its run went (a directory, :mod:`asperity2d.streamed`) is an
+asperity run too, read lazily. The previous release wrote no tag; its files are told apart by
+their metadata's records (a ``scene``; a ``chain`` and a ``normal``; a ``chain``) and still load.
 """
 
 from __future__ import annotations
 
 import os
+from dataclasses import dataclass, field
+from typing import Callable
 
 from ._io import FileError, load_npz
+from .errors import SceneError
 
-#: Format tag -> kind of result; the untagged files of the previous release by their record.
-KINDS = {"asperity2d.result/2": "asperity", "asperity2d.belt-result/2": "belt"}
-_UNTAGGED = {"scene": "asperity", "chain": "belt"}
+
+@dataclass(frozen=True)
+class ResultKind:
+    """One kind of result: what a saved file of it is, and how to read, export and draw it.
+
+    The contract an entry of :data:`RESULT_KINDS` keeps (``register`` checks what it can):
+
+    1. ``name`` is unique, and ``tag`` (``"owner.kind/version"``) is unique; the result's
+       ``save(path)`` writes an ``.npz`` whose JSON metadata carries ``format = tag``.
+    2. ``cls`` follows the result protocol: ``kind`` (the renderer family, ``family`` here),
+       ``status``, ``message``, ``success``, ``summary()``, ``save(path)``, ``export(path)``.
+    3. ``load(path)`` returns a ``cls`` with every array and record ``save`` wrote (equal to the
+       bit), refuses a file of another tag, and raises :class:`~asperity2d._io.FileError` naming
+       ``path`` for anything it cannot use -- missing, foreign, damaged, arrays that do not fit
+       together, time running backwards, a malformed record: never a KeyError or a traceback.
+    4. ``export(result, path)`` writes to ``.mat`` every array ``save`` writes, by name; to
+       ``.csv`` every ``(T,)`` array as a column and, when ``csv_per_element``, every ``(n, T)``
+       array as columns ``name_1`` ... ``name_n`` (an asperity run's thousands of lower
+       asperities stay in the ``.mat``); another extension is a ``SceneError`` naming ``path``.
+    5. ``untagged`` names the metadata records that mark a file of the previous release (which
+       wrote no tag), or is empty; such files keep loading.
+    6. ``drawers`` maps a renderer (``"animation"``, ``"player"``, ``"plot"``, ``"sound"``) to
+       ``function(result, path, **options) -> path``; the renderers package registers its own
+       for a ``family`` (:func:`register_drawers`), and a kind from outside brings its own.
+    7. ``saved`` lists the arrays ``save`` writes (each ``(T,)`` or per element ``(n, T)``);
+       the protocol tests compare each one after a round trip.
+    """
+
+    name: str
+    tag: str
+    cls: type
+    load: Callable
+    export: Callable
+    family: str
+    saved: tuple
+    untagged: tuple = ()
+    csv_per_element: bool = True
+    drawers: dict = field(default_factory=dict, compare=False)
+
+
+#: Kind name -> :class:`ResultKind`, in registration order.
+RESULT_KINDS: dict[str, ResultKind] = {}
+
+
+def register(kind: ResultKind) -> ResultKind:
+    """Add ``kind`` to :data:`RESULT_KINDS` (its contract: :class:`ResultKind`); return it."""
+    if not isinstance(kind, ResultKind):
+        raise SceneError(f"`kind` must be a ResultKind, got {type(kind).__name__}")
+    for other in RESULT_KINDS.values():
+        if other.name != kind.name and other.tag == kind.tag:
+            raise SceneError(f"`kind.tag` {kind.tag!r} is already the tag of {other.name!r}")
+    if "/" not in kind.tag or not kind.tag.rpartition("/")[2].isdigit():
+        raise SceneError(f"`kind.tag` must be 'name/version', got {kind.tag!r}")
+    RESULT_KINDS[kind.name] = kind
+    return kind
+
+
+def register_drawers(family: str, drawers: dict) -> None:
+    """Give every registered kind of ``family`` the ``drawers`` (renderer -> function) it lacks."""
+    for kind in RESULT_KINDS.values():
+        if kind.family == family:
+            for renderer, draw in drawers.items():
+                kind.drawers.setdefault(renderer, draw)
+
+
+def kind_of_result(result) -> ResultKind | None:
+    """The registered kind of the object ``result`` (its class or nearest registered base), or None."""
+    for cls in type(result).__mro__:
+        for kind in RESULT_KINDS.values():
+            if kind.cls is cls:
+                return kind
+    return None
+
+
+def _builtin() -> None:
+    from .belt.contact_result import ContactResult, load_contact
+    from .belt.result import BeltResult, load as load_belt
+    from .result import LOWER_SERIES, SERIES, Result, load as load_asperity
+
+    register(ResultKind("asperity", "asperity2d.result/2", Result, load_asperity, Result.export, "asperity",
+                        SERIES + LOWER_SERIES, untagged=("scene",), csv_per_element=False))
+    register(ResultKind("belt", BeltResult.FORMAT, BeltResult, load_belt, BeltResult.export, "belt",
+                        BeltResult.SAVED, untagged=("chain",)))
+    register(ResultKind("belt-contact", ContactResult.FORMAT, ContactResult, load_contact, ContactResult.export,
+                        "belt", ContactResult.SAVED, untagged=("chain", "normal")))
+
+
+_builtin()
+
+_WHAT = "an asperity2d result file (" + ", ".join(RESULT_KINDS) + ")"
+
+
+def result_kind(path: str | os.PathLike) -> ResultKind:
+    """The :class:`ResultKind` of the file saved at ``path`` (only its metadata is read).
+
+    A file that is none raises :class:`~asperity2d._io.FileError` naming ``path``."""
+    _, meta = load_npz(path, (), kind=_WHAT)
+    tag = meta.get("format")
+    if tag is None:
+        # the previous release's files: the kind whose records are all there, the most specific first
+        for kind in sorted(RESULT_KINDS.values(), key=lambda k: -len(k.untagged)):
+            if kind.untagged and all(record in meta for record in kind.untagged):
+                return kind
+        raise FileError("path", path, f"is not {_WHAT}",
+                        "it has no format tag and no scene or chain record")
+    for kind in RESULT_KINDS.values():
+        if kind.tag == tag:
+            return kind
+    raise FileError("path", path, f"is not {_WHAT}",
+                    f"its format is {tag!r}, expected one of {', '.join(repr(k.tag) for k in RESULT_KINDS.values())}")
 
 
 def kind_of(path: str | os.PathLike) -> str:
-    """``"asperity"`` or ``"belt"``: the kind of result saved at ``path`` (only its metadata is
-    read). A file that is neither raises ``FileError`` naming ``path``."""
-    what = "an asperity2d result file (asperity run or belt chain)"
+    """The renderer family (``"asperity"`` or ``"belt"``) of the result saved at ``path``; a record
+    streamed to a directory is ``"asperity"``. :func:`result_kind` gives the full entry."""
     from .streamed import is_record
 
     if is_record(path):
         return "asperity"
-    _, meta = load_npz(path, (), kind=what)
-    tag = meta.get("format")
-    if tag is None:
-        kind = next((k for record, k in _UNTAGGED.items() if record in meta), None)
-        if kind is None:
-            raise FileError("path", path, f"is not {what}", "it has no format tag and no scene or chain record")
-        return kind
-    if tag not in KINDS:
-        raise FileError("path", path, f"is not {what}", f"its format is {tag!r}, expected one of "
-                        f"{', '.join(map(repr, KINDS))}")
-    return KINDS[tag]
+    return result_kind(path).family
 
 
 def load(path: str | os.PathLike):
-    """Read a result saved with ``save``: a :class:`~asperity2d.result.Result` or a
-    :class:`~asperity2d.belt.BeltResult`, chosen by the file's format tag; or a record streamed
-    to a directory (``simulate(..., record_to=path)``), read lazily.
+    """Read a result saved with ``save``, as the kind that was saved (:data:`RESULT_KINDS`,
+    chosen by the file's format tag) with every array and record: a
+    :class:`~asperity2d.result.Result`, a :class:`~asperity2d.belt.BeltResult` or a
+    :class:`~asperity2d.belt.ContactResult`; or a record streamed to a directory
+    (``simulate(..., record_to=path)``), read lazily.
 
-    A file that is neither (missing, empty, foreign, damaged, malformed) raises one
-    ``FileError`` (a ``SceneError``) naming ``path``.
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A ``.npz`` file written by a result's ``save``, or a directory
+        written by ``simulate(..., record_to=path)``.
+
+    Returns
+    -------
+    Result, BeltResult or ContactResult
+        The run as it was saved, every array bit for bit.
+
+    Raises
+    ------
+    FileError
+        A file that is neither (missing, empty, foreign, damaged, malformed), naming
+        ``path`` (a subclass of :class:`~asperity2d.SceneError`).
+
+    See Also
+    --------
+    asperity2d.Result.save : write a result; ``export`` for MATLAB (``.mat``) or CSV.
+    asperity2d.Result.export
+    asperity2d.render : draws a saved result without re-simulating.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import asperity2d as a
+    >>> result = a.simulate(a.make_scene(lower_count=4, upper_count=2))
+    >>> path = result.save("run.npz")
+    >>> again = a.load(path)
+    >>> again
+    Result(3731 samples, t_end=412.4 ns, status='passed')
+    >>> np.array_equal(again.x, result.x)
+    True
     """
-    if kind_of(path) == "belt":
-        from .belt.result import load as load_belt
-
-        return load_belt(path)
     from .streamed import is_record, load as load_streamed
 
     if is_record(path):
         return load_streamed(path)
-    from .result import load as load_asperity
+    return result_kind(path).load(path)
 
-    return load_asperity(path)
+
+def export(result, path: str | os.PathLike):
+    """Write every array of ``result`` (any registered kind) to ``path`` (``.csv`` or ``.mat``)."""
+    kind = kind_of_result(result)
+    if kind is None:
+        raise SceneError(f"`result` must be one of the result kinds ({', '.join(RESULT_KINDS)}), "
+                         f"got {type(result).__name__}")
+    return kind.export(result, path)
+
+
+__all__ = ["RESULT_KINDS", "ResultKind", "export", "kind_of", "kind_of_result", "load", "register",
+           "register_drawers", "result_kind"]

@@ -1,6 +1,6 @@
 """Scene specification: frozen, validated dataclasses in SI units.
 
-A :class:`Scene` is pure data; it round-trips through plain dicts (JSON,
+A :class:`~asperity2d.Scene` is pure data; it round-trips through plain dicts (JSON,
 TOML). :data:`OOTEN_DEFAULTS` holds Ooten's fixed track (the Working Model
 set-up of E. Ooten's thesis, see :data:`OOTEN_PARAMETERS`), the defaults of
 both these dataclasses and :func:`asperity2d.make_scene` (in
@@ -131,6 +131,28 @@ class LowerSurface(SurfaceGeometry):
     peak 1-peak 2, ..., peak n-wall; a scalar applies to all, 0 removes a
     link), with ``lateral_damping`` (N s/m) in parallel. Track travel limits
     do not apply to the lattice.
+
+    Each field is one of :func:`~asperity2d.make_scene`'s keywords (``lower_count``, ``stiffness``,
+    ``mass``, ``damping_ratio``, ...), with its unit and default in the parameter table.
+
+    Raises
+    ------
+    SceneError
+        A value out of range or of the wrong length, named.
+
+    See Also
+    --------
+    asperity2d.make_scene : builds one from named parameters.
+    asperity2d.Slider : the body above it.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> lower = a.make_scene(lower_count=4, upper_count=2).lower
+    >>> lower.count, lower.stiffness[0], lower.mass[0]  # N/m, kg: Ooten's Table 1
+    (4, 37200.0, 2.88e-16)
+    >>> f"{lower.damping[0]:.3g} N s/m"  # 0.1 of the critical damping 2 sqrt(k m)
+    '6.55e-07 N s/m'
     """
 
     profile: Profile = field(default_factory=lambda: _FULL)
@@ -206,6 +228,55 @@ class LowerSurface(SurfaceGeometry):
         return K
 
 
+#: NumPy's pairwise-summation block (``PW_BLOCKSIZE`` in its loops): a row longer than this is
+#: summed as two halves, each a multiple of 8 long; a block of 8..128 with eight accumulators.
+_PAIRWISE_BLOCK = 128
+
+
+def _meet(p, q):
+    """The level (1, 2, 3) at which accumulators ``p`` and ``q`` (0..7) are first added together in
+    NumPy's ``((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7))``."""
+    return np.where(p // 2 == q // 2, 1, np.where(p // 4 == q // 4, 2, 3))
+
+
+def gershgorin_rows(links) -> np.ndarray:
+    """Row sums of abs(K) for the tridiagonal stiffness matrix K of ``links`` (n + 1 springs, N/m),
+    in O(n) memory and time: the Gershgorin bound on its eigenvalues without the n x n matrix.
+
+    Bit-identical to ``np.abs(K).sum(axis=1)`` (the dense computation the scenes' time steps were
+    derived from, so no run's numbers change): a row holds three non-zero terms a, b, c (columns
+    i - 1, i, i + 1) and zeros, which add exactly, so NumPy's pairwise sum of the row is
+    (a + b) + c or a + (b + c) by where the three fall in its summation tree; this function
+    walks that tree for every row at once (the test compares it with the dense sum)."""
+    links = np.asarray(links, dtype=float).ravel()
+    n = links.size - 1
+    if n < 1:
+        return np.zeros(0)
+    a = np.abs(links[:-1])  # |K[i, i - 1]| (none on row 0)
+    b = np.abs(links[:-1] + links[1:])  # |K[i, i]|
+    c = np.abs(links[1:])  # |K[i, i + 1]| (none on row n - 1)
+    a[0] = c[-1] = 0.0  # fresh arrays (np.abs), so the links are not touched
+    left_first = np.ones(n, bool)  # (a + b) + c; else a + (b + c)
+    stack = [(0, n, np.arange(1, n - 1))]  # (first column, length, rows with all three terms)
+    while stack:
+        lo, size, rows = stack.pop()
+        if rows.size == 0 or size < 8:  # under 8: added in order, (a + b) + c
+            continue
+        if size > _PAIRWISE_BLOCK:
+            half = size // 2
+            half -= half % 8
+            split = lo + half
+            left_first[rows[rows == split]] = False  # {a} + {b, c}
+            stack.append((lo, half, rows[rows + 1 < split]))
+            stack.append((split, size - half, rows[rows - 1 >= split]))
+            continue
+        full = lo + size - size % 8  # columns from here on are added one by one after the tree
+        r = rows[rows + 1 < full]
+        pa, pb, pc = (r - 1 - lo) % 8, (r - lo) % 8, (r + 1 - lo) % 8
+        left_first[r] = _meet(pa, pb) < _meet(pb, pc)
+    return np.where(left_first, (a + b) + c, a + (b + c))
+
+
 @dataclass(frozen=True)
 class Slider(SurfaceGeometry):
     """The upper body carrying its own asperities, on a horizontal track.
@@ -216,7 +287,29 @@ class Slider(SurfaceGeometry):
     (with varied heights: the tallest lower summit; with equal ones, every
     lower tip). ``track="free"``: free to move vertically, pressed down by
     ``normal_load`` (N). ``shapes`` gives each upper asperity its own shape
-    (heights and levels measured downwards), as for :class:`LowerSurface`.
+    (heights and levels measured downwards), as for :class:`~asperity2d.LowerSurface`.
+
+    Each field is one of :func:`~asperity2d.make_scene`'s keywords (``upper_count``, ``slider_mass``,
+    ``track``, ``normal_load``, ``interference``, ...).
+
+    Raises
+    ------
+    SceneError
+        A value out of range, named.
+
+    See Also
+    --------
+    asperity2d.make_scene : builds one from named parameters.
+    asperity2d.LowerSurface : the surface below it.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> slider = a.make_scene(lower_count=4, upper_count=2, track="free").slider
+    >>> slider.count, slider.track, slider.normal_load  # N
+    (2, 'free', 0.01)
+    >>> f"interference {slider.interference * 1e9:.3g} nm"  # a quarter of the 500 nm height
+    'interference 125 nm'
     """
 
     _upper = True
@@ -254,7 +347,25 @@ class Slider(SurfaceGeometry):
 
 @dataclass(frozen=True)
 class ConstantForce:
-    """A constant horizontal force on the slider (N), as in Working Model."""
+    """A constant horizontal force on the slider (N), as in Working Model.
+
+    Parameters
+    ----------
+    force : float, default 0.02
+        The force (N); finite.
+
+    See Also
+    --------
+    asperity2d.SpringDrive : the other drive.
+    asperity2d.make_scene : ``drive="force", drive_force=...``.
+    asperity2d.critical_force : the smallest such force that carries the slider across.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> a.make_scene(drive="force", drive_force=0.01).drive
+    ConstantForce(force=0.01)
+    """
 
     force: float = OOTEN_DEFAULTS["drive_force"]
 
@@ -268,6 +379,32 @@ class SpringDrive:
 
     The pull is horizontal. The spring starts stretched to hold ``preload``
     (N, default 0: unstretched).
+
+    Parameters
+    ----------
+    stiffness : float, default 3720.0
+        Spring stiffness (N/m), > 0 (``drive_stiffness`` in :func:`~asperity2d.make_scene`).
+    velocity : float, default 20.0
+        Speed of the spring's far end (m/s), > 0 (``drive_velocity``).
+    damping : float, default 0.0
+        Parallel damper (N s/m), >= 0 (``drive_damping``).
+    preload : float, default 0.0
+        Initial spring force (N) (``drive_preload``).
+
+    See Also
+    --------
+    asperity2d.ConstantForce : the other drive.
+    asperity2d.stick_slip_events : what a spring drive makes.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> a.make_scene().drive
+    SpringDrive(stiffness=3720.0, velocity=20.0, damping=0.0, preload=0.0)
+    >>> a.SpringDrive(stiffness=-1.0)
+    Traceback (most recent call last):
+    ...
+    asperity2d.errors.SceneError: `drive_stiffness` must be > 0, got -1.0
     """
 
     stiffness: float = OOTEN_DEFAULTS["drive_stiffness"]
@@ -303,6 +440,38 @@ class Contact:
     normal relative speed after an impact to that before: 0 (the default) is
     a perfectly inelastic impact, which loses the normal part of the relative
     kinetic energy; 1 loses nothing.
+
+    Parameters
+    ----------
+    mu_static : float, default 0.3
+        Static friction coefficient, >= 0.
+    mu_kinetic : float, optional
+        Kinetic coefficient, <= ``mu_static`` (default two thirds of it).
+    slip_distance : float, optional
+        Slip (m) before a stuck contact drops to ``mu_kinetic``.
+    stick_speed : float, optional
+        Slip speed (m/s) below which a sliding contact sticks again.
+    restitution : float, default 0.0
+        Normal coefficient of restitution, in [0, 1].
+
+    Raises
+    ------
+    SceneError
+        A value out of range, or ``mu_kinetic > mu_static``.
+
+    See Also
+    --------
+    asperity2d.make_scene : ``mu_static=``, ``mu_kinetic=``, ``restitution=`` build it.
+
+    Examples
+    --------
+    >>> from asperity2d import Contact
+    >>> Contact(mu_static=0.3)
+    Contact(mu_static=0.3, mu_kinetic=0.2, slip_distance=None, stick_speed=None, restitution=0.0)
+    >>> Contact(mu_static=0.2, mu_kinetic=0.3)
+    Traceback (most recent call last):
+    ...
+    asperity2d.errors.SceneError: `mu_static` (0.2) must be >= `mu_kinetic` (0.3)
     """
 
     mu_static: float = OOTEN_DEFAULTS["mu_static"]
@@ -331,7 +500,41 @@ class Contact:
 
 @dataclass(frozen=True)
 class Scene:
-    """A complete asperity contact scene (SI units throughout)."""
+    """A complete asperity contact scene (SI units throughout).
+
+    Frozen: change a part with :func:`dataclasses.replace`. :func:`~asperity2d.make_scene` builds one
+    from named parameters; this class is for changing one part of a built scene.
+
+    Parameters
+    ----------
+    lower : LowerSurface
+        The lower asperities on their tracks.
+    slider : Slider
+        The upper body and its asperities.
+    drive : SpringDrive or ConstantForce
+        What pulls the slider.
+    contact : Contact
+        Friction at the asperity contacts.
+    gravity : float, default 0.0
+        Downward acceleration (m/s^2), >= 0.
+    name : str, default ""
+        A label (``make_scene`` names it by its parameters).
+
+    See Also
+    --------
+    asperity2d.make_scene, asperity2d.simulate
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> import asperity2d as a
+    >>> scene = a.make_scene(lower_count=4, upper_count=2)
+    >>> scene.name
+    'regular-full-spring-fixed-seed0'
+    >>> pushed = dataclasses.replace(scene, drive=a.ConstantForce(0.01))
+    >>> pushed.drive
+    ConstantForce(force=0.01)
+    """
 
     lower: LowerSurface = field(default_factory=LowerSurface)
     slider: Slider = field(default_factory=Slider)
@@ -413,8 +616,8 @@ class Scene:
         with np.errstate(over="ignore", divide="ignore"):
             freqs = {"lower": float(np.max(np.sqrt(k / m)))}
         if self.lower.is_lattice:
-            # Gershgorin bound on the lattice's highest horizontal mode.
-            row = np.abs(self.lower.lateral_stiffness_matrix()).sum(axis=1)
+            # Gershgorin bound on the lattice's highest horizontal mode, in O(n) memory
+            row = gershgorin_rows(self.lower.lateral_stiffness if self.lower.is_lattice else ())
             freqs["lattice"] = float(np.max(np.sqrt(row / m)))
         if isinstance(self.drive, SpringDrive):
             freqs["drive"] = math.sqrt(self.drive.stiffness / self.slider.mass)
@@ -441,7 +644,15 @@ class Scene:
 
     @classmethod
     def from_dict(cls, data: dict) -> "Scene":
-        return _from_plain(data)
+        """The scene :meth:`to_dict` wrote; a record that is not a scene's raises SceneError."""
+        if not isinstance(data, dict) or data.get("type") != cls.__name__:
+            raise SceneError(f"`scene` must be a scene record (a table with type = {cls.__name__!r}), "
+                             f"got {type(data).__name__}" + (f" of type {data.get('type')!r}"
+                                                             if isinstance(data, dict) else ""))
+        try:
+            return _from_plain(data)
+        except TypeError as exc:  # a missing or unknown field of a component
+            raise SceneError(f"`scene` record does not fit: {exc}") from None
 
 
 _KINDS = {"full": "full triangles", "half": "half triangles", "flat": "flat blocks"}

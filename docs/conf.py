@@ -46,12 +46,16 @@ extensions = [
     "sphinx_design",
     "sphinx_gallery.gen_gallery",
     "asperity_docs",  # docs/_ext/asperity_docs.py: the generated tables
+    "gallery",  # docs/_ext/gallery.py: each notebook's first cell (a scene script's options)
 ]
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 root_doc = "index"
 exclude_patterns = ["_build", "data/README.md", "auto_scenes/*.ipynb", "auto_scenes/*.py",
-                    "auto_scenes/*.zip", "auto_scenes/*.json", "auto_scenes/*.md5"]
+                    "auto_scenes/*.zip", "auto_scenes/*.json", "auto_scenes/*.md5",
+                    "auto_scenes/**/*.ipynb", "auto_scenes/**/*.py", "auto_scenes/**/*.zip",
+                    "auto_scenes/**/*.json", "auto_scenes/**/*.md5", "tutorial/*.ipynb", "tutorial/*.py",
+                    "tutorial/*.zip", "tutorial/*.json", "tutorial/*.md5", "tutorial_src/**"]
 myst_enable_extensions = ["colon_fence", "dollarmath", "deflist"]
 myst_heading_anchors = 3
 suppress_warnings = ["config.cache"]  # sphinx-gallery's callables in the config cannot be pickled
@@ -82,11 +86,14 @@ numpydoc_xref_aliases = asperity_docs.type_aliases()
 
 # -- the gallery of scene scripts ----------------------------------------------------------------
 sphinx_gallery_conf = {
-    "examples_dirs": str(ROOT / "scenes"),
-    "gallery_dirs": "auto_scenes",
+    # the scene scripts in sections (copied from scenes/ by gallery.stage()), and the tutorial
+    "examples_dirs": [gallery.stage().relative_to(DOCS).as_posix(), "tutorial_src"],
+    "gallery_dirs": ["auto_scenes", "tutorial"],
+    "subsection_order": gallery.subsection_order(),
+    "first_notebook_cell": gallery.FIRST_NOTEBOOK_CELL,
     "filename_pattern": os.environ.get("ASPERITY2D_DOCS_PATTERN", r".*\.py$"),  # every script, not only plot_*.py
     "ignore_pattern": r"(__init__|make_measured_profile)\.py$",  # scenes/data/ builds a data file
-    "within_subsection_order": "FileNameSortKey",
+    "within_subsection_order": gallery.ScriptOrder,
     "reset_argv": gallery.arguments,
     "image_scrapers": (gallery.scene_outputs,),
     "reset_modules": (gallery.reset,),

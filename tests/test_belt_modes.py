@@ -75,4 +75,4 @@ def test_save_load_and_export_roundtrip(tmp_path):
     assert back.chain.to_dict() == r.chain.to_dict()
     csv = r.export(tmp_path / "run.csv")
     table = np.loadtxt(csv, delimiter=",", skiprows=1)
-    assert table.shape == (r.t.size, 1 + 5 * 2 + 5)
+    assert table.shape == (r.t.size, 1 + 6 * 2 + 5)  # t; x, v, state, friction, spring, damper per mass; energies

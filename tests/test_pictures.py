@@ -81,6 +81,69 @@ def test_slow_factor_is_the_ratio_of_frame_steps(run):
         assert np.median(steps) == pytest.approx(plan.normal_step / factor, abs=sample)
 
 
+def test_main_job_slips_move_the_slider_less_than_a_pitch_per_frame():
+    """The main job's run (scenes/quickstart.py: the default scene, 120 frames): no frame inside a
+    slip moves the slider a pitch or more past the previous one -- the tips are seen to climb the
+    flanks. (Before, its largest slip had 4 frames, one a jump of 6.5 pitches.)"""
+    run = a.simulate(a.make_scene())
+    pitch = run.scene.lower.spacing.mean_pitch
+    plan = Movie(run).schedule  # render(run, "run.gif")'s own frames
+    assert len(plan) == 120 and plan.coarse_reason == ""
+    jumps = np.abs(np.diff(run.x[plan.index])) / pitch  # independent of the schedule's own record
+    np.testing.assert_allclose(jumps, plan.jumps[1:])
+    events = a.stick_slip_events(run)
+    largest = max(events, key=lambda e: e.slip_distance)
+    assert largest.slip_distance > 5 * pitch  # a slip over several asperities
+    for e in events:
+        # frames from the last one before the slip to the first one after it
+        inside = np.flatnonzero((plan.time > e.t_slip) & (plan.time <= e.t_end))
+        span = np.arange(max(inside[0] - 1, 0), min(inside[-1] + 2, len(plan)))
+        assert np.max(jumps[span[:-1]]) < 1.0, f"slip at {e.t_slip:.3e} s: a frame jumps {np.max(jumps[span[:-1]]):.2f} pitches"
+        assert len(inside) >= e.slip_distance / pitch  # at least a frame per pitch travelled
+        assert np.all(plan.slow[inside[:-1]] > 1)
+    # the frames are still recorded samples, in order
+    assert np.all(np.diff(plan.time) >= 0) and np.array_equal(plan.time, run.t[plan.index])
+
+
+def test_too_few_frames_for_a_slip_say_so_in_the_frame(run):
+    movie = Movie(run, frames=8)
+    plan = movie.schedule
+    assert plan.coarse_reason.startswith("8 frames are too few")
+    j = int(np.argmax(plan.jumps))
+    assert plan.jumps[j] > 1.0
+    for k in range(j + 1):
+        img = movie.frame(k)
+    assert movie.drawn["note"].startswith(f"moved {plan.jumps[j]:.1f} pitches since the last frame")
+    row = np.asarray(img)[HEADER:HEADER + 16, :300]
+    red = raster.RAMPS["slider_slip", "white"] + raster.LEVELS - 1  # the text colour's own entry
+    assert np.count_nonzero(row == red) > 20  # the note is written, in red
+
+
+def test_meter_marks_a_value_off_its_axis():
+    """The velocity meter's axis ends below the peak slip speed: the read-out says so and the
+    cursor's marker is an arrowhead on the plot's top edge, in the trace's colour."""
+    from asperity2d.renderers.meters import MeterPanel, asperity_meters
+
+    run = a.simulate(a.make_scene(lower_count=8))
+    meter = asperity_meters(run)[3]
+    assert meter.title == "slider velocity"
+    k = int(np.argmax(run.v))
+    assert run.v[k] > meter.limits[1]  # the robust axis clips the peak
+    panel = MeterPanel(meter, (0, 0, 359, 139), run.t)
+    img = raster.new(360, 140, "panel")
+    panel.draw_static(img)
+    panel.advance(img, float(run.t[k]))
+    panel.draw_now(img, k)
+    px = np.asarray(img)
+    cx, top = int(panel.x_of(run.t[k])), panel.plot[1]
+    assert px[top + 4, cx] == I[meter.traces[0].colour]  # inside the arrowhead under the edge
+    # the read-out ("▲ <value> off axis") is written in the trace's colour at the title row's right end
+    right = px[2:18, 200:359]
+    ink = raster.RAMPS[meter.traces[0].colour, "panel"] + raster.LEVELS - 1
+    assert np.count_nonzero(right == ink) > 30
+    assert panel.off_axis[0][panel.column(run.t[k])] == 1
+
+
 # -- bodies where the arrays put them -------------------------------------------------------------
 @pytest.mark.parametrize("which", ["first", "slip", "stick", "last"])
 def test_slider_and_lower_asperities_drawn_at_their_recorded_positions(run, movie_frames, which):

@@ -35,7 +35,9 @@ def test_a_failed_save_leaves_the_old_file_intact(result, tmp_path, monkeypatch)
         raise OSError("disk full")
 
     monkeypatch.setattr(np, "savez_compressed", explode)
-    with pytest.raises(OSError):
+    from asperity2d._io import FileError
+
+    with pytest.raises(FileError, match="`path` could not be written: .*run.npz.* \\(disk full; the file was left"):
         result.save(path)
     assert path.read_bytes() == before
     assert [p.name for p in tmp_path.iterdir()] == ["run.npz"]

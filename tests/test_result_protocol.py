@@ -1,6 +1,9 @@
-"""One result protocol for asperity runs and belt chains (issue 24).
+"""One result protocol for every kind of result, run over the registry of kinds.
 
-Both kinds report ``status``, ``message`` and ``success`` the same way, save a format tag with a
+Every kind registered in :data:`asperity2d.saved.RESULT_KINDS` (asperity runs, belt chains, belt
+chains with a normal contact, and any kind added later) is tested here: the tests are
+parametrised from the registry, and a kind without an example below fails
+``test_every_registered_kind_has_an_example``. Every kind reports ``status``, ``message`` and ``success`` the same way, save a format tag with a
 version, load back through ``asperity2d.load`` by that tag, refuse a malformed or foreign file with
 one FileError (never a KeyError), render to .png and are analysed by ``asperity2d analyze``. Files
 written by the previous release (no tag) still load: ``tests/data/v1_*.npz`` were written by
@@ -20,6 +23,8 @@ import asperity2d as a
 from asperity2d import belt
 from asperity2d._io import FileError, load_npz, save_npz
 from asperity2d.cli import main
+import asperity2d.renderers  # noqa: F401 - registers the drawers of the built-in kinds
+from asperity2d.saved import RESULT_KINDS, kind_of_result
 
 DATA = Path(__file__).parent / "data"
 CHAIN = dict(masses=[1.0, 1.0], springs=[10.0] * 3, dampers=[0.0] * 3, mu_s=0.2, v_belt=0.1,
@@ -35,6 +40,171 @@ def asperity_result():
 @pytest.fixture(scope="module")
 def belt_result():
     return belt.simulate_chain(**CHAIN)
+
+
+def _contact_chain():
+    # Hoffmann's minimal model above its critical friction: the contact opens nine times in 20 ms
+    return belt.MinimalModel(eta=20.0).chain(mu=0.5, v_belt=5.0, t_end=0.02, kick=1e-3, n_samples=101)
+
+
+#: An example result of every registered kind (name -> fixture name).
+EXAMPLES = {"asperity": "asperity_result", "belt": "belt_result", "belt-contact": "contact_result"}
+KINDS = list(RESULT_KINDS)
+
+
+@pytest.fixture(scope="module")
+def contact_result():
+    result = belt.simulate_chain(**_contact_chain())
+    assert sum(map(len, result.separation_intervals)) > 0  # the example exercises every record
+    return result
+
+
+@pytest.fixture
+def example(request):
+    """The example result of the kind the test is parametrised with."""
+    name = request.node.callspec.params["kind"]
+    assert name in EXAMPLES, f"result kind {name!r} is registered but has no example in this file"
+    return request.getfixturevalue(EXAMPLES[name])
+
+
+def test_every_registered_kind_has_an_example():
+    assert set(RESULT_KINDS) == set(EXAMPLES)
+    assert {"asperity", "belt", "belt-contact"} <= set(RESULT_KINDS)
+    assert len({k.tag for k in RESULT_KINDS.values()}) == len(RESULT_KINDS)
+
+
+def _saved(path):
+    """(arrays, metadata) of a saved file, read raw."""
+    with np.load(path) as data:
+        return {k: data[k] for k in data.files if k != "metadata"}, json.loads(str(data["metadata"]))
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_every_kind_follows_the_protocol(kind, example):
+    entry = RESULT_KINDS[kind]
+    assert kind_of_result(example) is entry and isinstance(example, entry.cls)
+    _protocol(example, entry.family)
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_every_kind_loads_back_as_itself_with_every_array_and_record(tmp_path, kind, example):
+    entry = RESULT_KINDS[kind]
+    path = example.save(tmp_path / "r.npz")
+    arrays, meta = _saved(path)
+    assert meta["format"] == entry.tag and set(arrays) == set(entry.saved)
+    back = a.load(path)
+    assert type(back) is entry.cls
+    for name in entry.saved:
+        np.testing.assert_array_equal(getattr(back, name), getattr(example, name), err_msg=name)
+    # saving what was loaded writes the same file content: every record came back
+    arrays2, meta2 = _saved(back.save(tmp_path / "again.npz"))
+    assert meta2 == meta
+    for name in arrays:
+        np.testing.assert_array_equal(arrays2[name], arrays[name])
+    assert entry.load(path).summary() == back.summary()
+    if kind == "belt-contact":
+        assert back.separation_intervals == example.separation_intervals
+        assert back.contact.normal == example.contact.normal and back.contact.y0 == example.contact.y0
+        assert back.events == example.events and back.stick_intervals == example.stick_intervals
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_every_kind_exports_every_array(tmp_path, kind, example):
+    from scipy.io import loadmat
+
+    entry = RESULT_KINDS[kind]
+    csv = a.saved.export(example, tmp_path / "r.csv")
+    table = np.genfromtxt(csv, delimiter=",", names=True)
+    columns = set(table.dtype.names)
+    for name in entry.saved:
+        value = np.asarray(getattr(example, name), dtype=float)
+        if value.ndim == 1:
+            np.testing.assert_array_equal(table[name], value, err_msg=name)
+        elif entry.csv_per_element:
+            for i, row in enumerate(value):
+                np.testing.assert_array_equal(table[f"{name}_{i + 1}"], row, err_msg=name)
+    expected = sum(1 if np.ndim(getattr(example, n)) == 1 else len(getattr(example, n)) * entry.csv_per_element
+                   for n in entry.saved)
+    assert len(columns) == expected
+    mat = loadmat(entry.export(example, tmp_path / "r.mat"))
+    for name in entry.saved:
+        np.testing.assert_array_equal(mat[name].reshape(np.shape(getattr(example, name))),
+                                      np.asarray(getattr(example, name)), err_msg=name)
+    with pytest.raises(a.SceneError, match="`path` must end in .csv or .mat"):
+        entry.export(example, tmp_path / "r.txt")
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_files_of_the_previous_release_load_as_their_kind(tmp_path, kind, example):
+    """The previous release wrote no format tag: such a file loads as the kind its records say."""
+    source = example.save(tmp_path / "tagged.npz")
+    untagged = _rewrite(tmp_path, source, lambda m, arr: m.pop("format"))
+    back = a.load(untagged)
+    assert type(back) is RESULT_KINDS[kind].cls
+    np.testing.assert_array_equal(back.t, example.t)
+
+
+def _damages(meta, arrays):
+    """(label, change(meta, arrays)) of every damage the fuzzer tries on a saved file."""
+    out = []
+    for key, value in meta.items():
+        if key == "format":
+            continue
+        out.append((f"drop {key}", lambda m, a, k=key: m.pop(k)))
+        for junk in (None, "x", -1, [], {}, [[1, 2]], 1e308):
+            out.append((f"{key}={junk!r}", lambda m, a, k=key, j=junk: m.update({k: j})))
+        if isinstance(value, dict):
+            for sub in value:
+                out.append((f"drop {key}.{sub}", lambda m, a, k=key, s=sub: m[k].pop(s)))
+                for junk in (None, "x", -1.0, [], [1e308]):
+                    out.append((f"{key}.{sub}={junk!r}", lambda m, a, k=key, s=sub, j=junk: m[k].update({s: j})))
+    for name, array in arrays.items():
+        out.append((f"{name} one sample short", lambda m, a, n=name: a.update({n: a[n][..., :-1]})))
+        out.append((f"{name} one row short", lambda m, a, n=name: a.update({n: a[n][:-1]})))
+        out.append((f"{name} as text", lambda m, a, n=name: a.update({n: a[n].astype(str)})))
+    out.append(("time backwards", lambda m, a: a.update(t=a["t"][::-1].copy())))
+    return out
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_a_damaged_file_of_every_kind_loads_or_is_one_file_error(tmp_path, kind, example):
+    """Every key of the metadata dropped or replaced by junk, every array cut or retyped, time run
+    backwards: ``asperity2d.load`` returns a result or raises FileError, never anything else.
+    Damage a file of this kind cannot survive (a shape that does not fit, time backwards, a record
+    that is not one) must be the FileError."""
+    source = example.save(tmp_path / "source.npz")
+    arrays, meta = _saved(source)
+    failures, refused = [], 0
+    for label, change in _damages(meta, arrays):
+        m, arr = json.loads(json.dumps(meta)), dict(arrays)
+        change(m, arr)
+        bad = save_npz(tmp_path / "bad.npz", arr, m)
+        try:
+            a.load(bad)
+        except FileError as exc:
+            refused += 1
+            assert "`path`" in str(exc)
+        except Exception as exc:  # noqa: BLE001 - what the test is looking for
+            failures.append(f"{label}: {type(exc).__name__}: {exc}")
+        else:
+            if label == "time backwards" or label.endswith(("one sample short", "as text")) and label != "t as text":
+                failures.append(f"{label}: loaded")
+    assert not failures, "\n".join(failures[:20])
+    assert refused > len(arrays)
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_a_truncated_or_corrupted_file_of_every_kind_is_one_file_error(tmp_path, kind, example):
+    data = example.save(tmp_path / "r.npz").read_bytes()
+    for cut in (len(data) // 3, len(data) - 30):
+        (tmp_path / "cut.npz").write_bytes(data[:cut])
+        with pytest.raises(FileError, match="`path`"):
+            a.load(tmp_path / "cut.npz")
+    flipped = bytearray(data)
+    flipped[len(data) // 2] ^= 0xFF
+    (tmp_path / "flipped.npz").write_bytes(bytes(flipped))
+    with pytest.raises(FileError, match="`path`"):
+        a.load(tmp_path / "flipped.npz")
 
 
 def _protocol(result, kind):
@@ -102,7 +272,7 @@ def _rewrite(tmp_path, source, change):
     (lambda m, a: m.pop("events"), "no 'events'"),
     (lambda m, a: m.update(events=[{"t": 1.0}]), "metadata is invalid"),
     (lambda m, a: m.update(stick_intervals=[[]]), "metadata is invalid"),
-    (lambda m, a: m["chain"].pop("masses"), "metadata is invalid: KeyError"),
+    (lambda m, a: m["chain"].pop("masses"), "metadata is invalid: `chain.masses` is missing"),
     (lambda m, a: m["chain"].update(friction={"law": "nope"}), "metadata is invalid"),
     (lambda m, a: a.update(x=a["x"][:, :3]), "array 'x' has shape"),
 ])
@@ -141,9 +311,10 @@ def test_files_saved_by_the_previous_release_still_load(asperity_result):
     assert chain.stick_intervals == fresh.stick_intervals
 
 
-@pytest.mark.parametrize("which", ["asperity", "belt"])
-def test_render_and_analyze_work_on_both_kinds(tmp_path, capsys, asperity_result, belt_result, which):
-    result = asperity_result if which == "asperity" else belt_result
+@pytest.mark.parametrize("kind", KINDS)
+def test_render_and_analyze_work_on_every_kind(tmp_path, capsys, kind, example):
+    result, family = example, RESULT_KINDS[kind].family
+    assert RESULT_KINDS[kind].drawers.keys() >= {"plot", "player"}
     saved = str(result.save(tmp_path / "r.npz"))
     png = tmp_path / "r.png"
     assert main(["render", saved, "-o", str(png), "--json"]) == 0
@@ -152,8 +323,8 @@ def test_render_and_analyze_work_on_both_kinds(tmp_path, capsys, asperity_result
     assert a.render(result, tmp_path / "direct.png").exists()
     assert main(["analyze", saved, "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
-    assert summary["kind"] == which and summary["success"] is True
-    if which == "belt":
+    assert summary["kind"] == family and summary["success"] is True
+    if family == "belt":
         assert [m["sticks"] for m in summary["masses"]] == [len(iv) for iv in result.stick_intervals]
         assert summary["regime"]
     else:
@@ -171,3 +342,93 @@ def test_a_saved_belt_result_renders_as_a_gif_and_a_player_from_the_command_line
         assert (tmp_path / name).stat().st_size > 1000
     with pytest.raises(a.SceneError, match="`result` must be a Result or a BeltResult, got dict"):
         a.render({"t": []}, tmp_path / "r.gif")
+
+
+# -- fuzzed saved files: any change to a saved file loads or is one FileError ---------------------
+from hypothesis import HealthCheck, given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+JSON = st.recursive(st.one_of(st.none(), st.booleans(), st.integers(-10**20, 10**20), st.floats(allow_nan=False),
+                              st.text(max_size=6)),
+                    lambda inner: st.lists(inner, max_size=3) | st.dictionaries(st.text(max_size=5), inner, max_size=3),
+                    max_leaves=6)
+ARRAY_CHANGES = st.sampled_from(["reverse", "negate", "drop_first", "drop_row", "as_int", "as_bool", "scalar",
+                                 "transpose", "nan"])
+
+
+def _change_array(value: np.ndarray, how: str) -> np.ndarray:
+    if how == "reverse":
+        return value[..., ::-1].copy()
+    if how == "negate":
+        return -value.astype(float)
+    if how == "drop_first":
+        return value[..., 1:]
+    if how == "drop_row":
+        return value[1:] if value.ndim == 2 else value[:0]
+    if how == "as_int":
+        return value.astype(np.int64)
+    if how == "as_bool":
+        return value.astype(bool)
+    if how == "scalar":
+        return np.asarray(value.ravel()[0] if value.size else 0.0)
+    if how == "transpose":
+        return value.T.copy()
+    out = value.astype(float)
+    out.flat[out.size // 2 if out.size else 0:out.size // 2 + 1] = np.nan
+    return out
+
+
+@pytest.mark.parametrize("kind", KINDS)
+@settings(max_examples=25, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(data=st.data())
+def test_any_change_to_a_saved_file_loads_or_is_one_file_error(tmp_path, kind, example, data):
+    """Random JSON at a random place of the metadata (a top-level record or one of its fields),
+    or a random change to a random array: ``asperity2d.load`` returns a result of the kind or
+    raises FileError, never a KeyError, AttributeError, ValueError or a traceback."""
+    source = tmp_path / f"{kind}.npz"
+    if not source.exists():
+        example.save(source)
+    arrays, meta = _saved(source)
+    keys = sorted(k for k in meta if k != "format")
+    if data.draw(st.booleans(), label="metadata"):
+        key = data.draw(st.sampled_from(keys), label="key")
+        if isinstance(meta[key], dict) and meta[key] and data.draw(st.booleans(), label="field"):
+            field = data.draw(st.sampled_from(sorted(meta[key])), label="field name")
+            meta[key][field] = data.draw(JSON, label="value")
+        else:
+            meta[key] = data.draw(JSON, label="value")
+    else:
+        name = data.draw(st.sampled_from(sorted(arrays)), label="array")
+        arrays[name] = _change_array(arrays[name], data.draw(ARRAY_CHANGES, label="change"))
+    bad = save_npz(tmp_path / "fuzzed.npz", arrays, meta)
+    try:
+        back = a.load(bad)
+    except FileError as exc:
+        assert "`path`" in str(exc)
+    else:
+        assert isinstance(back, RESULT_KINDS[kind].family == "belt" and belt.BeltResult or a.Result)
+
+
+def test_a_chain_spec_comes_back_from_its_record(belt_result):
+    from asperity2d.belt import ChainSpec
+
+    spec = belt_result.chain
+    again = ChainSpec.from_dict(spec.to_dict())
+    assert again.to_dict() == spec.to_dict() and again.law == spec.law
+    record = spec.to_dict()
+    for change, message in [(lambda r: r.pop("masses"), "`chain.masses` is missing"),
+                            (lambda r: r.update(colour=1), "`chain.colour` is not a ChainSpec field"),
+                            (lambda r: r.update(v_belt="<function ramp>"), "saved by its name only"),
+                            (lambda r: r.update(masses=[-1.0, 1.0]), "`masses`"),
+                            (lambda r: r.update(friction={"law": "nope"}), "`friction` law must be one of")]:
+        bad = json.loads(json.dumps(record))
+        change(bad)
+        with pytest.raises(a.SceneError, match=message):
+            ChainSpec.from_dict(bad)
+    with pytest.raises(a.SceneError, match="`chain` must be a table"):
+        ChainSpec.from_dict([1, 2])
+
+
+def test_belt_load_reads_either_kind_of_chain(tmp_path, belt_result, contact_result):
+    assert type(belt.load(contact_result.save(tmp_path / "c.npz"))) is belt.ContactResult
+    assert type(belt.load(belt_result.save(tmp_path / "b.npz"))) is belt.BeltResult

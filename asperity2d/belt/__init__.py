@@ -27,7 +27,7 @@ from .._lazy import exports
 
 #: Public names and the module each lives in, imported on first use: the command line's
 #: ``belt`` parser and its bad-input errors (``asperity2d.cli.belt``) run without NumPy.
-_LAZY = {"Event": "backend", "BeltResult": "result", "load": "result", "METHODS": "solver",
+_LAZY = {"Event": "backend", "BeltResult": "result", "load": "contact_result", "METHODS": "solver",
          "simulate_chain": "solver", "ChainSpec": "spec", "NormalContact": "normal", "ContactResult": "contact_result",
          "load_contact": "contact_result", "MinimalModel": "minimal", "steady_sliding": "contact"}
 _SUBMODULES = ("presets",)

@@ -38,7 +38,30 @@ class Event:
     ``kind`` is "stick", "slip", "reverse" (slip direction flips through belt
     speed) or "graze": the mass touched belt speed tangentially and the stick
     condition held only at that instant, so it kept slipping (see
-    ``asperity2d.belt.modes`` for the rule).
+    :mod:`asperity2d.belt.modes` for the rule).
+
+    Attributes
+    ----------
+    t : float
+        Time (s).
+    mass : int
+        Index of the mass (0 first).
+    kind : {"stick", "slip", "reverse", "graze"}
+        The switch.
+    x : float
+        Position of the mass (m).
+
+    See Also
+    --------
+    asperity2d.belt.simulate_chain : ``result.events`` lists them.
+
+    Examples
+    --------
+    >>> from asperity2d import belt
+    >>> r = belt.simulate_chain([1.0], [100.0, 0.0], [0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...                         v_belt=0.1, x0=[0.0], v0=[0.1], t_end=2.0)
+    >>> r.events[0]
+    Event(t=0.39239999999999997, mass=0, kind='slip', x=0.03924)
     """
 
     t: float

@@ -91,6 +91,39 @@ def steady_sliding(**chain) -> SteadySliding:
 
     Only the chain's parameters matter (its ``x0``, ``v0``, ``t_end`` are ignored). The belt
     speed must not be zero (no sliding direction).
+
+    Parameters
+    ----------
+    **chain
+        :func:`simulate_chain`'s keyword arguments, with ``normal``.
+
+    Returns
+    -------
+    SteadySliding
+        The steady state, its normal forces (N), the linearised matrix and its eigenvalues
+        (``growth_rate`` > 0: flutter).
+
+    Raises
+    ------
+    SceneError
+        No ``normal``, a zero belt speed, or a bad parameter.
+
+    See Also
+    --------
+    asperity2d.belt.MinimalModel : Hoffmann's model in closed form.
+    asperity2d.belt.NormalContact
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from asperity2d import belt
+    >>> s = belt.steady_sliding(masses=[1.0], springs=[100.0, 0.0], dampers=[0.0, 0.0], mu_s=0.4,
+    ...                         mu_k=0.3, v_belt=0.1, x0=[0.0], v0=[0.1], t_end=2.0,
+    ...                         normal=belt.NormalContact(stiffness=1e4, contact_stiffness=1e5))
+    >>> s.holds, np.round(s.normal_force, 3)
+    (True, array([8.918]))
+    >>> np.round(np.abs(s.eigenvalues.imag), 2)  # sqrt(k/m) = 10 rad/s and the normal mode
+    array([ 10.  ,  10.  , 331.66, 331.66])
     """
     keep = {k: v for k, v in chain.items() if k in ("masses", "springs", "dampers", "mu_s", "mu_k", "v_belt", "g",
                                                      "friction", "normal", "normal_load", "x0", "v0")}

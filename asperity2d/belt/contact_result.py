@@ -13,20 +13,21 @@ from __future__ import annotations
 import math
 import os
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
-from .._io import load_npz, save_npz
-from ..friction.laws import law_from_dict
-from .backend import Event
+from .._io import FileError, check_format, load_npz
 from .normal import SEPARATED, ContactSpec, NormalContact
-from .result import ENERGY_SERIES, MASS_SERIES, BeltResult, check_books
-from .spec import ChainSpec, link_force
+from . import result as result_module
+from .result import ENERGY_SERIES, BeltResult, read_intervals, check_arrays, check_books, describe_error, read_record
+from .spec import link_force
 
 #: per-mass (n, T) and scalar (T,) series a contact result adds to a BeltResult's
 CONTACT_SERIES = ("y", "vy", "normal_force")
 CONTACT_ENERGY = ("load_energy", "impact_dissipation")
+#: The format tag of a saved contact run (version 1: the previous release's untagged files, told
+#: apart from a plain chain's by their ``normal`` record).
+FORMAT = "asperity2d.belt-contact-result/2"
 
 
 @dataclass(eq=False)
@@ -41,7 +42,20 @@ class ContactResult(BeltResult):
     load_energy : (T,) Σ W_i·y_i (J), the work done against the weights and preloads.
     impact_dissipation : (T,) cumulative kinetic energy lost in impacts (J).
     separation_intervals : per mass, the (t_open, t_close) intervals (s) out of contact.
-    contact : the ``ContactSpec`` (normal parameters and initial gaps).
+    contact : the :class:`~.normal.ContactSpec` (normal parameters and initial gaps).
+
+    See Also
+    --------
+    asperity2d.belt.NormalContact, asperity2d.belt.simulate_chain, asperity2d.belt.load_contact
+
+    Examples
+    --------
+    >>> from asperity2d import belt
+    >>> r = belt.simulate_chain([1.0], [100.0, 0.0], [0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...                         v_belt=0.1, x0=[0.0], v0=[0.1], t_end=2.0,
+    ...                         normal=belt.NormalContact(stiffness=1e4, contact_stiffness=1e5))
+    >>> r.separation_intervals  # the mass never leaves the belt
+    [[]]
     """
 
     y: np.ndarray = None
@@ -82,34 +96,108 @@ class ContactResult(BeltResult):
         return (f"ContactResult(n={self.n}, {self.t.size} samples, t_end={self.t[-1]:.4g} s, "
                 f"events={len(self.events)}, separations={opened})")
 
-    def save(self, path: str | os.PathLike) -> Path:
-        """Write the result to ``path`` (``.npz``) atomically and return the path."""
-        from dataclasses import asdict
+    # -- persistence: BeltResult's save / export with the contact's arrays and records ---------
+    SAVED = BeltResult.SAVED + CONTACT_SERIES + CONTACT_ENERGY
+    FORMAT = FORMAT
 
-        meta = dict(self.meta)
-        meta["chain"] = self.chain.to_dict() if self.chain is not None else meta.get("chain")
+    def _record(self) -> dict:
+        meta = super()._record()
         meta["normal"] = self.contact.to_dict() if self.contact is not None else meta.get("normal")
-        meta["events"] = [asdict(e) for e in self.events]
-        meta["stick_intervals"] = [[list(iv) for iv in per] for per in self.stick_intervals]
         meta["separation_intervals"] = [[list(iv) for iv in per] for per in self.separation_intervals]
-        names = ("t",) + MASS_SERIES + ENERGY_SERIES + CONTACT_SERIES + CONTACT_ENERGY
-        return save_npz(path, {name: getattr(self, name) for name in names}, meta)
+        return meta
 
 
 def load_contact(path: str | os.PathLike) -> ContactResult:
-    """Read a :class:`ContactResult` written by :meth:`ContactResult.save`."""
-    names = ("t",) + MASS_SERIES + ENERGY_SERIES + CONTACT_SERIES + CONTACT_ENERGY
-    arrays, meta = load_npz(path, names, kind="a belt contact result file", meta_keys=("chain", "normal"))
-    events = [Event(**e) for e in meta.pop("events")]
-    sticks = [[tuple(iv) for iv in per] for per in meta.pop("stick_intervals")]
-    seps = [[tuple(iv) for iv in per] for per in meta.pop("separation_intervals")]
-    c, nd = meta["chain"], dict(meta["normal"])
-    y0, vy0 = nd.pop("y0"), nd.pop("vy0")
-    chain = ChainSpec(c["masses"], c["springs"], c["dampers"], None, None, c["v_belt"], c["x0"], c["v0"], c["t_end"],
-                      c["g"], c["normal_load"], law_from_dict(c["friction"]))
-    spec = ContactSpec(chain, NormalContact.from_dict(nd), y0, vy0)
-    return ContactResult(**arrays, stick_intervals=sticks, events=events, chain=chain, meta=meta,
-                         separation_intervals=seps, contact=spec)
+    """Read a :class:`ContactResult` written by :meth:`ContactResult.save` (this release's
+    :data:`FORMAT`, or the previous release's untagged file), with every array and interval.
+
+    A file that is not one (missing, foreign, a plain belt result, damaged, arrays that do not
+    fit together, time running backwards, a malformed chain or normal record) raises one
+    :class:`~asperity2d._io.FileError` naming ``path``; never a KeyError.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A ``.npz`` file written by ``ContactResult.save``.
+
+    Returns
+    -------
+    ContactResult
+
+    Raises
+    ------
+    FileError
+        Not such a file, naming ``path``.
+
+    See Also
+    --------
+    asperity2d.load : reads either kind of result.
+
+    Examples
+    --------
+    >>> from asperity2d import belt
+    >>> r = belt.simulate_chain([1.0], [100.0, 0.0], [0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...                         v_belt=0.1, x0=[0.0], v0=[0.1], t_end=2.0,
+    ...                         normal=belt.NormalContact(stiffness=1e4, contact_stiffness=1e5))
+    >>> belt.load_contact(r.save("contact.npz"))
+    ContactResult(n=1, 2006 samples, t_end=2 s, events=5, separations=0)
+    """
+    kind = "a belt contact result file"
+    arrays, meta = load_npz(path, ContactResult.SAVED, kind=kind,
+                            meta_keys=("chain", "normal", "events", "stick_intervals", "separation_intervals"))
+    check_format(path, meta, FORMAT, kind=kind)
+    n = check_arrays(path, arrays, kind, scalar=ENERGY_SERIES + CONTACT_ENERGY, states=(-1, 0, 1, SEPARATED))
+    record = read_record(path, meta, n, kind)
+    try:
+        separations = read_intervals(meta.pop("separation_intervals"), n, "separation_intervals")
+        if record["chain"] is None:
+            raise ValueError("a contact run's chain has a constant belt speed")
+        normal = dict(meta["normal"])
+        y0, vy0 = normal.pop("y0"), normal.pop("vy0")
+        spec = ContactSpec(record["chain"], NormalContact.from_dict(normal), y0, vy0)
+    except Exception as exc:  # noqa: BLE001 - any malformed record; the file is not ours to trust
+        raise FileError("path", path, f"is not {kind}",
+                        f"its metadata is invalid: {describe_error(exc)}") from None
+    return ContactResult(**arrays, **record, meta=meta, separation_intervals=separations, contact=spec)
+
+
+def load(path: str | os.PathLike) -> BeltResult:
+    """Read a saved belt chain of either kind (``asperity2d.belt.load``): a
+    :class:`ContactResult` when the file holds a normal contact (its tag, or the previous
+    release's ``normal`` record), else a :class:`BeltResult`.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A ``.npz`` file written by ``BeltResult.save`` or ``ContactResult.save``.
+
+    Returns
+    -------
+    BeltResult or ContactResult
+        The kind that was saved, with every array.
+
+    Raises
+    ------
+    FileError
+        Not a saved belt chain, naming ``path``.
+
+    See Also
+    --------
+    asperity2d.load : reads every kind of result.
+
+    Examples
+    --------
+    >>> from asperity2d import belt
+    >>> r = belt.simulate_chain([1.0], [100.0, 0.0], [0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...                         v_belt=0.1, x0=[0.0], v0=[0.1], t_end=2.0,
+    ...                         normal=belt.NormalContact(stiffness=1e4, contact_stiffness=1e5))
+    >>> type(belt.load(r.save("contact.npz"))).__name__
+    'ContactResult'
+    """
+    _, meta = load_npz(path, (), kind="a belt result file")
+    if meta.get("format") == FORMAT or (meta.get("format") is None and "normal" in meta):
+        return load_contact(path)
+    return result_module.load(path)
 
 
 def assemble_contact(spec: ContactSpec, raw, meta: dict) -> ContactResult:

@@ -69,6 +69,34 @@ class MinimalModel:
 
     ``eta`` (1/s) is the mass-proportional damping rate: c_x = c_y = eta·m. ``direction``
     s = sign(v - V) of the steady sliding the closed forms describe (-1: belt faster).
+
+    Parameters
+    ----------
+    mass : float, default 0.1
+        The mass (kg).
+    k1, k2 : float, default 9e6, 2.25e6
+        The two inclined springs (N/m).
+    alpha1, alpha2 : float, default 150, 30
+        Their angles (degrees from the belt direction towards the normal).
+    contact_stiffness : float, default 8e6
+        The contact spring k_c (N/m).
+    preload : float, default 1000
+        The normal preload (N).
+    eta : float, default 0
+        Mass-proportional damping rate (1/s).
+    direction : {-1, 1}, default -1
+        The sliding direction s.
+
+    See Also
+    --------
+    asperity2d.belt.simulate_chain, asperity2d.belt.steady_sliding
+
+    Examples
+    --------
+    >>> from asperity2d import belt
+    >>> model = belt.MinimalModel()
+    >>> f"flutter from mu = {model.mu_crit:.4f}"
+    'flutter from mu = 0.4257'
     """
 
     mass: float = 0.1

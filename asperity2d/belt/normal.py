@@ -75,6 +75,30 @@ class NormalContact:
     inclined : sequence of (stiffness, angle) pairs
         Springs from each mass to the frame (N/m >= 0; degrees from +x towards +y,
         within [-180, 180]); they couple the normal and tangential motions.
+
+    Raises
+    ------
+    SceneError
+        A value out of range, named.
+
+    See Also
+    --------
+    asperity2d.belt.simulate_chain : ``normal=`` takes it.
+    asperity2d.belt.steady_sliding : the linearisation about steady sliding.
+
+    Examples
+    --------
+    A compliant contact under a normal spring: the weight is shared between them, so the
+    contact carries 9.81 N × 1e5 / (1e5 + 1e4) = 8.918 N:
+
+    >>> from asperity2d import belt
+    >>> r = belt.simulate_chain([1.0], [100.0, 0.0], [0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...                         v_belt=0.1, x0=[0.0], v0=[0.1], t_end=2.0,
+    ...                         normal=belt.NormalContact(stiffness=1e4, contact_stiffness=1e5))
+    >>> r
+    ContactResult(n=1, 2006 samples, t_end=2 s, events=5, separations=0)
+    >>> round(float(r.normal_force[0, 0]), 3)
+    8.918
     """
 
     stiffness: float = 0.0

@@ -18,8 +18,8 @@ from pathlib import Path
 import numpy as np
 
 from .._io import FileError, atomic_write, check_format, load_npz, save_npz
+from .._validate import show
 from ..errors import SceneError, SimulationError
-from ..friction.laws import law_from_dict
 from .backend import Event, RawRun
 from .spec import ChainSpec, link_extension, link_force
 
@@ -48,6 +48,22 @@ class BeltResult:
     events : list of :class:`Event`.
     chain : the :class:`ChainSpec` (None when loaded with a callable belt speed).
     meta : run settings and diagnostics.
+
+    See Also
+    --------
+    asperity2d.belt.simulate_chain : makes one.
+    asperity2d.belt.load : reads a saved one (so does :func:`asperity2d.load`).
+    asperity2d.render : ``render(result, "chain.png")`` plots it.
+
+    Examples
+    --------
+    >>> from asperity2d import belt
+    >>> r = belt.simulate_chain([1.0], [100.0, 0.0], [0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...                         v_belt=0.1, x0=[0.0], v0=[0.1], t_end=2.0)
+    >>> r.x.shape, r.state[0, :3]  # one row per mass; 0 = stuck to the belt
+    ((1, 2006), array([0, 0, 0], dtype=int8))
+    >>> f"{r.belt_work[-1]:.3g} J from the belt, {r.friction_dissipation[-1]:.3g} J dissipated"
+    '...J from the belt, ...J dissipated'
     """
 
     t: np.ndarray
@@ -154,34 +170,58 @@ class BeltResult:
         return represent(self, "html")
 
     # -- persistence -------------------------------------------------------
-    def save(self, path: str | os.PathLike) -> Path:
-        """Write the result to ``path`` (``.npz``, tagged ``FORMAT``) atomically and return the path."""
+    #: The arrays a saved run holds (each ``(T,)`` or per mass ``(n, T)``), in export order.
+    SAVED = ("t",) + MASS_SERIES + ENERGY_SERIES
+    #: The format tag :meth:`save` writes.
+    FORMAT = FORMAT
+
+    def _record(self) -> dict:
+        """The JSON metadata of a saved run: the run's settings, the chain, events and intervals."""
         meta = dict(self.meta)
         meta["chain"] = self.chain.to_dict() if self.chain is not None else meta.get("chain")
         meta["events"] = [asdict(e) for e in self.events]
         meta["stick_intervals"] = [[list(iv) for iv in per] for per in self.stick_intervals]
-        names = ("t",) + MASS_SERIES + ENERGY_SERIES
-        return save_npz(path, {name: getattr(self, name) for name in names}, meta, format=FORMAT)
+        return meta
+
+    def save(self, path: str | os.PathLike) -> Path:
+        """Write the result to ``path`` (``.npz``, tagged :attr:`FORMAT`) atomically and return the path."""
+        return save_npz(path, {name: getattr(self, name) for name in self.SAVED}, self._record(),
+                        format=self.FORMAT)
+
+    def columns(self) -> list[tuple[str, np.ndarray]]:
+        """Every saved array as named 1-D columns: ``t``; per mass i (1-based) ``x_i``, ``v_i``,
+        ``state_i``, ``friction_force_i``, ``spring_force_i``, ``damper_force_i`` (and the
+        kind's own per-mass series); then the scalar series (energies, J)."""
+        per_mass = [name for name in self.SAVED if np.ndim(getattr(self, name)) == 2]
+        scalar = [name for name in self.SAVED if name != "t" and name not in per_mass]
+        cols = [("t", self.t)]
+        cols += [(f"{name}_{i + 1}", getattr(self, name)[i]) for i in range(self.n) for name in per_mass]
+        cols += [(name, getattr(self, name)) for name in scalar]
+        return cols
 
     def export(self, path: str | os.PathLike) -> Path:
-        """Write a ``.csv`` table: t, then x_i, v_i, state_i, friction_i, spring_i per mass, then energies."""
+        """Write every saved array to ``path``: a ``.csv`` table (:meth:`columns`, one row per
+        sample) or a MATLAB ``.mat`` file (the arrays by name, (n, T) per mass, and the metadata
+        as JSON text)."""
         path = Path(path)
-        if path.suffix.lower() != ".csv":
-            raise SceneError(f"`path` must end in .csv, got {str(path)!r}")
-        cols, names = [self.t], ["t"]
-        for i in range(self.n):
-            for name in ("x", "v", "state", "friction_force", "spring_force"):
-                cols.append(getattr(self, name)[i])
-                names.append(f"{name}_{i + 1}")
-        for name in ENERGY_SERIES:
-            cols.append(getattr(self, name))
-            names.append(name)
-        table = np.column_stack(cols)
+        suffix = path.suffix.lower()
+        if suffix == ".csv":
+            names, cols = zip(*self.columns())
+            table = np.column_stack([np.asarray(c, dtype=float) for c in cols])
 
-        def write(fh):
-            np.savetxt(fh, table, delimiter=",", header=",".join(names), comments="", fmt="%.17g")
+            def write(fh):
+                np.savetxt(fh, table, delimiter=",", header=",".join(names), comments="", fmt="%.17g")
 
-        return atomic_write(path, write)
+            return atomic_write(path, write)
+        if suffix == ".mat":
+            import json
+
+            from scipy.io import savemat
+
+            data = {name: np.asarray(getattr(self, name)) for name in self.SAVED}
+            data["metadata"] = json.dumps(self._record(), sort_keys=True, default=str)
+            return atomic_write(path, lambda fh: savemat(fh, data))
+        raise SceneError(f"`path` must end in .csv or .mat, got {str(path)!r}")
 
 
 #: Energy books a returned run must close to (``energy_balance_error``): closed-form phases
@@ -254,40 +294,104 @@ def assemble(spec: ChainSpec, raw: RawRun, meta: dict) -> BeltResult:
     return result
 
 
-def load(path: str | os.PathLike) -> BeltResult:
-    """Read a :class:`BeltResult` written by :meth:`BeltResult.save` (this release's
-    ``FORMAT``, or the previous release's untagged file).
+def check_arrays(path, arrays: dict, kind: str, *, scalar: tuple = ENERGY_SERIES, states: tuple = (-1, 0, 1)) -> int:
+    """Check the arrays of a saved chain run fit together; return the number of masses.
 
-    A file that is not one (missing, empty, foreign -- an asperity result included --,
-    truncated, damaged, arrays that do not fit together, metadata that is not a chain's)
-    raises one ``FileError`` naming ``path``; never a KeyError.
-    """
-    kind = "a belt result file"
-    arrays, meta = load_npz(path, ("t",) + MASS_SERIES + ENERGY_SERIES, kind=kind,
-                            meta_keys=("chain", "events", "stick_intervals"))
-    check_format(path, meta, FORMAT, kind=kind)
+    Every array is ``(T,)`` (``t`` and ``scalar``) or ``(n, T)``, real and finite; time never runs backwards; a mass'
+    state is one of ``states``. A file that breaks one raises :class:`FileError` naming ``path``."""
     t = arrays["t"]
     n = arrays["x"].shape[0] if arrays["x"].ndim == 2 else -1
     for name, array in arrays.items():
-        want = (t.size,) if name in ("t",) + ENERGY_SERIES else (n, t.size)
+        want = (t.size,) if name == "t" or name in scalar else (n, t.size)
         if t.ndim != 1 or array.shape != want or array.dtype.kind not in "biuf":
             raise FileError("path", path, f"is not {kind}", f"array {name!r} has shape {array.shape}, "
                             f"dtype {array.dtype}, for {t.size} samples of {n} masses")
         if not np.all(np.isfinite(array)):  # a chain run never returns non-finite values
             raise FileError("path", path, f"is damaged or not {kind}",
                             f"array {name!r} holds non-finite values (NaN or infinity)")
+    if t.size > 1 and np.any(np.diff(t) < 0):
+        at = int(np.argmax(np.diff(t) < 0))
+        raise FileError("path", path, f"is damaged or not {kind}",
+                        f"its time runs backwards (t[{at + 1}] = {t[at + 1]:.6g} s < t[{at}] = {t[at]:.6g} s)")
+    if not np.all(np.isin(arrays["state"], states)):
+        raise FileError("path", path, f"is damaged or not {kind}",
+                        f"array 'state' holds values other than {', '.join(map(str, states))}")
+    return n
+
+
+def describe_error(exc: Exception) -> str:
+    """``exc`` in words: our own errors already name the field; others get their type."""
+    return str(exc) if isinstance(exc, SceneError) else f"{type(exc).__name__}: {exc}"
+
+
+def read_intervals(record, n: int, what: str) -> list:
+    """Per mass, a list of ordered (start, end) pairs of finite times."""
+    if not isinstance(record, list) or len(record) != n:
+        raise ValueError(f"{what}: expected {n} lists (one per mass), got {show(record)}")
+    out = []
+    for per in record:
+        pairs = [(float(a), float(b)) for a, b in per]
+        if any(not (math.isfinite(a) and math.isfinite(b) and a <= b) for a, b in pairs):
+            raise ValueError(f"{what}: an interval that is not a finite (start <= end) pair")
+        out.append(pairs)
+    return out
+
+
+def read_record(path, meta: dict, n: int, kind: str) -> dict:
+    """The events, stick intervals and chain of a saved chain run's metadata (``meta`` loses them)."""
     try:
         events = [Event(**e) for e in meta.pop("events")]
-        intervals = [[(float(a), float(b)) for a, b in per] for per in meta.pop("stick_intervals")]
-        if len(intervals) != n:
-            raise ValueError(f"{len(intervals)} lists of stick intervals for {n} masses")
+        intervals = read_intervals(meta.pop("stick_intervals"), n, "stick_intervals")
         c = meta["chain"]
-        chain = None
-        if not isinstance(c["v_belt"], str):  # a callable belt speed is saved by name only
-            law = law_from_dict(c["friction"])
-            chain = ChainSpec(c["masses"], c["springs"], c["dampers"], None, None, c["v_belt"],
-                              c["x0"], c["v0"], c["t_end"], c["g"], c["normal_load"], law)
+        # a callable belt speed is saved by name only: the chain cannot be rebuilt
+        chain = None if isinstance(c, dict) and isinstance(c.get("v_belt"), str) else ChainSpec.from_dict(c)
+        if chain is not None and chain.n != n:
+            raise ValueError(f"the chain has {chain.n} masses, the arrays {n}")
     except Exception as exc:  # noqa: BLE001 - any malformed record; the file is not ours to trust
         raise FileError("path", path, f"is not {kind}",
-                        f"its metadata is invalid: {type(exc).__name__}: {exc}") from None
-    return BeltResult(**arrays, stick_intervals=intervals, events=events, chain=chain, meta=meta)
+                        f"its metadata is invalid: {describe_error(exc)}") from None
+    return {"events": events, "stick_intervals": intervals, "chain": chain}
+
+
+def load(path: str | os.PathLike) -> BeltResult:
+    """Read a :class:`BeltResult` written by :meth:`BeltResult.save` (this release's
+    :data:`FORMAT`, or the previous release's untagged file).
+
+    A file that is not one (missing, empty, foreign -- an asperity result included --,
+    truncated, damaged, arrays that do not fit together, time running backwards, metadata
+    that is not a chain's) raises one :class:`~asperity2d._io.FileError` naming ``path``;
+    never a KeyError. :func:`asperity2d.load` reads every kind of result by its tag.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A ``.npz`` file written by ``BeltResult.save``.
+
+    Returns
+    -------
+    BeltResult
+
+    Raises
+    ------
+    FileError
+        Not such a file, naming ``path``.
+
+    See Also
+    --------
+    asperity2d.load : reads either kind of result.
+
+    Examples
+    --------
+    >>> from asperity2d import belt
+    >>> r = belt.simulate_chain([1.0], [100.0, 0.0], [0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...                         v_belt=0.1, x0=[0.0], v0=[0.1], t_end=2.0)
+    >>> path = r.save("chain.npz")
+    >>> belt.load(path).events == r.events
+    True
+    """
+    kind = "a belt result file"
+    arrays, meta = load_npz(path, BeltResult.SAVED, kind=kind,
+                            meta_keys=("chain", "events", "stick_intervals"))
+    check_format(path, meta, FORMAT, kind=kind)
+    n = check_arrays(path, arrays, kind)
+    return BeltResult(**arrays, **read_record(path, meta, n, kind), meta=meta)

@@ -96,6 +96,83 @@ def simulate_chain(
     ``asperity2d.belt.normal``); ``y0`` / ``vy0`` (m, m/s) are then the initial gaps and
     normal velocities (default: at rest on the contact) and the result is a
     :class:`~.contact_result.ContactResult`.
+
+    Parameters
+    ----------
+    masses : sequence of float
+        The n masses (kg), > 0.
+    springs, dampers : sequence of float
+        n + 1 stiffnesses (N/m) and damping coefficients (N·s/m), >= 0: wall-m1, m1-m2, ...,
+        mn-wall.
+    mu_s, mu_k : float, optional
+        Static and kinetic friction coefficients (``mu_k`` defaults to ``mu_s``); give these
+        or ``friction``.
+    v_belt : float or callable
+        Belt speed (m/s), or ``v_belt(t)``.
+    x0, v0 : sequence of float
+        Initial positions (m, from the unstretched chain) and velocities (m/s).
+    t_end : float
+        Simulated time (s), > 0.
+    g : float, default 9.81
+        Gravity (m/s²) for the default normal load m·g.
+    normal_load : float or sequence of float, optional
+        Normal load per mass (N), instead of m·g.
+    friction : FrictionLaw, optional
+        A law from :mod:`asperity2d.friction` (Stribeck, LuGre, ...).
+    method : {"exact", "sign"}, default "exact"
+        Event-driven stick/slip, or the thesis' sign() friction (:data:`METHODS`).
+    n_samples : int, default 2001
+        Uniform output samples (ignored with ``t_eval``).
+    t_eval : array_like, optional
+        Output times (s).
+    include_events : bool, default True
+        Add every event time to the samples.
+    rtol, atol : float, optional
+        Tolerances of the integrated phases (default ``rtol=1e-8``).
+    integrator : str, default "LSODA"
+        The :func:`scipy.integrate.solve_ivp` method of the integrated phases.
+    max_events, max_steps : int, default 1_000_000
+        Budgets (above).
+    max_wall_time : float, default 30
+        Wall-clock budget (s).
+    normal : NormalContact, optional
+        A normal degree of freedom per mass (above).
+    y0, vy0 : sequence of float, optional
+        Initial gaps (m) and normal velocities (m/s), with ``normal``.
+
+    Returns
+    -------
+    BeltResult or ContactResult
+        The time series, the events and the stick intervals (a ``ContactResult`` with
+        ``normal``).
+
+    Raises
+    ------
+    SceneError
+        A bad parameter, named.
+    SimulationError
+        A run that fails or exceeds a budget.
+
+    See Also
+    --------
+    asperity2d.belt.presets : the thesis' tables as keyword arguments.
+    asperity2d.dynamics : spectra, Poincaré sections, limit cycles, Lyapunov exponents.
+
+    Examples
+    --------
+    One mass on a spring to the wall, carried by the belt from rest relative to it: it sticks
+    until the spring pulls mu_s·m·g, at t = mu_s·m·g / (k·V) = 0.3924 s:
+
+    >>> from asperity2d import belt
+    >>> r = belt.simulate_chain([1.0], [100.0, 0.0], [0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...                         v_belt=0.1, x0=[0.0], v0=[0.1], t_end=2.0)
+    >>> r
+    BeltResult(n=1, 2006 samples, t_end=2 s, events=5)
+    >>> first = r.events[0]
+    >>> first.kind, round(first.t, 6), round(first.x, 6)
+    ('slip', 0.3924, 0.03924)
+    >>> [(round(a, 4), round(b, 4)) for a, b in r.stick_intervals[0]]
+    [(0.0, 0.3924), (0.8656, 1.0618), (1.5349, 1.7311)]
     """
     method = check_choice("method", method, tuple(METHODS))
     if normal is not None or y0 is not None or vy0 is not None:

@@ -22,7 +22,7 @@ from typing import Callable
 import numpy as np
 
 from ..errors import SceneError, SimulationError
-from ..friction.laws import Coulomb, FrictionLaw, StaticKinetic
+from ..friction.laws import Coulomb, FrictionLaw, StaticKinetic, law_from_dict
 from .._validate import check_real, check_vector, show
 from . import limits
 
@@ -34,6 +34,33 @@ class ChainSpec:
     ``v_belt`` is a constant (m/s) or a callable ``v_belt(t)`` (ramps);
     ``mu_k`` defaults to ``mu_s``; ``friction`` (a law from
     :mod:`asperity2d.friction`) replaces (mu_s, mu_k) -- give one or the other.
+
+    Parameters
+    ----------
+    masses, springs, dampers, mu_s, mu_k, v_belt, x0, v0, t_end, g, normal_load, friction
+        As for :func:`simulate_chain` (tuples here).
+
+    Raises
+    ------
+    SceneError
+        A bad parameter, named.
+
+    See Also
+    --------
+    asperity2d.belt.simulate_chain : builds one and runs it; ``result.chain`` is the spec it ran.
+
+    Examples
+    --------
+    >>> from asperity2d import belt
+    >>> spec = belt.ChainSpec(masses=(1.0,), springs=(100.0, 0.0), dampers=(0.0, 0.0), mu_s=0.4,
+    ...                       mu_k=None, v_belt=0.1, x0=(0.0,), v0=(0.1,), t_end=2.0)
+    >>> spec.n, spec.mu_k  # mu_k defaults to mu_s
+    (1, 0.4)
+    >>> belt.ChainSpec(masses=(1.0,), springs=(100.0,), dampers=(0.0, 0.0), mu_s=0.4, mu_k=None,
+    ...                v_belt=0.1, x0=(0.0,), v0=(0.1,), t_end=2.0)
+    Traceback (most recent call last):
+    ...
+    asperity2d.errors.SceneError: `springs` must have 2 entries, got 1
     """
 
     masses: tuple
@@ -302,6 +329,32 @@ class ChainSpec:
             "g": self.g,
             "normal_load": list(self.normal) if self.normal_load is not None else None,
         }
+
+    #: The fields of :meth:`to_dict`'s record.
+    RECORD = ("masses", "springs", "dampers", "friction", "v_belt", "x0", "v0", "t_end", "g", "normal_load")
+
+    @classmethod
+    def from_dict(cls, record: dict) -> "ChainSpec":
+        """The chain :meth:`to_dict` wrote (a saved result's ``chain`` record), validated again.
+
+        ``friction`` is the law's own record (``law_from_dict``); a callable ``v_belt`` was saved
+        by its name only and cannot be rebuilt. A record that is not a dict, lacks a field, has
+        one this class does not know, or holds a bad value raises :class:`SceneError` naming the
+        field."""
+        if not isinstance(record, dict):
+            raise SceneError(f"`chain` must be a table of ChainSpec fields, got {show(record)}")
+        unknown = sorted(set(record) - set(cls.RECORD))
+        if unknown:
+            raise SceneError(f"`chain.{unknown[0]}` is not a ChainSpec field (known: {', '.join(cls.RECORD)})")
+        missing = [name for name in cls.RECORD if name not in record and name not in ("g", "normal_load")]
+        if missing:
+            raise SceneError(f"`chain.{missing[0]}` is missing")
+        if isinstance(record["v_belt"], str):
+            raise SceneError(f"`chain.v_belt` was a function ({record['v_belt']}), saved by its name only: "
+                             "it cannot be rebuilt")
+        return cls(record["masses"], record["springs"], record["dampers"], None, None, record["v_belt"],
+                   record["x0"], record["v0"], record["t_end"], record.get("g", 9.81),
+                   record.get("normal_load"), law_from_dict(record["friction"]))
 
 
 def tridiagonal(links: np.ndarray) -> np.ndarray:

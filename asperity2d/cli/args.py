@@ -10,7 +10,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from .._validate import MAX_RUNS, check_int, check_positive
+from .._validate import MAX_RUNS, check_int, check_positive, check_tolerance
 from .._validate import check_runs as _check_runs
 from ..errors import SceneError
 
@@ -94,9 +94,20 @@ def positive_float(text: str) -> float:
     return _checked(check_positive, float, text)
 
 
+def tolerance(text: str) -> float:
+    """An argparse type: a relative tolerance a float can meet
+    (:func:`asperity2d._validate.check_tolerance`)."""
+    return _checked(check_tolerance, float, text)
+
+
 def positive_int(text: str) -> int:
     """An argparse type: an integer >= 1 (:func:`asperity2d._validate.check_int`)."""
     return _checked(lambda name, value: check_int(name, value, minimum=1, maximum=None), int, text)
+
+
+def port(text: str) -> int:
+    """An argparse type: a TCP port, 0 (a free one) to 65535."""
+    return _checked(lambda name, value: check_int(name, value, minimum=0, maximum=65535), int, text)
 
 
 def workers(text: str) -> int | None:

@@ -22,13 +22,14 @@ from ..errors import SceneError
 RUN_KEYS = ("duration",)
 
 
-def scene_from_toml(path, *, arg: str = "scene"):
+def scene_from_toml(path, *, arg: str = "scene", overrides: dict | None = None):
     """``(Scene, run settings)`` from a TOML scene file.
 
     The file holds ``make_scene``'s arguments, at top level or under
     ``[scene]``, and optionally a ``[run]`` table (``duration`` in s). Every
     problem -- the file, its TOML, a table of the wrong type, an unknown key --
-    is a ``SceneError`` naming it.
+    is a ``SceneError`` naming it. ``overrides`` (``--set KEY=VALUE``) replace or add
+    make_scene arguments.
     """
     data = _io.read_toml(arg, path)
     run = data.pop("run", {})
@@ -55,6 +56,7 @@ def scene_from_toml(path, *, arg: str = "scene"):
     from ..builders import make_scene
     from ..surface.source import resolve_paths  # profile files named relative to the TOML file
 
+    params = {**params, **(overrides or {})}
     return make_scene(**resolve_paths(params, Path(path).parent)), run
 
 
@@ -91,7 +93,7 @@ def run(args) -> int:
     save = None if args.save is None else _io.output_path("--save", args.save, suffixes=(".npz",))
     output = None if args.output is None else _io.output_path("--output", args.output,
                                                               suffixes=_render_suffixes())
-    scene, settings = scene_from_toml(path)
+    scene, settings = scene_from_toml(path, overrides=_parse_set(getattr(args, "set", [])))
     if args.duration is not None:
         duration = _checked_duration(scene, args.duration, "--duration")
     elif "duration" in settings:
@@ -101,23 +103,27 @@ def run(args) -> int:
     from ..run import simulate
 
     result = simulate(scene, duration)
+    written = []
     if save:
         with _io.argument("--save"), _io.writing("--save", save):
-            result.save(save)
+            written.append(str(result.save(save) or save))
     if output:
         from ..renderers import render as render_result
 
         with _io.argument("--output"), _io.writing("--output", output):
-            render_result(result, output)
+            written.append(str(render_result(result, output) or output))
     summary = result.summary()
-    _emit(args, summary, text_lines(summary))
+    if written:
+        summary["wrote"] = written
+    _emit(args, summary, text_lines({k: v for k, v in summary.items() if k != "wrote"})
+          + [f"wrote {w}" for w in written])
     return 0
 
 
 def _run_script(path: Path, args) -> int:
     import sys
 
-    for option, value in (("--save", args.save), ("--duration", args.duration)):
+    for option, value in (("--save", args.save), ("--duration", args.duration), ("--set", args.set or None)):
         if value is not None:
             raise SceneError(f"`{option}` applies to TOML scenes; a script takes its own arguments")
     module = load_script(path)
@@ -220,7 +226,7 @@ def _parse_set(items: list[str]) -> dict:
             raise SceneError(f"`--set` takes key=value, got {item!r}")
         try:
             out[key.strip()] = tomllib.loads(f"v = {text}")["v"]
-        except tomllib.TOMLDecodeError:
+        except (tomllib.TOMLDecodeError, RecursionError):  # not a TOML value: the text itself
             out[key.strip()] = text
     return out
 

@@ -3,6 +3,7 @@
     asperity2d belt --preset table2-3dof --json
     asperity2d belt chain.toml -o run.png          # plot chosen by extension (.png/.svg/.pdf)
     asperity2d belt --preset table3-k20 -o run.npz # or save the result (.npz) / export (.csv)
+    asperity2d belt --preset table3-k20 -o run.gif # or anything render() draws (.gif .mp4 .html .wav)
     asperity2d belt basins --preset table2-3dof -o basins.png   # initial-condition basins (asperity2d.cli.basins)
 
 A chain file holds the keyword arguments of ``simulate_chain`` at top level:
@@ -27,7 +28,17 @@ OPTIONAL = ("mu_s", "mu_k", "g", "normal_load", "method", "n_samples", "rtol", "
 ALLOWED = frozenset(REQUIRED + OPTIONAL)
 #: Settings that the solver uses without checking their type first.
 _TYPES = {"method": (str,), "integrator": (str,), "n_samples": (int,), "rtol": (int, float)}
-OUTPUTS = (".png", ".svg", ".pdf", ".npz", ".csv")
+#: What ``-o`` writes besides what :func:`asperity2d.render` draws of a chain (its suffixes come
+#: from the renderers' table, :func:`outputs`): the result (.npz) and its table (.csv).
+DATA_OUTPUTS = (".npz", ".csv")
+
+
+def outputs() -> tuple[str, ...]:
+    """Every extension ``belt -o`` takes: the result and table, and every one ``render()`` takes
+    for a chain (.png/.svg/.pdf plot, .gif/.mp4 animation, .html player, .wav sound)."""
+    from ..renderers import suffixes
+
+    return DATA_OUTPUTS + suffixes("belt")
 
 
 def load_chain(path) -> dict:
@@ -64,7 +75,7 @@ def run(args) -> int:
     """Run the parsed ``belt`` command; bad input raises ``SceneError`` (one line, exit 2)."""
     if (args.chain is None) == (args.preset is None) and not args.list_presets:
         raise SceneError("give either a `chain` TOML file or `--preset`")
-    out = None if args.output is None else _io.output_path("--output", args.output, suffixes=OUTPUTS)
+    out = None if args.output is None else _io.output_path("--output", args.output, suffixes=outputs())
     # the user's file is read (and refused) before the solver and NumPy are imported
     kwargs = None if args.chain is None or args.list_presets else load_chain(args.chain)
     from ..belt import presets
@@ -119,6 +130,10 @@ def _write(result, out: Path, *, title: str) -> Path:
         return result.save(out)
     if suffix == ".csv":
         return result.export(out)
-    from ..renderers.belt import plot_chain
+    if suffix in (".png", ".svg", ".pdf"):
+        from ..renderers.belt import plot_chain
 
-    return plot_chain(result, out, title=title)
+        return plot_chain(result, out, title=title)
+    from ..renderers import render
+
+    return render(result, out)

@@ -21,8 +21,9 @@ import sys
 import warnings
 
 from ..errors import SceneError, SimulationError
-from . import asperity, basins, belt, sweep
-from .args import MAX_RUNS, PLOT_SUFFIXES, PROG, WORKERS_HELP, Parser, Subcommands, fail, positive_float
+from . import asperity, basins, belt, explore, sweep
+from .args import MAX_RUNS, PLOT_SUFFIXES, PROG, WORKERS_HELP, Parser, Subcommands, fail, positive_float, tolerance
+from .args import port as port_arg
 from .args import positive_int
 from .args import workers as workers_arg
 
@@ -74,8 +75,22 @@ def build_parser() -> Parser:
                    help="render to this file (.gif, .mp4, .html, .png, .svg, .pdf, .wav); a script's output directory")
     p.add_argument("--save", help="save the Result (.npz) (TOML scenes)")
     p.add_argument("--duration", type=positive_float, help="simulated time in s (TOML scenes)")
+    p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                   help="override a make_scene argument of a TOML scene (repeatable; values read as TOML)")
     _json_flag(p)
     p.set_defaults(handler=asperity.run, print_run_help=p.print_help)
+
+    p = sub.add_parser("explore", help="the workbench in the browser: change a parameter, watch the run "
+                                       "stream in, measure and compare (needs the app extra)",
+                       description="Serve the workbench on 127.0.0.1 with a random token in its URL and "
+                                   "open the browser on it; Ctrl-C stops it.")
+    p.add_argument("scene", nargs="?", help="TOML scene file to start from (default: the default scene)")
+    p.add_argument("--port", type=port_arg, default=0, help="port on 127.0.0.1 (default: a free one)")
+    p.add_argument("--no-browser", action="store_true",
+                   help="do not open a browser; print the URL (with its token) and keep serving")
+    p.add_argument("--workers", type=workers_arg, default=None,
+                   help="worker processes of the ensemble comparisons (default: every core)")
+    p.set_defaults(handler=explore.run)
 
     p = sub.add_parser("analyze", help="stick-slip events and breakaway force of a saved result "
                                        "(a belt chain's: stick/slip per mass)")
@@ -93,7 +108,7 @@ def build_parser() -> Parser:
 
     p = sub.add_parser("critical", help="critical constant drive force of a TOML scene")
     p.add_argument("scene", help="TOML scene file")
-    p.add_argument("--rel-tol", type=positive_float, default=0.0025, help="bracket width (default 0.0025)")
+    p.add_argument("--rel-tol", type=tolerance, default=0.0025, help="bracket width (default 0.0025)")
     _json_flag(p)
     p.set_defaults(handler=asperity.critical)
 
@@ -170,7 +185,7 @@ def _add_belt(subparsers) -> None:
     p.add_argument("--store", help="sweep store directory (default: <output>.runs)")
     p.add_argument("--workers", type=workers_arg, default=None, help=WORKERS_HELP)
     p.add_argument("--scheduler", help="Dask scheduler address, or 'local'")
-    p.add_argument("--rtol", type=positive_float, default=1e-6, help="relative tolerance of the limit-cycle test")
+    p.add_argument("--rtol", type=tolerance, default=1e-6, help="relative tolerance of the limit-cycle test")
     _max_runs(p)
     p.set_defaults(handler=basins.run)
 
@@ -182,7 +197,8 @@ def _belt_run_options(p, *, chain: bool = True) -> None:
     p.add_argument("--method", choices=("exact", "sign"), help="override the solver")
     p.add_argument("--max-wall-time", type=positive_float, default=None,
                    help="stop a run after this many seconds of wall-clock time (default 30)")
-    p.add_argument("-o", "--output", help="plot (.png/.svg/.pdf), result (.npz) or table (.csv)")
+    p.add_argument("-o", "--output", help="plot (.png/.svg/.pdf), animation (.gif/.mp4), player (.html), "
+                                           "sound (.wav), result (.npz) or table (.csv)")
 
 
 def _add_sweep(subparsers) -> None:

@@ -16,6 +16,7 @@ import math
 import sys
 
 from .. import _io
+from .args import PROG
 
 
 def _fmt(x, unit: str | None = None) -> str:
@@ -54,6 +55,14 @@ def _cmd_run(args) -> int:
         print(f"{summary.study}: {summary.done} done, {summary.failed} failed, "
               f"{summary.pending} pending of {summary.total} (ran {summary.ran} in "
               f"{summary.wall_time:.1f} s on {summary.executor}) -> {summary.store}")
+    if summary.total and summary.failed == summary.total:
+        # nothing came out of the sweep: a script that exits 0 here would hide it
+        from ..sweep.store import ResultStore
+
+        first = next((r.error.splitlines()[0] for r in ResultStore(store).records(study).values() if r.error), None)
+        print(f"{PROG}: error: every run of {summary.study!r} failed" + (f"; the first: {first}" if first else ""),
+              file=sys.stderr)
+        return 1
     return 0
 
 

@@ -41,6 +41,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._validate import check_tolerance
 from ..errors import SceneError, SimulationError
 from .cycles import chain_cycle
 
@@ -236,8 +237,7 @@ def chain_basins(chain: dict, *, x: tuple, y: tuple, t_end: float | None = None,
         simulate_chain(**{**chain, "t_end": 1e-9 * duration, "n_samples": 2})
     except TypeError as exc:
         raise SceneError(f"`chain` is not a set of simulate_chain arguments: {exc}") from None
-    if not np.isfinite(rtol) or rtol <= 0:
-        raise SceneError(f"`rtol` must be > 0, got {rtol!r}")
+    rtol = check_tolerance("rtol", rtol)
     study = Study(name="basins", run=RUN, grid={"x_value": xs, "y_value": ys},
                   fixed={"chain": _encode_chain(chain), "x_name": x_name, "y_name": y_name, "rtol": float(rtol)})
     ix, iy = {v: i for i, v in enumerate(xs)}, {v: j for j, v in enumerate(ys)}

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._validate import check_tolerance
 from ..errors import SceneError
 from .sections import chain_section, crossings, opening_section, poincare_section
 from .signals import check_series
@@ -36,6 +37,22 @@ class Cycle:
     abs(P_{k+n} - P_k) checked, or the smallest over n when not periodic);
     ``crossings`` (section points used); ``section`` (what the plane was);
     ``message``.
+
+    See Also
+    --------
+    asperity2d.dynamics.chain_cycle, asperity2d.dynamics.limit_cycle : find one.
+
+    Examples
+    --------
+    >>> from asperity2d import belt, dynamics
+    >>> chain = dict(masses=[1.0], springs=[100.0, 0.0], dampers=[0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...             v_belt=0.1, x0=[0.0], v0=[0.1], t_end=20.0)
+    >>> result = belt.simulate_chain(**chain)  # one mass, stick-slip on the belt
+    >>> cycle = dynamics.chain_cycle(result)
+    >>> cycle.periodic, cycle.multiplicity, round(cycle.period, 4)
+    (True, 1, 0.6694)
+    >>> cycle.message
+    'period-1 cycle, period 0.669357062 s, repeating from t = 0.865557 s'
     """
 
     periodic: bool
@@ -61,6 +78,21 @@ def detect_period(points, times=None, *, scale=None, rtol: float = 1e-4, max_mul
     index, so the period of a sequence is counted in steps); ``scale`` (d,)
     the size each coordinate's differences are measured against (default:
     its largest magnitude over the points). See the module docstring.
+
+    Returns
+    -------
+    tuple
+        ``(multiplicity, period, first index, mismatch)``.
+
+    See Also
+    --------
+    asperity2d.dynamics.limit_cycle, asperity2d.dynamics.chain_cycle : on a series or a belt run.
+
+    Examples
+    --------
+    >>> from asperity2d import dynamics
+    >>> dynamics.detect_period([1.0, 2.0, 1.0, 2.0, 1.0, 2.0, 1.0, 2.0])  # period 2 steps
+    (2, 2.0, 0, 0.0)
     """
     _check_detect(rtol, max_multiplicity, min_repeats)
     P = np.asarray(points, dtype=float)
@@ -90,8 +122,7 @@ def detect_period(points, times=None, *, scale=None, rtol: float = 1e-4, max_mul
 
 
 def _check_detect(rtol, max_multiplicity, min_repeats):
-    if not np.isfinite(rtol) or rtol <= 0:
-        raise SceneError(f"`rtol` must be > 0, got {rtol!r}")
+    check_tolerance("rtol", rtol)
     for name, val in (("max_multiplicity", max_multiplicity), ("min_repeats", min_repeats)):
         if isinstance(val, bool) or not isinstance(val, (int, np.integer)) or val < 1:
             raise SceneError(f"`{name}` must be an integer >= 1, got {val!r}")
@@ -125,6 +156,40 @@ def limit_cycle(t, y, *, level: float | None = None, rtol: float = 1e-4, max_mul
     pymunk signal does not add crossings); its points are (interval since
     the previous crossing, max y, min y between them), so a period-2 orbit
     shows as alternating peaks.
+
+    Parameters
+    ----------
+    t, y : array_like
+        Times (s) and the series.
+    level : float, optional
+        The section's level (unit of ``y``).
+    rtol : float, default 1e-4
+        Relative mismatch within which two section points are the same.
+    max_multiplicity : int, default 8
+        Most crossings per period tried.
+    min_repeats : int, default 3
+        Periods the cycle must repeat.
+    hysteresis : float, default 0.1
+        Dip before a crossing counts, relative to the peak-to-peak.
+
+    Returns
+    -------
+    Cycle
+
+    See Also
+    --------
+    asperity2d.dynamics.chain_cycle : exact, for belt runs.
+
+    Examples
+    --------
+    >>> from asperity2d import belt, dynamics
+    >>> chain = dict(masses=[1.0], springs=[100.0, 0.0], dampers=[0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...             v_belt=0.1, x0=[0.0], v0=[0.1], t_end=20.0)
+    >>> result = belt.simulate_chain(**chain)  # one mass, stick-slip on the belt
+    >>> t, v = dynamics.signal(result, 'v')
+    >>> cycle = dynamics.limit_cycle(t, v)
+    >>> cycle.periodic, round(cycle.period, 4)
+    (True, 0.6694)
     """
     t, y = check_series(t, y)
     _check_detect(rtol, max_multiplicity, min_repeats)
@@ -184,6 +249,38 @@ def chain_cycle(result, *, mass: int | None = None, rtol: float = 1e-6, max_mult
     last-half mean. Points are the full state. ``amplitude`` is that of the
     section mass's position (m). The default ``rtol`` suits the exact solver,
     whose cycles repeat to round-off once settled.
+
+    Parameters
+    ----------
+    result : BeltResult
+        A belt run long enough to repeat ``min_repeats`` times.
+    mass : int, optional
+        The mass (0-based) whose stick onsets make the section.
+    rtol : float, default 1e-6
+        Relative mismatch within which two section points are the same.
+    max_multiplicity : int, default 8
+        Most crossings per period tried.
+    min_repeats : int, default 3
+        Periods the cycle must repeat.
+
+    Returns
+    -------
+    Cycle
+
+    See Also
+    --------
+    asperity2d.dynamics.limit_cycle : of any series.
+    asperity2d.dynamics.floquet : the stability of the cycle.
+
+    Examples
+    --------
+    >>> from asperity2d import belt, dynamics
+    >>> chain = dict(masses=[1.0], springs=[100.0, 0.0], dampers=[0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...             v_belt=0.1, x0=[0.0], v0=[0.1], t_end=20.0)
+    >>> result = belt.simulate_chain(**chain)  # one mass, stick-slip on the belt
+    >>> cycle = dynamics.chain_cycle(result)
+    >>> cycle.periodic, round(cycle.period, 4), cycle.repeats
+    (True, 0.6694, 28)
     """
     _check_detect(rtol, max_multiplicity, min_repeats)
     t = result.t
@@ -233,6 +330,21 @@ class SteadyState:
 
     ``settled`` is False when that happens only in the last half of the run
     (the run is mostly transient); ``low``/``high`` are the final envelope.
+
+    See Also
+    --------
+    asperity2d.dynamics.steady_state : computes one.
+
+    Examples
+    --------
+    >>> from asperity2d import belt, dynamics
+    >>> chain = dict(masses=[1.0], springs=[100.0, 0.0], dampers=[0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...             v_belt=0.1, x0=[0.0], v0=[0.1], t_end=20.0)
+    >>> result = belt.simulate_chain(**chain)  # one mass, stick-slip on the belt
+    >>> t, v = dynamics.signal(result, 'v')
+    >>> state = dynamics.steady_state(t, v)
+    >>> state.settled, state.t_start  # stick-slip from the first stick: no transient
+    (True, 0.0)
     """
 
     t_start: float
@@ -253,6 +365,33 @@ def steady_state(t, y, *, windows: int | None = None, rtol: float = 0.05) -> Ste
     them 3 periods of the dominant frequency of the last half long, and at
     least 1/40 of the run (between 4 and 40 windows). A heuristic: a
     quasi-periodic or chaotic signal counts as settled once its envelope is.
+
+    Parameters
+    ----------
+    t, y : array_like
+        Times (s) and the series.
+    windows : int, optional
+        Number of windows.
+    rtol : float, default 0.05
+        Relative tolerance on the envelope.
+
+    Returns
+    -------
+    SteadyState
+
+    See Also
+    --------
+    asperity2d.dynamics.limit_cycle : the cycle after it.
+
+    Examples
+    --------
+    >>> from asperity2d import belt, dynamics
+    >>> chain = dict(masses=[1.0], springs=[100.0, 0.0], dampers=[0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...             v_belt=0.1, x0=[0.0], v0=[0.1], t_end=20.0)
+    >>> result = belt.simulate_chain(**chain)  # one mass, stick-slip on the belt
+    >>> t, v = dynamics.signal(result, 'v')
+    >>> dynamics.steady_state(t, v).settled
+    True
     """
     t, y = check_series(t, y)
     if windows is None:

@@ -74,6 +74,20 @@ class Floquet:
     (multipliers below max(1e-8, 10·convergence): stick-phase collapses); ``stuck_masses``
     (0-based masses that stick during the cycle); ``stable`` (every
     non-trivial multiplier inside the unit circle); ``matrix`` (M).
+
+    See Also
+    --------
+    asperity2d.dynamics.floquet : computes one.
+
+    Examples
+    --------
+    >>> from asperity2d import belt, dynamics
+    >>> chain = dict(masses=[1.0], springs=[100.0, 0.0], dampers=[0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...             v_belt=0.1, x0=[0.0], v0=[0.1], t_end=20.0)
+    >>> result = belt.simulate_chain(**chain)  # one mass, stick-slip on the belt
+    >>> f = dynamics.floquet(chain)
+    >>> [float(round(abs(m), 6)) for m in f.multipliers]  # the trivial 1; sticking collapses the other
+    [1.0, 0.0]
     """
 
     multipliers: np.ndarray
@@ -109,6 +123,33 @@ def flow_map(chain: dict, state, duration: float) -> np.ndarray:
     ``x0``, ``v0``, ``t_end`` and sampling are replaced). The belt speed must
     be constant: the flow map of an autonomous chain does not depend on the
     start time.
+
+    Parameters
+    ----------
+    chain : dict
+        ``simulate_chain`` keyword arguments.
+    state : array_like
+        (x_1..x_n in m, v_1..v_n in m/s).
+    duration : float
+        Time (s).
+
+    Returns
+    -------
+    numpy.ndarray
+        The state after ``duration``.
+
+    See Also
+    --------
+    asperity2d.dynamics.monodromy
+
+    Examples
+    --------
+    >>> from asperity2d import belt, dynamics
+    >>> chain = dict(masses=[1.0], springs=[100.0, 0.0], dampers=[0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...             v_belt=0.1, x0=[0.0], v0=[0.1], t_end=20.0)
+    >>> result = belt.simulate_chain(**chain)  # one mass, stick-slip on the belt
+    >>> dynamics.flow_map(chain, [0.0, 0.1], 0.3924)  # carried by the belt until it slips at x = 0.03924 m
+    array([0.0392, 0.1   ])
     """
     from ..belt import simulate_chain
 
@@ -134,6 +175,42 @@ def monodromy(chain: dict, state, period: float, *, step: float = 1e-6, scale=No
     (``step * scale``); default: 1 for every coordinate. Only the columns in
     ``coordinates`` (indices, default all) are differenced; the others are
     zero (used for the velocities of stuck masses).
+
+    Parameters
+    ----------
+    chain : dict
+        ``simulate_chain`` keyword arguments.
+    state : array_like
+        A point of the cycle (x..., v...).
+    period : float
+        The cycle's period (s).
+    step : float, default 1e-6
+        Relative perturbation.
+    scale : array_like, optional
+        Size of each coordinate's perturbation.
+    coordinates : sequence of int, optional
+        The columns differenced.
+
+    Returns
+    -------
+    numpy.ndarray
+        (2n, 2n).
+
+    See Also
+    --------
+    asperity2d.dynamics.floquet
+
+    Examples
+    --------
+    >>> from asperity2d import belt, dynamics
+    >>> chain = dict(masses=[1.0], springs=[100.0, 0.0], dampers=[0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...             v_belt=0.1, x0=[0.0], v0=[0.1], t_end=20.0)
+    >>> result = belt.simulate_chain(**chain)  # one mass, stick-slip on the belt
+    >>> cycle = dynamics.chain_cycle(result)
+    >>> section = dynamics.chain_section(result)
+    >>> M = dynamics.monodromy(chain, section.points[-1], cycle.period)
+    >>> M.shape
+    (2, 2)
     """
     if callable(chain.get("v_belt")):
         raise SceneError("`v_belt` must be constant for a monodromy matrix (the flow must be autonomous)")
@@ -158,6 +235,40 @@ def floquet(chain: dict, *, mass: int | None = None, step: float = 1e-6, rtol: f
     The run must reach the cycle within ``chain["t_end"]`` (found with
     :func:`~asperity2d.dynamics.chain_cycle`, ``mass`` and ``rtol``
     passed on); otherwise a SceneError says so.
+
+    Parameters
+    ----------
+    chain : dict
+        ``simulate_chain`` keyword arguments; ``t_end`` long enough to reach the cycle.
+    mass : int, optional
+        As for :func:`chain_cycle`.
+    step : float, default 1e-6
+        Relative size of the finite-difference perturbations.
+    rtol : float, default 1e-6
+        As for :func:`chain_cycle`.
+
+    Returns
+    -------
+    Floquet
+
+    Raises
+    ------
+    SceneError
+        The run reaches no cycle.
+
+    See Also
+    --------
+    asperity2d.dynamics.monodromy, asperity2d.dynamics.flow_map
+
+    Examples
+    --------
+    >>> from asperity2d import belt, dynamics
+    >>> chain = dict(masses=[1.0], springs=[100.0, 0.0], dampers=[0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...             v_belt=0.1, x0=[0.0], v0=[0.1], t_end=20.0)
+    >>> result = belt.simulate_chain(**chain)  # one mass, stick-slip on the belt
+    >>> f = dynamics.floquet(chain)
+    >>> round(f.period, 4), [float(round(abs(m), 6)) for m in f.multipliers]
+    (0.6694, [1.0, 0.0])
     """
     from ..belt import simulate_chain
 

@@ -22,7 +22,26 @@ from .signals import belt_speed, check_series, is_belt
 
 @dataclass(frozen=True)
 class Section:
-    """Crossings of a Poincaré plane: ``t`` (K,) s, ``points`` (K, d) SI, ``names`` of the d coordinates."""
+    """Crossings of a Poincaré plane: ``t`` (K,) s, ``points`` (K, d) SI, ``names`` of the d coordinates.
+
+    See Also
+    --------
+    asperity2d.dynamics.chain_section : make one.
+    asperity2d.dynamics.poincare_section
+    asperity2d.dynamics.opening_section
+
+    Examples
+    --------
+    >>> from asperity2d import belt, dynamics
+    >>> chain = dict(masses=[1.0], springs=[100.0, 0.0], dampers=[0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...             v_belt=0.1, x0=[0.0], v0=[0.1], t_end=20.0)
+    >>> result = belt.simulate_chain(**chain)  # one mass, stick-slip on the belt
+    >>> section = dynamics.chain_section(result)
+    >>> section.names, section.points.shape
+    (('x1', 'v1'), (29, 2))
+    >>> section.t[:3].round(4)  # stick onsets (s)
+    array([0.8656, 1.5349, 2.2043])
+    """
 
     t: np.ndarray
     points: np.ndarray
@@ -38,6 +57,32 @@ def crossings(t, s, *, direction: int = 1, hysteresis: float = 0.0) -> np.ndarra
     h > 0 (unit of s) an upward crossing counts only if s went below -h
     since the previous one (and a downward one above +h), so noise riding on
     the level does not add crossings; the times are still those where s = 0.
+
+    Parameters
+    ----------
+    t, s : array_like
+        Times (s) and the signal.
+    direction : {1, -1, 0}, default 1
+        Upward, downward or either.
+    hysteresis : float, default 0.0
+        Dip needed before a crossing counts (unit of ``s``).
+
+    Returns
+    -------
+    numpy.ndarray
+        Crossing times (s), interpolated between samples.
+
+    See Also
+    --------
+    asperity2d.dynamics.poincare_section
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from asperity2d import dynamics
+    >>> t = np.linspace(0.0, 1.0, 1001)
+    >>> dynamics.crossings(t, np.sin(2 * np.pi * 3 * t)).round(4)  # upward, after the start
+    array([0.3333, 0.6667])
     """
     t, s = np.asarray(t, dtype=float), np.asarray(s, dtype=float)
     if direction not in (-1, 0, 1):
@@ -83,7 +128,43 @@ def _root(t, s, k) -> float:
 
 def poincare_section(t, states, *, plane: int = 0, level: float = 0.0, direction: int = 1,
                      names=None) -> Section:
-    """Crossings of ``states[plane] = level`` by the trajectory ``states`` (d, T) sampled at ``t``."""
+    """Crossings of ``states[plane] = level`` by the trajectory ``states`` (d, T) sampled at ``t``.
+
+    Parameters
+    ----------
+    t : array_like
+        Times (s), (T,).
+    states : array_like
+        The trajectory, (d, T).
+    plane : int, default 0
+        The coordinate that defines the plane.
+    level : float, default 0.0
+        Its value on the plane.
+    direction : {1, -1, 0}, default 1
+        Upward, downward or either.
+    names : sequence of str, optional
+        Names of the d coordinates.
+
+    Returns
+    -------
+    Section
+
+    See Also
+    --------
+    asperity2d.dynamics.chain_section : exact, for belt runs.
+    asperity2d.dynamics.crossings
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from asperity2d import dynamics
+    >>> t = np.linspace(0.0, 2.0, 2001)
+    >>> states = np.vstack([np.sin(2 * np.pi * t), np.cos(2 * np.pi * t)])
+    >>> section = dynamics.poincare_section(t, states, plane=0, level=0.5)
+    >>> section.t.round(4), section.points.round(3)
+    (array([0.0833, 1.0833]), array([[0.5  , 0.866],
+           [0.5  , 0.866]]))
+    """
     states = np.atleast_2d(np.asarray(states, dtype=float))
     t, _ = check_series(t, states[0], minimum=2)
     if states.shape[1] != t.size:
@@ -101,6 +182,33 @@ def chain_section(result, *, mass: int = 0, direction: int = 1) -> Section:
     """Section of a belt run where mass ``mass`` (0-based) reaches the belt speed (stick onsets for +1).
 
     Points are the full state (x_1..x_n in m, v_1..v_n in m/s) at the crossing.
+
+    Parameters
+    ----------
+    result : BeltResult
+        A belt run.
+    mass : int, default 0
+        The mass (0-based).
+    direction : {1, -1}, default 1
+        Upward crossings of the belt speed (stick onsets), or downward.
+
+    Returns
+    -------
+    Section
+
+    See Also
+    --------
+    asperity2d.dynamics.chain_cycle : the cycle on this section.
+
+    Examples
+    --------
+    >>> from asperity2d import belt, dynamics
+    >>> chain = dict(masses=[1.0], springs=[100.0, 0.0], dampers=[0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...             v_belt=0.1, x0=[0.0], v0=[0.1], t_end=20.0)
+    >>> result = belt.simulate_chain(**chain)  # one mass, stick-slip on the belt
+    >>> section = dynamics.chain_section(result)
+    >>> len(section.t), section.names
+    (29, ('x1', 'v1'))
     """
     if not is_belt(result):
         raise SceneError("`result` must be a belt-chain result (BeltResult)")
@@ -125,6 +233,30 @@ def opening_section(result, *, mass: int = 0) -> Section:
     The openings are switching instants, sampled exactly (the solver records a sample at each, the
     first one of the flight): points are the full state (x_1..x_n, y_1..y_n in m, v_1..v_n,
     vy_1..vy_n in m/s) there, to rounding.
+
+    Parameters
+    ----------
+    result : ContactResult
+        A run with a normal degree of freedom (``simulate_chain(..., normal=...)``).
+    mass : int, default 0
+        The mass (0-based).
+
+    Returns
+    -------
+    Section
+
+    See Also
+    --------
+    asperity2d.dynamics.chain_section
+
+    Examples
+    --------
+    >>> from asperity2d import belt, dynamics
+    >>> contact = belt.simulate_chain([1.0], [100.0, 0.0], [0.0, 0.0], mu_s=0.4, mu_k=0.3, v_belt=0.1,
+    ...                                x0=[0.0], v0=[0.1], t_end=2.0,
+    ...                                normal=belt.NormalContact(stiffness=1e4, contact_stiffness=1e5))
+    >>> len(dynamics.opening_section(contact).t)  # this mass never leaves the belt
+    0
     """
     if not hasattr(result, "separation_intervals"):
         raise SceneError("`result` must be a contact-chain result (simulate_chain with `normal`)")

@@ -43,7 +43,41 @@ def belt_speed(result, t) -> np.ndarray:
 
 
 def signal(result, name: str = "v", *, mass: int = 0) -> tuple[np.ndarray, np.ndarray]:
-    """``(t, y)``: the series ``name`` of ``result`` (see the module docstring), SI units."""
+    """``(t, y)``: the series ``name`` of ``result`` (see the module docstring), SI units.
+
+    Parameters
+    ----------
+    result : Result or BeltResult
+        A run of either model.
+    name : str, default "v"
+        The series (``"x"``, ``"v"``, ``"friction"``, ...; see the module docstring).
+    mass : int, default 0
+        The mass of a belt chain (0-based).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        ``(t, y)``.
+
+    Raises
+    ------
+    SceneError
+        An unknown name or mass.
+
+    See Also
+    --------
+    asperity2d.dynamics.spectrum, asperity2d.dynamics.limit_cycle : what to do with it.
+
+    Examples
+    --------
+    >>> from asperity2d import belt, dynamics
+    >>> chain = dict(masses=[1.0], springs=[100.0, 0.0], dampers=[0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...             v_belt=0.1, x0=[0.0], v0=[0.1], t_end=20.0)
+    >>> result = belt.simulate_chain(**chain)  # one mass, stick-slip on the belt
+    >>> t, v = dynamics.signal(result, 'v')
+    >>> len(t) == len(v), float(v.max())  # the mass never outruns the belt by much
+    (True, 0.1)
+    """
     if is_belt(result):
         if name not in BELT_SIGNALS:
             raise SceneError(f"`signal` must be one of {', '.join(BELT_SIGNALS)} for a belt chain, got {name!r}")
@@ -89,6 +123,33 @@ def resample(t, y, *, dt: float | None = None) -> tuple[np.ndarray, np.ndarray]:
     the last value. Linear interpolation errs by at most dt²/8 · max abs(y'');
     for exact values on a uniform grid run the belt solver with
     ``include_events=False`` instead.
+
+    Parameters
+    ----------
+    t, y : array_like
+        Times (s) and values.
+    dt : float, optional
+        Step (s).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The uniform times and the values there.
+
+    See Also
+    --------
+    asperity2d.dynamics.spectrum : resamples first.
+
+    Examples
+    --------
+    >>> from asperity2d import belt, dynamics
+    >>> chain = dict(masses=[1.0], springs=[100.0, 0.0], dampers=[0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...             v_belt=0.1, x0=[0.0], v0=[0.1], t_end=20.0)
+    >>> result = belt.simulate_chain(**chain)  # one mass, stick-slip on the belt
+    >>> t, v = dynamics.signal(result, 'v')
+    >>> tu, vu = dynamics.resample(t, v, dt=0.01)
+    >>> len(tu), float(tu[1] - tu[0])
+    (2001, 0.01)
     """
     t, y = check_series(t, y, minimum=2)
     keep = np.append(np.diff(t) > 0, True)

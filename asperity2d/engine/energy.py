@@ -306,7 +306,10 @@ class EnergyMeter:
         :data:`REMOVED`; ``dissipated_J`` (the physical losses,
         :data:`PHYSICAL`), ``numerical_J`` (the rest), ``stored_energy_J``,
         ``stored_energy_change_J``, ``residual_J`` and ``residual_fraction``
-        (of the larger of the drive work and the energy removed).
+        (of the larger of the drive work and the energy removed), and
+        ``numerical_fraction``: the numerical channels' absolute values summed, over the same
+        scale. The residual closes by construction (every flow the method makes is a channel);
+        ``numerical_fraction`` is what says how good the run is: it shrinks with dt.
         """
         t = self.totals
         out = {f"{k}_J": float(t[k]) * self._energy for k in ("drive_work", *REMOVED)}
@@ -321,6 +324,8 @@ class EnergyMeter:
         out["residual_J"] = float(out["drive_work_J"] - removed - out["stored_energy_change_J"])
         scale = max(abs(out["drive_work_J"]), abs(removed), 1e-300)
         out["residual_fraction"] = float(abs(out["residual_J"]) / scale)
+        # what the numerical method took, channel by channel (they may cancel in numerical_J)
+        out["numerical_fraction"] = float(sum(abs(out[f"{k}_J"]) for k in REMOVED if k not in PHYSICAL) / scale)
         out["mean_friction_force_N"] = (out["friction_impulse_Ns"] / out["time_s"]
                                         if out["time_s"] > 0 else math.nan)
         out["unmatched_impulse_fraction"] = (t["unmatched_impulse"] / t["remainder_impulse"]

@@ -23,6 +23,7 @@ do not depend on the executor.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import math
 import os
@@ -40,6 +41,7 @@ from ..builders import make_scene
 from ..errors import SceneError
 from ..scene import Scene
 from ..sweep.engine import is_auto, run_calls
+from ..sweep.executors import check_executor_args, make_executor
 from ..sweep.progress import Progress
 from .measures import MEASURES, measure_label  # noqa: F401  (the named measures live there)
 
@@ -61,6 +63,41 @@ class Comparison:
     ``variants`` holds each variant's ``make_scene`` arguments, ``base`` the
     shared ones, ``measure`` the measure's name. Statistics (:mod:`asperity2d.stats`)
     ignore NaN values.
+
+    Parameters
+    ----------
+    values : dict of str to tuple of float
+        Variant name -> one measured value per seed (the measure's unit, N for forces).
+    seeds : tuple of int
+        The seeds, in the order of ``values``.
+    variants : dict of str to dict, optional
+        Each variant's ``make_scene`` arguments.
+    base : dict, optional
+        The arguments shared by every variant.
+    measure : str, default "value"
+        The measure's name.
+
+    Raises
+    ------
+    SceneError
+        A variant with a number of values other than the number of seeds.
+
+    See Also
+    --------
+    asperity2d.compare : makes one by running the scenes.
+    asperity2d.stats.relative_effect : the Hodges-Lehmann ratio and its interval.
+
+    Examples
+    --------
+    >>> from asperity2d import Comparison
+    >>> c = Comparison(values={"regular": (7.6e-3,) * 4, "random": (3.8e-3, 6.9e-3, 3.8e-3, 5.1e-3)},
+    ...                seeds=(0, 1, 2, 3), measure="critical")
+    >>> test = c.versus("random", "regular", alternative="less")
+    >>> test["below"], test["p_wilcoxon"]  # four seeds: p cannot go below 1/2**4
+    (4, 0.0625)
+    >>> path = c.save("critical.json")
+    >>> Comparison.load(path) == c
+    True
     """
 
     values: dict[str, tuple[float, ...]]
@@ -179,6 +216,38 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
         small comparison, every core for a large one; always this process for a
         measure that cannot be pickled), or a Dask ``scheduler`` address (``"local"``
         starts one). The values do not depend on them.
+
+    Returns
+    -------
+    Comparison
+        One value per (variant, seed), with the statistics and tests on it.
+
+    Raises
+    ------
+    SceneError
+        An unknown measure, empty or malformed ``variants``, no seeds, or a scene
+        argument that :func:`~asperity2d.make_scene` refuses (named).
+
+    See Also
+    --------
+    asperity2d.Comparison.versus : the one-sided Wilcoxon test of a variant against a reference.
+    asperity2d.stats.relative_effect : the Hodges-Lehmann ratio and its interval.
+    asperity2d.sweep.run_study : larger grids, resumable, on a cluster.
+
+    Examples
+    --------
+    Does random spacing lower the critical force? Three seeds on a small scene:
+
+    >>> import asperity2d as a
+    >>> c = a.compare("critical", {"regular": {"spacing": "regular"}, "random": {"spacing": "random"}},
+    ...               range(3), base={"lower_count": 4, "upper_count": 2}, progress=False, workers=1)
+    >>> [f"{f * 1e3:.3g}" for f in c.values["random"]], f"{c.values['regular'][0] * 1e3:.3g} mN"
+    (['3.8', '6.95', '3.85'], '7.61 mN')
+    >>> c.versus("random", "regular", alternative="less")["p_wilcoxon"]
+    0.125
+
+    All three seeds are below, yet p = 1/2**3: with 3 seeds a one-sided signed-rank test
+    cannot reach p < 0.01 (7 seeds can), so the verdict is "not testable", not "holds".
     """
     if isinstance(measure, str):
         if measure not in MEASURES:
@@ -199,6 +268,7 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
     if "seed" in base or any("seed" in (kw or {}) for kw in variants.values()):
         raise SceneError("`variants` and `base` must not set `seed` (it comes from `seeds`)")
     workers = None if is_auto(workers) else check_int("workers", workers, minimum=1, maximum=1024)
+    check_executor_args(workers=workers, scheduler=scheduler)  # before the progress bar is drawn
     if workers != 1 or scheduler is not None:
         try:
             pickle.dumps(measure)
@@ -221,8 +291,15 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
             jobs.append((measure, scene, f"variant {name!r} with seed {seed}"))
     results: list = [None] * len(jobs)
     failed = None  # the first failing run in (variant, seed) order, whichever finished first
-    with Progress(total=len(jobs), enabled=progress, label="compare") as bar:
-        for outcome in run_calls(_evaluate, jobs, workers=workers, scheduler=scheduler):
+    # a cluster at an address is reached before the progress bar is drawn: one that cannot be
+    # reached is then one line, not a progress line and an error
+    cluster = make_executor(scheduler=scheduler) if scheduler not in (None, "local") else None
+    where = {"executor": cluster} if cluster is not None else {"workers": workers, "scheduler": scheduler}
+    with contextlib.ExitStack() as stack:
+        if cluster is not None:
+            stack.callback(cluster.close)
+        bar = stack.enter_context(Progress(total=len(jobs), enabled=progress, label="compare"))
+        for outcome in run_calls(_evaluate, jobs, **where):
             if not outcome.ok:
                 if failed is None or outcome.index < failed.index:
                     failed = outcome

@@ -42,7 +42,26 @@ def _check(name: str, value, *, positive: bool = False) -> None:
 
 
 class FrictionLaw:
-    """Common behaviour; subclasses are frozen dataclasses of floats."""
+    """Common behaviour; subclasses are frozen dataclasses of floats.
+
+    See Also
+    --------
+    asperity2d.friction.Coulomb : the laws.
+    asperity2d.friction.StaticKinetic
+    asperity2d.friction.CoulombViscous
+    asperity2d.friction.Stribeck
+    asperity2d.friction.Dahl
+    asperity2d.friction.LuGre
+    asperity2d.belt.simulate_chain : ``friction=`` takes any of them.
+
+    Examples
+    --------
+    >>> from asperity2d.friction import Coulomb, FrictionLaw
+    >>> isinstance(Coulomb(mu=0.3), FrictionLaw)
+    True
+    >>> Coulomb(mu=0.3).to_dict()
+    {'law': 'Coulomb', 'mu': 0.3}
+    """
 
     #: True when the slip force is piecewise constant (exact closed-form solver applies).
     piecewise_constant = False
@@ -88,7 +107,33 @@ class FrictionLaw:
 
 
 def law_from_dict(record: dict) -> FrictionLaw:
-    """Inverse of ``FrictionLaw.to_dict``."""
+    """Inverse of ``FrictionLaw.to_dict``.
+
+    Parameters
+    ----------
+    record : dict
+        A law's ``to_dict()``: its class name under ``"law"`` and its parameters.
+
+    Returns
+    -------
+    FrictionLaw
+
+    Raises
+    ------
+    SceneError
+        An unknown law or bad parameters.
+
+    See Also
+    --------
+    asperity2d.friction.FrictionLaw : ``to_dict``.
+
+    Examples
+    --------
+    >>> from asperity2d.friction import Stribeck, law_from_dict
+    >>> law = Stribeck(mu_s=0.4, mu_k=0.3, v_s=0.01)
+    >>> law_from_dict(law.to_dict()) == law
+    True
+    """
     laws = {c.__name__: c for c in (Coulomb, StaticKinetic, CoulombViscous, Stribeck, Dahl, LuGre)}
     if not isinstance(record, dict):
         raise SceneError(f"`friction` must be a table with a `law` entry, got {show(record)}")
@@ -105,7 +150,24 @@ def law_from_dict(record: dict) -> FrictionLaw:
 
 @dataclass(frozen=True)
 class Coulomb(FrictionLaw):
-    """Coulomb friction: abs(F) = mu·N while sliding, at most mu·N while stuck (mu dimensionless)."""
+    """Coulomb friction: abs(F) = mu·N while sliding, at most mu·N while stuck (mu dimensionless).
+
+    Parameters
+    ----------
+    mu : float
+        The friction coefficient, >= 0.
+
+    See Also
+    --------
+    asperity2d.friction.StaticKinetic : a higher coefficient while stuck.
+
+    Examples
+    --------
+    >>> from asperity2d.friction import Coulomb
+    >>> law = Coulomb(mu=0.3)
+    >>> float(law.force(0.1, 10.0))  # sliding at +0.1 m/s under 10 N: friction opposes the motion
+    -3.0
+    """
 
     mu: float
     piecewise_constant = True
@@ -123,7 +185,34 @@ class Coulomb(FrictionLaw):
 
 @dataclass(frozen=True)
 class StaticKinetic(FrictionLaw):
-    """Static limit mu_s·N while stuck, kinetic mu_k·N while sliding (mu_s >= mu_k >= 0)."""
+    """Static limit mu_s·N while stuck, kinetic mu_k·N while sliding (mu_s >= mu_k >= 0).
+
+    Parameters
+    ----------
+    mu_s, mu_k : float
+        Static and kinetic coefficients, mu_s >= mu_k >= 0.
+
+    Raises
+    ------
+    SceneError
+        mu_k > mu_s, or a negative coefficient.
+
+    See Also
+    --------
+    asperity2d.friction.Coulomb, asperity2d.friction.Stribeck
+    asperity2d.belt.simulate_chain : ``mu_s=``, ``mu_k=`` build this law.
+
+    Examples
+    --------
+    >>> from asperity2d.friction import StaticKinetic
+    >>> law = StaticKinetic(mu_s=0.4, mu_k=0.3)
+    >>> law.static_coefficient, law.kinetic_coefficient
+    (0.4, 0.3)
+    >>> StaticKinetic(mu_s=0.3, mu_k=0.4)
+    Traceback (most recent call last):
+    ...
+    asperity2d.errors.SceneError: `mu_k` must be <= `mu_s` (0.3), got 0.4
+    """
 
     mu_s: float
     mu_k: float
@@ -149,7 +238,26 @@ class StaticKinetic(FrictionLaw):
 
 @dataclass(frozen=True)
 class CoulombViscous(FrictionLaw):
-    """Coulomb plus viscous: F/N = mu·sign(v) + sigma2·v (sigma2 in s/m, per unit normal load)."""
+    """Coulomb plus viscous: F/N = mu·sign(v) + sigma2·v (sigma2 in s/m, per unit normal load).
+
+    Parameters
+    ----------
+    mu : float
+        The Coulomb coefficient, >= 0.
+    sigma2 : float
+        The viscous coefficient per unit normal load (s/m), >= 0.
+
+    See Also
+    --------
+    asperity2d.friction.Coulomb, asperity2d.friction.Stribeck
+
+    Examples
+    --------
+    >>> from asperity2d.friction import CoulombViscous
+    >>> law = CoulombViscous(mu=0.3, sigma2=0.5)
+    >>> float(law.force(0.2, 10.0))  # -(0.3 + 0.5 * 0.2) * 10 N
+    -4.0
+    """
 
     mu: float
     sigma2: float
@@ -179,6 +287,31 @@ class Stribeck(FrictionLaw):
     ``sigma2`` (s/m) the viscous term per unit normal load. The curve falls
     from mu_s at rest to mu_k: its negative slope is what destabilises steady
     sliding (see :meth:`slope`).
+
+    Parameters
+    ----------
+    mu_s, mu_k : float
+        Coefficients at rest and at high speed, mu_s >= mu_k >= 0.
+    v_s : float
+        Stribeck velocity (m/s), > 0.
+    delta : float, default 2.0
+        Shape exponent, > 0.
+    sigma2 : float, default 0.0
+        Viscous term per unit normal load (s/m), >= 0.
+
+    See Also
+    --------
+    asperity2d.friction.LuGre : the same steady curve with pre-sliding dynamics.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from asperity2d.friction import Stribeck
+    >>> law = Stribeck(mu_s=0.4, mu_k=0.3, v_s=0.01)
+    >>> np.round(law.curve(np.array([0.001, 0.01, 0.1])), 4)  # F/N falls from mu_s to mu_k
+    array([0.399 , 0.3368, 0.3   ])
+    >>> float(law.slope(0.01)) < 0  # the falling branch destabilises steady sliding
+    True
     """
 
     mu_s: float
@@ -222,6 +355,24 @@ class Dahl(FrictionLaw):
 
     ``sigma0`` (1/m) is the pre-sliding stiffness per unit normal load, ``mu``
     the Coulomb level reached in steady sliding (z -> mu·sign(v)/sigma0).
+
+    Parameters
+    ----------
+    sigma0 : float
+        Pre-sliding stiffness per unit normal load (1/m), > 0.
+    mu : float
+        Coulomb level of steady sliding, >= 0.
+
+    See Also
+    --------
+    asperity2d.friction.LuGre, asperity2d.friction.Coulomb
+
+    Examples
+    --------
+    >>> from asperity2d.friction import Dahl
+    >>> law = Dahl(sigma0=1e5, mu=0.3)
+    >>> law.has_state  # z, the bristle deflection, is integrated with the motion
+    True
     """
 
     sigma0: float
@@ -257,6 +408,30 @@ class LuGre(FrictionLaw):
     g(v) = mu_k + (mu_s - mu_k)·exp(-(v/v_s)^2): the steady state is the
     :class:`Stribeck` curve with delta = 2. ``sigma0`` in 1/m, ``sigma1`` and
     ``sigma2`` in s/m (all per unit normal load), ``v_s`` in m/s.
+
+    Parameters
+    ----------
+    sigma0 : float
+        Bristle stiffness per unit normal load (1/m), > 0.
+    sigma1, sigma2 : float
+        Bristle damping and viscous coefficient per unit normal load (s/m), >= 0.
+    mu_s, mu_k : float
+        Static and kinetic levels of the steady curve, mu_s >= mu_k >= 0.
+    v_s : float
+        Stribeck velocity (m/s), > 0.
+
+    See Also
+    --------
+    asperity2d.friction.Stribeck : its steady state.
+    asperity2d.belt.simulate_chain : ``friction=LuGre(...)`` integrates it as a smooth stiff ODE.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from asperity2d.friction import LuGre
+    >>> law = LuGre(sigma0=1e5, sigma1=300.0, sigma2=0.0, mu_s=0.4, mu_k=0.3, v_s=0.01)
+    >>> np.round(law.curve(np.array([0.001, 0.1])), 4)  # steady state: the Stribeck curve
+    array([0.399, 0.3  ])
     """
 
     sigma0: float

@@ -21,6 +21,7 @@ import os
 from pathlib import Path
 
 from ..errors import SceneError
+from ..saved import RESULT_KINDS, kind_of_result, register_drawers
 
 #: Output extensions and the renderer each selects.
 RENDERERS = {".gif": "animation", ".mp4": "animation", ".html": "player", ".png": "plot",
@@ -57,15 +58,29 @@ def _chain_plot(result, path, **options):
     return plot_chain(result, path, **options)
 
 
-#: (result kind, renderer) -> function(result, path, **options) -> path written.
+#: (result family, renderer) -> function(result, path, **options) -> path written. Each is
+#: registered with the result kinds of its family (:func:`asperity2d.saved.register_drawers`),
+#: so a kind's drawers are its entry's in :data:`asperity2d.saved.RESULT_KINDS`.
 DRAWERS = {("asperity", "animation"): _animation, ("asperity", "player"): _player, ("asperity", "plot"): _plot,
            ("asperity", "sound"): _sound, ("belt", "animation"): _animation, ("belt", "player"): _player,
            ("belt", "plot"): _chain_plot, ("belt", "sound"): _sound}
+for _family in {family for family, _ in DRAWERS}:
+    register_drawers(_family, {renderer: draw for (f, renderer), draw in DRAWERS.items() if f == _family})
+
+
+def _drawers(kind: str) -> dict:
+    """Renderer -> function for a result kind's name or family (``"asperity"``, ``"belt"``, ...)."""
+    entry = RESULT_KINDS.get(kind)
+    if entry is not None:
+        return entry.drawers
+    return {renderer: draw for (family, renderer), draw in DRAWERS.items() if family == kind}
 
 
 def suffixes(kind: str) -> tuple[str, ...]:
-    """The output extensions a result of ``kind`` (``"asperity"``, ``"belt"``) renders to."""
-    return tuple(ext for ext, renderer in RENDERERS.items() if (kind, renderer) in DRAWERS)
+    """The output extensions a result of ``kind`` (a kind's name or family: ``"asperity"``,
+    ``"belt"``, ``"belt-contact"``) renders to."""
+    drawers = _drawers(kind)
+    return tuple(ext for ext, renderer in RENDERERS.items() if renderer in drawers)
 
 
 def render(result, path: str | os.PathLike, **options) -> Path:
@@ -78,11 +93,47 @@ def render(result, path: str | os.PathLike, **options) -> Path:
     ``plot_chain`` (``.png``, ``.svg``, ``.pdf``)
     or ``write_wav`` (``.wav``).
 
+    Parameters
+    ----------
+    result : Result, BeltResult, str or os.PathLike
+        A run, or the path of one saved with ``save`` (read with :func:`asperity2d.load`).
+    path : str or os.PathLike
+        The output file; its extension picks the renderer (:data:`RENDERERS`): ``.gif``,
+        ``.mp4``, ``.html``, ``.png``, ``.svg``, ``.pdf`` or ``.wav``.
+    **options
+        Passed to the renderer (e.g. ``frames=40`` for an animation, ``events=`` for a plot).
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
     Raises
     ------
     SceneError
         Unknown extension, or one this kind of result has no renderer for (named `path`), or
         bad options.
+
+    See Also
+    --------
+    asperity2d.load : a saved run, rendered again without re-simulating.
+    asperity2d.stick_slip_events : the events a plot marks (``events=``).
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> result = a.simulate(a.make_scene(lower_count=4, upper_count=2))
+    >>> a.render(result, "timeseries.png", events=a.stick_slip_events(result)).name
+    'timeseries.png'
+    >>> a.render(result, "run.gif", frames=10).stat().st_size > 0
+    True
+
+    The extension decides; one this package cannot write is one line:
+
+    >>> a.render(result, "run.jpg")
+    Traceback (most recent call last):
+    ...
+    asperity2d.errors.SceneError: `path` must end in one of .gif, .mp4, .html, .png, .svg, .pdf, .wav, got 'run.jpg'
     """
     path = Path(path)
     renderer = RENDERERS.get(path.suffix.lower())
@@ -92,12 +143,18 @@ def render(result, path: str | os.PathLike, **options) -> Path:
         from ..saved import load
 
         result = load(result)
-    kind = getattr(result, "kind", None)
-    draw = DRAWERS.get((kind, renderer))
-    if draw is None:
-        if kind not in {k for k, _ in DRAWERS}:
+    entry = kind_of_result(result)
+    if entry is None:
+        kind = getattr(result, "kind", None)  # a streamed record reads as an asperity Result
+        drawers = _drawers(kind) if isinstance(kind, str) else {}
+        if not drawers:
             raise SceneError(f"`result` must be a Result or a BeltResult, got {type(result).__name__}")
-        raise SceneError(f"`path` must end in one of {', '.join(suffixes(kind))} for a {kind} result, "
+        name = kind
+    else:
+        drawers, name = entry.drawers, entry.name
+    draw = drawers.get(renderer)
+    if draw is None:
+        raise SceneError(f"`path` must end in one of {', '.join(suffixes(name))} for a {name} result, "
                          f"got {str(path)!r}")
     return draw(result, path, **options)
 

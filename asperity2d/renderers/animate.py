@@ -5,7 +5,10 @@ asperity run, :class:`~asperity2d.renderers.belt_stage.ChainStage` for a belt
 chain) above synchronised meters (:mod:`.meters`), each a trace that grows with
 the frame and a cursor at "now". Frame times come from the motion
 (:func:`~asperity2d.renderers.timeline.schedule`): slips play in slow motion,
-each such frame marked "×N slow"; ``timing="uniform"`` spaces them evenly.
+each such frame marked "×N slow", slower still where the slider moves fast, so
+that no frame moves it more than about half a pitch (the tips are seen to
+climb the flanks; a frame that must jump further says why);
+``timing="uniform"`` spaces them evenly.
 
 Speed: every frame is a palette image with one fixed palette
 (:mod:`.raster`), so nothing is quantised; what never changes (meter frames,
@@ -61,7 +64,11 @@ class Movie:
         self.result, self.width, self.height = result, width, height
         self.chain = is_chain(result)
         slips = slip_intervals(result)
-        self.schedule = schedule(result.t, slips, frames, timing=timing)
+        if self.chain:
+            self.schedule = schedule(result.t, slips, frames, timing=timing)
+        else:  # slower where the slider moves fast: no frame moves it more than about half a pitch
+            self.schedule = schedule(result.t, slips, frames, timing=timing, x=result.x,
+                                     pitch=result.scene.lower.spacing.mean_pitch)
         if self.chain:
             from .belt_stage import ChainStage
 
@@ -116,8 +123,13 @@ class Movie:
             meter.advance(self.layer, t)
         img = self.layer.copy()
         scene = self.scene_bg.copy()
+        jumps = self.schedule.jumps
+        note = (f"moved {jumps[j]:.1f} pitches since the last frame: {self.schedule.coarse_reason}"
+                if jumps is not None and jumps[j] > 1.0 else "")
         self.drawn = self.stage.shapes(k, slow=float(self.schedule.slow[j]),
                                        counter=f"frame {j + 1}/{len(self)}")
+        if not self.chain:
+            self.drawn["note"] = note
         self.stage.paint(scene, self.drawn)
         img.paste(scene, (0, 0))
         for meter in self.meters:

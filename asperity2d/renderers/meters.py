@@ -9,7 +9,9 @@ draw the very same meters. Axes are in engineering units chosen from the data
 The value axis spans the 0.5th to 99.5th percentile of the traces (padded by
 8 %, and including zero when it is near): single-sample impact spikes of the
 contact force, thousands of times the drive force, would otherwise flatten
-everything else; they are clipped at the plot's edge.
+everything else; they are clipped at the plot's edge, and marked there: a red
+bar along the edge where a trace is off the axis, a triangle where it left,
+an arrowhead for the cursor's dot and "▲"/"▼" before the read-out.
 
 On a GIF a trace *grows* with the frame (:meth:`MeterPanel.advance` adds the
 pixel columns the cursor has passed since the last frame onto a persistent
@@ -207,6 +209,17 @@ class MeterPanel:
                 last = np.r_[starts[1:] - 1, order[-1]]
                 env[col[starts], 3] = y[last]
             self.envelopes.append(env)
+        # columns where a trace leaves the axis (+1 above, -1 below): marked on the plot's edge
+        self.off_axis = []
+        for tr in meter.traces:
+            v = np.asarray(tr.values, dtype=float)[: len(col)]
+            c = col[: len(v)]
+            marks = np.zeros(self.columns, dtype=np.int8)
+            below = np.zeros(self.columns, dtype=np.int8)
+            with np.errstate(invalid="ignore"):
+                np.maximum.at(marks, c[v > self.hi], 1)
+                np.maximum.at(below, c[v < self.lo], 1)
+            self.off_axis.append(np.where(marks > 0, 1, np.where(below > 0, -1, 0)).astype(np.int8))
         self.band = np.zeros(self.columns, dtype=bool)
         for a, b in slips:
             ca, cb = self.column(np.array([a, b]))
@@ -318,6 +331,18 @@ class MeterPanel:
                         d.line([p, q], fill=I[tr.colour], width=1)
             else:
                 d.line(pts, fill=I[tr.colour], width=1)
+        for tr, off in zip(self.meter.traces, self.off_axis):
+            cols = np.flatnonzero(off[a:b]) + a
+            for run in (np.split(cols, np.flatnonzero(np.diff(cols) != 1) + 1) if cols.size else []):
+                for side in (1, -1):  # a bar on the edge the values left by, a triangle at its start
+                    part = run[off[run] == side]
+                    if not part.size:
+                        continue
+                    y = py0 if side > 0 else py1
+                    d.line([(px0 + part[0], y + side), (px0 + part[-1], y + side)], fill=I["slider_slip"], width=2)
+                    x = px0 + int(part[0])
+                    d.polygon([(x, y), (x - 3, y + 6 * side), (x + 3, y + 6 * side)], fill=I[tr.colour],
+                              outline=I["cursor"])
         self.done = b
 
     def draw_now(self, img, k: int, *, values: bool = True) -> None:
@@ -339,13 +364,21 @@ class MeterPanel:
         for tr, env in zip(self.meter.traces, self.envelopes):
             if env is None:
                 continue
-            y = float(self.row(tr.values[k]))
-            d.ellipse((cx - 3, y - 3, cx + 3, y + 3), fill=I[tr.colour], outline=I["cursor"])
+            value = float(tr.values[k])
+            y = float(self.row(value))
+            if value > self.hi or value < self.lo:  # off the axis: an arrowhead on the edge it left by
+                side = 1 if value > self.hi else -1
+                d.polygon([(cx, y - 2 * side), (cx - 5, y + 8 * side), (cx + 5, y + 8 * side)], fill=I[tr.colour],
+                          outline=I["cursor"])
+            else:
+                d.ellipse((cx - 3, y - 3, cx + 3, y + 3), fill=I[tr.colour], outline=I["cursor"])
         if not values:
             return
         for (x, y), tr in zip(self.legend_slots, self.meter.traces):
             value = float(tr.values[k])
             text = si(value, self.meter.unit) if np.isfinite(value) else "–"
+            if value > self.hi or value < self.lo:
+                text = ("▲ " if value > self.hi else "▼ ") + text + (" off axis" if len(self.meter.traces) == 1 else "")
             anchor = "ra" if len(self.meter.traces) == 1 else "la"
             raster.draw_text(img, (x, y), text, colour=tr.colour if tr.colour in raster.TRACE_COLOURS
                              else "black", bg="panel", size=self.size + (1 if anchor == "ra" else 0),

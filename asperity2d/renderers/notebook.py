@@ -19,41 +19,14 @@ import base64
 import html
 import tempfile
 from pathlib import Path
-from types import SimpleNamespace
 
 import numpy as np
 
 from .._format import si
 from . import raster
+from .stage import rest_record  # noqa: F401  (the scene at rest; here for the notebook's callers)
 
 SVG_WIDTH, SVG_HEIGHT = 720, 240
-
-
-def rest_record(scene) -> SimpleNamespace:
-    """A one-sample record of ``scene`` at rest where a run starts: a fixed-track slider left of the
-    surface, its tips ``interference`` into it; a free slider over the first valley, its deepest
-    tip on the lower tips' rest height. Drive spring unstretched, no forces, no contact."""
-    lower, slider = scene.lower, scene.slider
-    tips = lower.tips()
-    apex = slider.tips()
-    left_lower = float(np.ravel(lower.runs()[0])[0])
-    right_upper = float(np.ravel(slider.runs()[1])[-1])
-    if slider.track == "fixed":
-        x0 = tips[0] - left_lower - right_upper - apex[-1] - 0.1 * scene.base
-        y0 = lower.top - slider.interference + slider.depth
-    else:
-        x0 = (0.5 * (tips[0] + tips[1]) if len(tips) > 1 else tips[0]) - apex[0]
-        y0 = lower.top + slider.depth
-    n = lower.count
-    one = np.array
-    from ..scene import SpringDrive
-
-    drive_x = x0 if isinstance(scene.drive, SpringDrive) else np.nan
-    return SimpleNamespace(
-        scene=scene, t=one([0.0]), x=one([x0]), y=one([y0]), v=one([0.0]), vy=one([0.0]),
-        drive_x=one([drive_x]), drive_force=one([0.0]), normal_force=one([0.0]),
-        friction_force=one([0.0]), tangential_force=one([0.0]), contact_count=one([0]),
-        lower_dx=np.zeros((n, 1)), lower_dy=np.zeros((n, 1)), lower_contact=np.zeros((n, 1), bool))
 
 
 def _hex(name: str) -> str:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import io
 import os
+import textwrap
 from pathlib import Path
 
 import numpy as np
@@ -174,17 +175,29 @@ def plot_comparison(comparison, path: str | os.PathLike, *, reference: float | N
     for i, (name, values) in enumerate(zip(names, data)):
         ax.plot(i + rng.uniform(-0.15, 0.15, len(values)), values, "o", ms=3.5, alpha=0.6,
                 color=f"C{i % 10}")
+    intervals = []
+    for i, values in enumerate(data):
         d = stats.describe(values)
         if d["n"] >= 2:
-            ax.errorbar([i + 0.32], [d["mean"]], yerr=[[d["mean"] - d["ci_low"]], [d["ci_high"] - d["mean"]]],
-                        fmt="D", color="k", ms=4, capsize=3)
+            intervals.append((i, d))
     if reference is not None:
         ax.axhline(reference * scale, color="red", lw=0.8, ls="--",
                    label=f"reference {reference * scale:.4g} {unit}".rstrip())
         ax.legend(loc="best", fontsize=8)
     _resolution_axis(ax, data)
+    low, high = ax.get_ylim()
+    for i, d in intervals:  # an interval that would leave the axes is cut at them and its ends written
+        lo, hi = max(d["ci_low"], low), min(d["ci_high"], high)
+        ax.errorbar([i + 0.32], [d["mean"]], yerr=[[d["mean"] - lo], [hi - d["mean"]]], fmt="D", color="k",
+                    ms=4, capsize=3 if (lo, hi) == (d["ci_low"], d["ci_high"]) else 0)
+        if (lo, hi) != (d["ci_low"], d["ci_high"]):
+            ax.annotate(f"95 % CI\n[{d['ci_low']:.3g},\n{d['ci_high']:.3g}]\n(n = {d['n']})", (i + 0.36, d["mean"]),
+                        fontsize=7, va="center", ha="left")
+    ax.set_ylim(low, high)
+    ax.set_xlim(-0.6, len(names) - 1 + (1.0 if any(
+        (max(d["ci_low"], low), min(d["ci_high"], high)) != (d["ci_low"], d["ci_high"]) for _, d in intervals) else 0.6))
     ax.set_xticks(range(len(names)), names, rotation=20 if len(names) > 4 else 0)
-    ax.set_ylabel(label or measure_label(comparison.measure) + (f" ({unit})" if unit else ""))
+    ax.set_ylabel(textwrap.fill(label or measure_label(comparison.measure) + (f" ({unit})" if unit else ""), 36))
     ax.set_title(f"{len(comparison.seeds)} seeds per variant; diamonds: mean, 95 % CI",
                  fontsize=9)
     return save(fig, path, dpi)

@@ -34,6 +34,7 @@ there is room, labelled "vertical ×N"; forces keep their true direction.
 from __future__ import annotations
 
 import math
+from types import SimpleNamespace
 
 import numpy as np
 
@@ -89,6 +90,33 @@ def tip_force_scale(result, samples) -> float:
         largest.append((share * force[chunk])[count > 0])
     values = np.concatenate(largest) if largest else np.array([])
     return float(np.percentile(values, 99)) if values.size else 0.0
+
+
+def rest_record(scene) -> SimpleNamespace:
+    """A one-sample record of ``scene`` at rest where a run starts: a fixed-track slider left of the
+    surface, its tips ``interference`` into it; a free slider over the first valley, its deepest
+    tip on the lower tips' rest height. Drive spring unstretched, no forces, no contact."""
+    lower, slider = scene.lower, scene.slider
+    tips = lower.tips()
+    apex = slider.tips()
+    left_lower = float(np.ravel(lower.runs()[0])[0])
+    right_upper = float(np.ravel(slider.runs()[1])[-1])
+    if slider.track == "fixed":
+        x0 = tips[0] - left_lower - right_upper - apex[-1] - 0.1 * scene.base
+        y0 = lower.top - slider.interference + slider.depth
+    else:
+        x0 = (0.5 * (tips[0] + tips[1]) if len(tips) > 1 else tips[0]) - apex[0]
+        y0 = lower.top + slider.depth
+    n = lower.count
+    one = np.array
+    from ..scene import SpringDrive
+
+    drive_x = x0 if isinstance(scene.drive, SpringDrive) else np.nan
+    return SimpleNamespace(
+        scene=scene, t=one([0.0]), x=one([x0]), y=one([y0]), v=one([0.0]), vy=one([0.0]),
+        drive_x=one([drive_x]), drive_force=one([0.0]), normal_force=one([0.0]),
+        friction_force=one([0.0]), tangential_force=one([0.0]), contact_count=one([0]),
+        lower_dx=np.zeros((n, 1)), lower_dy=np.zeros((n, 1)), lower_contact=np.zeros((n, 1), bool))
 
 
 class Stage:
@@ -344,6 +372,8 @@ class Stage:
             raster.draw_text(img, (x, 5), shapes["slow"], colour="spring", size=13, bold=True)
         if shapes["counter"]:
             raster.draw_text(img, (W - 8, 5), shapes["counter"], colour="grey", size=11, anchor="ra")
+        if shapes.get("note"):  # why this frame jumps more than a pitch (over the caption)
+            raster.draw_text(img, (8, HEADER), shapes["note"], colour="slider_slip", size=11, bold=True, box=True)
 
 
-__all__ = ["CAMERAS", "Stage", "force_shares", "slip_mask"]
+__all__ = ["CAMERAS", "Stage", "force_shares", "rest_record", "slip_mask"]

@@ -63,27 +63,30 @@ def measures_run(*, seed: int = 0, passes: int = 5, starts: tuple = ("rest", "ru
         bracket = critical_force_bracket(scene, start=start)
         low, high = bracket.band if bracket.band else (math.nan, math.nan)
         out.update({f"{key}_N": bracket.value, f"{key}_band_low_N": low, f"{key}_band_high_N": high,
-                    f"{key}_runs": float(bracket.runs)})
+                    f"{key}_runs": float(bracket.runs), f"{key}_dt_s": bracket.dt})
     if quasi_static:
         q = quasi_static_breakaway(scene)
-        out.update(quasi_static_N=q.force, quasi_static_rate_change=q.rate_change)
+        out.update(quasi_static_N=q.force, quasi_static_rate_change=q.rate_change, quasi_static_dt_s=q.dt)
     if passes:
         sf = stick_forces(scene, passes=passes)
         out.update(peak_stick_N=sf.average("peak"), mean_stick_N=sf.average("mean"),
                    peak_stick_passes_N=list(sf.peak), mean_stick_passes_N=list(sf.mean),
                    first_breakaway_N=sf.first_breakaway[len(sf.first_breakaway) // 2],
-                   events=list(map(float, sf.events)))
+                   events=list(map(float, sf.events)), stick_dt_s=sf.dt)
     return out
 
 
 def travel_run(*, seed: int = 0, force: float, start: str = "run-up", **params) -> dict:
     """Sweep run: Ooten's figure 10, how far a constant ``force`` (N) carries the slider of
-    ``make_scene(seed=seed, **params)`` from ``start``: ``travel_m`` and ``passed`` / ``stuck`` (1/0)."""
-    from ..experiments.measures import travel_under_force
+    ``make_scene(seed=seed, **params)`` from ``start``: ``travel_m`` and ``passed`` / ``stuck`` (1/0),
+    at the step policy's step (that of the critical force from ``start``, ``dt_s``)."""
+    from ..experiments.measures import measure_step, travel_under_force
 
-    travel, status = travel_under_force(make_scene(seed=seed, drive="force", **params), force=force, start=start)
+    scene = make_scene(seed=seed, drive="force", **params)
+    dt = measure_step("travel", scene, start=start)
+    travel, status = travel_under_force(scene, force=force, start=start, dt=dt)
     return {"travel_m": travel, "passed": float(status == "passed"), "stuck": float(status == "stuck"),
-            "force_N": force}
+            "force_N": force, "dt_s": dt}
 
 
 def pushed(scene, force: float, *, start: str = "rest", dt: float | None = None):
@@ -99,11 +102,16 @@ def pushed(scene, force: float, *, start: str = "rest", dt: float | None = None)
     return dataclasses.replace(run.result(), scene=pushed_scene)
 
 
-def spring_pass(scene, *, contact_work: bool = False):
-    """One spring-driven pass of ``scene`` (:func:`asperity2d.simulate` with the default stops);
-    with ``contact_work`` also its contact-work books (``result.meta["contact_work"]``,
-    :class:`asperity2d.engine.energy.ContactWork`). Returns (result, books or None)."""
-    result = simulate(scene, contact_work=contact_work)
+def spring_pass(scene, *, contact_work: bool = False, dt: float | None = None):
+    """One spring-driven pass of ``scene`` (:func:`asperity2d.simulate` with the default stops) at
+    ``dt`` (s; default the step policy's for stick forces,
+    :func:`asperity2d.experiments.measures.measure_step`); with ``contact_work`` also its
+    contact-work books (``result.meta["contact_work"]``, :class:`asperity2d.engine.energy.ContactWork`).
+    Returns (result, books or None)."""
+    from ..experiments.measures import measure_step
+
+    dt = measure_step("peak-stick", scene) if dt is None else dt
+    result = simulate(scene, contact_work=contact_work, dt=dt)
     return result, result.meta.get("contact_work")
 
 
@@ -142,7 +150,7 @@ def spring_pass_run(*, seed: int = 0, contact_work: bool = False, **params) -> d
         "events": float(stats["count"]), "force_drop_mean_N": stats["force_drop_mean"],
         "force_drop_std_N": stats["force_drop_std"], "slip_distance_mean_m": stats["slip_distance_mean"],
         "regularity": stats["regularity"], "travel_m": travel,
-        "passed": float(result.status == "passed"),
+        "passed": float(result.status == "passed"), "dt_s": float(result.meta["dt"]),
     }
     if books is not None:
         out.update(contact_work_pushing_J=books["pushing_J"], contact_work_rebound_J=books["rebound_J"],

@@ -66,6 +66,19 @@ class Asperities:
 
     ``absorbed`` and ``trimmed`` count the summits absorbed into a neighbour
     and the triangles shrunk to remove an overlap. Bases never overlap.
+
+    See Also
+    --------
+    asperity2d.surface.find_asperities : makes one from a profile.
+    asperity2d.make_scene : ``lower_surface=asperities`` builds a scene on them.
+
+    Examples
+    --------
+    >>> import asperity2d.surface as surface
+    >>> profile = surface.self_affine_profile(n=256, length=10e-6, rms_height=0.1e-6, hurst=0.8, seed=1)
+    >>> asperities = surface.find_asperities(profile, min_prominence=20e-9, stiffness=37200.0, mass=2.88e-16)
+    >>> len(asperities.centers), bool((asperities.heights > 0).all())
+    (10, True)
     """
 
     centers: np.ndarray
@@ -175,6 +188,28 @@ def table1_stiffness(bases, modulus: float) -> np.ndarray:
     E = 1.86e10 Pa needs l = 2 b (Ooten does not state l), hence
     K = E 4 b^2 / (2 b) = 2 E b. (Ooten's E = 1.86e10 Pa for "30e6 psi"
     steel is itself off: 30e6 psi is 2.07e11 Pa.)
+
+    Parameters
+    ----------
+    bases : float or array_like
+        Asperity bases b (m).
+    modulus : float
+        Young's modulus E (Pa).
+
+    Returns
+    -------
+    numpy.ndarray
+        K (N/m).
+
+    See Also
+    --------
+    asperity2d.surface.pyramid_mass
+
+    Examples
+    --------
+    >>> from asperity2d.surface import table1_stiffness
+    >>> float(table1_stiffness(1e-6, 1.86e10))  # Ooten's 37,200 N/m
+    37200.0
     """
     modulus = check_positive("modulus", modulus)
     return 2.0 * modulus * np.asarray(bases, dtype=float)
@@ -187,6 +222,28 @@ def pyramid_mass(bases, heights, density: float) -> np.ndarray:
     height b / 2 (a 45-degree asperity); b^2 h / 3 is the same pyramid for any
     height. (Ooten's printed V = 3.6e-17 m^3 for b = 1 um does not follow
     from its formula, which gives 1.67e-19 m^3; we use the formula.)
+
+    Parameters
+    ----------
+    bases, heights : float or array_like
+        Base side b and height h (m).
+    density : float
+        rho (kg/m^3).
+
+    Returns
+    -------
+    numpy.ndarray
+        Masses (kg).
+
+    See Also
+    --------
+    asperity2d.surface.table1_stiffness
+
+    Examples
+    --------
+    >>> from asperity2d.surface import pyramid_mass
+    >>> f'{float(pyramid_mass(1e-6, 0.5e-6, 7800.0)):.3g} kg'  # a 45-degree steel asperity
+    '1.3e-15 kg'
     """
     density = check_positive("density", density)
     bases = np.asarray(bases, dtype=float)
@@ -211,6 +268,31 @@ def find_asperities(profile: SurfaceProfile, *, min_prominence: float, min_width
     mass, density : float
         Give one: a mass for all asperities (kg), or a density (kg/m^3) for
         :func:`pyramid_mass`.
+
+    Returns
+    -------
+    Asperities
+
+    Raises
+    ------
+    SceneError
+        No summit above ``min_prominence``, or a bad parameter.
+
+    See Also
+    --------
+    asperity2d.make_scene : does this for ``lower_surface=profile``.
+    asperity2d.surface.table1_stiffness : the rules behind ``modulus`` and ``density``.
+    asperity2d.surface.pyramid_mass
+
+    Examples
+    --------
+    >>> import asperity2d.surface as surface
+    >>> profile = surface.self_affine_profile(n=256, length=10e-6, rms_height=0.1e-6, hurst=0.8, seed=1)
+    >>> asperities = surface.find_asperities(profile, min_prominence=20e-9, modulus=1.86e10, density=7800.0)
+    >>> len(asperities.centers)
+    10
+    >>> print(f'{asperities.stiffness.min():.3g} to {asperities.stiffness.max():.3g} N/m')
+    6.07e+03 to 5.99e+04 N/m
     """
     from scipy.signal import find_peaks
 

@@ -45,6 +45,36 @@ def random_heights(count: int, *, mean: float, std: float, distribution: str = "
     the same seed gives the same heights. ``floor`` (m): draws at or below it
     are redrawn (see the module notes); draws above it are the very numbers
     drawn without a floor.
+
+    Parameters
+    ----------
+    count : int
+        Number of heights.
+    mean, std : float
+        Mean and standard deviation (m).
+    distribution : {"gaussian", "uniform"}, default "gaussian"
+        The distribution.
+    seed : int or numpy.random.SeedSequence, default 0
+        The stream.
+    floor : float, optional
+        Draws at or below it are redrawn (m).
+
+    Returns
+    -------
+    numpy.ndarray
+        Heights (m).
+
+    See Also
+    --------
+    asperity2d.surface.fraction_above : the share above a level, in closed form.
+    asperity2d.make_scene : ``height_std=`` draws them for a scene.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from asperity2d.surface import random_heights
+    >>> np.round(random_heights(4, mean=0.5e-6, std=0.05e-6, seed=1) * 1e9, 1)  # nm
+    array([517.3, 541.1, 516.5, 434.8])
     """
     count = check_int("count", count, minimum=1)
     mean = check_finite("mean", mean)
@@ -121,6 +151,32 @@ def fraction_above(level: float, *, mean: float, std: float, distribution: str =
     Q((level - mean) / std) for Gaussian heights (Q the normal tail), a
     linear ramp for uniform ones; with a ``floor`` (redrawn heights), the
     tail above max(level, floor) divided by the tail above the floor.
+
+    Parameters
+    ----------
+    level : float
+        The level (m).
+    mean, std : float
+        As for :func:`random_heights` (m).
+    distribution : {"gaussian", "uniform"}, default "gaussian"
+        The distribution.
+    floor : float, optional
+        The redraw floor (m).
+
+    Returns
+    -------
+    float
+        A probability.
+
+    See Also
+    --------
+    asperity2d.surface.random_heights
+
+    Examples
+    --------
+    >>> from asperity2d.surface import fraction_above
+    >>> round(fraction_above(0.55e-6, mean=0.5e-6, std=0.05e-6), 4)  # one std above: 15.87 %
+    0.1587
     """
     from scipy.stats import norm
 

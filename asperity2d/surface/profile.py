@@ -32,6 +32,9 @@ from ..errors import SceneError
 
 #: Relative tolerance on the sample spacing for a profile to count as uniformly sampled.
 UNIFORM_TOLERANCE = 1e-3
+#: The smallest sample step (m): a femtometre, far below any instrument's (and an atom's 1e-10 m);
+#: steps far smaller (subnormal numbers: 1e-320) leave the levelling fit without a solution.
+MIN_STEP = 1e-15
 #: Most points of a generated profile (a 2**24-point trace is 128 MB of heights).
 MAX_POINTS = 2**24
 
@@ -44,6 +47,36 @@ class SurfaceProfile:
     read-only mapping) records where the profile came from (generator and its
     parameters, or the file, its unit and header comments). Not to be confused
     with :class:`asperity2d.geometry.Profile`, the shape of one asperity.
+
+    Parameters
+    ----------
+    x, z : array_like
+        Positions and heights (m), the same length; x strictly increasing.
+    name : str, default ""
+        A label.
+    metadata : mapping, optional
+        Where the profile came from.
+
+    Raises
+    ------
+    SceneError
+        Arrays of different lengths, non-finite values, or x not increasing.
+
+    See Also
+    --------
+    asperity2d.surface.self_affine_profile : make one.
+    asperity2d.surface.gaussian_profile
+    asperity2d.surface.read_profile
+    asperity2d.make_scene : ``lower_surface=profile`` turns its summits into asperities.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from asperity2d.surface import SurfaceProfile
+    >>> x = np.linspace(0, 4e-6, 5)
+    >>> profile = SurfaceProfile(x, 1e-7 * np.array([0, 2, 0, 3, 0]), name='two bumps')
+    >>> profile.name, len(profile.x)
+    ('two bumps', 5)
     """
 
     x: np.ndarray
@@ -65,6 +98,10 @@ class SurfaceProfile:
             i = int(np.argmax(steps <= 0))
             raise SceneError(f"`x` must be strictly increasing: x[{i + 1}] = {x[i + 1]!r} "
                              f"follows x[{i}] = {x[i]!r}")
+        if np.min(steps) < MIN_STEP:
+            i = int(np.argmin(steps))
+            raise SceneError(f"`x` steps must be at least {MIN_STEP:g} m (positions are in m), got "
+                             f"{float(steps[i])!r} between x[{i}] and x[{i + 1}]")
         object.__setattr__(self, "x", x)
         object.__setattr__(self, "z", z)
         object.__setattr__(self, "metadata", MappingProxyType(dict(self.metadata)))
@@ -96,7 +133,11 @@ class SurfaceProfile:
 
     def detrended(self) -> "SurfaceProfile":
         """The profile minus its least-squares straight line (form / tilt removal)."""
-        slope, intercept = np.polyfit(self.x, self.z, 1)
+        try:
+            slope, intercept = np.polyfit(self.x, self.z, 1)
+        except (np.linalg.LinAlgError, ValueError) as exc:  # the rule on x steps should prevent it
+            raise SceneError(f"profile {self.name!r} cannot be levelled (a least-squares line through "
+                             f"its points has no solution: {exc}); use surface_detrend=False") from None
         return SurfaceProfile(self.x, self.z - (slope * self.x + intercept),
                               name=self.name, metadata={**self.metadata, "detrended": True})
 
@@ -154,6 +195,24 @@ def self_affine_profile(*, n: int, length: float, rms_height: float, hurst: floa
         as measured on many real surfaces).
     seed : int
         Seed of ``numpy.random.default_rng``.
+
+    Returns
+    -------
+    SurfaceProfile
+
+    See Also
+    --------
+    asperity2d.surface.fit_hurst : measures H back.
+    asperity2d.surface.gaussian_profile : another random profile.
+
+    Examples
+    --------
+    >>> import asperity2d.surface as surface
+    >>> profile = surface.self_affine_profile(n=4096, length=100e-6, rms_height=0.1e-6, hurst=0.8, seed=1)
+    >>> f'{surface.rms_height(profile):.3g} m'
+    '1e-07 m'
+    >>> round(surface.fit_hurst(profile).hurst, 2)  # one realisation, a finite band: 0.75 for 0.8
+    0.75
     """
     n, length, x = _grid(n, length)
     rms_height = check_real("rms_height", rms_height, positive=True)
@@ -196,6 +255,41 @@ def gaussian_profile(*, n: int, length: float, rms_height: float, correlation_le
     ``length`` (the kernel must not wrap onto itself). White noise convolved
     with a Gaussian kernel of standard deviation l / 2 has exactly this
     autocorrelation; the result is scaled to ``rms_height`` (m).
+
+    Parameters
+    ----------
+    n : int
+        Number of points.
+    length : float
+        Length (m).
+    rms_height : float
+        Root-mean-square height (m).
+    correlation_length : float
+        Lag (m) at which the autocorrelation falls to 1/e.
+    seed : int, default 0
+        The same seed, the same profile.
+    name : str, default ""
+        A label.
+
+    Returns
+    -------
+    SurfaceProfile
+
+    Raises
+    ------
+    SceneError
+        A bad parameter, named.
+
+    See Also
+    --------
+    asperity2d.surface.self_affine_profile
+
+    Examples
+    --------
+    >>> import asperity2d.surface as surface
+    >>> profile = surface.gaussian_profile(n=256, length=10e-6, rms_height=0.1e-6, correlation_length=0.5e-6)
+    >>> f'{surface.rms_height(profile):.3g} m'
+    '1e-07 m'
     """
     from scipy.ndimage import gaussian_filter1d
 

@@ -46,6 +46,8 @@ def read_profile(path: str | os.PathLike, *, unit: str | None = None, line: int 
 
     Parameters
     ----------
+    path : str or os.PathLike
+        A text file of two columns (x, z), or an instrument file (with the ``profiles`` extra).
     unit : {"m", "mm", "um", "µm", "nm"}
         Unit of both columns of a text file (required there unless the file
         states it in a ``# unit: ...`` comment), or of an instrument file
@@ -54,7 +56,33 @@ def read_profile(path: str | os.PathLike, *, unit: str | None = None, line: int 
         Scan line to take from a 2-D instrument map.
     name : str, optional
         Profile name (default: the file name).
+
+    Returns
+    -------
+    SurfaceProfile
+        Heights and positions in m.
+
+    Raises
+    ------
+    FileError
+        A missing or unreadable file, or a unit that is not given (naming ``path``).
+
+    See Also
+    --------
+    asperity2d.make_scene : ``lower_surface="trace.txt", surface_unit="um"`` reads it for a scene.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> import asperity2d.surface as surface
+    >>> _ = Path("trace.txt").write_text("# unit: um\\n0 0.0\\n1 0.2\\n2 0.05\\n3 0.3\\n4 0.0\\n")
+    >>> profile = surface.read_profile("trace.txt")
+    >>> print(f"{profile.x[-1]:.3g} m long, highest point {profile.z.max():.3g} m")
+    4e-06 m long, highest point 3e-07 m
     """
+    if not isinstance(path, (str, os.PathLike)):
+        raise SceneError(f"`path` must be a file name (str or path), got {type(path).__name__}"
+                         + ("; to read bytes, write them to a file first" if isinstance(path, (bytes, bytearray)) else ""))
     path = Path(path)
     if unit is not None:
         check_choice("unit", unit, UNITS)

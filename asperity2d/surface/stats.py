@@ -58,7 +58,28 @@ def _finite(what: str, value: float) -> float:
 
 
 def rms_height(profile: SurfaceProfile) -> float:
-    """Root-mean-square height about the mean line, Rq (m)."""
+    """Root-mean-square height about the mean line, Rq (m).
+
+    Parameters
+    ----------
+    profile : SurfaceProfile
+
+    Returns
+    -------
+    float
+        Rq (m).
+
+    See Also
+    --------
+    asperity2d.surface.rms_slope, asperity2d.surface.power_spectrum
+
+    Examples
+    --------
+    >>> import asperity2d.surface as surface
+    >>> profile = surface.self_affine_profile(n=256, length=10e-6, rms_height=0.1e-6, hurst=0.8, seed=1)
+    >>> f'{surface.rms_height(profile):.3g} m'
+    '1e-07 m'
+    """
     z = check_profile(profile).z
     z = z - z.mean()
     with np.errstate(over="ignore", invalid="ignore"):
@@ -66,7 +87,28 @@ def rms_height(profile: SurfaceProfile) -> float:
 
 
 def rms_slope(profile: SurfaceProfile) -> float:
-    """Root-mean-square slope from forward differences (dimensionless)."""
+    """Root-mean-square slope from forward differences (dimensionless).
+
+    Parameters
+    ----------
+    profile : SurfaceProfile
+
+    Returns
+    -------
+    float
+        The rms slope (dimensionless).
+
+    See Also
+    --------
+    asperity2d.surface.rms_height
+
+    Examples
+    --------
+    >>> import asperity2d.surface as surface
+    >>> profile = surface.self_affine_profile(n=256, length=10e-6, rms_height=0.1e-6, hurst=0.8, seed=1)
+    >>> round(surface.rms_slope(profile), 3)
+    0.269
+    """
     profile = check_profile(profile)
     with np.errstate(over="ignore", invalid="ignore"):
         slope = np.diff(profile.z) / np.diff(profile.x)
@@ -75,7 +117,30 @@ def rms_slope(profile: SurfaceProfile) -> float:
 
 @dataclass(frozen=True, eq=False)
 class PowerSpectrum:
-    """One-sided PSD ``psd`` (m^3) at wavenumbers ``q`` (rad/m, q > 0), from ``method``."""
+    """One-sided PSD ``psd`` (m^3) at wavenumbers ``q`` (rad/m, q > 0), from ``method``.
+
+    Attributes
+    ----------
+    q : numpy.ndarray
+        Wavenumbers (rad/m).
+    psd : numpy.ndarray
+        One-sided power spectral density (m^3).
+    method : str
+        ``"periodogram"`` or ``"welch"``.
+
+    See Also
+    --------
+    asperity2d.surface.power_spectrum : computes one.
+    asperity2d.surface.fit_hurst : fits it.
+
+    Examples
+    --------
+    >>> import asperity2d.surface as surface
+    >>> profile = surface.self_affine_profile(n=256, length=10e-6, rms_height=0.1e-6, hurst=0.8, seed=1)
+    >>> spectrum = surface.power_spectrum(profile)
+    >>> spectrum.q.shape, spectrum.method
+    ((128,), 'periodogram')
+    """
 
     q: np.ndarray
     psd: np.ndarray
@@ -98,6 +163,38 @@ def power_spectrum(profile: SurfaceProfile, *, method: str = "periodogram",
     ``"welch"`` averages ``segments`` half-overlapping windowed segments
     (less scatter, coarser resolution, longest wavelength length / segments).
     ``window``: ``"hann"`` or ``"boxcar"`` (see the module notes).
+
+    Parameters
+    ----------
+    profile : SurfaceProfile
+        Uniformly sampled.
+    method : {"periodogram", "welch"}, default "periodogram"
+        Whole trace, or averaged segments.
+    window : {"hann", "boxcar"}, default "hann"
+        The window.
+    segments : int, default 8
+        Segments of a Welch estimate.
+
+    Returns
+    -------
+    PowerSpectrum
+
+    Raises
+    ------
+    SceneError
+        A non-uniform profile or a bad parameter.
+
+    See Also
+    --------
+    asperity2d.surface.fit_hurst
+
+    Examples
+    --------
+    >>> import asperity2d.surface as surface
+    >>> profile = surface.self_affine_profile(n=256, length=10e-6, rms_height=0.1e-6, hurst=0.8, seed=1)
+    >>> spectrum = surface.power_spectrum(profile, method='welch', segments=4)
+    >>> spectrum.method, len(spectrum.q) < len(profile.x) // 2
+    ('welch', True)
     """
     from scipy import signal
 
@@ -135,6 +232,18 @@ class HurstFit:
     standard error of the slope divided by 2 (it ignores the correlation of
     neighbouring windowed periodogram bins, so treat it as a lower bound);
     ``points`` is the number of spectrum values in the band.
+
+    See Also
+    --------
+    asperity2d.surface.fit_hurst : makes one.
+
+    Examples
+    --------
+    >>> import asperity2d.surface as surface
+    >>> profile = surface.self_affine_profile(n=256, length=10e-6, rms_height=0.1e-6, hurst=0.8, seed=1)
+    >>> fit = surface.fit_hurst(profile)
+    >>> fit.points > 10, round(-(1 + fit.slope) / 2 - fit.hurst, 12)
+    (True, 0.0)
     """
 
     hurst: float
@@ -156,6 +265,34 @@ def fit_hurst(profile: SurfaceProfile | PowerSpectrum, *, q_min: float | None = 
     profile (from 8 x the lowest to a quarter of the highest q of a spectrum):
     it leaves out the few longest wavelengths, poorly sampled and smeared by
     the window, and the shortest, where noise and aliasing flatten real traces.
+
+    Parameters
+    ----------
+    profile : SurfaceProfile or PowerSpectrum
+        The surface, or its spectrum.
+    q_min, q_max : float, optional
+        The band fitted (rad/m); defaults above.
+
+    Returns
+    -------
+    HurstFit
+
+    Raises
+    ------
+    SceneError
+        A band with too few points.
+
+    See Also
+    --------
+    asperity2d.surface.self_affine_profile, asperity2d.surface.power_spectrum
+
+    Examples
+    --------
+    >>> import asperity2d.surface as surface
+    >>> profile = surface.self_affine_profile(n=4096, length=100e-6, rms_height=0.1e-6, hurst=0.8, seed=1)
+    >>> fit = surface.fit_hurst(profile)
+    >>> f'H = {fit.hurst:.2f} +- {fit.hurst_stderr:.2f}'
+    'H = 0.75 +- 0.03'
     """
     from scipy import stats
 

@@ -72,14 +72,37 @@ SPECULATE_AFTER = 0.25
 
 class CallFailed(RuntimeError):
     """A call failed and its own exception did not come back (a dead worker, or an exception
-    that could not be pickled); the message is the error text."""
+    that could not be pickled); the message is the error text.
+
+    See Also
+    --------
+    asperity2d.sweep.Outcome.raise_failure, asperity2d.sweep.map_calls
+
+    Examples
+    --------
+    >>> from asperity2d import sweep
+    >>> issubclass(sweep.CallFailed, RuntimeError)
+    True
+    """
 
 
 @dataclass(frozen=True)
 class Outcome:
     """What became of call ``index``: ``status`` ``"done"`` with its ``value``, or ``"failed"``
     with ``error``, ``traceback`` and (when it could be pickled) the ``exception``;
-    ``wall_time`` (s) spent in the call (NaN when its worker died)."""
+    ``wall_time`` (s) spent in the call (NaN when its worker died).
+
+    See Also
+    --------
+    asperity2d.sweep.run_calls : yields them.
+
+    Examples
+    --------
+    >>> import math
+    >>> from asperity2d import sweep
+    >>> [(o.index, o.status, o.value, o.error) for o in sweep.run_calls(math.sqrt, [(4.0,), (-1.0,)], workers=1)]
+    [(0, 'done', 2.0, None), (1, 'failed', None, 'ValueError: math domain error')]
+    """
 
     index: int
     status: str
@@ -130,9 +153,40 @@ def decide_workers(workers: int | str | None, calls: int, *, cost: float | None 
     ``workers`` as given (an int >= 1; never more than there are calls: a pool of idle workers
     costs their start-up and nothing else), or, for ``None`` / ``"auto"``, from ``cost``, the
     wall time (s) of one call: every core (``os.cpu_count()``) when the predicted parallel wall
-    time -- ``STARTUP_S`` unless a warm pool of that many workers is running, plus the
-    calls in rounds of one per worker, plus ``DISPATCH_S`` per call -- is at most
-    ``PAYS`` of the serial time, else 1 (this process). Without a ``cost``: every core.
+    time -- :data:`STARTUP_S` unless a warm pool of that many workers is running, plus the
+    calls in rounds of one per worker, plus :data:`DISPATCH_S` per call -- is at most
+    :data:`PAYS` of the serial time, else 1 (this process). Without a ``cost``: every core.
+
+    Parameters
+    ----------
+    workers : int, "auto" or None
+        As asked.
+    calls : int
+        Number of calls.
+    cost : float, optional
+        Wall time of one call (s).
+
+    Returns
+    -------
+    int
+        Worker processes (1: in this process).
+
+    Raises
+    ------
+    SceneError
+        A bad ``workers``.
+
+    See Also
+    --------
+    asperity2d.sweep.run_calls : uses it.
+
+    Examples
+    --------
+    >>> from asperity2d import sweep
+    >>> sweep.decide_workers(2, 10)
+    2
+    >>> sweep.decide_workers('auto', 10, cost=0.001)  # cheap calls: not worth a pool
+    1
     """
     if not is_auto(workers):
         if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
@@ -164,8 +218,26 @@ def run_calls(fn: Callable, calls: Sequence[tuple], *, workers: int | str | None
     has its own), or an open ``executor`` (kept open). ``fn`` must be a module-level function
     to run in worker processes. ``report``, if given, receives ``"executor"``: where the calls
     ran, in words.
+
+    Returns
+    -------
+    iterator of Outcome
+        One per call, as each completes.
+
+    See Also
+    --------
+    asperity2d.sweep.map_calls : the values in order.
+
+    Examples
+    --------
+    >>> import math
+    >>> from asperity2d import sweep
+    >>> for outcome in sweep.run_calls(math.sqrt, [(4.0,), (-1.0,)], workers=1):
+    ...     print(outcome.index, outcome.status, outcome.value, outcome.error)
+    0 done 2.0 None
+    1 failed None ValueError: math domain error
     """
-    from .executors import LocalExecutor, check_executor_args, make_executor, warm_pools
+    from .executors import LocalExecutor, check_executor_args, make_executor, plain_script_fallback, warm_pools
 
     calls = list(calls)
     if executor is not None and (not is_auto(workers) or scheduler is not None):
@@ -181,6 +253,8 @@ def run_calls(fn: Callable, calls: Sequence[tuple], *, workers: int | str | None
         return
     jobs = [(fn, tuple(args)) for args in calls]
     owned, first, pilot = executor is None, 0, ""
+    if owned and scheduler in (None, "local") and workers != 1 and len(jobs) > 1 and plain_script_fallback():
+        workers, scheduler = 1, None  # a plain script without the main guard: in this process
     if owned and scheduler is not None:
         executor = make_executor(workers=workers, scheduler=scheduler)
     elif owned:
@@ -222,7 +296,39 @@ def map_calls(fn: Callable, kwargs_list: Sequence[Mapping[str, Any]], *,
     """``[fn(**kw) for kw in kwargs_list]`` on the engine (in-process, local processes or Dask;
     ``workers`` as for :func:`run_calls`, decided by cost by default), returned in order. A
     failed call raises its own exception here (:meth:`Outcome.raise_failure`, noting which
-    call), on every executor; the calls not yet finished are cancelled."""
+    call), on every executor; the calls not yet finished are cancelled.
+
+    Parameters
+    ----------
+    fn : callable
+        Called with each mapping as keyword arguments; module level for worker processes.
+    kwargs_list : sequence of mappings
+        One per call.
+    workers : int, "auto" or None
+        As for :func:`run_calls`.
+    scheduler : str, optional
+        A Dask scheduler address.
+
+    Returns
+    -------
+    list
+        The values, in the order of ``kwargs_list``.
+
+    Raises
+    ------
+    Exception
+        The first failed call's own exception.
+
+    See Also
+    --------
+    asperity2d.sweep.run_calls : outcomes as they complete, failures included.
+
+    Examples
+    --------
+    >>> from asperity2d import sweep
+    >>> sweep.map_calls(complex, [{'real': 3, 'imag': 4}, {'real': 5}], workers=1)
+    [(3+4j), (5+0j)]
+    """
     out: list = [None] * len(kwargs_list)
     for outcome in run_calls(_call, [(fn, dict(kw)) for kw in kwargs_list], workers=workers,
                              scheduler=scheduler):

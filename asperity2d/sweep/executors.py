@@ -40,7 +40,10 @@ import uuid
 from functools import lru_cache
 from typing import Any, Callable, Iterable, Iterator, Mapping, Sequence
 
-from ..errors import SceneError
+import contextlib
+import logging
+
+from ..errors import SceneError, SimulationError
 
 
 @lru_cache(maxsize=32)
@@ -61,7 +64,40 @@ def execute_run(run: str, params: Mapping[str, Any], seed: int, quantities: Sequ
                 ) -> dict[str, float]:
     """Call a study's run function once (``run`` a dotted path) and return its quantities
     (name -> float); raise if it raises, returns something else than a mapping of numbers, or
-    lacks one of ``quantities`` (the engine records the failure)."""
+    lacks one of ``quantities`` (the engine records the failure).
+
+    Parameters
+    ----------
+    run : str
+        ``"module:function"``.
+    params : mapping
+        Keyword arguments.
+    seed : int
+        Passed as ``seed=``.
+    quantities : sequence of str, optional
+        Names the result must hold.
+
+    Returns
+    -------
+    dict of str to float
+
+    Raises
+    ------
+    Exception
+        The run's own, or a ``SceneError`` for a result that is not a mapping of numbers.
+
+    See Also
+    --------
+    asperity2d.sweep.run_study : calls it for every run.
+
+    Examples
+    --------
+    >>> from asperity2d import sweep
+    >>> values = sweep.execute_run('asperity2d.studies.ooten:critical_force_run', {'lower_count': 4, 'upper_count': 2}, 0,
+    ...                          ['critical_force_N'])
+    >>> f"{values['critical_force_N'] * 1e3:.3g} mN"
+    '7.61 mN'
+    """
     raw = resolve_run(run)(**params, seed=seed)
     if not isinstance(raw, Mapping):
         raise TypeError(f"run function must return a mapping, got {type(raw).__name__}")
@@ -100,6 +136,88 @@ def _check_main_importable() -> None:
             f"`workers` > 1 needs a main script that worker processes can import, got {path!r} "
             "(run from a file with an `if __name__ == '__main__':` guard, or use workers=1)"
         )
+
+
+# -- plain scripts ---------------------------------------------------------------------------
+def _is_main_test(test) -> bool:
+    """True for the test ``__name__ == "__main__"`` (either way round)."""
+    import ast
+
+    if not (isinstance(test, ast.Compare) and len(test.ops) == 1 and isinstance(test.ops[0], ast.Eq)):
+        return False
+    sides = [test.left, test.comparators[0]]
+    return (any(isinstance(s, ast.Name) and s.id == "__name__" for s in sides)
+            and any(isinstance(s, ast.Constant) and s.value == "__main__" for s in sides))
+
+
+def guarded_line(source: str, line: int) -> bool:
+    """True if ``line`` of the module ``source`` lies in the body of an ``if __name__ ==
+    "__main__":`` block (False also for source that does not parse)."""
+    import ast
+
+    try:
+        tree = ast.parse(source)
+    except (SyntaxError, ValueError):
+        return False
+    for node in ast.walk(tree):
+        if isinstance(node, ast.If) and _is_main_test(node.test) and node.body:
+            if node.body[0].lineno <= line <= (node.body[-1].end_lineno or node.body[-1].lineno):
+                return True
+    return False
+
+
+def unguarded_main_call(frame=None) -> str | None:
+    """``"path:line"`` of the main script's statement if the ensemble is started from its top-level code outside an
+    ``if __name__ == "__main__":`` block, else None.
+
+    A spawned worker process (local pools, a Dask ``LocalCluster``) starts by running the main
+    script again, as ``__mp_main__``: code under the guard is skipped there, code outside it
+    runs again -- and starts its own ensemble inside the worker, which fails (one traceback per
+    worker). Python's ``multiprocessing`` does not re-run a main module named ``__main__`` or
+    ``pkg.__main__`` (``python -m asperity2d``), nor an interactive session or notebook (no file).
+    """
+    main = sys.modules.get("__main__")
+    if main is None:
+        return None
+    spec_name = getattr(getattr(main, "__spec__", None), "name", None)
+    if spec_name is not None and (spec_name == "__main__" or spec_name.endswith(".__main__")):
+        return None
+    path = getattr(main, "__file__", None)
+    if not path or not os.path.isfile(path):
+        return None
+    frame = sys._getframe(1) if frame is None else frame
+    while frame is not None and not (frame.f_globals is vars(main) and frame.f_code.co_name == "<module>"):
+        frame = frame.f_back
+    if frame is None:  # not called from the main script's top level (a function it called later)
+        return None
+    try:
+        with open(path, encoding="utf-8") as fh:
+            source = fh.read()
+    except (OSError, UnicodeDecodeError):
+        return None
+    return None if guarded_line(source, frame.f_lineno) else f"{path}:{frame.f_lineno}"
+
+
+_warned_scripts: set[str] = set()
+
+
+def plain_script_fallback() -> bool:
+    """True (and, once per script, a warning saying how to get the workers) if worker processes
+    would re-run the main script's unguarded top-level code: the ensemble then runs here."""
+    import warnings
+
+    where = unguarded_main_call(sys._getframe(1))
+    if where is None:
+        return False
+    script, _, line = where.rpartition(":")
+    if script not in _warned_scripts:
+        _warned_scripts.add(script)
+        warnings.warn_explicit(
+            "asperity2d runs these calls in this process, without worker processes: the script starts "
+            "them outside an `if __name__ == \"__main__\":` block, and each worker would run the script "
+            "again. Put the script's calls under that block to get the workers.",
+            RuntimeWarning, script, int(line), module="__main__")
+    return True
 
 
 # -- the warm pools ----------------------------------------------------------------------------
@@ -195,6 +313,18 @@ class LocalExecutor:
         the calling process, which is the easiest to debug.
     in_process : bool, optional
         Override: ``False`` uses a pool even for one worker (benchmarks).
+
+    See Also
+    --------
+    asperity2d.sweep.make_executor, asperity2d.sweep.DaskExecutor
+
+    Examples
+    --------
+    >>> from asperity2d import sweep
+    >>> executor = sweep.LocalExecutor(workers=1)
+    >>> executor.in_process, executor.workers
+    (True, 1)
+    >>> executor.close()
     """
 
     def __init__(self, *, workers: int | None = None, in_process: bool | None = None):
@@ -299,6 +429,45 @@ def _import_distributed():
     return distributed
 
 
+class OneLine(logging.Filter):
+    """A log filter that writes an exception's record as one line: its message and the exception's
+    type and text, without the traceback (a killed Dask worker makes its peers and the scheduler
+    log a ``CommClosedError`` traceback each; the run it held is reported as failed anyway)."""
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        # only Dask's (and its event loop's) records: a user's own logging keeps its tracebacks
+        if record.exc_info and record.exc_info[1] is not None and record.name.split(".")[0] in DASK_LOGGERS:
+            exc = record.exc_info[1]
+            record.msg = f"{record.getMessage()} ({type(exc).__name__}: {exc})".replace("\n", " ")
+            record.args, record.exc_info, record.exc_text = (), None, None
+        return True
+
+
+#: The loggers whose exception records :class:`OneLine` shortens while a Dask executor is open.
+DASK_LOGGERS = ("distributed", "tornado", "asyncio")
+
+
+def quiet_tracebacks(names=DASK_LOGGERS) -> Callable[[], None]:
+    """Put a :class:`OneLine` filter on the handlers of loggers ``names`` (and the root's);
+    return the function that takes it off again."""
+    one = OneLine()
+    handlers = {h for name in (*names, "") for h in logging.getLogger(name).handlers}
+    for handler in handlers:
+        handler.addFilter(one)
+
+    def undo() -> None:
+        for handler in handlers:
+            handler.removeFilter(one)
+
+    return undo
+
+
+def dask_setup(worker=None) -> None:
+    """Dask preload hook (``LocalCluster(preload=[__name__])``): the workers this package starts
+    log exceptions as one line too."""
+    quiet_tracebacks()
+
+
 class DaskExecutor:
     """Runs on a Dask distributed cluster.
 
@@ -311,6 +480,18 @@ class DaskExecutor:
         able to import asperity2d and the study's run function.
     workers : int, optional
         Worker processes for ``scheduler="local"`` (default ``os.cpu_count()``).
+
+    See Also
+    --------
+    asperity2d.sweep.make_executor, asperity2d.sweep.LocalExecutor
+
+    Examples
+    --------
+    Skipped when the examples run: it needs a Dask scheduler listening at that address.
+
+    >>> from asperity2d import sweep
+    >>> executor = sweep.DaskExecutor(scheduler="tcp://127.0.0.1:8786")  # doctest: +SKIP
+    >>> sweep.run_study("study.toml", store="results", scheduler="tcp://127.0.0.1:8786")  # doctest: +SKIP
     """
 
     def __init__(self, *, scheduler: str, workers: int | None = None):
@@ -318,11 +499,17 @@ class DaskExecutor:
         distributed = _import_distributed()
         self.scheduler = scheduler
         self._cluster = None
+        self._loud = quiet_tracebacks()
         if scheduler == "local":
             n = _check_workers(workers)
-            self._cluster = distributed.LocalCluster(
-                n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None
-            )
+            try:
+                self._cluster = distributed.LocalCluster(
+                    n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+                    preload=[__name__])
+            except Exception as exc:  # noqa: BLE001 - a worker killed or failing while it starts
+                self._loud()
+                raise SimulationError(f"`scheduler` 'local': the Dask cluster did not start "
+                                      f"({type(exc).__name__}: {exc})") from None
             address = self._cluster.scheduler_address
         else:
             address = scheduler
@@ -330,6 +517,7 @@ class DaskExecutor:
             self._client = distributed.Client(address, set_as_default=False, timeout=CONNECT_TIMEOUT)
         except (OSError, TimeoutError, ValueError) as exc:
             self._close_cluster()
+            self._loud()
             raise SceneError(f"`scheduler` {scheduler!r} could not be reached within "
                              f"{CONNECT_TIMEOUT:g} s: {exc}") from None
 
@@ -358,7 +546,10 @@ class DaskExecutor:
                 index = futures[future.key][1]
                 try:
                     result = future.result()
-                except Exception:  # the worker died running it, or beside the one that did
+                except (KeyboardInterrupt, SystemExit):
+                    raise
+                except BaseException:  # the worker died running it, or beside the one that did
+                    # (KilledWorker, CommClosedError, a cancelled future: each is a death)
                     suspects.append(index)
                     future.release()
                     continue
@@ -374,6 +565,10 @@ class DaskExecutor:
                     result = died(exc)
                 future.release()
                 yield index, result
+        except OSError as exc:  # CommClosedError: the connection to the scheduler itself was lost
+            raise SimulationError(f"`scheduler` {self.scheduler!r}: the connection to the Dask scheduler "
+                                  f"closed ({type(exc).__name__}: {exc}); the runs not finished have no result"
+                                  ) from None
         finally:  # stopped early (error, Ctrl-C): do not leave runs queued on the cluster
             for future, _ in futures.values():
                 if not future.done():
@@ -381,12 +576,15 @@ class DaskExecutor:
 
     def _close_cluster(self) -> None:
         if self._cluster is not None:
-            self._cluster.close()
+            with contextlib.suppress(Exception):  # a cluster whose workers were killed: gone already
+                self._cluster.close()
             self._cluster = None
 
     def close(self) -> None:
-        self._client.close()
+        with contextlib.suppress(Exception):  # CommClosedError, a timeout: the connection is gone
+            self._client.close()
         self._close_cluster()
+        self._loud()
 
     def __enter__(self) -> "DaskExecutor":
         return self
@@ -428,7 +626,30 @@ def check_executor_args(*, workers: int | None = None, scheduler: str | None = N
 def make_executor(
     *, workers: int | None = None, scheduler: str | None = None
 ) -> LocalExecutor | DaskExecutor:
-    """A :class:`DaskExecutor` if ``scheduler`` is given, else a :class:`LocalExecutor`."""
+    """A :class:`DaskExecutor` if ``scheduler`` is given, else a :class:`LocalExecutor`.
+
+    Parameters
+    ----------
+    workers : int, optional
+        Local worker processes.
+    scheduler : str, optional
+        A Dask scheduler address, or ``"local"``.
+
+    Returns
+    -------
+    LocalExecutor or DaskExecutor
+
+    See Also
+    --------
+    asperity2d.sweep.LocalExecutor
+    asperity2d.sweep.DaskExecutor
+
+    Examples
+    --------
+    >>> from asperity2d import sweep
+    >>> type(sweep.make_executor(workers=1)).__name__
+    'LocalExecutor'
+    """
     check_executor_args(workers=workers, scheduler=scheduler)
     if scheduler is None:
         return LocalExecutor(workers=workers)

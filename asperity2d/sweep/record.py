@@ -24,7 +24,18 @@ STATUSES = ("done", "failed")
 
 
 class CorruptRunWarning(UserWarning):
-    """A run file could not be trusted; the run will be executed again."""
+    """A run file could not be trusted; the run will be executed again.
+
+    See Also
+    --------
+    asperity2d.sweep.ResultStore, asperity2d.sweep.run_study
+
+    Examples
+    --------
+    >>> from asperity2d import sweep
+    >>> issubclass(sweep.CorruptRunWarning, UserWarning)
+    True
+    """
 
 
 class CorruptRunError(ValueError):
@@ -43,6 +54,22 @@ class RunRecord:
     ``quantities`` maps name -> float for done runs (empty when failed);
     ``error``/``traceback`` hold the exception text of failed runs;
     ``wall_time`` is the time spent in the run function (s).
+
+    See Also
+    --------
+    asperity2d.sweep.ResultStore
+
+    Examples
+    --------
+    >>> from asperity2d import sweep
+    >>> study = sweep.Study(name='spacing', run='asperity2d.studies.ooten:critical_force_run',
+    ...                     grid={'spacing': ('regular', 'random')}, seeds=(0,),
+    ...                     fixed={'lower_count': 4, 'upper_count': 2}, quantities=('critical_force_N',))
+    >>> session = sweep.run_study(study, store='spacing', workers=1, progress=False)
+    >>> store = sweep.ResultStore('spacing')
+    >>> record = store.read_run(session.executed[0])
+    >>> record.status, {k: round(v, 5) for k, v in record.quantities.items()}
+    ('done', {'critical_force_N': 0.00761})
     """
 
     key: str

@@ -29,7 +29,23 @@ Variant = tuple[tuple[str, Any], ...]
 
 @dataclass(frozen=True)
 class VariantStats:
-    """Statistics of one quantity over the done runs of one grid point."""
+    """Statistics of one quantity over the done runs of one grid point.
+
+    See Also
+    --------
+    asperity2d.sweep.summarize
+
+    Examples
+    --------
+    >>> from asperity2d import sweep
+    >>> study = sweep.Study(name='spacing', run='asperity2d.studies.ooten:critical_force_run',
+    ...                     grid={'spacing': ('regular', 'random')}, seeds=(0,),
+    ...                     fixed={'lower_count': 4, 'upper_count': 2}, quantities=('critical_force_N',))
+    >>> session = sweep.run_study(study, store='spacing', workers=1, progress=False)
+    >>> stats = sweep.summarize('spacing').stats[0]
+    >>> stats.variant, stats.n, f'{stats.mean * 1e3:.3g} mN'
+    ((('spacing', 'regular'),), 1, '7.61 mN')
+    """
 
     variant: Variant
     quantity: str
@@ -42,7 +58,23 @@ class VariantStats:
 
 @dataclass(frozen=True)
 class VariantTest:
-    """Mann–Whitney U test of one quantity between two variants differing in ``parameter``."""
+    """Mann–Whitney U test of one quantity between two variants differing in ``parameter``.
+
+    See Also
+    --------
+    asperity2d.sweep.summarize
+
+    Examples
+    --------
+    >>> from asperity2d import sweep
+    >>> study = sweep.Study(name='spacing', run='asperity2d.studies.ooten:critical_force_run',
+    ...                     grid={'spacing': ('regular', 'random')}, seeds=(0,),
+    ...                     fixed={'lower_count': 4, 'upper_count': 2}, quantities=('critical_force_N',))
+    >>> session = sweep.run_study(study, store='spacing', workers=1, progress=False)
+    >>> test = sweep.summarize('spacing').comparisons[0]
+    >>> test.parameter, test.n_a, test.n_b
+    ('spacing', 1, 1)
+    """
 
     parameter: str
     variant_a: Variant
@@ -55,7 +87,23 @@ class VariantTest:
 
 @dataclass(frozen=True)
 class Summary:
-    """Statistics of a study; ``counts`` maps each variant to (done, failed)."""
+    """Statistics of a study; ``counts`` maps each variant to (done, failed).
+
+    See Also
+    --------
+    asperity2d.sweep.summarize : makes one.
+
+    Examples
+    --------
+    >>> from asperity2d import sweep
+    >>> study = sweep.Study(name='spacing', run='asperity2d.studies.ooten:critical_force_run',
+    ...                     grid={'spacing': ('regular', 'random')}, seeds=(0,),
+    ...                     fixed={'lower_count': 4, 'upper_count': 2}, quantities=('critical_force_N',))
+    >>> session = sweep.run_study(study, store='spacing', workers=1, progress=False)
+    >>> summary = sweep.summarize('spacing')
+    >>> summary.quantities, summary.counts
+    (('critical_force_N',), ((1, 0), (1, 0)))
+    """
 
     study: str
     confidence: float
@@ -101,7 +149,34 @@ class Summary:
 
 
 def summarize(store: str | Path | ResultStore, *, confidence: float = 0.95) -> Summary:
-    """Per-variant statistics and Mann–Whitney comparisons of a store's study."""
+    """Per-variant statistics and Mann–Whitney comparisons of a store's study.
+
+    Parameters
+    ----------
+    store : str, pathlib.Path or ResultStore
+        The study's results directory.
+    confidence : float, default 0.95
+        Level of the intervals.
+
+    Returns
+    -------
+    Summary
+
+    See Also
+    --------
+    asperity2d.sweep.run_study : fills the store.
+
+    Examples
+    --------
+    >>> from asperity2d import sweep
+    >>> study = sweep.Study(name='spacing', run='asperity2d.studies.ooten:critical_force_run',
+    ...                     grid={'spacing': ('regular', 'random')}, seeds=(0,),
+    ...                     fixed={'lower_count': 4, 'upper_count': 2}, quantities=('critical_force_N',))
+    >>> session = sweep.run_study(study, store='spacing', workers=1, progress=False)
+    >>> summary = sweep.summarize('spacing')
+    >>> [f'{s.mean * 1e3:.3g} mN' for s in summary.stats]
+    ['7.61 mN', '3.8 mN']
+    """
     if not (isinstance(confidence, float) and 0.0 < confidence < 1.0):
         raise SceneError(f"`confidence` must be a float in (0, 1), got {confidence!r}")
     store = store if isinstance(store, ResultStore) else ResultStore(store)

@@ -34,7 +34,22 @@ except ImportError:  # pragma: no cover - Windows
 
 @dataclass(frozen=True)
 class SweepSummary:
-    """What a session did: totals after it, and what it ran (``executed`` keys)."""
+    """What a session did: totals after it, and what it ran (``executed`` keys).
+
+    See Also
+    --------
+    asperity2d.sweep.run_study : returns one.
+
+    Examples
+    --------
+    >>> from asperity2d import sweep
+    >>> study = sweep.Study(name='spacing', run='asperity2d.studies.ooten:critical_force_run',
+    ...                     grid={'spacing': ('regular', 'random')}, seeds=(0,),
+    ...                     fixed={'lower_count': 4, 'upper_count': 2}, quantities=('critical_force_N',))
+    >>> session = sweep.run_study(study, store='spacing', workers=1, progress=False)
+    >>> session.total, session.done, session.failed, session.executor
+    (2, 2, 0, 'in-process')
+    """
 
     study: str
     store: str
@@ -121,7 +136,28 @@ def run_study(
         e.g. to run several studies on one Dask client.
     max_runs : int, optional
         Refuse (``SceneError``, before any run starts) a study of more runs (grid points x
-        seeds) than this; default ``MAX_RUNS`` (100,000).
+        seeds) than this; default :data:`asperity2d._validate.MAX_RUNS` (100,000).
+
+    Returns
+    -------
+    SweepSummary
+
+    See Also
+    --------
+    asperity2d.sweep.summarize, asperity2d.sweep.ResultStore
+    asperity2d.compare : one measure over variants and seeds, without a store.
+
+    Examples
+    --------
+    >>> from asperity2d import sweep
+    >>> study = sweep.Study(name='spacing', run='asperity2d.studies.ooten:critical_force_run',
+    ...                     grid={'spacing': ('regular', 'random')}, seeds=(0,),
+    ...                     fixed={'lower_count': 4, 'upper_count': 2}, quantities=('critical_force_N',))
+    >>> session = sweep.run_study(study, store='spacing', workers=1, progress=False)
+    >>> session.done, session.pending
+    (2, 0)
+    >>> sweep.run_study(study, store='spacing', workers=1, progress=False).executed  # resumed: nothing left
+    ()
     """
     if executor is not None and (not is_auto(workers) or scheduler is not None):
         raise SceneError("`executor` excludes `workers` and `scheduler`")
@@ -149,8 +185,12 @@ def run_study(
         report = {"executor": executor.description if executor is not None else
                   ("local processes (decided by cost)" if workers is None and scheduler is None else
                    f"dask ({scheduler})" if scheduler is not None else f"local processes ({workers})")}
-        bar = None
+        bar, cluster = None, None
         try:
+            if todo and executor is None and scheduler not in (None, "local"):
+                # reach the cluster before the progress bar: one that cannot be reached is one line
+                executor = cluster = DaskExecutor(scheduler=scheduler)
+                scheduler = None
             store.begin_session(study, executor=report["executor"] if todo else "none")
             bar = Progress(total=len(specs), done=done, failed=failed, label=study.name,
                            enabled=progress)
@@ -166,6 +206,8 @@ def run_study(
         finally:
             if bar is not None:
                 bar.close()
+            if cluster is not None:
+                cluster.close()
     return SweepSummary(
         study=study.name,
         store=str(store.path),

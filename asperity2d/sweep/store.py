@@ -48,7 +48,22 @@ def versions() -> dict[str, str]:
 
 @dataclass(frozen=True)
 class StoreStatus:
-    """Counts over the study's runs; ``corrupt`` runs are also counted as pending."""
+    """Counts over the study's runs; ``corrupt`` runs are also counted as pending.
+
+    See Also
+    --------
+    asperity2d.sweep.ResultStore.status
+
+    Examples
+    --------
+    >>> from asperity2d import sweep
+    >>> study = sweep.Study(name='spacing', run='asperity2d.studies.ooten:critical_force_run',
+    ...                     grid={'spacing': ('regular', 'random')}, seeds=(0,),
+    ...                     fixed={'lower_count': 4, 'upper_count': 2}, quantities=('critical_force_N',))
+    >>> session = sweep.run_study(study, store='spacing', workers=1, progress=False)
+    >>> sweep.ResultStore('spacing').status()
+    StoreStatus(total=2, done=2, failed=0, pending=0, corrupt=0, orphaned=0)
+    """
 
     total: int
     done: int
@@ -62,7 +77,29 @@ class StoreStatus:
 
 
 class ResultStore:
-    """A study's results directory (see the module docstring for the layout)."""
+    """A study's results directory (see the module docstring for the layout).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The study's results directory.
+
+    See Also
+    --------
+    asperity2d.sweep.run_study : fills it.
+    asperity2d.sweep.summarize : reads it.
+
+    Examples
+    --------
+    >>> from asperity2d import sweep
+    >>> study = sweep.Study(name='spacing', run='asperity2d.studies.ooten:critical_force_run',
+    ...                     grid={'spacing': ('regular', 'random')}, seeds=(0,),
+    ...                     fixed={'lower_count': 4, 'upper_count': 2}, quantities=('critical_force_N',))
+    >>> session = sweep.run_study(study, store='spacing', workers=1, progress=False)
+    >>> store = sweep.ResultStore('spacing')
+    >>> store.status()
+    StoreStatus(total=2, done=2, failed=0, pending=0, corrupt=0, orphaned=0)
+    """
 
     def __init__(self, path: str | Path):
         self.path = Path(path)

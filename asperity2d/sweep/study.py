@@ -56,7 +56,32 @@ def canonical_json(value: Any) -> str:
 
 
 def run_key(run: str, params: Mapping[str, Any], seed: int) -> str:
-    """Stable key of one run: hex SHA-256 of canonical JSON of path, params and seed."""
+    """Stable key of one run: hex SHA-256 of canonical JSON of path, params and seed.
+
+    Parameters
+    ----------
+    run : str
+        ``"module:function"``.
+    params : mapping
+        The run's parameters.
+    seed : int
+        Its seed.
+
+    Returns
+    -------
+    str
+        16 hex digits.
+
+    See Also
+    --------
+    asperity2d.sweep.RunSpec : carries it.
+
+    Examples
+    --------
+    >>> from asperity2d import sweep
+    >>> sweep.run_key('asperity2d.studies.ooten:critical_force_run', {'lower_count': 4, 'upper_count': 2, 'spacing': 'regular'}, 0)
+    'b0556b2bd3086a4e'
+    """
     text = canonical_json({"run": run, "params": dict(params), "seed": int(seed)})
     return hashlib.sha256(text.encode("utf-8")).hexdigest()[:KEY_LENGTH]
 
@@ -74,7 +99,21 @@ def _check_value(name: str, value: Any) -> Any:
 
 @dataclass(frozen=True)
 class RunSpec:
-    """One run of a study: its key, full parameters, seed and grid point."""
+    """One run of a study: its key, full parameters, seed and grid point.
+
+    See Also
+    --------
+    asperity2d.sweep.Study.runs : lists them.
+
+    Examples
+    --------
+    >>> from asperity2d import sweep
+    >>> study = sweep.Study(name='spacing', run='asperity2d.studies.ooten:critical_force_run',
+    ...                     grid={'spacing': ('regular', 'random')}, seeds=(0,),
+    ...                     fixed={'lower_count': 4, 'upper_count': 2}, quantities=('critical_force_N',))
+    >>> study.runs()[0]
+    RunSpec(key='b0556b2bd3086a4e', params={'lower_count': 4, 'upper_count': 2, 'spacing': 'regular'}, seed=0, variant=(('spacing', 'regular'),))
+    """
 
     key: str
     params: Mapping[str, Any]
@@ -116,6 +155,19 @@ class Study:
     quantities : tuple[str, ...] or None
         Names every run must return (a run missing one is recorded as
         failed); ``None`` accepts whatever the function returns.
+
+    See Also
+    --------
+    asperity2d.sweep.run_study, asperity2d.sweep.load_study
+
+    Examples
+    --------
+    >>> from asperity2d import sweep
+    >>> study = sweep.Study(name='spacing', run='asperity2d.studies.ooten:critical_force_run',
+    ...                     grid={'spacing': ('regular', 'random')}, seeds=(0,),
+    ...                     fixed={'lower_count': 4, 'upper_count': 2}, quantities=('critical_force_N',))
+    >>> len(study.runs())  # 2 grid points x 1 seed
+    2
     """
 
     name: str
@@ -256,7 +308,41 @@ class Study:
 
 
 def load_study(path: str | os.PathLike) -> Study:
-    """Read a study from a ``.toml`` file or a ``.py`` script that defines ``STUDY``."""
+    """Read a study from a ``.toml`` file or a ``.py`` script that defines ``STUDY``.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A ``.toml`` file, or a ``.py`` script defining ``STUDY``.
+
+    Returns
+    -------
+    Study
+
+    Raises
+    ------
+    FileError
+        A missing or malformed file, naming ``path``.
+
+    See Also
+    --------
+    asperity2d.sweep.Study : what it returns.
+    asperity2d.sweep.run_study : takes the path too.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> from asperity2d import sweep
+    >>> _ = Path("study.toml").write_text(
+    ...     'name = "spacing"\\n'
+    ...     'run = "asperity2d.studies.ooten:critical_force_run"\\n'
+    ...     'seeds = 2\\n'
+    ...     '[grid]\\n'
+    ...     'spacing = ["regular", "random"]\\n')
+    >>> study = sweep.load_study('study.toml')
+    >>> study.seeds, study.grid
+    ((0, 1), {'spacing': ('regular', 'random')})
+    """
     path = Path(path)
     if not path.is_file():
         raise SceneError(f"`study` file does not exist: {str(path)!r}")
@@ -265,7 +351,7 @@ def load_study(path: str | os.PathLike) -> Study:
         try:
             with path.open("rb") as fh:
                 data = tomllib.load(fh)
-        except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        except (tomllib.TOMLDecodeError, UnicodeDecodeError, RecursionError) as exc:
             raise SceneError(f"`study` file {str(path)!r} is not valid TOML: {exc}") from None
         return Study.from_dict(data)
     if suffix == ".py":

@@ -27,6 +27,97 @@ WANTS_PLOTS = ("belt_2dof", "belt_3dof", "belt_parameters", "belt_damping", "bel
                "belt_mass", "belt_speed", "belt_stiffness", "belt_regime_map")
 
 
+#: The gallery's sections, in order: (folder, title, what the section teaches, its scripts in
+#: reading order). Every script in ``scenes/`` is in exactly one (tests/test_gallery_sections.py).
+SECTIONS = (
+    ("getting_started", "Getting started",
+     "Start here: the main job (a stick-slip run, then regular against random spacing over seeds), "
+     "a spring drive's stick-slip cycles and a constant force's stop-or-run.",
+     ("quickstart", "stick_slip", "constant_force")),
+    ("ooten", "Ooten's thesis",
+     "E. Ooten, *Precision Motion Control at Low Velocities in the Presence of Friction* (senior "
+     "thesis, Texas A&M University, 1997-98): each of its comparisons, then what lies beyond it "
+     "(steel micro-asperities, the MATLAB lattice, a virtual tribometer and the friction law it finds).",
+     ("ooten_spacing", "ooten_profiles", "ooten_damping", "ooten_drive", "ooten_stickslip",
+      "micro_spacing", "steel_table1", "matlab_lattice", "tribometer", "stick_slip_law")),
+    ("belt", "The belt thesis",
+     "*Vibration Analysis of Multi Degree of Freedom Self-excited Systems*: masses on a moving belt, "
+     "solved exactly event by event; its two- and three-mass chains, its parameter tables, and "
+     "contacts that open.",
+     ("belt_2dof", "belt_3dof", "belt_parameters", "belt_stiffness", "belt_damping", "belt_mass",
+      "belt_speed", "belt_friction", "belt_contact")),
+    ("rough", "Rough surfaces",
+     "Beyond both theses: surfaces whose asperities differ, from a measured-style profile, a spread "
+     "of heights or a self-affine surface of given Hurst exponent.",
+     ("profile_asperities", "rough_measured", "rough_height_spread", "rough_hurst",
+      "rough_contact_fraction")),
+    ("dynamics", "Dynamics",
+     "Spectra, regime maps and basins of attraction: what kind of motion a system settles into.",
+     ("belt_regime_map", "belt_spectra", "belt_basins", "asperity_spectrum")),
+)
+#: Where the sectioned copy of ``scenes/`` is laid out for sphinx-gallery (sections are folders).
+STAGED = DOCS / "_build" / "gallery_src"
+SCENES = DOCS.parent / "scenes"
+
+#: The first cell of every downloaded notebook. The scripts read their options from the command
+#: line (a kernel's own ``-f`` would be refused) and find their data beside ``__file__``;
+#: ``SCRIPT`` becomes the script's name (:func:`notebook_first_cells`).
+FIRST_NOTEBOOK_CELL = (
+    "# Run this notebook from the scenes/ folder of an asperity2d checkout: the script reads its\n"
+    "# data, or a sibling script, there. Its options, as on its command line: the quick settings\n"
+    "# the documentation ran (drop \"--quick\" for the full study), outputs written to ./outputs.\n"
+    "import sys\n"
+    "from pathlib import Path\n"
+    "\n"
+    "sys.argv = [\"SCRIPT.py\", \"--quick\", \"-o\", \"outputs\"]\n"
+    "__file__ = str(Path(\"SCRIPT.py\").resolve())"
+)
+
+
+def first_cell(name: str) -> str:
+    """The first notebook cell of scene script ``name``."""
+    return FIRST_NOTEBOOK_CELL.replace("SCRIPT", name)
+
+
+def stage() -> Path:
+    """Lay ``scenes/`` out as the gallery's sections under :data:`STAGED` (files are rewritten only
+    when they change, so sphinx-gallery re-runs only what changed); return the folder."""
+    STAGED.mkdir(parents=True, exist_ok=True)
+
+    def put(path: Path, text: str) -> None:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        if not path.exists() or path.read_text(encoding="utf-8") != text:
+            path.write_text(text, encoding="utf-8")
+
+    put(STAGED / "GALLERY_HEADER.rst", (SCENES / "GALLERY_HEADER.rst").read_text(encoding="utf-8"))
+    for folder, title, blurb, names in SECTIONS:
+        put(STAGED / folder / "GALLERY_HEADER.rst", f"{title}\n{'-' * len(title)}\n\n{blurb}\n")
+        for name in names:
+            put(STAGED / folder / f"{name}.py", (SCENES / f"{name}.py").read_text(encoding="utf-8"))
+    return STAGED
+
+
+def subsection_order() -> list[str]:
+    """The sections' folders in :data:`SECTIONS`' order, relative to ``docs/`` as sphinx-gallery's
+    explicit order wants them."""
+    return [(STAGED / folder).relative_to(DOCS).as_posix() for folder, *_ in SECTIONS]
+
+
+class ScriptOrder:
+    """Sort key of the scripts within a section: :data:`SECTIONS`' reading order."""
+
+    def __init__(self, src_dir):
+        self.src_dir = src_dir
+
+    def __call__(self, filename: str) -> int:
+        order = [name for *_, names in SECTIONS for name in names]
+        stem = Path(filename).stem
+        return order.index(stem) if stem in order else len(order)
+
+    def __repr__(self) -> str:  # sphinx-gallery hashes the configuration by repr
+        return "ScriptOrder"
+
+
 def output_dir(src_file) -> Path:
     """The directory the gallery run of ``src_file`` writes to."""
     return OUTPUTS / Path(src_file).stem
@@ -39,7 +130,9 @@ def arguments(gallery_conf, script_vars) -> list[str]:
     data and default output folder, so it is set here (the example's globals exist by now).
     """
     src = Path(script_vars["src_file"])
-    script_vars["example_globals"]["__file__"] = str(src)
+    if not (SCENES / src.name).exists():  # the tutorial: no scene options
+        return []
+    script_vars["example_globals"]["__file__"] = str(SCENES / src.name)  # its data are there
     text = src.read_text(encoding="utf-8")
     argv = ["--quick", "-o", str(output_dir(src))]
     if "--workers" in text or "study_args(" in text:
@@ -74,8 +167,10 @@ def _outputs(out: Path) -> list[Path]:
 
 def scene_outputs(block, block_vars, gallery_conf) -> str:
     """Image scraper: the pictures and files the script wrote since the last call, as reST."""
-    from sphinx_gallery.scrapers import figure_rst
+    from sphinx_gallery.scrapers import figure_rst, matplotlib_scraper
 
+    if not (SCENES / Path(block_vars["src_file"]).name).exists():  # the tutorial: its figures
+        return matplotlib_scraper(block, block_vars, gallery_conf)
     out = output_dir(block_vars["src_file"])
     seen = _SEEN.setdefault(str(out), set())
     new = [p for p in _outputs(out) if str(p) not in seen]
@@ -133,3 +228,27 @@ def _caption(image: Path, new: list[Path], images: list[Path]) -> str:
     """The name of the file the script wrote (the alt text of its picture)."""
     originals = [p for p in new if p.suffix.lower() in IMAGES]
     return originals[images.index(image)].name
+
+
+def notebook_first_cells(app) -> None:
+    """Each notebook's first cell made its own: the scene script's name in place of ``SCRIPT``,
+    and none for the tutorial (the cell sets a scene script's command-line options). Runs after
+    sphinx-gallery has written the notebooks; a notebook already done is left as it is."""
+    import json
+
+    src = Path(app.srcdir)
+    for path in [*(src / "auto_scenes").rglob("*.ipynb"), *(src / "tutorial").glob("*.ipynb")]:
+        notebook = json.loads(path.read_text(encoding="utf-8"))
+        cells = notebook.get("cells", [])
+        if not cells or "".join(cells[0].get("source", "")).strip() != FIRST_NOTEBOOK_CELL.strip():
+            continue
+        if path.parent.name == "tutorial":
+            notebook["cells"] = cells[1:]
+        else:
+            cells[0]["source"] = first_cell(path.stem)
+        path.write_text(json.dumps(notebook, indent=1, ensure_ascii=False), encoding="utf-8")
+
+
+def setup(app):
+    app.connect("builder-inited", notebook_first_cells, priority=900)  # after sphinx-gallery (500)
+    return {"parallel_read_safe": True, "parallel_write_safe": True}

@@ -1,0 +1,281 @@
+"""The workbench's controls, generated from the parameter records (not a second list).
+
+:func:`schema` turns :data:`asperity2d.builders.KEYWORDS` and :data:`asperity2d.builders.PARAMETERS`
+into the controls the front end draws, grouped as the parameter reference groups them (the
+named keywords, Ooten's fixed track, everything else), each with its default, unit and
+meaning. The front end sends what the user typed, as text; :func:`parse` reads each value as
+``asperity2d run --set KEY=VALUE`` does (a TOML scalar, else the text itself), and
+:func:`build` asks :func:`asperity2d.make_scene` -- the validation layer -- whether the scene
+is valid: its ``SceneError`` is the control's message, attributed to the parameter it names.
+:func:`to_toml` writes the scene file ``asperity2d run`` reproduces; :func:`to_python` the
+``make_scene(...)`` call.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+import tomllib
+
+from ..errors import SceneError
+
+#: The run settings beside the scene (a TOML scene's ``[run]`` table).
+RUN_CONTROLS = ({"name": "duration", "default": None, "unit": "s", "kind": "number",
+                 "meaning": "simulated time after settling (default: until the slider has passed the "
+                            "lower surface, or a time limit)"},)
+#: Longest text a control takes (a path, a list of per-asperity values).
+MAX_TEXT = 20_000
+
+
+def _choices() -> dict:
+    """The allowed values of the parameters that take one of a few words (from the builders'
+    own tuples)."""
+    from .. import builders
+    from ..geometry import KINDS
+
+    surface = ("regular", "random")
+    return {"spacing": builders.SPACINGS, "profile": KINDS, "drive": ("spring", "force"),
+            "track": ("fixed", "free"), "half_shape": builders.HALF_SHAPES,
+            "lower_spacing": surface, "upper_spacing": surface, "lower_profile": KINDS,
+            "upper_profile": KINDS, "height_distribution": builders.DISTRIBUTIONS,
+            "surface_unit": tuple(builders.UNITS)}
+
+
+def groups() -> list[tuple[str, tuple]]:
+    """``(title, parameter records)`` as the parameter reference groups them."""
+    from ..builders import KEYWORDS, PARAMETERS
+    from ..scene import OOTEN_PARAMETERS
+
+    n = len(OOTEN_PARAMETERS)
+    return [("make_scene's named keywords", KEYWORDS),
+            ("Ooten's fixed track", PARAMETERS[:n]),
+            ("everything else", PARAMETERS[n:])]
+
+
+def _kind(record, choices: dict) -> str:
+    if record.name in choices:
+        return "choice"
+    d = record.default
+    if isinstance(d, bool):
+        return "flag"
+    if isinstance(d, int):
+        return "integer"
+    if isinstance(d, float):
+        return "number"
+    if isinstance(d, str):
+        return "text"
+    return "value"  # derived by default: a number, a list, a path (read as --set reads it)
+
+
+def _text(value) -> str:
+    """A default or a value as the control shows it."""
+    if value is None:
+        return ""
+    if isinstance(value, str):
+        return value
+    return toml_value(value)
+
+
+def schema() -> dict:
+    """The controls as JSON: ``{"groups": [{"title", "controls": [...]}], "run": [...]}``; a
+    control has ``name``, ``default`` (as text), ``unit``, ``meaning``, ``kind`` (choice, flag,
+    integer, number, text, value) and ``choices``."""
+    choices = _choices()
+    out = []
+    for title, records in groups():
+        out.append({"title": title, "controls": [
+            {"name": r.name, "default": _text(r.default), "derived": r.default is None, "unit": r.unit,
+             "meaning": r.meaning, "kind": _kind(r, choices), "choices": list(choices.get(r.name, ()))}
+            for r in records]})
+    return {"groups": out, "run": [dict(c) for c in RUN_CONTROLS]}
+
+
+def names() -> set[str]:
+    return {r.name for _, records in groups() for r in records}
+
+
+def _record(name: str):
+    for _, records in groups():
+        for r in records:
+            if r.name == name:
+                return r
+    return None
+
+
+def parse(values) -> tuple[dict, dict, dict]:
+    """``(make_scene arguments, run settings, errors)`` from ``{name: text}``: an empty text is
+    the default (left out); a name that is no parameter, or a text that is not one, is an error
+    of that name (one line)."""
+    params, run, errors = {}, {}, {}
+    if not isinstance(values, dict):
+        return {}, {}, {"": "the values must be an object of name -> text"}
+    known = names()
+    for name, text in values.items():
+        if not isinstance(name, str) or len(name) > 100:
+            errors[""] = "a parameter name must be a short text"
+            continue
+        if isinstance(text, (bool, int, float)) and not isinstance(text, bool):
+            text = repr(text)
+        if isinstance(text, bool):
+            text = "true" if text else "false"
+        if not isinstance(text, str):
+            errors[name] = f"`{name}` must be given as text, got {type(text).__name__}"
+            continue
+        if len(text) > MAX_TEXT:
+            errors[name] = f"`{name}` is longer than {MAX_TEXT:,} characters"
+            continue
+        text = text.strip()
+        if not text:
+            continue
+        if name == "duration":
+            try:
+                d = float(text)
+            except ValueError:
+                errors[name] = f"`duration` must be a number of seconds > 0, got {text[:40]!r}"
+                continue
+            if not (math.isfinite(d) and d > 0):
+                errors[name] = f"`duration` must be a finite number of seconds > 0, got {text[:40]!r}"
+                continue
+            run["duration"] = d
+            continue
+        if name not in known:
+            errors[name] = f"`{name}` is not a make_scene parameter"
+            continue
+        record = _record(name)
+        if isinstance(record.default, str) and not isinstance(record.default, bool):
+            params[name] = text  # a choice or a text: the words themselves
+        else:
+            params[name] = scalar(text)
+    return params, run, errors
+
+
+def scalar(text: str):
+    """``text`` as a TOML value (``1e-6``, ``true``, ``[1, 2]``, ``"a"``), else the text itself
+    (as ``--set KEY=VALUE`` reads it)."""
+    try:
+        return tomllib.loads(f"v = {text}")["v"]
+    except (tomllib.TOMLDecodeError, RecursionError, ValueError):
+        return text
+
+
+_NAMED = re.compile(r"`([A-Za-z_][A-Za-z0-9_]*)`")
+
+
+def blame(message: str, given) -> str:
+    """The parameter a SceneError message names first among ``given`` ("" if none)."""
+    for name in _NAMED.findall(message):
+        if name in given:
+            return name
+    for name in _NAMED.findall(message):
+        if name in names():
+            return name
+    return ""
+
+
+def build(params: dict):
+    """``(scene, None)`` or ``(None, {name: one-line message})``: the scene of ``params``, as the
+    validation layer judges it."""
+    from ..builders import make_scene
+
+    try:
+        scene = make_scene(**params)
+    except SceneError as exc:
+        text = str(exc).splitlines()[0] if str(exc) else "refused"
+        return None, {blame(text, params): text}
+    except (TypeError, ValueError, OverflowError, MemoryError, RecursionError) as exc:  # not expected: say so
+        text = f"refused: {type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}"[:300]
+        return None, {"": text}
+    return scene, None
+
+
+def toml_value(value) -> str:
+    """``value`` (a TOML-able Python value) as TOML text that reads back equal."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            return {math.inf: "inf", -math.inf: "-inf"}.get(value, "nan")
+        text = repr(value)
+        return text if any(c in text for c in ".en") else text + ".0"
+    if isinstance(value, str):
+        return json.dumps(value, ensure_ascii=False)
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(toml_value(v) for v in value) + "]"
+    raise SceneError(f"a {type(value).__name__} cannot be written to a TOML scene file")
+
+
+def to_toml(params: dict, run: dict | None = None) -> str:
+    """The scene file ``asperity2d run`` reproduces: ``[scene]`` with ``params``, ``[run]`` with
+    the run settings. Checked to read back equal."""
+    from .._version import __version__
+
+    lines = [f"# asperity2d {__version__} scene: `asperity2d run THIS.toml` reproduces the workbench's run",
+             "[scene]"]
+    lines += [f"{k} = {toml_value(v)}" for k, v in params.items()]
+    if run:
+        lines += ["", "[run]"] + [f"{k} = {toml_value(v)}" for k, v in run.items()]
+    text = "\n".join(lines) + "\n"
+    back = tomllib.loads(text)
+    if back.get("scene", {}) != params or back.get("run", {}) != (run or {}):
+        raise SceneError("the scene does not survive a round trip through TOML")
+    return text
+
+
+def to_python(params: dict, run: dict | None = None) -> str:
+    """The ``make_scene(...)`` call of ``params`` (and the ``simulate`` call of the run)."""
+    args = ", ".join(f"{k}={v!r}" for k, v in params.items())
+    duration = (run or {}).get("duration")
+    return ("from asperity2d import make_scene, simulate\n\n"
+            f"scene = make_scene({args})\n"
+            f"result = simulate(scene{'' if duration is None else f', {duration!r}'})\n")
+
+
+def texts(params: dict, run: dict | None = None) -> dict:
+    """``{name: text}`` of a scene file's values (what the controls show)."""
+    out = {k: _text(v) for k, v in params.items()}
+    out.update({k: _text(v) for k, v in (run or {}).items()})
+    return out
+
+
+#: make_scene argument -> where a Scene keeps it (for :func:`params_of`).
+_FIELDS = {"lower_count": "lower.count", "upper_count": "slider.spacing.count", "mass": "lower.mass",
+           "stiffness": "lower.stiffness", "damping_ratio": "lower.damping_ratio", "slider_mass": "slider.mass",
+           "normal_load": "slider.normal_load", "mu_static": "contact.mu_static",
+           "restitution": "contact.restitution", "drive_stiffness": "drive.stiffness",
+           "drive_velocity": "drive.velocity", "drive_force": "drive.force", "drive_damping": "drive.damping",
+           "drive_preload": "drive.preload", "gravity": "gravity",
+           "pitch": "lower.spacing.pitch"}
+
+
+def params_of(scene) -> dict:
+    """make_scene arguments that rebuild ``scene`` exactly (``make_scene(**params_of(s)) == s``),
+    read from its name (spacing, profile, drive, track, seed) and its fields; a SceneError if the
+    scene was not made that way (a profile surface, a hand-built Scene, ...)."""
+    from ..builders import DEFAULTS, KEYWORDS, make_scene
+
+    match = re.fullmatch(r"(regular|random|random-upper|random-lower)-(full|half|flat)-(spring|force)-"
+                         r"(fixed|free)-seed(\d+)", scene.name or "")
+    if match is None:
+        raise SceneError("`scene` has no make_scene name to rebuild it from: pass its make_scene arguments "
+                         "as a dict, explore(dict(spacing='random', seed=3))")
+    spacing, profile, drive, track, seed = match.groups()
+    params = {"spacing": spacing, "seed": int(seed), "profile": profile, "drive": drive, "track": track}
+    defaults = {**{k.name: k.default for k in KEYWORDS}, **DEFAULTS}
+    for name, path in _FIELDS.items():
+        value = scene
+        for part in path.split("."):
+            value = getattr(value, part, None)
+        if isinstance(value, (int, float)) and not isinstance(value, bool) and value != defaults.get(name):
+            params[name] = value
+    params = {k: v for k, v in params.items() if v != defaults.get(k)}
+    try:
+        same = make_scene(**params) == scene
+    except SceneError:
+        same = False
+    if not same:
+        raise SceneError("`scene` cannot be rebuilt from the parameters the workbench shows: pass its "
+                         "make_scene arguments as a dict, explore(dict(spacing='random', seed=3))")
+    return params

@@ -1,0 +1,278 @@
+"""The workbench's long jobs, each cancellable: a run streamed in chunks, a measure in a child
+process, an ensemble comparison on the ensemble engine.
+
+:class:`Lane` runs one job at a time: a new request cancels the job in flight and replaces any
+request still waiting, so however fast the requests come exactly one job computes. The
+measures' metadata is read in one place, :func:`measure_info`.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import threading
+import time
+import traceback
+
+from ..errors import SceneError, SimulationError
+
+
+class Cancelled(Exception):
+    """The job was replaced or cancelled."""
+
+
+class Job:
+    """One request being worked on; ``cancelled`` turns True when it is replaced or cancelled."""
+
+    def __init__(self, ident: int, request):
+        self.id, self.request = ident, request
+        self._cancel = threading.Event()
+
+    @property
+    def cancelled(self) -> bool:
+        return self._cancel.is_set()
+
+    def cancel(self) -> None:
+        self._cancel.set()
+
+    def check(self) -> None:
+        if self._cancel.is_set():
+            raise Cancelled
+
+
+class Lane:
+    """A worker thread that runs ``work(job)`` for the newest request only.
+
+    ``submit(request)`` cancels the job in flight (it stops at its next check) and replaces the
+    request waiting, if any; ``cancel()`` cancels both; ``close()`` also ends the thread.
+    ``work`` reports through its own callbacks; an exception it raises goes to ``on_error(job,
+    exc)`` (a :class:`Cancelled` is silent)."""
+
+    def __init__(self, name: str, work, on_error):
+        self.name, self._work, self._on_error = name, work, on_error
+        self._cond = threading.Condition()
+        self._pending: Job | None = None
+        self.current: Job | None = None
+        self._closed = False
+        self._count = 0
+        self._thread = threading.Thread(target=self._loop, name=f"asperity2d-{name}", daemon=True)
+        self._thread.start()
+
+    def submit(self, request) -> int:
+        with self._cond:
+            self._count += 1
+            if self.current is not None:
+                self.current.cancel()
+            self._pending = Job(self._count, request)
+            self._cond.notify()
+            return self._count
+
+    def cancel(self) -> None:
+        with self._cond:
+            self._pending = None
+            if self.current is not None:
+                self.current.cancel()
+
+    def close(self, timeout: float | None = 5.0) -> None:
+        with self._cond:
+            self._closed = True
+            self._pending = None
+            if self.current is not None:
+                self.current.cancel()
+            self._cond.notify()
+        if threading.current_thread() is not self._thread:
+            self._thread.join(timeout)
+
+    @property
+    def busy(self) -> bool:
+        with self._cond:
+            return self.current is not None or self._pending is not None
+
+    def _loop(self) -> None:
+        while True:
+            with self._cond:
+                while self._pending is None and not self._closed:
+                    self._cond.wait()
+                if self._closed:
+                    return
+                job, self._pending = self._pending, None
+                self.current = job
+            try:
+                self._work(job)
+            except Cancelled:
+                pass
+            except BaseException as exc:  # noqa: BLE001 -- reported to the page, never kills the lane
+                self._on_error(job, exc)
+            finally:
+                with self._cond:
+                    self.current = None
+
+
+def error_text(exc: BaseException) -> str:
+    """One line for the page: the package's own errors as they are; anything else named as
+    unexpected (its traceback is not shown)."""
+    if isinstance(exc, (SceneError, SimulationError)):
+        text = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        return text
+    return f"unexpected {type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}"[:400]
+
+
+# -- measures ----------------------------------------------------------------------------------------
+#: The measures the workbench offers on a click, in this order.
+OFFERED = ("critical", "critical-run-up", "quasi-static-breakaway", "first-breakaway", "peak-stick",
+           "mean-stick")
+
+
+def measure_info(name: str) -> dict:
+    """What the workbench needs of a named measure: its function, label, unit and the drive it
+    measures under. The one place that reads :data:`asperity2d.experiments.measures.MEASURES`
+    (and whatever metadata its entries carry: ``unit``, ``drive``, ``kind``)."""
+    from ..experiments.measures import DISTRIBUTIONS, MEASURES
+
+    if name not in MEASURES:
+        raise SceneError(f"`measure` must be one of {', '.join(MEASURES)}, got {str(name)[:60]!r}")
+    entry = MEASURES[name]
+    fn, label = (entry[0], entry[1]) if isinstance(entry, tuple) else (entry, name)
+    meta = {k: getattr(entry, k) for k in ("unit", "drive", "kind") if hasattr(entry, k)}
+    if isinstance(entry, tuple) and len(entry) > 2 and isinstance(entry[2], dict):
+        meta.update(entry[2])
+    force = name.startswith("critical") or name in ("quasi-static-breakaway", "travel")
+    return {"name": name, "fn": fn, "label": label, "unit": meta.get("unit", "m" if name == "travel" else "N"),
+            "drive": meta.get("drive", "force" if force else "spring"),
+            "kind": meta.get("kind", "distribution" if name in DISTRIBUTIONS else "deterministic")}
+
+
+def measure_scene(name: str, params: dict):
+    """The scene a measure runs on: ``params`` under the measure's drive."""
+    from ..builders import make_scene
+
+    return make_scene(**{**params, "drive": measure_info(name)["drive"]})
+
+
+def _measure_main() -> None:
+    """The child process's side (``python -c``): read ``{"name", "params"}`` as JSON on stdin,
+    write ``{"value"}`` or ``{"error"}`` as JSON on stdout."""
+    import json
+    import sys
+
+    request = json.loads(sys.stdin.read())
+    try:
+        value = float(measure_info(request["name"])["fn"](measure_scene(request["name"], request["params"])))
+        answer = {"value": value if math.isfinite(value) else None}
+    except BaseException as exc:  # noqa: BLE001 -- the parent shows it as one line
+        answer = {"error": error_text(exc)}
+    sys.stdout.write(json.dumps(answer))
+    sys.stdout.flush()
+
+
+def measure_in_child(name: str, params: dict, job: Job, on_progress, *, poll: float = 0.25) -> float:
+    """Measure in a child process (a fresh interpreter: nothing of the server is inherited),
+    reporting the elapsed time every ``poll`` s; a cancelled job kills the child at once."""
+    import json
+    import subprocess
+    import sys
+    import tempfile
+
+    start = time.monotonic()
+    with tempfile.TemporaryFile() as out:
+        proc = subprocess.Popen([sys.executable, "-c", "from asperity2d.app.jobs import _measure_main; _measure_main()"],
+                                stdin=subprocess.PIPE, stdout=out, stderr=subprocess.DEVNULL)
+        try:
+            proc.stdin.write(json.dumps({"name": name, "params": params}).encode())
+            proc.stdin.close()
+            while proc.poll() is None:
+                if job.cancelled:
+                    raise Cancelled
+                try:
+                    proc.wait(poll)
+                except subprocess.TimeoutExpired:
+                    on_progress(time.monotonic() - start)
+        finally:
+            if proc.poll() is None:
+                proc.kill()
+                proc.wait(5)
+        out.seek(0)
+        text = out.read().decode(errors="replace")
+    try:
+        answer = json.loads(text)
+    except ValueError:
+        raise SimulationError(f"the measure's process ended without an answer (exit code {proc.returncode})") from None
+    if "error" in answer:
+        raise SceneError(answer["error"])
+    return math.nan if answer["value"] is None else answer["value"]
+
+
+# -- ensemble comparison ----------------------------------------------------------------------------
+def verdict(comparison, name: str, reference: str, measure: str) -> dict:
+    """The running numbers of variant ``name`` against ``reference`` -- Wilcoxon p, the
+    Hodges-Lehmann ratio and its 95 % interval -- and the plain-words verdict the command line's
+    ``compare`` prints (:mod:`asperity2d.studies.claims`: one-sided "lower", holds if p < 0.01)."""
+    import numpy as np
+
+    from ..stats import relative_effect
+    from ..studies import claims
+
+    numbers = comparison.versus(name, reference, alternative="less")
+    values, ref = np.asarray(comparison.values[name], float), np.asarray(comparison.values[reference], float)
+    effect = relative_effect(values, float(ref[0]) if np.all(ref == ref[0]) else ref)
+    numbers.update(ratio_hl=effect["ratio"], ratio_ci_low=1.0 + effect["ci_low"],
+                   ratio_ci_high=1.0 + effect["ci_high"])
+    label = measure_info(measure)["label"]
+    record = claims.claim(f"{name} lowers the {label} against {reference}", claims.judge(numbers, 0.01),
+                          numbers, f"{numbers['test']}, one-sided (lower); holds if p < 0.01")
+    return {"variant": name, "reference": reference, "ratio": effect["ratio"],
+            "ratio_ci": [1.0 + effect["ci_low"], 1.0 + effect["ci_high"]], "p_wilcoxon": numbers["p_wilcoxon"],
+            "verdict": record["verdict"], "line": claims.verdict_line(record), "n": numbers.get("n")}
+
+
+def ensemble(request: dict, job: Job, emit, *, workers: int | None = None) -> None:
+    """Measure every variant on every seed with the ensemble engine (every core), emitting each
+    value as it arrives and the running statistics over the seeds every variant has finished."""
+    from ..builders import make_scene
+    from ..experiments.compare import Comparison, _evaluate
+    from ..sweep.engine import run_calls
+
+    name = request["measure"]
+    info = measure_info(name)
+    variants, seeds, base = request["variants"], request["seeds"], request["base"]
+    base = {**base, "drive": info["drive"]}
+    jobs, where = [], []
+    for vname, kw in variants.items():
+        for seed in seeds:
+            scene = make_scene(**{**base, **kw, "seed": seed})
+            jobs.append((info["fn"], scene, f"variant {vname!r} with seed {seed}"))
+            where.append((vname, seed))
+    job.check()
+    n = workers or os.cpu_count() or 1
+    values = {v: [math.nan] * len(seeds) for v in variants}
+    done = {v: [False] * len(seeds) for v in variants}
+    names = list(variants)
+    emit({"type": "ensemble-start", "job": job.id, "measure": name, "label": info["label"], "unit": info["unit"],
+          "variants": names, "seeds": list(seeds), "workers": n})
+    calls = run_calls(_evaluate, jobs, workers=n)
+    try:
+        for outcome in calls:
+            job.check()
+            vname, seed = where[outcome.index]
+            j = seeds.index(seed)
+            value = float(outcome.value) if outcome.ok else math.nan
+            values[vname][j], done[vname][j] = value, True
+            message = {"type": "ensemble-value", "job": job.id, "variant": vname, "seed": seed, "value": value}
+            if not outcome.ok:
+                message["error"] = error_text(outcome.exception) if outcome.exception else "failed"
+            emit(message)
+            complete = [k for k in range(len(seeds)) if all(done[v][k] for v in names)]
+            if len(names) >= 2 and len(complete) >= 2:
+                comp = Comparison(values={v: tuple(values[v][k] for k in complete) for v in names},
+                                  seeds=tuple(seeds[k] for k in complete), measure=name)
+                stats = [verdict(comp, other, names[0], name) for other in names[1:]]
+                emit({"type": "ensemble-stats", "job": job.id, "seeds_done": len(complete),
+                      "summary": comp.summary(), "versus": stats})
+    finally:
+        calls.close()  # a cancelled comparison shuts its workers down
+    emit({"type": "ensemble-end", "job": job.id})
+
+
+def format_exception(exc: BaseException) -> str:
+    """The traceback, for the server's debug log only."""
+    return "".join(traceback.format_exception(exc))
