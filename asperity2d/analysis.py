@@ -15,7 +15,7 @@ Slips shorter than ``min_slip`` or moving the slider less than
 the slider is slow for less than ``min_stick`` inside a slip are bounces off
 asperities, not re-sticking. Both rules look at time and distance, not at
 sample counts, so the events do not depend on how often the run was recorded.
-The distance rule follows the scene's own scale (:func:`slip_scale`): a tenth
+The distance rule follows the scene's own scale (``slip_scale``): a tenth
 of the smallest of the asperity base, the lower surface's mean pitch and the
 drive spring's stretch over one slip, so a flat block's 30 nm slips count
 while an asperity's nanometre micro-slips do not.
@@ -41,7 +41,7 @@ SLIP_SPEED_FRACTION = 3.0
 #: Default minimum durations as fractions of the slider's period on the drive spring.
 MIN_STICK_PERIODS = 0.5
 MIN_SLIP_PERIODS = 0.1
-#: Default minimum slip distance as a fraction of the scene's slip scale (:func:`slip_scale`).
+#: Default minimum slip distance as a fraction of the scene's slip scale (``slip_scale``).
 #: A real slip on seed 000's scenes moves the slider 0.4-10 um; a contact letting go of one
 #: flank moves it 2-30 nm in under a nanosecond, near the 0.55 ns ``min_slip``, so whether it
 #: counted depended on where the samples fell (measured: two extra "events" at
@@ -211,7 +211,7 @@ def stick_slip_events(result, *, stick_speed: float | None = None, slip_speed: f
         A slip shorter than this (s) is ignored. Default: 0.1 of that period.
     min_slip_distance : float, optional
         A slip moving the slider less than this (m) is ignored. Default: 0.1
-        of :func:`slip_scale` (the asperity base on Ooten's scenes, the drive
+        of ``slip_scale`` (the asperity base on Ooten's scenes, the drive
         spring's stretch over a slip on a flat block).
 
     Returns

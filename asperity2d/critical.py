@@ -309,7 +309,7 @@ def critical_force_bracket(scene: Scene, *, start: str = "rest", rel_tol: float 
     passing is not always monotone in the force, and a smaller force that
     passes moves the search there. ``band`` reports the forces with mixed
     outcomes. Raises :class:`~asperity2d.SceneError` if more than ``max_runs`` runs are
-    needed. ``dt`` (s) defaults to :func:`measure_dt` (half the simulation's
+    needed. ``dt`` (s) defaults to ``measure_dt`` (half the simulation's
     default step from rest, a quarter with a run-up: converged to 0.3 %);
     ``iterations`` and ``max_steps`` (per run) are those of
     :func:`asperity2d.simulate`.
@@ -391,7 +391,7 @@ def critical_force(scene: Scene, *, start: str = "rest", rel_tol: float = REL_TO
     ``rel_tol`` (default 0.25 %), each stopped as soon as the slider is stuck or
     has passed, then checked 2-10 % below and above. When passing is not
     monotone in the force (some force above the returned one stops) it warns
-    with :class:`NonMonotoneWarning`, naming the band; see
+    with ``NonMonotoneWarning``, naming the band; see
     :func:`~asperity2d.critical_force_bracket` for the record.
 
     Parameters

@@ -1,12 +1,12 @@
 """Saved results of every kind, read by their format tag: :func:`load` (``asperity2d.load``).
 
-Every kind of result is one entry of :data:`RESULT_KINDS` (a :class:`ResultKind`): its format
+Every kind of result is one entry of ``RESULT_KINDS`` (a :class:`ResultKind`): its format
 tag, its class, its loader, its exporter and the renderers that draw it. :func:`load` reads a
 file's tag and calls that kind's loader; the protocol tests run over every entry, so a kind that
 is registered is a kind that is tested. The kinds of this release:
 
 ============  ======================================  ======================================
-A record streamed to disk as its run went (a directory, :mod:`asperity2d.streamed`) is an
+A record streamed to disk as its run went (a directory, ``asperity2d.streamed``) is an
 asperity run too, read lazily. The previous release wrote no tag; its files are told apart by
 their metadata's records (a ``scene``; a ``chain`` and a ``normal``; a ``chain``) and still load.
 """
@@ -25,14 +25,14 @@ from .errors import SceneError
 class ResultKind:
     """One kind of result: what a saved file of it is, and how to read, export and draw it.
 
-    The contract an entry of :data:`RESULT_KINDS` keeps (``register`` checks what it can):
+    The contract an entry of ``RESULT_KINDS`` keeps (``register`` checks what it can):
 
     1. ``name`` is unique, and ``tag`` (``"owner.kind/version"``) is unique; the result's
        ``save(path)`` writes an ``.npz`` whose JSON metadata carries ``format = tag``.
     2. ``cls`` follows the result protocol: ``kind`` (the renderer family, ``family`` here),
        ``status``, ``message``, ``success``, ``summary()``, ``save(path)``, ``export(path)``.
     3. ``load(path)`` returns a ``cls`` with every array and record ``save`` wrote (equal to the
-       bit), refuses a file of another tag, and raises :class:`~asperity2d._io.FileError` naming
+       bit), refuses a file of another tag, and raises ``FileError`` naming
        ``path`` for anything it cannot use -- missing, foreign, damaged, arrays that do not fit
        together, time running backwards, a malformed record: never a KeyError or a traceback.
     4. ``export(result, path)`` writes to ``.mat`` every array ``save`` writes, by name; to
@@ -67,7 +67,7 @@ RESULT_KINDS: dict[str, ResultKind] = {}
 
 
 def register(kind: ResultKind) -> ResultKind:
-    """Add ``kind`` to :data:`RESULT_KINDS` (its contract: :class:`ResultKind`); return it."""
+    """Add ``kind`` to ``RESULT_KINDS`` (its contract: :class:`ResultKind`); return it."""
     if not isinstance(kind, ResultKind):
         raise SceneError(f"`kind` must be a ResultKind, got {type(kind).__name__}")
     for other in RESULT_KINDS.values():
@@ -117,7 +117,7 @@ _WHAT = "an asperity2d result file (" + ", ".join(RESULT_KINDS) + ")"
 def result_kind(path: str | os.PathLike) -> ResultKind:
     """The :class:`ResultKind` of the file saved at ``path`` (only its metadata is read).
 
-    A file that is none raises :class:`~asperity2d._io.FileError` naming ``path``."""
+    A file that is none raises ``FileError`` naming ``path``."""
     _, meta = load_npz(path, (), kind=_WHAT)
     tag = meta.get("format")
     if tag is None:
@@ -145,7 +145,7 @@ def kind_of(path: str | os.PathLike) -> str:
 
 
 def load(path: str | os.PathLike):
-    """Read a result saved with ``save``, as the kind that was saved (:data:`RESULT_KINDS`,
+    """Read a result saved with ``save``, as the kind that was saved (``RESULT_KINDS``,
     chosen by the file's format tag) with every array and record: a
     :class:`~asperity2d.result.Result`, a :class:`~asperity2d.belt.BeltResult` or a
     :class:`~asperity2d.belt.ContactResult`; or a record streamed to a directory

@@ -580,7 +580,7 @@ class Scene:
     # -- display -------------------------------------------------------------
     def __repr__(self) -> str:
         """One readable line (``Scene('name', 16 lower full triangles 1 µm base, ...)``); the full
-        parameters are in :meth:`to_dict`."""
+        parameters are in ``to_dict()``."""
         return f"Scene({self.name!r}, {describe(self)})" if self.name else f"Scene({describe(self)})"
 
     def _repr_svg_(self) -> str:
@@ -648,7 +648,7 @@ class Scene:
 
     @classmethod
     def from_dict(cls, data: dict) -> "Scene":
-        """The scene :meth:`to_dict` wrote; a record that is not a scene's raises SceneError."""
+        """The scene ``to_dict()`` wrote; a record that is not a scene's raises SceneError."""
         if not isinstance(data, dict) or data.get("type") != cls.__name__:
             raise SceneError(f"`scene` must be a scene record (a table with type = {cls.__name__!r}), "
                              f"got {type(data).__name__}" + (f" of type {data.get('type')!r}"

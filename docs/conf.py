@@ -116,7 +116,8 @@ html_static_path = ["_static"]
 html_css_files = ["asperity2d.css"]
 html_theme_options = {
     "navbar_align": "left",
-    "header_links_before_dropdown": 7,  # the reference, validation and benchmarks in the top bar
+    "header_links_before_dropdown": 8,  # the reference, validation and benchmarks in the top bar
+    "navbar_persistent": ["search-button"],  # a search icon, not a wide field, so the eight links fit at 1280 px
     "show_toc_level": 2,
     "navigation_with_keys": False,
     "footer_start": ["copyright"],

@@ -28,7 +28,10 @@ SKIP_NAMES = {"genindex.html", "search.html", "py-modindex.html"}
 FORBIDDEN = (
     ("an issue number", r"\bissues?\s*#?\d+"),
     ("a commit hash", r"\bcommit\s+`?[0-9a-f]{7,40}\b"),
-    ("a commit hash", r"(?<![\w./-])(?=[0-9a-f]*[a-f])(?=[0-9a-f]*[0-9])[0-9a-f]{7,40}(?![\w/-])"),
+    # a bare short (7-10 hex digits) or full (40) hash; not a quoted value such as a sweep's
+    # 16-digit run key, which is the package's own output
+    ("a commit hash", r"(?<![\w./'\"=-])(?=[0-9a-f]*[a-f])(?=[0-9a-f]*[0-9])(?:[0-9a-f]{7,10}|[0-9a-f]{40})"
+                      r"(?![\w/'\"-])"),
     ("a work-diary phrase", r"\b(?:this|last|next|previous|the previous) round\b"),
     ("a work-diary phrase", r"\b(?:work diary|TODO|FIXME)\b"),
     ("a tooling path", r"\btools/investigate\b"),
@@ -80,6 +83,7 @@ def user_pages() -> list[Path]:
     ("as issue 28 asked", True), ("see Issue #14", True), ("fixed at commit c2009e3", True),
     ("the hash 4f0a9b2 of it", True), ("measured before this round", True), ("tools/investigate/x.py", True),
     ("a critical force of 12.5 mN, 1e-06 m, x0.412 [0.309, 0.515]", False),
+    ("RunSpec(key='b0556b2bd3086a4e', variant='regular')", False), ("measured at c2009e3fa1", True),
     ("24 seeds, p 6e-8, 2,409 px, version 0.2.0", False), ("no issues with 4 tips", False),
 ])
 def test_the_patterns_catch_what_they_should(text, bad):

@@ -20,7 +20,7 @@ __all__ = ["explore", "serve"]
 
 
 def explore(scene=None, **options):
-    """The workbench as a notebook widget (see :func:`asperity2d.app.widget.explore`)."""
+    """The workbench as a notebook widget (see ``asperity2d.app.widget.explore``)."""
     from .widget import explore as _explore
 
     return _explore(scene, **options)

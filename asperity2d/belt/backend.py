@@ -40,7 +40,7 @@ class Event:
     ``kind`` is "stick", "slip", "reverse" (slip direction flips through belt
     speed) or "graze": the mass touched belt speed tangentially and the stick
     condition held only at that instant, so it kept slipping (see
-    :mod:`asperity2d.belt.modes` for the rule).
+    ``asperity2d.belt.modes`` for the rule).
 
     Attributes
     ----------

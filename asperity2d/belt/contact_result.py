@@ -42,7 +42,7 @@ class ContactResult(BeltResult):
     load_energy : (T,) Σ W_i·y_i (J), the work done against the weights and preloads.
     impact_dissipation : (T,) cumulative kinetic energy lost in impacts (J).
     separation_intervals : per mass, the (t_open, t_close) intervals (s) out of contact.
-    contact : the :class:`~.normal.ContactSpec` (normal parameters and initial gaps).
+    contact : the ``ContactSpec`` (normal parameters and initial gaps).
 
     See Also
     --------
@@ -108,12 +108,12 @@ class ContactResult(BeltResult):
 
 
 def load_contact(path: str | os.PathLike) -> ContactResult:
-    """Read a :class:`ContactResult` written by :meth:`ContactResult.save` (this release's
-    :data:`FORMAT`, or the previous release's untagged file), with every array and interval.
+    """Read a :class:`ContactResult` written by ``ContactResult.save()`` (this release's
+    ``FORMAT``, or the previous release's untagged file), with every array and interval.
 
     A file that is not one (missing, foreign, a plain belt result, damaged, arrays that do not
     fit together, time running backwards, a malformed chain or normal record) raises one
-    :class:`~asperity2d._io.FileError` naming ``path``; never a KeyError.
+    ``FileError`` naming ``path``; never a KeyError.
 
     Parameters
     ----------

@@ -172,7 +172,7 @@ class BeltResult:
     # -- persistence -------------------------------------------------------
     #: The arrays a saved run holds (each ``(T,)`` or per mass ``(n, T)``), in export order.
     SAVED = ("t",) + MASS_SERIES + ENERGY_SERIES
-    #: The format tag :meth:`save` writes.
+    #: The format tag ``save()`` writes.
     FORMAT = FORMAT
 
     def _record(self) -> dict:

@@ -330,16 +330,16 @@ class ChainSpec:
             "normal_load": list(self.normal) if self.normal_load is not None else None,
         }
 
-    #: The fields of :meth:`to_dict`'s record.
+    #: The fields of ``to_dict()``'s record.
     RECORD = ("masses", "springs", "dampers", "friction", "v_belt", "x0", "v0", "t_end", "g", "normal_load")
 
     @classmethod
     def from_dict(cls, record: dict) -> "ChainSpec":
-        """The chain :meth:`to_dict` wrote (a saved result's ``chain`` record), validated again.
+        """The chain ``to_dict()`` wrote (a saved result's ``chain`` record), validated again.
 
         ``friction`` is the law's own record (``law_from_dict``); a callable ``v_belt`` was saved
         by its name only and cannot be rebuilt. A record that is not a dict, lacks a field, has
-        one this class does not know, or holds a bad value raises :class:`SceneError` naming the
+        one this class does not know, or holds a bad value raises :class:`~asperity2d.SceneError` naming the
         field."""
         if not isinstance(record, dict):
             raise SceneError(f"`chain` must be a table of ChainSpec fields, got {show(record)}")

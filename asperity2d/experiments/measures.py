@@ -62,9 +62,9 @@ PERTURBATION_STEP = 2e-4
 
 
 #: The step policy, one for every named measure: each runs at this fraction of
-#: :func:`asperity2d.run.default_dt`, the step where halving it again moves it by less than its
+#: ``default_dt``, the step where halving it again moves it by less than its
 #: tolerance (:data:`STEP_TOLERANCE`), and its record says which step it used. The critical
-#: forces and the quasi-static breakaway: :data:`asperity2d.critical.DT_FRACTION` (dt/2 from
+#: forces and the quasi-static breakaway: ``DT_FRACTION`` (dt/2 from
 #: rest, dt/4 with a run-up). The stick forces of a pass (first breakaway, peak, mean):
 #: :data:`STICK_DT_FRACTION`. The travel under a constant force: the step of the critical force
 #: from the same start (dt/4 with a run-up), see :data:`TRAVEL_DT_FRACTION`.
@@ -157,7 +157,7 @@ def stick_forces(scene: Scene, *, passes: int = PASSES, dt: float | None = None)
     constant force) whose drive speeds differ by 2e-4 of V each, and collect their stick forces.
 
     ``dt`` (s) is the step of every pass (default: the step policy's,
-    :data:`STICK_DT_FRACTION` of :func:`asperity2d.run.default_dt`).
+    :data:`STICK_DT_FRACTION` of ``default_dt``).
     """
     from ..run import simulate
 

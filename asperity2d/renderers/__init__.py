@@ -210,7 +210,7 @@ def render(result, path: str | os.PathLike, **options) -> Path:
     result : Result, BeltResult, str or os.PathLike
         A run, or the path of one saved with ``save`` (read with :func:`asperity2d.load`).
     path : str or os.PathLike
-        The output file; its extension picks the renderer (:data:`RENDERERS`): ``.gif``,
+        The output file; its extension picks the renderer (``RENDERERS``): ``.gif``,
         ``.mp4``, ``.html``, ``.png``, ``.svg``, ``.pdf`` or ``.wav``.
     **options
         Passed to the renderer (e.g. ``frames=40`` for an animation, ``events=`` for a plot).

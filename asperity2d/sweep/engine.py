@@ -153,9 +153,9 @@ def decide_workers(workers: int | str | None, calls: int, *, cost: float | None 
     ``workers`` as given (an int >= 1; never more than there are calls: a pool of idle workers
     costs their start-up and nothing else), or, for ``None`` / ``"auto"``, from ``cost``, the
     wall time (s) of one call: every core (``os.cpu_count()``) when the predicted parallel wall
-    time -- :data:`STARTUP_S` unless a warm pool of that many workers is running, plus the
-    calls in rounds of one per worker, plus :data:`DISPATCH_S` per call -- is at most
-    :data:`PAYS` of the serial time, else 1 (this process). Without a ``cost``: every core.
+    time -- ``STARTUP_S`` unless a warm pool of that many workers is running, plus the
+    calls in rounds of one per worker, plus ``DISPATCH_S`` per call -- is at most
+    ``PAYS`` of the serial time, else 1 (this process). Without a ``cost``: every core.
 
     Parameters
     ----------

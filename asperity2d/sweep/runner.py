@@ -136,7 +136,7 @@ def run_study(
         e.g. to run several studies on one Dask client.
     max_runs : int, optional
         Refuse (``SceneError``, before any run starts) a study of more runs (grid points x
-        seeds) than this; default :data:`asperity2d._validate.MAX_RUNS` (100,000).
+        seeds) than this; default ``MAX_RUNS`` (100,000).
 
     Returns
     -------

@@ -533,6 +533,8 @@ def _short(value) -> str:
         return "; ".join(f"{f} {_short(getattr(value, f))}" for f in value._fields)
     if isinstance(value, (set, frozenset)):
         return ", ".join(sorted(map(str, value)))
+    if value in ("-", "1") and isinstance(value, str):  # a record's unit: "-" none (a choice, a text), "1" a number
+        return "—" if value == "-" else "1"
     if isinstance(value, str):  # a word (a choice, a unit) as code, prose as prose
         return value if " " in value or len(value) > 30 else f"``{value!r}``" if value else "``''``"
     return repr(value)
