@@ -468,7 +468,7 @@ class Contact:
     --------
     >>> from asperity2d import Contact
     >>> Contact(mu_static=0.3)
-    Contact(mu_static=0.3, mu_kinetic=0.2, slip_distance=None, stick_speed=None, restitution=0.0)
+    Contact(mu_static=0.3, mu_kinetic=0.2, slip_distance=None, stick_speed=None, restitution=0.0, law='static-kinetic')
     >>> Contact(mu_static=0.2, mu_kinetic=0.3)
     Traceback (most recent call last):
     ...

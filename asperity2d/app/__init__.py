@@ -20,7 +20,40 @@ __all__ = ["explore", "serve"]
 
 
 def explore(scene=None, **options):
-    """The workbench as a notebook widget (see ``asperity2d.app.widget.explore``)."""
+    """The workbench as a notebook widget: change a parameter, watch the run stream in, measure
+    and compare (the same front end as ``asperity2d explore`` in the browser).
+
+    Parameters
+    ----------
+    scene : Scene, dict or None, optional
+        The scene to start from: a :func:`~asperity2d.make_scene` scene, a dict of its
+        arguments, or None for the default (Ooten's set-up).
+    **options
+        ``make_scene`` arguments (they override ``scene``'s), and ``workers`` (the ensemble's
+        worker processes) or ``duration`` (s) of each run.
+
+    Returns
+    -------
+    anywidget.AnyWidget
+        The widget; shown when it is the last value of a notebook cell.
+
+    Raises
+    ------
+    SceneError
+        A refused parameter, named.
+
+    See Also
+    --------
+    asperity2d.simulate : the run the widget streams.
+
+    Examples
+    --------
+    Skipped here: the widget needs the ``app`` extra and a notebook front end to draw it.
+
+    >>> import asperity2d as a
+    >>> widget = a.explore(lower_count=6, upper_count=2)  # doctest: +SKIP
+    >>> widget  # doctest: +SKIP
+    """
     from .widget import explore as _explore
 
     return _explore(scene, **options)

@@ -124,25 +124,15 @@ OFFERED = ("critical", "critical-run-up", "quasi-static-breakaway", "first-break
 
 
 def measure_info(name: str) -> dict:
-    """What the workbench needs of a named measure: its function, label, unit and the drive it
-    measures under. The one place that reads :data:`asperity2d.experiments.measures.MEASURES`
-    (and whatever metadata its entries carry: ``unit``, ``drive``, ``kind``)."""
-    from ..experiments.measures import DISTRIBUTIONS, MEASURES
+    """What the workbench needs of a named measure, read from its registry entry
+    (:data:`asperity2d.experiments.measures.MEASURES`): function, label, unit, drive, kind."""
+    from ..experiments.measures import MEASURES
 
     if name not in MEASURES:
         raise SceneError(f"`measure` must be one of {', '.join(MEASURES)}, got {str(name)[:60]!r}")
     entry = MEASURES[name]
-    # a (function, label) pair, or a record with named fields (fn / function, label, unit, drive, kind)
-    fn = getattr(entry, "fn", None) or getattr(entry, "function", None) or (
-        entry[0] if isinstance(entry, tuple) else entry)
-    label = getattr(entry, "label", None) or (entry[1] if isinstance(entry, tuple) and len(entry) > 1 else name)
-    meta = {k: getattr(entry, k) for k in ("unit", "drive", "kind") if getattr(entry, k, None) is not None}
-    if isinstance(entry, tuple) and len(entry) > 2 and isinstance(entry[2], dict):
-        meta.update(entry[2])
-    force = name.startswith("critical") or name in ("quasi-static-breakaway", "travel")
-    return {"name": name, "fn": fn, "label": label, "unit": meta.get("unit", "m" if name == "travel" else "N"),
-            "drive": meta.get("drive", "force" if force else "spring"),
-            "kind": meta.get("kind", "distribution" if name in DISTRIBUTIONS else "deterministic")}
+    return {"name": name, "fn": entry.function, "label": entry.label, "unit": entry.unit,
+            "drive": entry.drive, "kind": entry.kind}
 
 
 def measure_scene(name: str, params: dict):
@@ -217,24 +207,16 @@ def measure_in_child(name: str, params: dict, job: Job, on_progress, *, poll: fl
 # -- ensemble comparison ----------------------------------------------------------------------------
 def verdict(comparison, name: str, reference: str, measure: str) -> dict:
     """The running numbers of variant ``name`` against ``reference`` -- Wilcoxon p, the
-    Hodges-Lehmann ratio and its 95 % interval -- and the plain-words verdict the command line's
-    ``compare`` prints (:mod:`asperity2d.studies.claims`: one-sided "lower", holds if p < 0.01)."""
-    import numpy as np
+    Hodges-Lehmann ratio and its 95 % interval -- and the plain-words verdict by the measure's
+    own rule (:meth:`asperity2d.Comparison.verdict`), the line the command line's ``compare``
+    prints."""
+    from ..experiments.verdicts import verdict_line
 
-    from ..stats import relative_effect
-    from ..studies import claims
-
-    numbers = comparison.versus(name, reference, alternative="less")
-    values, ref = np.asarray(comparison.values[name], float), np.asarray(comparison.values[reference], float)
-    effect = relative_effect(values, float(ref[0]) if np.all(ref == ref[0]) else ref)
-    numbers.update(ratio_hl=effect["ratio"], ratio_ci_low=1.0 + effect["ci_low"],
-                   ratio_ci_high=1.0 + effect["ci_high"])
-    label = measure_info(measure)["label"]
-    record = claims.claim(f"{name} lowers the {label} against {reference}", claims.judge(numbers, 0.01),
-                          numbers, f"{numbers['test']}, one-sided (lower); holds if p < 0.01")
-    return {"variant": name, "reference": reference, "ratio": effect["ratio"],
-            "ratio_ci": [1.0 + effect["ci_low"], 1.0 + effect["ci_high"]], "p_wilcoxon": numbers["p_wilcoxon"],
-            "verdict": record["verdict"], "line": claims.verdict_line(record), "n": numbers.get("n")}
+    record = comparison.verdict(name, reference, subject=name)
+    numbers = record["numbers"]
+    return {"variant": name, "reference": reference, "ratio": numbers["ratio_hl"],
+            "ratio_ci": [numbers["ratio_ci_low"], numbers["ratio_ci_high"]], "p_wilcoxon": numbers["p_wilcoxon"],
+            "verdict": record["verdict"], "line": verdict_line(record), "n": numbers.get("n")}
 
 
 def ensemble(request: dict, job: Job, emit, *, workers: int | None = None) -> None:
