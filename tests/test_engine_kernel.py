@@ -52,6 +52,11 @@ SCENES = {
 }
 
 
+#: Scenes whose tips stay stuck through the ~2,000 compared steps (the drive spring still loading
+#: them): their switch is compared holding, not switching; the others must switch.
+STUCK_THROUGHOUT = {"fixed, regular, spring"}
+
+
 @pytest.mark.parametrize("name", list(SCENES))
 def test_the_c_loop_steps_as_the_python_loop_to_the_bit(name):
     scene = a.make_scene(**SCENES[name])
@@ -68,9 +73,9 @@ def test_the_c_loop_steps_as_the_python_loop_to_the_bit(name):
         switches += int(np.count_nonzero(c.switch.stuck != stuck))
         stuck = c.switch.stuck
     print(name, contacts, switches)
-    assert contacts > -1, contacts  # the comparison covered contacts, not free flight
+    assert contacts > 0, contacts  # the comparison covered contacts, not free flight
     if c.switch.active:
-        assert switches > -1  # ... and the switch had work to do
+        assert switches > 0 or name in STUCK_THROUGHOUT, switches  # ... and the switch had work to do
 
 
 @pytest.mark.parametrize("name", ["fixed, regular, spring", "free, regular, force", "free, random, spring"])
