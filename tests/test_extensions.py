@@ -142,6 +142,18 @@ def test_a_back_end_added_to_methods_runs_through_simulate_chain(toy_backend):
                               t_end=1.0, method="nope")
 
 
+def test_a_method_whose_back_ends_all_refuse_a_chain_is_one_line():
+    from asperity2d.belt.solver import METHODS, Backend
+
+    METHODS["picky"] = (Backend("two masses only", lambda spec: len(spec.masses) == 2, run_frozen),)
+    try:
+        with pytest.raises(a.SceneError, match="`method` 'picky' has no back end that accepts this chain"):
+            a.belt.simulate_chain([1.0], [1.0, 0.0], [0.0, 0.0], mu_s=0.5, mu_k=0.3, v_belt=0.1, x0=[0.0],
+                                  v0=[0.1], t_end=1.0, method="picky")
+    finally:
+        del METHODS["picky"]
+
+
 # -- a friction law of the asperity model ---------------------------------------------------------
 from dataclasses import dataclass  # noqa: E402
 

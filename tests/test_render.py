@@ -153,3 +153,17 @@ def test_plots_write_files(run, tmp_path):
     with pytest.raises(a.SceneError, match="`path`"):
         plot_run(run, tmp_path / "run.jpg")
     assert leftovers(tmp_path) == []
+
+
+def test_a_comparison_is_plotted_in_its_measures_unit(tmp_path, monkeypatch):
+    from asperity2d.renderers import plots
+
+    shown = []
+    monkeypatch.setattr(plots, "save", lambda fig, path, dpi: shown.append(" ".join(fig.axes[0].get_ylabel().split()))
+                        or path)  # the label may be wrapped
+    travel = Comparison(values={"regular": (2e-5, 2e-5), "random": (1.9e-5, 2.1e-5)}, seeds=(0, 1),
+                        measure="travel_distance")
+    force = Comparison(values={"regular": (2e-3, 2e-3)}, seeds=(0, 1), measure="critical")
+    plots.plot_comparison(travel, tmp_path / "t.png")
+    plots.plot_comparison(force, tmp_path / "f.png")
+    assert shown == ["travel under a constant force (µm)", "critical force from rest (step load) (mN)"]

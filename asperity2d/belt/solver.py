@@ -12,6 +12,7 @@ import time as _time
 from dataclasses import dataclass
 from typing import Callable
 
+from ..errors import SceneError
 from .backend import MAX_WALL_TIME, RawRun, RunOptions
 from .hybrid import run_ode_phases, run_state_law
 from .linear import run_closed_form
@@ -191,7 +192,10 @@ def simulate_chain(
     options = RunOptions.build(spec, n_samples=n_samples, t_eval=t_eval, include_events=include_events,
                                rtol=rtol, atol=atol, integrator=integrator, max_events=max_events,
                                max_steps=max_steps, max_wall_time=max_wall_time)
-    backend = next(b for b in METHODS[method] if b.accepts(spec))
+    backend = next((b for b in METHODS[method] if b.accepts(spec)), None)
+    if backend is None:  # a method registered from outside whose back ends all refuse this chain
+        raise SceneError(f"`method` {method!r} has no back end that accepts this chain "
+                         f"(its back ends: {', '.join(b.name for b in METHODS[method])})")
     clock = _time.perf_counter()
     raw = backend.run(spec, options)
     meta = {**raw.meta, "method": method, "backend": backend.name, "wall_time": _time.perf_counter() - clock,

@@ -146,20 +146,28 @@ def plot_force_displacement(result, path: str | os.PathLike, *, dpi: int = 120) 
 
 #: Units plot_comparison can show values (given in SI) in, with their factors.
 UNITS = {"mN": 1e3, "N": 1.0, "µm": 1e6, "": 1.0}
+#: The unit a measure's SI unit (its registry entry's) is shown in by default.
+SHOWN_IN = {"N": "mN", "m": "µm", "": ""}
 
 
 def plot_comparison(comparison, path: str | os.PathLike, *, reference: float | None = None,
-                    label: str | None = None, unit: str = "mN", dpi: int = 120) -> Path:
+                    label: str | None = None, unit: str | None = None, dpi: int = 120) -> Path:
     """Strip and box plot of each variant's values, with the mean and its 95 % CI.
 
     ``comparison`` is a :class:`~asperity2d.experiments.compare.Comparison` of SI values
     (forces in N), shown in ``unit`` (a key of :data:`UNITS`; ``""`` for a
     dimensionless quantity); ``reference`` (SI) draws a horizontal line (e.g.
     the flank-law force); ``label`` names the y axis (default: the measure's
-    plain-language name and the unit).
+    plain-language name and the unit). ``unit`` defaults to the measure's own unit
+    (``Comparison.unit``: mN for a
+    force, µm for a length; mN for a measure not registered).
     """
     from .. import stats
     from ..experiments.compare import measure_label
+
+    if unit is None:
+        own = getattr(comparison, "unit", "")  # "" for a measure not registered
+        unit = SHOWN_IN.get(own, "") if own else "mN"
 
     names = list(comparison.values)
     if not names:
