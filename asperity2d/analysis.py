@@ -42,7 +42,7 @@ SLIP_SPEED_FRACTION = 3.0
 MIN_STICK_PERIODS = 0.5
 MIN_SLIP_PERIODS = 0.1
 #: Default minimum slip distance as a fraction of the scene's slip scale (``slip_scale``).
-#: A real slip on seed 000's scenes moves the slider 0.4-10 um; a contact letting go of one
+#: A real slip on Ooten's scenes moves the slider 0.4-10 um; a contact letting go of one
 #: flank moves it 2-30 nm in under a nanosecond, near the 0.55 ns ``min_slip``, so whether it
 #: counted depended on where the samples fell (measured: two extra "events" at
 #: record_every=10 that record_every=1 did not see, on the same trajectory). On an asperity
