@@ -480,7 +480,7 @@ class Contact:
     slip_distance: float | None = None
     stick_speed: float | None = None
     restitution: float = 0.0
-    #: The per-contact friction law, by its name in :data:`asperity2d.contact_laws.LAWS`.
+    #: The per-contact friction law, by its name in ``asperity2d.contact_laws.LAWS``.
     law: str = DEFAULT_CONTACT_LAW
 
     def __post_init__(self):
@@ -671,7 +671,7 @@ class Scene:
     @classmethod
     def from_toml(cls, path) -> "Scene":
         """The scene of a TOML file written by :meth:`to_toml` (``SceneError`` if it is not one;
-        a file of ``make_scene`` arguments is read by :func:`asperity2d.scene_io.read_scene`)."""
+        a file of ``make_scene`` arguments is read by ``asperity2d.scene_io.read_scene``)."""
         from ._io import read_toml
 
         data = read_toml("path", path)

@@ -92,7 +92,7 @@ def simulate_chain(
     right-hand-side evaluations; ``max_wall_time`` seconds of wall-clock time (default 30 s), watched
     inside long phases too. Memory: at most 2,000 masses, and the run's peak memory is estimated up
     front (~1 kB per mass², four times that with ``normal``, plus ~200 B per mass and sample;
-    :func:`~.limits.memory_estimate`) and refused beyond 4 GiB -- about 1,800 masses with 2,001
+    ``belt.limits.memory_estimate``) and refused beyond 4 GiB -- about 1,800 masses with 2,001
     samples. Bad input raises ``SceneError`` naming the parameter; a run that fails or exceeds a
     budget raises ``SimulationError``.
 

@@ -171,7 +171,7 @@ DRAWERS: Mapping[tuple[str, str], Callable] = _Drawers()
 
 
 def register_kind_drawers() -> None:
-    """Give each registered result kind (:data:`asperity2d.saved.RESULT_KINDS`) the drawers of its
+    """Give each registered result kind (``asperity2d.saved.RESULT_KINDS``) the drawers of its
     family read from :data:`FORMATS`: one registry says how a kind is drawn, and a kind registered
     from outside may bring drawers of its own. Imports the result kinds (NumPy), so it runs on
     first use, not on import (``asperity2d --help`` stays light)."""
