@@ -29,11 +29,12 @@ from .._lazy import exports
 #: ``belt`` parser and its bad-input errors (``asperity2d.cli.belt``) run without NumPy.
 _LAZY = {"Event": "backend", "BeltResult": "result", "load": "contact_result", "METHODS": "solver",
          "simulate_chain": "solver", "ChainSpec": "spec", "NormalContact": "normal", "ContactResult": "contact_result",
-         "load_contact": "contact_result", "MinimalModel": "minimal", "steady_sliding": "contact"}
+         "load_contact": "contact_result", "MinimalModel": "minimal", "steady_sliding": "contact",
+         "ContactSpec": "normal", "Backend": "backend"}
 _SUBMODULES = ("presets",)
 
 __all__ = ["simulate_chain", "BeltResult", "Event", "ChainSpec", "load", "METHODS", "presets", "NormalContact",
-           "ContactResult", "load_contact", "MinimalModel", "steady_sliding"]
+           "ContactResult", "load_contact", "MinimalModel", "steady_sliding", "ContactSpec", "Backend"]
 
 
 __getattr__, __dir__ = exports(__name__, globals(), _LAZY, _SUBMODULES)

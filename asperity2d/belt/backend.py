@@ -1,15 +1,27 @@
 """The belt back-end contract: what every solver back-end receives and what it returns.
 
-A back-end is a function ``run(spec, options) -> RawRun`` listed in
-``solver.METHODS`` with the predicate that says which chains it solves:
+A back-end is a :class:`Backend` -- a function ``run(spec, options) -> RawRun`` with the
+predicate ``accepts(spec)`` that says which chains it solves -- listed under a method name in
+``asperity2d.belt.METHODS``. ``simulate_chain`` builds one spec and runs the first back end of
+the chosen method that accepts it. The contract:
 
-* ``spec`` -- the validated :class:`~asperity2d.belt.spec.ChainSpec` (SI, with its scales);
-* ``options`` -- :class:`RunOptions`, the validated run settings;
-* the :class:`RawRun` it returns holds the sampled motion (SI) and the switching record;
-  :func:`asperity2d.belt.result.assemble` adds the derived forces and energies.
-
-Back-ends never print, never write files and raise only ``SceneError`` (bad input) or
-``SimulationError`` (a run that went wrong or over its budget).
+1. ``spec`` is validated (SI, with its scales): a :class:`~asperity2d.belt.spec.ChainSpec`
+   for a tangential chain, or a ``ContactSpec`` (``asperity2d.belt.ContactSpec``: the chain,
+   its ``NormalContact`` and the initial gaps ``y0`` / ``vy0``) when ``simulate_chain`` was
+   given a normal contact. ``accepts`` must return False, not raise, for a spec of the kind
+   its back end cannot run.
+2. ``options`` is :class:`RunOptions`, the validated run settings (sample times, tolerances,
+   budgets); a long loop calls :func:`watch` now and then so the wall-clock budget holds.
+3. ``run`` returns, for a ChainSpec, a :class:`RawRun`: the sampled motion (SI) and the
+   switching record; :func:`asperity2d.belt.result.assemble` adds the derived forces and
+   energies and makes a ``BeltResult``. For a ContactSpec it returns the contact's raw run
+   (``ContactRun``: the state [x; y; v; vy], the modes, the normal force, four energy books,
+   the separation intervals), which becomes a ``ContactResult``. Either result's energy books
+   are checked against its stored energy: a back end whose books do not close is refused.
+4. ``settings`` names the :class:`RunOptions` fields the back end uses that the result's meta
+   records (``rtol``, ``integrator`` by default; none for a back end that integrates nothing).
+5. Back-ends never print, never write files and raise only ``SceneError`` (bad input) or
+   ``SimulationError`` (a run that went wrong or over its budget).
 """
 
 from __future__ import annotations
@@ -19,6 +31,7 @@ import contextvars
 import math
 import time
 from dataclasses import dataclass, field
+from typing import Callable
 
 import numpy as np
 
@@ -31,6 +44,17 @@ INTEGRATORS = ("LSODA", "Radau", "BDF", "DOP853", "RK45")
 #: ``max_wall_time`` (the step and event budgets are counted; this one is the backstop for
 #: work neither counts well: a chattering sign() solve, a stiff friction law, a huge chain).
 MAX_WALL_TIME = 30.0
+
+
+@dataclass(frozen=True)
+class Backend:
+    """One solver back-end: ``run(spec, options) -> RawRun`` for the chains ``accepts(spec)`` is
+    True for (the module's contract); ``settings``: the run settings the result's meta records."""
+
+    name: str
+    accepts: Callable[[object], bool]
+    run: Callable[[object, "RunOptions"], object]
+    settings: tuple = ("rtol", "integrator")
 
 
 @dataclass(frozen=True)
@@ -180,6 +204,25 @@ class RawRun:
     work: np.ndarray
     events: list = field(default_factory=list)
     stick_intervals: list = field(default_factory=list)
+    meta: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class ContactRun:
+    """What a back-end returns for a ContactSpec (SI): samples ``t`` (T,), state ``Z`` (4n, T) = [x; y; v; vy],
+    ``modes`` (n, T), ``friction_force`` and ``normal_force`` (n, T, N), ``work`` (4, T, J: belt,
+    friction, dampers, impacts), ``events``, ``stick_intervals`` and ``separation_intervals`` (per
+    mass, (start, end) s), ``meta``."""
+
+    t: np.ndarray
+    Z: np.ndarray
+    modes: np.ndarray
+    friction_force: np.ndarray
+    normal_force: np.ndarray
+    work: np.ndarray
+    events: list = field(default_factory=list)
+    stick_intervals: list = field(default_factory=list)
+    separation_intervals: list = field(default_factory=list)
     meta: dict = field(default_factory=dict)
 
 

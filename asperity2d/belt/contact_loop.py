@@ -27,13 +27,11 @@ also when it rebounds), ``graze-gap`` (the gap touched zero without closing) and
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 import numpy as np
 
 from ..errors import SimulationError
 from . import limits
-from .backend import Event
+from .backend import ContactRun, Event
 from .contact_modes import resolve_contact
 from .contact_phase import GAP, NORMAL, SLIP, STICK, ContactPhase, ContactTemplate
 from .finder import SWITCH_TOL, find_event
@@ -41,25 +39,6 @@ from .normal import SEPARATED
 
 #: bounded memory: at most this many cached mode patterns (and at most :data:`~.limits.CACHE_BYTES`)
 CACHE_SIZE = 512
-
-
-@dataclass(frozen=True)
-class ContactRun:
-    """What the contact back-end returns (SI): samples ``t`` (T,), state ``Z`` (4n, T) = [x; y; v; vy],
-    ``modes`` (n, T), ``friction_force`` and ``normal_force`` (n, T, N), ``work`` (4, T, J: belt,
-    friction, dampers, impacts), ``events``, ``stick_intervals`` and ``separation_intervals`` (per
-    mass, (start, end) s), ``meta``."""
-
-    t: np.ndarray
-    Z: np.ndarray
-    modes: np.ndarray
-    friction_force: np.ndarray
-    normal_force: np.ndarray
-    work: np.ndarray
-    events: list = field(default_factory=list)
-    stick_intervals: list = field(default_factory=list)
-    separation_intervals: list = field(default_factory=list)
-    meta: dict = field(default_factory=dict)
 
 
 def run_contact(spec, options) -> ContactRun:

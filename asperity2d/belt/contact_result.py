@@ -201,7 +201,7 @@ def load(path: str | os.PathLike) -> BeltResult:
 
 
 def assemble_contact(spec: ContactSpec, raw, meta: dict) -> ContactResult:
-    """Build a ContactResult from :class:`~.contact_loop.ContactRun` (adds forces and stored energies)."""
+    """Build a ContactResult from :class:`~.backend.ContactRun` (adds forces and stored energies)."""
     n, D = spec.n, 2 * spec.n
     Z = raw.Z
     q, qd = Z[:D], Z[D:]

@@ -325,3 +325,22 @@ class ContactSpec:
 
     def to_dict(self) -> dict:
         return {**self.normal.to_dict(), "y0": list(self.y0), "vy0": list(self.vy0)}
+
+
+def contact_spec(masses, springs, dampers, *, mu_s=None, mu_k=None, v_belt, x0, v0, t_end, g=9.81, normal_load=None,
+                 friction=None, normal, y0=None, vy0=None) -> ContactSpec:
+    """The validated :class:`ContactSpec` of ``simulate_chain``'s arguments (with ``normal``)."""
+    from .spec import ChainSpec
+
+    if normal is None:
+        raise SceneError("`y0` and `vy0` need `normal` (a NormalContact): without it the chain has no normal "
+                         "coordinate")
+    if not isinstance(normal, NormalContact):
+        raise SceneError(f"`normal` must be a NormalContact, got {check.show(normal)}")
+    if normal_load is not None:
+        raise SceneError("give the load through `normal` (NormalContact(preload=...)), not `normal_load`: with a "
+                         "normal degree of freedom the normal force is computed, not imposed")
+    chain = ChainSpec(masses, springs, dampers, mu_s, mu_k, v_belt, x0, v0, t_end, g, None, friction)
+    load = np.abs(chain.m * chain.g + normal.preload)  # the chain's scales (velocity, force) see the real load
+    chain = ChainSpec(masses, springs, dampers, mu_s, mu_k, v_belt, x0, v0, t_end, g, tuple(load.tolist()), friction)
+    return ContactSpec(chain, normal, y0, vy0)
