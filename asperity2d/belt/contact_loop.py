@@ -64,7 +64,13 @@ def run_contact(spec, options) -> ContactRun:
     sep_start = [0.0 if modes[i] == SEPARATED else None for i in range(n)]
     sticks: list[list] = [[] for _ in range(n)]
     seps: list[list] = [[] for _ in range(n)]
-    events += [Event(t=0.0, mass=int(i), kind=kind, x=float(Z[i])) for i, kind in first if kind == "impact"]
+    # t = 0 logs the impacts, and the openings: a mass that starts on the surface (rigid: y0 = 0;
+    # compliant: y0 <= 0) and is out of contact once the start is resolved (moving away, or pulled
+    # off by its load) leaves it at t = 0 like any later opening; a rebound is its impact's
+    hit = [i for i, kind in first if kind == "impact"]
+    events += [Event(t=0.0, mass=int(i), kind="impact", x=float(Z[i])) for i in hit]
+    events += [Event(t=0.0, mass=int(i), kind="open", x=float(Z[i])) for i in range(n)
+               if y0[i] <= 0 and modes[i] == SEPARATED and i not in hit]
     with options.watching(lambda: t):  # loops deep in a phase watch the wall clock too
         while True:
             key = np.asarray(modes, dtype=np.int8).tobytes()
