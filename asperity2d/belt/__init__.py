@@ -30,7 +30,7 @@ from .._lazy import exports
 _LAZY = {"Event": "backend", "BeltResult": "result", "load": "contact_result", "METHODS": "solver",
          "simulate_chain": "solver", "ChainSpec": "spec", "NormalContact": "normal", "ContactResult": "contact_result",
          "load_contact": "contact_result", "MinimalModel": "minimal", "steady_sliding": "contact",
-         "ContactSpec": "normal", "Backend": "backend"}
+         "ContactSpec": "spec", "Backend": "backend"}
 _SUBMODULES = ("presets",)
 
 __all__ = ["simulate_chain", "BeltResult", "Event", "ChainSpec", "load", "METHODS", "presets", "NormalContact",

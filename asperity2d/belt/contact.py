@@ -21,7 +21,7 @@ import numpy as np
 
 from ..errors import SceneError
 from .contact_phase import ContactTemplate
-from .normal import contact_spec
+from .spec import contact_spec
 
 __all__ = ["SteadySliding", "contact_spec", "steady_sliding"]
 

@@ -16,10 +16,9 @@ from ..errors import SceneError
 from .backend import MAX_WALL_TIME, Backend, RunOptions
 from .hybrid import run_ode_phases, run_state_law
 from .linear import run_closed_form
-from .normal import ContactSpec, contact_spec
 from .result import BeltResult, assemble
 from .sign import run_sign
-from .spec import ChainSpec
+from .spec import ChainSpec, ContactSpec, contact_spec
 from .._validate import check_choice
 
 __all__ = ["Backend", "METHODS", "simulate_chain"]
