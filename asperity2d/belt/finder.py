@@ -38,8 +38,8 @@ from functools import partial
 
 import numpy as np
 
-#: relative tolerance that declares an event function zero (and two numbers equal at a switch)
-SWITCH_TOL = 1e-9
+from .limits import SWITCH_TOL  # noqa: F401 -- relative tolerance that declares an event function zero
+
 _EPS = float(np.finfo(float).eps)  # (a plain float: the scalar root search does its arithmetic in floats)
 #: subdivisions of one interval for one row before it is declared free of contact
 _SUBDIVISIONS = 64

@@ -252,9 +252,7 @@ class ChainSpec:
     @cached_property
     def limit_band(self) -> tuple:
         """Per mass, the static limit plus and minus the switching tolerance (N): (above, below)."""
-        from .finder import SWITCH_TOL  # (lazily: the spec does not need the solver to load)
-
-        tol = SWITCH_TOL * self.limit_scale
+        tol = limits.SWITCH_TOL * self.limit_scale
         return self.static_limit + tol, self.static_limit - tol
 
     @cached_property
