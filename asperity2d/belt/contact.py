@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import SceneError
-from .. import _validate as check
+from .. import _inputs as check
 from .backend import MAX_WALL_TIME, RunOptions
 from .contact_loop import run_contact
 from .contact_phase import ContactTemplate

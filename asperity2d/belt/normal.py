@@ -51,7 +51,7 @@ import numpy as np
 
 from ..errors import SceneError
 from ..friction.laws import Coulomb, StaticKinetic
-from .. import _validate as check
+from .. import _inputs as check
 from .limits import SCALE_LIMIT
 
 

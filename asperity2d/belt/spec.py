@@ -23,7 +23,7 @@ import numpy as np
 
 from ..errors import SceneError, SimulationError
 from ..friction.laws import Coulomb, FrictionLaw, StaticKinetic, law_from_dict
-from .._validate import check_real, check_vector, show
+from .._inputs import check_real, check_vector, show
 from . import limits
 
 

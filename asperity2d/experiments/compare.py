@@ -37,7 +37,7 @@ import numpy as np
 from .. import stats
 from .._format import si
 from .._io import FileError, read_text, write_json
-from .._validate import check_int, count_seeds, show
+from .._inputs import check_int, count_seeds, show
 from ..builders import make_scene
 from ..errors import SceneError
 from ..scene import Scene

@@ -8,7 +8,7 @@ Directives (reStructuredText; in a MyST page wrap them in an ``{eval-rst}`` bloc
     source of the defaults).
 
 ``.. validation-table::``
-    runs every closed-form check of :mod:`asperity2d.validation` (the ones the test suite runs)
+    runs every closed-form check of :mod:`asperity2d.closed_forms` (the ones the test suite runs)
     and tabulates expected, measured, relative error and tolerance. A failing check is a build
     warning, so a ``-W`` build fails on it.
 
@@ -178,11 +178,11 @@ class ValidationTable(_Generated):
         import pymunk
 
         import asperity2d
-        from asperity2d import validation
+        from asperity2d import closed_forms
 
-        checks = validation.run_all()
+        checks = closed_forms.run_all()
         rows, notes = [], []
-        for check_id, check in zip(validation.CHECKS, checks):
+        for check_id, check in zip(closed_forms.CHECKS, checks):
             if not check.passed:
                 logger.warning(f"closed-form check {check_id!r} fails: {check.line()}", location=self.get_location())
             rows.append([cell(check.name), math_cell(check.closed_form), cell(check.show(check.expected)),
@@ -619,7 +619,8 @@ API = (
     ("asperity2d.sweep", "asperity2d.sweep", "ensembles on local processes or Dask, the resumable store"),
     ("asperity2d.renderers", "asperity2d.renderers", "pictures and sounds by file extension"),
     ("asperity2d.stats", "asperity2d.stats", "statistics on plain numbers"),
-    ("asperity2d.validation", "asperity2d.validation", "closed-form checks of both models"),
+    ("asperity2d.closed_forms", "asperity2d.closed_forms", "closed-form checks of both models"),
+    ("asperity2d.scripting", "asperity2d.scripting", "the harness of a study script: options, output folder, summary"),
 )
 
 
