@@ -101,7 +101,13 @@ class Comparison:
     >>> path = c.save("critical.json")
     >>> Comparison.load(path) == c
     True
+    >>> import asperity2d as a
+    >>> a.render(c, "critical.png").name  # values per variant, in the measure's unit (mN)
+    'critical.png'
     """
+
+    #: The result family :func:`asperity2d.render` draws it as (a plot of values per variant).
+    kind = "comparison"
 
     values: dict[str, tuple[float, ...]]
     seeds: tuple[int, ...]

@@ -620,6 +620,7 @@ API = (
     ("asperity2d.renderers", "asperity2d.renderers", "pictures and sounds by file extension"),
     ("asperity2d.stats", "asperity2d.stats", "statistics on plain numbers"),
     ("asperity2d.closed_forms", "asperity2d.closed_forms", "closed-form checks of both models"),
+    ("asperity2d.studies", "asperity2d.studies", "the two theses' studies as functions: what the gallery and the findings run"),
     ("asperity2d.scripting", "asperity2d.scripting", "the harness of a study script: options, output folder, summary"),
 )
 
@@ -660,7 +661,7 @@ def write_api(app, config=None) -> None:
         lines = [title, "=" * len(title), "", f".. module:: {name}", "", what[0].upper() + what[1:] + ".",
                  ""]
         groups = [(name, module)]
-        if name == "asperity2d.experiments":
+        if name in ("asperity2d.experiments", "asperity2d.studies"):
             groups = [(f"{name}.{m.name}", importlib.import_module(f"{name}.{m.name}"))
                       for m in pkgutil.iter_modules(module.__path__)]
         for group_name, group in groups:
