@@ -627,6 +627,8 @@ API = (
 
 #: Names left out of the reference: the renderers' dispatch tables (implementation, not use).
 HIDDEN = {"asperity2d.renderers": {"RENDERERS", "DRAWERS"}}
+#: Submodules left out: the studies' claim records re-export asperity2d.experiments.verdicts.
+HIDDEN_MODULES = {"asperity2d.studies.claims"}
 
 
 def public_names(module) -> list[str]:
@@ -663,7 +665,7 @@ def write_api(app, config=None) -> None:
         groups = [(name, module)]
         if name in ("asperity2d.experiments", "asperity2d.studies"):
             groups = [(f"{name}.{m.name}", importlib.import_module(f"{name}.{m.name}"))
-                      for m in pkgutil.iter_modules(module.__path__)]
+                      for m in pkgutil.iter_modules(module.__path__) if f"{name}.{m.name}" not in HIDDEN_MODULES]
         for group_name, group in groups:
             members = [n for n in public_names(group) if not _is_submodule(group, n)]
             if group_name != name:
