@@ -48,6 +48,14 @@ def si(value: float, unit: str = "", digits: int = 3, *, trim: bool = False) -> 
     ``si(999.96e-6, "N") == "1.00 mN"``, ``si(0, "s") == "0 s"``, ``si(2e4, "m/s") == "20.0 km/s"``;
     ``trim=True`` drops trailing zeros (``si(1e-6, "m", trim=True) == "1 µm"``).
     Non-finite values print as ``nan`` / ``inf`` with the unit.
+
+    Examples
+    --------
+    >>> from asperity2d.scripting import si
+    >>> si(0.03452, "N"), si(1.25e-6, "m"), si(2.88e-16, "kg")
+    ('34.5 mN', '1.25 µm', '288 fg')
+    >>> si(1e-6, "m", trim=True)
+    '1 µm'
     """
     if isinstance(digits, bool) or not isinstance(digits, int) or digits < 1:
         raise ValueError(f"`digits` must be an integer >= 1, got {digits!r}")

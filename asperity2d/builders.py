@@ -23,7 +23,7 @@ import difflib
 
 import numpy as np
 
-from ._validate import (check_choice, check_finite, check_int, check_nonnegative, check_positive,
+from ._inputs import (check_choice, check_finite, check_int, check_nonnegative, check_positive,
                         check_text, is_real, per_item, show)
 from .errors import SceneError
 from .geometry import KINDS, Profile, RandomSpacing, RegularSpacing, half_of

@@ -33,7 +33,7 @@ import math
 import warnings
 from dataclasses import dataclass
 
-from ._validate import check_choice, check_int, check_positive, check_tolerance
+from ._inputs import check_choice, check_int, check_positive, check_tolerance
 from .errors import SceneError
 from .scene import ConstantForce, Scene
 from .run import MAX_STEPS, Run, default_dt, default_duration, default_stops

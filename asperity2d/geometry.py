@@ -32,7 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import (MAX_COUNT, check_choice, check_finite, check_int, check_nonnegative,
+from ._inputs import (MAX_COUNT, check_choice, check_finite, check_int, check_nonnegative,
                         check_positive, show)
 from .errors import SceneError
 

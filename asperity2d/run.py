@@ -19,7 +19,7 @@ from typing import Callable, Iterable
 import numpy as np
 
 from ._format import si
-from ._validate import check_finite, check_int, check_positive
+from ._inputs import check_finite, check_int, check_positive
 from ._version import __version__
 from .engine import PYMUNK_VERSION, Engine
 from .engine.energy import ContactWork, EnergyMeter
@@ -574,7 +574,7 @@ class Run:
             "steps": e.step_count, "max_overlap_fraction": self.max_overlap,
             "max_track_drift_fraction": self.max_drift,
             "max_solver_drift_fraction": e.max_solver_drift,  # removed by projection each step
-            "units": e.units.as_dict(), "asperity2d_version": __version__,
+            "units": e.units.to_dict(), "asperity2d_version": __version__,
             "pymunk_version": PYMUNK_VERSION, "numpy_version": np.__version__,
             "record_lower": self.record_lower, **self.extra_meta,
         }
@@ -606,7 +606,7 @@ class Run:
 
 def _checks(run: Run) -> dict:
     """What ``run`` passed (``result.meta["checks"]``): the divergence guard, the physical-validity
-    checks (``asperity2d.engine.validity``) and the step size, each with its worst value and
+    checks (``asperity2d.engine.run_checks``) and the step size, each with its worst value and
     limit. A check that failed carries a ``warning`` (the result is marked unsuccessful): the step
     size (``unsafe_dt``) and a step resolution past ``STEP_WARNING``;
     the other failures raise."""

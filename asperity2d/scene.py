@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._format import si
-from ._validate import (check_choice, check_finite, check_nonnegative, check_positive, check_text,
+from ._inputs import (check_choice, check_finite, check_nonnegative, check_positive, check_text,
                         per_item, show)
 from .errors import SceneError
 from .contact_laws import DEFAULT_CONTACT_LAW, contact_law

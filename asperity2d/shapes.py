@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import MAX_COUNT, show
+from ._inputs import MAX_COUNT, show
 from .errors import SceneError
 from .geometry import Profile, float_array, outline
 

@@ -25,7 +25,7 @@ import math
 
 import numpy as np
 
-from ._validate import check_choice
+from ._inputs import check_choice
 from .errors import SceneError
 
 ALTERNATIVES = ("two-sided", "less", "greater")

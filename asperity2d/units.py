@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import show
+from ._inputs import show
 from .errors import SceneError
 
 #: Ratios of a parameter to its internal scale the engine resolves.
@@ -76,7 +76,7 @@ class Units:
     def energy(self) -> float:
         return self.force * self.length
 
-    def as_dict(self) -> dict:
+    def to_dict(self) -> dict:
         return {"length_m": self.length, "mass_kg": self.mass, "time_s": self.time,
                 "force_N": self.force, "velocity_m_per_s": self.velocity}
 

@@ -40,7 +40,7 @@ from asperity2d.dynamics.asperity_basins import WINDOW, asperity_basins, classif
 from asperity2d.dynamics.basins import LABELS
 from asperity2d.renderers.dynamics import plot_spectra
 from asperity2d.renderers.sound import write_wav
-from asperity2d.cli import scripting
+from asperity2d import scripting
 
 DRIVES = {"default": (3_720.0, 120), "stiff": (37_200.0, 40)}  # N/m, lower asperities
 

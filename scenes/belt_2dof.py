@@ -13,7 +13,7 @@ Run: ``python scenes/belt_2dof.py [--quick] [--out DIR]``; writes plots and ``be
 import numpy as np
 
 from asperity2d.studies import mdof_belt as S
-from asperity2d.cli import scripting
+from asperity2d import scripting
 
 
 def study(quick):

@@ -11,7 +11,7 @@ Run: ``python scenes/belt_3dof.py [--quick] [--out DIR]``; writes plots and ``be
 """
 
 from asperity2d.studies import mdof_belt as S
-from asperity2d.cli import scripting
+from asperity2d import scripting
 
 
 def study(quick):

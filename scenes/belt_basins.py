@@ -36,7 +36,7 @@ from asperity2d.dynamics.basins import (LABELS, RUN_CPU_LIMIT, chain_basins, cla
                                         with_initial)
 from asperity2d.renderers.dynamics import plot_basins
 from asperity2d.renderers.sound import write_wav
-from asperity2d.cli import scripting
+from asperity2d import scripting
 
 X_RANGE = (-0.3, 0.9)  # m: around mass 1's equilibrium under kinetic friction, 0.294 m
 V_RANGE = (-0.6, 0.6)  # m/s

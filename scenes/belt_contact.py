@@ -44,7 +44,7 @@ from asperity2d.belt import presets, simulate_chain
 from asperity2d.belt.contact import steady_sliding
 from asperity2d.belt.minimal import MinimalModel
 from asperity2d.belt.normal import NormalContact
-from asperity2d.cli import scripting
+from asperity2d import scripting
 from asperity2d.dynamics import chain_cycle, floquet, spectrum
 from asperity2d.renderers.belt import plot_contact_map, plot_contact_run, plot_opening
 from asperity2d.renderers.sound import write_wav

@@ -18,7 +18,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import belt_parameters  # noqa: E402
-from asperity2d.cli import scripting  # noqa: E402
+from asperity2d import scripting  # noqa: E402
 
 
 def main(argv=None) -> int:

@@ -15,7 +15,7 @@ import numpy as np
 
 from asperity2d.studies import mdof_belt as S
 from asperity2d.studies.claims import claim
-from asperity2d.cli import scripting
+from asperity2d import scripting
 
 DEC = lambda v: bool(np.all(np.diff(v) < 0))  # noqa: E731
 INC = lambda v: bool(np.all(np.diff(v) > 0))  # noqa: E731

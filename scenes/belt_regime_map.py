@@ -21,7 +21,7 @@ from asperity2d.belt.presets import preset
 from asperity2d.belt.regime import regime_map
 from asperity2d.studies.mdof_belt import renders
 from asperity2d.friction import Stribeck
-from asperity2d.cli import scripting
+from asperity2d import scripting
 
 
 def main(argv=None) -> int:

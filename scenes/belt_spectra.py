@@ -30,7 +30,7 @@ steady window (0.005 Hz bins at 400 s) separates them.
 
 import numpy as np
 
-from asperity2d.cli import scripting
+from asperity2d import scripting
 from asperity2d.belt import presets, simulate_chain
 from asperity2d.dynamics import signal, spectrum
 from asperity2d.dynamics.basins import LABELS, classify_chain

@@ -32,7 +32,7 @@ import math
 
 import asperity2d as a
 from asperity2d._format import si
-from asperity2d.cli import scripting
+from asperity2d import scripting
 from asperity2d.critical import critical_force_bracket
 from asperity2d.studies.ooten import pushed
 

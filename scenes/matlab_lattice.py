@@ -34,7 +34,7 @@ import numpy as np
 
 import asperity2d as a
 from asperity2d._format import si
-from asperity2d.cli import scripting
+from asperity2d import scripting
 from asperity2d.experiments.quasistatic import SEED_DRIVE_VELOCITY
 from asperity2d.renderers.plots import plot_position_velocity
 

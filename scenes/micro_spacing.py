@@ -41,7 +41,7 @@ from asperity2d import stats
 from asperity2d.experiments.compare import Comparison
 from asperity2d.experiments.quasistatic import SEED_DRIVE_VELOCITY
 from asperity2d.renderers.plots import plot_comparison
-from asperity2d.cli import scripting
+from asperity2d import scripting
 from asperity2d.studies import claims
 from asperity2d.sweep.engine import map_calls
 

@@ -43,7 +43,7 @@ import numpy as np
 import asperity2d as a
 from asperity2d import stats
 from asperity2d.renderers.plots import plot_positions
-from asperity2d.cli import scripting
+from asperity2d import scripting
 from asperity2d.studies import ooten as studies
 from asperity2d.studies.claims import claim
 from asperity2d.sweep.engine import map_calls

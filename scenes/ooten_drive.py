@@ -36,7 +36,7 @@ import math
 import asperity2d as a
 from asperity2d.critical import critical_force_bracket
 from asperity2d.renderers.plots import plot_positions
-from asperity2d.cli import scripting
+from asperity2d import scripting
 from asperity2d.studies import claims as claims_module
 from asperity2d.studies.claims import claim
 from asperity2d.studies import ooten as studies

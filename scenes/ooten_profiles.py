@@ -58,7 +58,7 @@ from asperity2d.experiments.compare import Comparison
 from asperity2d.experiments.measures import measure_label
 from asperity2d.critical import critical_force
 from asperity2d.renderers.plots import plot_comparison, plot_positions
-from asperity2d.cli import scripting
+from asperity2d import scripting
 from asperity2d.studies import claims
 from asperity2d.studies import ooten as studies
 from asperity2d.sweep.engine import map_calls

@@ -46,7 +46,7 @@ import numpy as np
 
 import asperity2d as a
 from asperity2d import stats
-from asperity2d.cli import scripting
+from asperity2d import scripting
 from asperity2d.experiments.compare import Comparison
 from asperity2d.experiments.measures import measure_label
 from asperity2d.renderers.plots import plot_comparison

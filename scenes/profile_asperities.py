@@ -33,7 +33,7 @@ from pathlib import Path
 
 import numpy as np
 
-from asperity2d.cli import scripting
+from asperity2d import scripting
 from asperity2d._io import write_json
 from asperity2d import surface
 from asperity2d.renderers import surface as surface_plots
@@ -74,7 +74,7 @@ def main(argv=None) -> int:
     x0 = float(profile.x[0])
     surface_plots.plot_asperities(profile, asperities, out / "profile_zoom.png", x_range=(x0, x0 + 10e-6))
     surface_plots.plot_spectrum(spectrum, out / "spectrum.png", fit=fit)
-    write_json(out / "asperities.json", asperities.as_dict(), indent=None)
+    write_json(out / "asperities.json", asperities.to_dict(), indent=None)
     a = asperities
     summary = {
         "profile": {"file": str(args.profile), "points": profile.count, "length_m": profile.length,

@@ -112,7 +112,7 @@ def verdict(comparison, setup: str) -> dict:
 
 def main(argv=None) -> int:
     from asperity2d._format import si
-    from asperity2d.cli import scripting
+    from asperity2d import scripting
     from asperity2d.studies import claims
 
     args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=8, minimum_seeds=2)
@@ -152,6 +152,6 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    from asperity2d.cli import scripting
+    from asperity2d import scripting
 
     scripting.run(main)

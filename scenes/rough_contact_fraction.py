@@ -48,7 +48,7 @@ import math
 import numpy as np
 
 from asperity2d import make_scene
-from asperity2d.cli import scripting
+from asperity2d import scripting
 from asperity2d.studies.claims import claim, verdict_line
 from asperity2d.studies.rough import rough_run
 from asperity2d.sweep.engine import map_calls

@@ -49,7 +49,7 @@ import numpy as np
 
 from asperity2d import stats
 from asperity2d.scene import OOTEN_DEFAULTS, kinetic_default
-from asperity2d.cli import scripting
+from asperity2d import scripting
 from asperity2d.studies.claims import HOLDS, UNTESTABLE, claim, judge, verdict_line
 from asperity2d.studies.rough import rough_run, spearman, trend_claim
 from asperity2d.sweep.engine import map_calls

@@ -45,7 +45,7 @@ import numpy as np
 
 from asperity2d import stats
 from asperity2d.scene import OOTEN_DEFAULTS, kinetic_default
-from asperity2d.cli import scripting
+from asperity2d import scripting
 from asperity2d.studies.claims import UNTESTABLE, claim, verdict_line
 from asperity2d.studies.rough import self_affine_run, spearman, trend_claim
 from asperity2d.sweep.engine import map_calls

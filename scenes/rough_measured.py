@@ -41,7 +41,7 @@ import numpy as np
 import asperity2d as a
 from asperity2d import surface
 from asperity2d.renderers import surface as surface_plots
-from asperity2d.cli import scripting
+from asperity2d import scripting
 from asperity2d import stats
 from asperity2d.studies.claims import claim, verdict_line
 from asperity2d.studies.rough import fixed_track_interference, measure, pass_measures

@@ -42,7 +42,7 @@ import math
 
 import asperity2d as a
 from asperity2d.experiments import quasistatic as qs
-from asperity2d.cli import scripting
+from asperity2d import scripting
 from asperity2d.renderers.plots import plot_position_velocity
 
 TABLE1 = dict(base=1e-6, mass=2.88e-16, stiffness=37_200.0, flank_angle=45.0)
@@ -106,7 +106,7 @@ def main(argv=None) -> int:
         if setup == setups[0] and not args.no_gif:
             a.render(result, out / f"run_{setup}.gif", frames=args.frames or (30 if args.quick else 100))
             summary["outputs"].append(f"run_{setup}.gif")
-        report = ladder.as_dict()
+        report = ladder.to_dict()
         report.update(
             max_overlap_fraction=max(r["max_overlap_fraction"] for r in ladder.rungs),
             max_track_drift_fraction=max(r["max_track_drift_fraction"] for r in ladder.rungs),

@@ -27,7 +27,7 @@ import math
 
 import asperity2d as a
 from asperity2d._format import si
-from asperity2d.cli import scripting
+from asperity2d import scripting
 
 
 def build_scene(quick: bool = False, **overrides):

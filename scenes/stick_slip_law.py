@@ -38,7 +38,7 @@ import numpy as np
 import asperity2d as a
 from asperity2d.belt.period import belt_period
 from asperity2d.friction import fits as ft
-from asperity2d.cli import scripting
+from asperity2d import scripting
 from asperity2d.experiments import tribometer as tb
 from asperity2d import stats
 from asperity2d.studies import claims
@@ -123,7 +123,7 @@ def main(argv=None) -> int:
     reg = table["regular"][0]
     summary = {
         "drive_stiffness_N_per_m": STIFFNESS, "drive_velocity_m_per_s": VELOCITY, "lower_count": count,
-        "runs": table, "calibration": {**calibration.as_dict(), "seeds": seeds[:half]},
+        "runs": table, "calibration": {**calibration.to_dict(), "seeds": seeds[:half]},
         "held_out_ratio": {"mean": float(np.mean([r["ratio"] for r in held])),
                            "max_abs_error": float(np.max(np.abs([r["ratio"] - 1 for r in held])))},
         "regular_law_on_random_ratio": float(np.mean([r["regular_law_ratio"] for r in held])),

@@ -27,7 +27,7 @@ import asperity2d as a
 from asperity2d._format import si
 from asperity2d.belt.period import belt_period
 from asperity2d.friction import fits as ft
-from asperity2d.cli import scripting
+from asperity2d import scripting
 from asperity2d.experiments import tribometer as tb
 from asperity2d.errors import SimulationError
 
@@ -68,7 +68,7 @@ def _stick_slip_periods(stribeck, *, quick: bool) -> tuple:
         if law is None:
             fit = ft.fit_stick_slip(result)
             law, base = fit.law, scene
-            calibration = {**fit.as_dict(), "stiffness_N_per_m": stiffness, "velocity_m_per_s": velocity}
+            calibration = {**fit.to_dict(), "stiffness_N_per_m": stiffness, "velocity_m_per_s": velocity}
         cycles = ft.stick_slip_cycles(result)
         common = dict(mass=scene.slider.mass, stiffness=stiffness, velocity=velocity,
                       normal_load=scene.slider.normal_load)
@@ -165,9 +165,9 @@ def main(argv=None) -> int:
     _plots(curve, loops, fits, out / "friction_law.png")
     _period_plot(periods, out / "stick_slip_period.png")
     low = int(np.searchsorted(curve.velocity, 0.0))  # first +v point; low - 1 is the first -v
-    summary = {"curve": curve.as_dict(), "static_coefficient": mu_s,
+    summary = {"curve": curve.to_dict(), "static_coefficient": mu_s,
                "breakaway_displacement_m": loops.breakaway_displacement(),
-               "fits": {k: f.as_dict() for k, f in fits.items()}, "energy": energy,
+               "fits": {k: f.to_dict() for k, f in fits.items()}, "energy": energy,
                "stick_slip": periods, "macroscopic_chain": chain,
                "force_limit_at_zero_N": [float(curve.force[low - 1]), float(curve.force[low])]}
     lines = [f"steady friction at +-{abs(curve.velocity[low]):g} m/s: {si(curve.force[low - 1], 'N', 3)} / "

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 import pymunk
 
-from asperity2d._validate import check_int, check_real
+from asperity2d._inputs import check_int, check_real
 from asperity2d.belt.spec import ChainSpec
 from asperity2d.errors import SceneError
 

@@ -246,7 +246,7 @@ def test_minimal_model_closed_form_eigenvalues_are_the_solvers_phase_matrix():
 
 
 # The flutter onset found on the solver's own sliding phase against the closed-form mu_crit, and the
-# simulated growth rate above the damped onset, are checks of asperity2d.validation.
+# simulated growth rate above the damped onset, are checks of asperity2d.closed_forms.
 
 
 def test_minimal_model_modes_coalesce_at_mu_crit():
@@ -279,7 +279,7 @@ def _growth_from_simulation(mm, mu, t_end):
     return math.log(abs(p[1]) / abs(p[0])) / t_end, r
 
 
-@pytest.mark.parametrize("side", [-1])  # +1 (growth above the onset): asperity2d.validation
+@pytest.mark.parametrize("side", [-1])  # +1 (growth above the onset): asperity2d.closed_forms
 def test_minimal_model_simulated_sliding_grows_above_and_decays_below_at_the_closed_form_rate(side):
     """With mass-proportional damping (eta = 150 1/s) the onset moves to mu_crit(eta) (closed form);
     2 % above it the simulated steady sliding grows, 2 % below it decays, at Re(lambda) of the

@@ -5,7 +5,7 @@ import pytest
 
 from asperity2d.belt import simulate_chain
 from asperity2d.errors import SceneError
-from asperity2d.validation import one_dof_cycle
+from asperity2d.closed_forms import one_dof_cycle
 
 G = 9.81
 
@@ -26,7 +26,7 @@ def test_one_dof_stick_slip_matches_closed_form_over_100_cycles():
     # event times are located to machine precision; 1e-8 relative is the contract
     np.testing.assert_allclose(slips, want_slip, rtol=1e-8, atol=0)
     np.testing.assert_allclose(sticks, want_stick, rtol=1e-8, atol=0)
-    # (breakaway at k x = mu_s N and the drop of exactly 2 (Fs - Fk): asperity2d.validation)
+    # (breakaway at k x = mu_s N and the drop of exactly 2 (Fs - Fk): asperity2d.closed_forms)
     durations = np.diff(np.array(r.stick_intervals[0][1:]), axis=1).ravel()
     np.testing.assert_allclose(durations, t_stick, rtol=1e-8)
 

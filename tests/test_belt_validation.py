@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from asperity2d.belt import simulate_chain
-from asperity2d._validate import show
+from asperity2d._inputs import show
 from asperity2d.errors import SceneError, SimulationError
 from asperity2d.friction import Stribeck
 

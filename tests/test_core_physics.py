@@ -20,15 +20,15 @@ K, BASE = 37_200.0, 1e-6  # Ooten's thesis Table 1 stiffness (N/m) and base (m)
 
 
 def single_asperity(theta, mu, **drive):
-    """One tip on one flank under a light load: asperity2d.validation's wedge-law scene."""
-    from asperity2d.validation import single_asperity as scene_of
+    """One tip on one flank under a light load: asperity2d.closed_forms's wedge-law scene."""
+    from asperity2d.closed_forms import single_asperity as scene_of
 
     scene, load = scene_of(theta, mu)
     return scene.replace(drive=dataclasses.replace(scene.drive, **drive)), load
 
 
 # The wedge law for four (theta, mu) pairs, the force balance while stuck and the flat block's
-# static and kinetic limits are closed-form checks in asperity2d.validation (tests/test_validation.py).
+# static and kinetic limits are closed-form checks in asperity2d.closed_forms (tests/test_closed_forms.py).
 
 
 def test_wedge_jams_when_flank_plus_friction_angle_reaches_90_degrees():

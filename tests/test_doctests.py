@@ -28,6 +28,7 @@ PUBLIC = {
     "asperity2d.friction": None,
     "asperity2d.dynamics": None,
     "asperity2d.renderers": ("render",),
+    "asperity2d.scripting": None,
 }
 #: Names that are not callables or classes (the version string, submodules, tables).
 NOT_CALLABLE = {"asperity2d.__version__", "asperity2d.belt.presets", "asperity2d.belt.METHODS"}

@@ -276,7 +276,7 @@ def test_flat_edges_at_the_exact_half_height_limit():
 
 
 def test_explicit_positions_limits_and_names():
-    from asperity2d._validate import MAX_COUNT
+    from asperity2d._inputs import MAX_COUNT
 
     with pytest.raises(a.SceneError, match=f"`positions` must hold <= {MAX_COUNT} tips, got {MAX_COUNT + 1}"):
         ExplicitSpacing(positions=np.arange(MAX_COUNT + 1, dtype=float))

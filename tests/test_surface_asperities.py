@@ -144,7 +144,7 @@ def test_asperities_record_is_validated_and_read_only():
     np.testing.assert_allclose(record.left_angles, [45.0, math.degrees(math.atan(0.8))])
     with pytest.raises(ValueError):
         record.heights[0] = 1.0
-    assert json.loads(json.dumps(record.as_dict()))["mass"] == [1e-16, 2e-16]
+    assert json.loads(json.dumps(record.to_dict()))["mass"] == [1e-16, 2e-16]
     for change, name in [(dict(centers=[0.0, 0.9e-6]), "overlap"),
                          (dict(heights=[0.5e-6, -1.0]), r"`heights\[1\]`"),
                          (dict(mass=[1e-16]), "`mass`"),
@@ -158,7 +158,7 @@ def test_extraction_is_deterministic():
     profile = self_affine_profile(n=20_000, length=2e-4, rms_height=2e-7, hurst=0.7, seed=4)
     a = find_asperities(profile, min_prominence=1e-8, modulus=1.86e10, density=7850.0)
     b = find_asperities(profile, min_prominence=1e-8, modulus=1.86e10, density=7850.0)
-    assert a.as_dict() == b.as_dict() and a.count > 10
+    assert a.to_dict() == b.to_dict() and a.count > 10
     assert np.all(a.left_feet[1:] >= a.right_feet[:-1] - 1e-9 * (a.bases[1:] + a.bases[:-1]))
 
 

@@ -9,7 +9,7 @@ checked independently from its recorded arrays, has
 
 * every series finite (the drive's far end aside: NaN for a constant force);
 * no slider step, while it is over the surface, longer than the feature it could collide with
-  (:func:`asperity2d.engine.validity._features`), sample by sample and between samples;
+  (:func:`asperity2d.engine.run_checks._features`), sample by sample and between samples;
 * no free slider's tip below the guard floor by more than the tolerance;
 * energy books (when metered) closing to 1e-6 of the drive work (README; measured 1e-14 -
   1e-13 on ordinary scenes);
@@ -28,7 +28,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import asperity2d as a
-from asperity2d.engine.validity import FLOOR_TOLERANCE, STEP_FRACTION, _features
+from asperity2d.engine.run_checks import FLOOR_TOLERANCE, STEP_FRACTION, _features
 from asperity2d.run import default_dt
 from asperity2d.units import Units
 

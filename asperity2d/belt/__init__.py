@@ -5,7 +5,7 @@ thesis' parameter tables; ``regime`` classifies runs (steady sliding,
 stick-slip, quasi-harmonic); ``load`` reads a saved result.
 
 Modules, in data-flow order: ``limits`` (derived scales and budgets; the parameter rules are
-:mod:`asperity2d._validate`'s) ->
+:mod:`asperity2d._inputs`'s) ->
 ``spec`` (ChainSpec and its scales) -> ``backend`` (the back-end contract:
 RunOptions in, RawRun out) -> back-ends ``linear`` (closed-form phases from
 ``modal``), ``hybrid`` (integrated phases, state-variable laws), ``sign``
@@ -30,11 +30,13 @@ from .._lazy import exports
 _LAZY = {"Event": "backend", "BeltResult": "result", "load": "contact_result", "METHODS": "solver",
          "simulate_chain": "solver", "ChainSpec": "spec", "NormalContact": "normal", "ContactResult": "contact_result",
          "load_contact": "contact_result", "MinimalModel": "minimal", "steady_sliding": "contact",
-         "ContactSpec": "spec", "Backend": "backend"}
+         "ContactSpec": "spec", "Backend": "backend", "classify": "regime", "classify_contact": "regime",
+         "regime_map": "regime", "belt_period": "period"}
 _SUBMODULES = ("presets",)
 
 __all__ = ["simulate_chain", "BeltResult", "Event", "ChainSpec", "load", "METHODS", "presets", "NormalContact",
-           "ContactResult", "load_contact", "MinimalModel", "steady_sliding", "ContactSpec", "Backend"]
+           "ContactResult", "load_contact", "MinimalModel", "steady_sliding", "classify", "classify_contact",
+           "regime_map", "belt_period", "ContactSpec", "Backend"]
 
 
 __getattr__, __dir__ = exports(__name__, globals(), _LAZY, _SUBMODULES)

@@ -36,7 +36,7 @@ from typing import Callable
 import numpy as np
 
 from ..errors import SceneError, SimulationError
-from .._validate import check_choice, check_flag, check_int, check_real, check_vector, show
+from .._inputs import check_choice, check_flag, check_int, check_real, check_vector, show
 from . import limits
 
 INTEGRATORS = ("LSODA", "Radau", "BDF", "DOP853", "RK45")

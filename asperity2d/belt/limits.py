@@ -1,6 +1,6 @@
 """The belt chains' limits: derived scales and the work budget of a run (:class:`SceneError`).
 
-Each parameter alone is checked by the package's one validator (:mod:`asperity2d._validate`:
+Each parameter alone is checked by the package's one validator (:mod:`asperity2d._inputs`:
 real, finite, within the magnitude window ``TINY`` .. ``HUGE``). Here:
 
 * the chain's derived scales (``ChainSpec.rate_bound``, ``velocity_scale``,
@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import math
 
-from .._validate import show
+from .._inputs import show
 from ..errors import SceneError
 
 #: largest derived scale (rate, speed, length, force, energy) of a chain

@@ -59,7 +59,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import SceneError
-from .. import _validate as check
+from .. import _inputs as check
 from .normal import NormalContact
 
 

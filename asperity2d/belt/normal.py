@@ -47,7 +47,7 @@ import math
 from dataclasses import dataclass
 
 from ..errors import SceneError
-from .. import _validate as check
+from .. import _inputs as check
 
 
 @dataclass(frozen=True)

@@ -23,6 +23,32 @@ def belt_period(law: FrictionLaw, *, mass: float, stiffness: float, velocity: fl
     same, so the periods are equal. Uses ``asperity2d.belt.simulate_chain``
     with ``friction=law`` (its exact event-driven solver for piecewise-
     constant laws, an ODE with the same stick logic otherwise).
+
+    Parameters
+    ----------
+    law : FrictionLaw
+        The friction law (:mod:`asperity2d.friction`).
+    mass, stiffness, velocity, normal_load : float
+        kg, N/m, m/s, N.
+    cycles : int, optional
+        Stick-slip cycles to average over (default 6).
+
+    Returns
+    -------
+    dict
+        ``period_s`` (NaN if fewer than two whole cycles), ``cycles`` (counted) and
+        ``force_drop_N`` (the spring force lost in a slip).
+
+    Examples
+    --------
+    The force drop of a static/kinetic law is Den Hartog's 2 (mu_s - mu_k) N = 1.962 N:
+
+    >>> from asperity2d import belt
+    >>> from asperity2d.friction import StaticKinetic
+    >>> p = belt.belt_period(StaticKinetic(0.4, 0.3), mass=1.0, stiffness=100.0, velocity=0.1,
+    ...                      normal_load=9.81)
+    >>> round(p["period_s"], 4), round(p["force_drop_N"], 4)
+    (0.6694, 1.962)
     """
     f_s = law.static_coefficient * normal_load
     t_est = 2.0 * f_s / (stiffness * velocity) + 2 * math.pi * math.sqrt(mass / stiffness)

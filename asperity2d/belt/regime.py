@@ -28,7 +28,35 @@ AXES = ("v_belt", "k", "c", "m", "mu")
 
 
 def classify(result, *, stick_fraction: float = 1e-3, osc_tol: float = 1e-3) -> str:
-    """The regime (one of ``REGIMES``) of ``result`` over the second half of the run."""
+    """The regime (one of ``REGIMES``) of ``result`` over the second half of the run.
+
+    Parameters
+    ----------
+    result : BeltResult
+        A chain run of :func:`simulate_chain`.
+    stick_fraction : float, optional
+        A mass sticking for more than this fraction of the window is stick-slip (default 1e-3).
+    osc_tol : float, optional
+        Below this relative oscillation amplitude the sliding is steady (default 1e-3).
+
+    Returns
+    -------
+    str
+        ``"steady sliding"``, ``"stick-slip"``, ``"quasi-harmonic"`` or ``"stuck"``.
+
+    See Also
+    --------
+    classify_contact : the same for a chain with a normal contact.
+    regime_map : the regime over a grid of two parameters.
+
+    Examples
+    --------
+    >>> from asperity2d import belt
+    >>> r = belt.simulate_chain([1.0], [100.0, 0.0], [0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...                         v_belt=0.1, x0=[0.0], v0=[0.1], t_end=2.0)
+    >>> belt.classify(r)
+    'stick-slip'
+    """
     t = result.t
     t_half = 0.5 * t[-1]
     window = t >= t_half
@@ -88,6 +116,36 @@ def regime_map(base: dict, x_name: str, x_values, y_name: str, y_values, *, prog
     """Run ``simulate_chain(**base)`` over the grid of two parameters from ``AXES`` and classify each run.
 
     ``k`` sets every non-zero spring, ``c`` every damper, ``m`` every mass, ``mu`` both coefficients.
+
+    Parameters
+    ----------
+    base : dict
+        Keyword arguments of :func:`simulate_chain` for every run.
+    x_name, y_name : str
+        The two parameters varied, from ``AXES`` (``"v_belt"``, ``"k"``, ``"c"``, ``"m"``, ``"mu"``).
+    x_values, y_values : sequence of float
+        Their values (SI: m/s, N/m, N s/m, kg, 1).
+    progress : bool, optional
+        Show a progress bar.
+
+    Returns
+    -------
+    RegimeMap
+        ``labels[j][i]`` is the regime at ``(x_values[i], y_values[j])``.
+
+    See Also
+    --------
+    classify : the regime of one run.
+
+    Examples
+    --------
+    One mass on a belt: stick-slip at a slow belt without damping, quasi-harmonic otherwise.
+
+    >>> from asperity2d import belt
+    >>> base = dict(masses=[1.0], springs=[100.0, 0.0], dampers=[0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...             v_belt=0.1, x0=[0.0], v0=[0.1], t_end=2.0)
+    >>> belt.regime_map(base, "v_belt", [0.1, 1.0], "c", [0.0, 5.0]).labels
+    (('stick-slip', 'quasi-harmonic'), ('quasi-harmonic', 'quasi-harmonic'))
     """
     for name in (x_name, y_name):
         if name not in AXES:
@@ -133,6 +191,19 @@ CONTACT_REGIMES = ("steady sliding", "quasi-harmonic", "flutter", "stick-slip", 
 
 def classify_contact(result, *, stick_fraction: float = 1e-3, osc_tol: float = 1e-3, grow_tol: float = 0.05) -> str:
     """The regime (one of ``CONTACT_REGIMES``) of a contact-chain run over its second half.
+
+    ``result`` is a :class:`ContactResult`; ``stick_fraction`` and ``osc_tol`` as in
+    :func:`classify`, ``grow_tol`` the relative growth of the oscillation over the window above
+    which it is growing (flutter). See Also :func:`classify`.
+
+    Examples
+    --------
+    >>> from asperity2d import belt
+    >>> r = belt.simulate_chain([1.0], [100.0, 0.0], [0.0, 0.0], mu_s=0.4, mu_k=0.3,
+    ...                         v_belt=0.1, x0=[0.0], v0=[0.1], t_end=2.0,
+    ...                         normal=belt.NormalContact(stiffness=1e4))
+    >>> belt.classify_contact(r)
+    'stick-slip'
 
     * ``separation``: some contact opens in the window (bouncing), and no mass sticks for more
       than ``stick_fraction`` of it; ``separation + stick`` when one also does;

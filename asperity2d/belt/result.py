@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from .._io import FileError, atomic_write, check_format, load_npz, save_npz
-from .._validate import show
+from .._inputs import show
 from ..errors import SceneError, SimulationError
 from .backend import Event, RawRun
 from .spec import ChainSpec, link_extension, link_force

@@ -1,6 +1,6 @@
 """``simulate_chain``: masses on a moving belt with exact stick/slip switching.
 
-The driver validates every parameter (:mod:`.spec`, :mod:`asperity2d._validate`, :mod:`.limits`,
+The driver validates every parameter (:mod:`.spec`, :mod:`asperity2d._inputs`, :mod:`.limits`,
 :class:`~.backend.RunOptions`) into one spec -- a :class:`~.spec.ChainSpec`, or a
 :class:`~.normal.ContactSpec` when a normal contact is given -- picks the back-end from
 ``METHODS`` (the first entry of the method whose predicate accepts the spec; the contract:
@@ -19,7 +19,7 @@ from .linear import run_closed_form
 from .result import BeltResult, assemble
 from .sign import run_sign
 from .spec import ChainSpec, ContactSpec, contact_spec
-from .._validate import check_choice
+from .._inputs import check_choice
 
 __all__ = ["Backend", "METHODS", "simulate_chain"]
 

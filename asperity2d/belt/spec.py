@@ -23,8 +23,8 @@ import numpy as np
 
 from ..errors import SceneError, SimulationError
 from ..friction.laws import Coulomb, FrictionLaw, StaticKinetic, law_from_dict
-from .. import _validate as check
-from .._validate import check_real, check_vector, show
+from .. import _inputs as check
+from .._inputs import check_real, check_vector, show
 from . import chainfile, limits
 from .limits import SCALE_LIMIT
 from .normal import NormalContact

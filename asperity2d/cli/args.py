@@ -1,8 +1,8 @@
 """What every command-line module shares: the parser class, the argument types, loading a script.
 
 The lowest module of :mod:`asperity2d.cli`: the parser (:mod:`.main`), the handlers
-(:mod:`.asperity`, :mod:`.belt`, :mod:`.basins`, :mod:`.sweep`) and the scene scripts'
-plumbing (:mod:`.scripting`) import it; it imports none of them. Light: no NumPy, no pymunk.
+(:mod:`.asperity`, :mod:`.belt`, :mod:`.basins`, :mod:`.sweep`) and the scripts' harness
+(:mod:`asperity2d.scripting`) import it; it imports none of them. Light: no NumPy, no pymunk.
 """
 
 from __future__ import annotations
@@ -10,8 +10,8 @@ from __future__ import annotations
 import argparse
 import sys
 
-from .._validate import MAX_RUNS, check_int, check_positive, check_tolerance
-from .._validate import check_runs as _check_runs
+from .._inputs import MAX_RUNS, check_int, check_positive, check_tolerance
+from .._inputs import check_runs as _check_runs
 from ..errors import SceneError
 
 PROG = "asperity2d"
@@ -66,7 +66,7 @@ class Subcommands(argparse._SubParsersAction):
 
 def check_runs(runs: int, max_runs: int | None, why: str) -> None:
     """Refuse a command that would start more than ``--max-runs`` runs (see
-    :func:`asperity2d._validate.check_runs`)."""
+    :func:`asperity2d._inputs.check_runs`)."""
     _check_runs(runs, max_runs, why, name="--max-runs")
 
 
@@ -78,7 +78,7 @@ def fail(message) -> int:
 
 def _checked(check, convert, text: str):
     """``check("value", convert(text))`` as an argparse type: the package's own rule and message
-    (:mod:`asperity2d._validate`), argparse prefixing the option's name."""
+    (:mod:`asperity2d._inputs`), argparse prefixing the option's name."""
     try:
         value = convert(text)
     except ValueError:
@@ -90,18 +90,18 @@ def _checked(check, convert, text: str):
 
 
 def positive_float(text: str) -> float:
-    """An argparse type: a finite number > 0 (:func:`asperity2d._validate.check_positive`)."""
+    """An argparse type: a finite number > 0 (:func:`asperity2d._inputs.check_positive`)."""
     return _checked(check_positive, float, text)
 
 
 def tolerance(text: str) -> float:
     """An argparse type: a relative tolerance a float can meet
-    (:func:`asperity2d._validate.check_tolerance`)."""
+    (:func:`asperity2d._inputs.check_tolerance`)."""
     return _checked(check_tolerance, float, text)
 
 
 def positive_int(text: str) -> int:
-    """An argparse type: an integer >= 1 (:func:`asperity2d._validate.check_int`)."""
+    """An argparse type: an integer >= 1 (:func:`asperity2d._inputs.check_int`)."""
     return _checked(lambda name, value: check_int(name, value, minimum=1, maximum=None), int, text)
 
 

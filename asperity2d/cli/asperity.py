@@ -14,7 +14,7 @@ from pathlib import Path
 from .. import _io
 from .._format import lines as text_lines
 from .._format import si
-from .args import PLOT_SUFFIXES, check_runs, load_script
+from .args import PLOT_SUFFIXES, check_runs, fail, load_script
 from ..errors import SceneError
 # reading a TOML scene is the model's business; the CLI's name for it stays for callers
 from ..scene_io import RUN_KEYS  # noqa: F401
@@ -225,6 +225,25 @@ def compare(args) -> int:
     summary, lines = comparison.report(reference, subject="{name} spacing")
     _emit(args, summary, lines)
     return 0
+
+
+def validate(args) -> int:
+    """``asperity2d validate [CHECK ...]``: run the closed-form checks, a line each; status 1 if one fails."""
+    from ..closed_forms import CHECKS
+
+    unknown = [i for i in args.checks if i not in CHECKS]
+    if unknown:
+        return fail(f"argument CHECK: unknown check {unknown[0]!r}; known: {', '.join(CHECKS)}")
+    checks, lines = [], []
+    for check_id in args.checks or CHECKS:
+        checks.append(CHECKS[check_id]())
+        if not args.json:
+            print(checks[-1].line(), flush=True)
+    failed = sum(not c.passed for c in checks)
+    lines.append(f"{len(checks) - failed} of {len(checks)} checks within tolerance")
+    _emit(args, {"checks": [{"id": i, **c.to_dict()} for i, c in zip(args.checks or CHECKS, checks)],
+                 "failed": failed}, lines)
+    return 1 if failed else 0
 
 
 def measures(args) -> int:

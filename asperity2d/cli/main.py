@@ -128,6 +128,11 @@ def build_parser() -> Parser:
     _json_flag(p)
     p.set_defaults(handler=asperity.measures)
 
+    p = sub.add_parser("validate", help="run the closed-form checks of both models (exit status 1 if one fails)")
+    p.add_argument("checks", nargs="*", metavar="CHECK", help="checks to run (default all)")
+    _json_flag(p)
+    p.set_defaults(handler=asperity.validate)
+
     _add_belt(sub)
     _add_sweep(sub)
     return parser

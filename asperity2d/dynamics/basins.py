@@ -41,7 +41,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import check_tolerance
+from .._inputs import check_tolerance
 from ..errors import SceneError, SimulationError
 from .cycles import chain_cycle
 

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import check_tolerance
+from .._inputs import check_tolerance
 from ..errors import SceneError
 from .sections import chain_section, crossings, opening_section, poincare_section
 from .signals import check_series

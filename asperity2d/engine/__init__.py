@@ -10,7 +10,7 @@
   with pymunk's public API as the fallback (``ASPERITY2D_PYMUNK_NATIVE=0``);
 * :mod:`.recorder` — the run's record and divergence guard in internal units,
   handed out in SI (:class:`~.recorder.Recorder`);
-* :mod:`.validity` — what no run may show (a step longer than the contact it must resolve,
+* :mod:`.run_checks` — what no run may show (a step longer than the contact it must resolve,
   a slider below the floor, a tip through an untouched asperity): checked before a scene is
   built and at every sample, beside the divergence guard;
 * :mod:`.energy` — per-step energy accounting (:class:`~.energy.EnergyMeter`)

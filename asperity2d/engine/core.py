@@ -33,7 +33,7 @@ from .contacts import ARBITER_FIELDS, Arbiters, StickSlip
 from .kernel import C_LAW, KERNEL, Kernel
 from .native import Native, stepper
 from .space import build
-from .validity import check_scene
+from .run_checks import check_scene
 
 PYMUNK_VERSION = pymunk.version
 BODY_FIELDS = batch.BodyFields.POSITION | batch.BodyFields.VELOCITY

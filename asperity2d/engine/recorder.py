@@ -25,7 +25,7 @@ from operator import add, mul
 import numpy as np
 
 from ..errors import SimulationError
-from .validity import Validity
+from .run_checks import Validity
 
 #: Up to this many bodies (batch rows) the divergence guard and the validity checks read the
 #: bodies as one Python list per sample instead of through NumPy calls. Measured on a critical

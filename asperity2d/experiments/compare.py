@@ -37,7 +37,7 @@ import numpy as np
 from .. import stats
 from .._format import si
 from .._io import FileError, read_text, write_json
-from .._validate import check_int, count_seeds, show
+from .._inputs import check_int, count_seeds, show
 from ..builders import make_scene
 from ..errors import SceneError
 from ..scene import Scene
@@ -101,7 +101,13 @@ class Comparison:
     >>> path = c.save("critical.json")
     >>> Comparison.load(path) == c
     True
+    >>> import asperity2d as a
+    >>> a.render(c, "critical.png").name  # values per variant, in the measure's unit (mN)
+    'critical.png'
     """
+
+    #: The result family :func:`asperity2d.render` draws it as (a plot of values per variant).
+    kind = "comparison"
 
     values: dict[str, tuple[float, ...]]
     seeds: tuple[int, ...]

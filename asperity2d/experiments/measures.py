@@ -43,7 +43,7 @@ from typing import Callable
 import numpy as np
 
 from .. import analysis
-from .._validate import check_choice, check_int, check_positive
+from .._inputs import check_choice, check_int, check_positive
 from ..critical import DT_FRACTION as CRITICAL_DT_FRACTION, critical_force, settled_run
 from ..errors import SceneError
 from ..run import Run, Stuck, default_dt, default_duration, default_stops

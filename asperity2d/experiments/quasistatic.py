@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import check_positive
+from .._inputs import check_positive
 from ..errors import SceneError
 from ..scene import Scene, SpringDrive
 
@@ -207,7 +207,7 @@ class Ladder:
         """Every quantity converged at the production factor."""
         return all(self.converged_at(name, self.production) for name in QUANTITIES)
 
-    def as_dict(self) -> dict:
+    def to_dict(self) -> dict:
         quantities = {}
         for name, meaning in QUANTITIES.items():
             quantities[name] = {

@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._validate import check_int, check_positive
+from .._inputs import check_int, check_positive
 from ..errors import SceneError
 from ..scene import Scene
 
@@ -138,7 +138,7 @@ class SteadyCurve:
     meta: dict = field(default_factory=dict)
     contact: np.ndarray | None = None
 
-    def as_dict(self) -> dict:
+    def to_dict(self) -> dict:
         contact = None if self.contact is None else np.asarray(self.contact).tolist()
         return {"velocity_m_per_s": self.velocity.tolist(), "friction_force_N": self.force.tolist(),
                 "spread_N": self.spread.tolist(), "contact_fraction": contact,

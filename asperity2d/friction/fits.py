@@ -51,7 +51,7 @@ class Fit:
     relative_rms: float
     points: int
 
-    def as_dict(self) -> dict:
+    def to_dict(self) -> dict:
         return {**self.law.to_dict(), "rms": self.rms, "relative_rms": self.relative_rms,
                 "points": self.points}
 

@@ -28,7 +28,7 @@ from dataclasses import astuple, dataclass, fields
 
 import numpy as np
 
-from .._validate import check_real, show
+from .._inputs import check_real, show
 from ..contact_laws import LawEntry, register_law
 from ..errors import SceneError
 
@@ -37,7 +37,7 @@ __all__ = ["Coulomb", "StaticKinetic", "CoulombViscous", "Stribeck", "Dahl", "Lu
 
 def _check(name: str, value, *, positive: bool = False) -> None:
     """Raise SceneError unless ``value`` is a finite real number >= 0 (or > 0) within the chains'
-    magnitude window: the rules of :func:`asperity2d._validate.check_real` (the belt package's
+    magnitude window: the rules of :func:`asperity2d._inputs.check_real` (the belt package's
     ``__init__`` resolves its names lazily, so importing its validator here makes no cycle)."""
     check_real(name, value, positive=positive, nonneg=not positive)
 

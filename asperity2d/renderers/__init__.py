@@ -58,6 +58,12 @@ def _chain_plot(result, path, **options):
     return plot_chain(result, path, **options)
 
 
+def _comparison_plot(comparison, path, **options):
+    from .plots import plot_comparison
+
+    return plot_comparison(comparison, path, **options)
+
+
 @dataclass(frozen=True)
 class OutputFormat:
     """One output format: a file extension and how each kind of result is drawn to it.
@@ -127,7 +133,8 @@ for _fmt in (
                  "animation"),
     OutputFormat(".html", "the interactive player, one self-contained page", dict.fromkeys(_BOTH, _player),
                  "player"),
-    *(OutputFormat(ext, "time-series plot", {"asperity": _plot, "belt": _chain_plot}, "plot")
+    *(OutputFormat(ext, "time-series plot (a comparison: its values per variant)",
+                   {"asperity": _plot, "belt": _chain_plot, "comparison": _comparison_plot}, "plot")
       for ext in (".png", ".svg", ".pdf")),
     OutputFormat(".wav", "the slider's sound", dict.fromkeys(_BOTH, _sound), "sound"),
 ):
@@ -203,12 +210,15 @@ def render(result, path: str | os.PathLike, **options) -> Path:
     ``write_player`` (``.html``),
     ``plot_run`` or, for a belt chain,
     ``plot_chain`` (``.png``, ``.svg``, ``.pdf``)
-    or ``write_wav`` (``.wav``).
+    or ``write_wav`` (``.wav``). A :class:`~asperity2d.Comparison` plots as its values per
+    variant and seed, with each variant's mean and 95 % interval, in its measure's unit
+    (``.png``, ``.svg``, ``.pdf``; ``label=`` names the axis, ``reference=`` draws a line).
 
     Parameters
     ----------
-    result : Result, BeltResult, str or os.PathLike
-        A run, or the path of one saved with ``save`` (read with :func:`asperity2d.load`).
+    result : Result, BeltResult, Comparison, str or os.PathLike
+        A run or a comparison, or the path of one saved with ``save`` (read with
+        :func:`asperity2d.load`).
     path : str or os.PathLike
         The output file; its extension picks the renderer (``RENDERERS``): ``.gif``,
         ``.mp4``, ``.html``, ``.png``, ``.svg``, ``.pdf`` or ``.wav``.
@@ -265,7 +275,7 @@ def render(result, path: str | os.PathLike, **options) -> Path:
         draw = entry.drawers.get(fmt.renderer)
     if draw is None:
         if kind not in {k for f in FORMATS.values() for k in f.drawers}:
-            raise SceneError(f"`result` must be a Result or a BeltResult, got {type(result).__name__}")
+            raise SceneError(f"`result` must be a Result, a BeltResult or a Comparison, got {type(result).__name__}")
         raise SceneError(f"`path` must end in one of {', '.join(suffixes(kind))} for a {kind} result, "
                          f"got {str(path)!r}")
     return draw(result, path, **options)

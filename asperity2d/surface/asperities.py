@@ -40,7 +40,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import check_int, check_nonnegative, check_positive
+from .._inputs import check_int, check_nonnegative, check_positive
 from ..errors import SceneError
 from .profile import SurfaceProfile
 
@@ -152,7 +152,7 @@ class Asperities:
         """Rise of the right flank from horizontal (degrees)."""
         return np.degrees(np.arctan2(self.heights, self.right_runs))
 
-    def as_dict(self) -> dict:
+    def to_dict(self) -> dict:
         """Plain lists and numbers (JSON-ready)."""
         names = ("centers", "heights", "left_runs", "right_runs", "base_levels", "stiffness", "mass")
         return {**{n: getattr(self, n).tolist() for n in names},

@@ -27,7 +27,7 @@ import math
 
 import numpy as np
 
-from .._validate import check_choice, check_finite, check_int, check_nonnegative
+from .._inputs import check_choice, check_finite, check_int, check_nonnegative
 from ..errors import SceneError
 
 DISTRIBUTIONS = ("gaussian", "uniform")

@@ -27,7 +27,7 @@ from types import MappingProxyType
 
 import numpy as np
 
-from .._validate import HUGE, check_finite, check_flag, check_int, check_positive, check_real, check_text
+from .._inputs import HUGE, check_finite, check_flag, check_int, check_positive, check_real, check_text
 from ..errors import SceneError
 
 #: Relative tolerance on the sample spacing for a profile to count as uniformly sampled.

@@ -27,7 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .._validate import check_choice, check_int
+from .._inputs import check_choice, check_int
 from ..errors import SceneError
 from .profile import SurfaceProfile
 

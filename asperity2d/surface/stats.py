@@ -31,7 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import check_choice, check_int, check_positive, show
+from .._inputs import check_choice, check_int, check_positive, show
 from ..errors import SceneError
 from .profile import SurfaceProfile
 

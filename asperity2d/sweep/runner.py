@@ -17,7 +17,7 @@ import time
 from dataclasses import dataclass
 from typing import Iterator
 
-from .._validate import check_runs
+from .._inputs import check_runs
 from ..errors import SceneError
 from .engine import is_auto, run_calls
 from .executors import DaskExecutor, LocalExecutor, check_executor_args, execute_run, jobs_for, resolve_run

@@ -42,7 +42,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Iterable, Mapping
 
-from .._validate import MAX_SEEDS, count_seeds
+from .._inputs import MAX_SEEDS, count_seeds
 from ..errors import SceneError
 
 _RUN_PATH = re.compile(r"^[A-Za-z_][\w.]*:[A-Za-z_]\w*$")

@@ -8,7 +8,7 @@ Directives (reStructuredText; in a MyST page wrap them in an ``{eval-rst}`` bloc
     source of the defaults).
 
 ``.. validation-table::``
-    runs every closed-form check of :mod:`asperity2d.validation` (the ones the test suite runs)
+    runs every closed-form check of :mod:`asperity2d.closed_forms` (the ones the test suite runs)
     and tabulates expected, measured, relative error and tolerance. A failing check is a build
     warning, so a ``-W`` build fails on it.
 
@@ -178,11 +178,11 @@ class ValidationTable(_Generated):
         import pymunk
 
         import asperity2d
-        from asperity2d import validation
+        from asperity2d import closed_forms
 
-        checks = validation.run_all()
+        checks = closed_forms.run_all()
         rows, notes = [], []
-        for check_id, check in zip(validation.CHECKS, checks):
+        for check_id, check in zip(closed_forms.CHECKS, checks):
             if not check.passed:
                 logger.warning(f"closed-form check {check_id!r} fails: {check.line()}", location=self.get_location())
             rows.append([cell(check.name), math_cell(check.closed_form), cell(check.show(check.expected)),
@@ -619,12 +619,16 @@ API = (
     ("asperity2d.sweep", "asperity2d.sweep", "ensembles on local processes or Dask, the resumable store"),
     ("asperity2d.renderers", "asperity2d.renderers", "pictures and sounds by file extension"),
     ("asperity2d.stats", "asperity2d.stats", "statistics on plain numbers"),
-    ("asperity2d.validation", "asperity2d.validation", "closed-form checks of both models"),
+    ("asperity2d.closed_forms", "asperity2d.closed_forms", "closed-form checks of both models"),
+    ("asperity2d.studies", "asperity2d.studies", "the two theses' studies as functions: what the gallery and the findings run"),
+    ("asperity2d.scripting", "asperity2d.scripting", "the harness of a study script: options, output folder, summary"),
 )
 
 
 #: Names left out of the reference: the renderers' dispatch tables (implementation, not use).
 HIDDEN = {"asperity2d.renderers": {"RENDERERS", "DRAWERS"}}
+#: Submodules left out: the studies' claim records re-export asperity2d.experiments.verdicts.
+HIDDEN_MODULES = {"asperity2d.studies.claims"}
 
 
 def public_names(module) -> list[str]:
@@ -659,9 +663,9 @@ def write_api(app, config=None) -> None:
         lines = [title, "=" * len(title), "", f".. module:: {name}", "", what[0].upper() + what[1:] + ".",
                  ""]
         groups = [(name, module)]
-        if name == "asperity2d.experiments":
+        if name in ("asperity2d.experiments", "asperity2d.studies"):
             groups = [(f"{name}.{m.name}", importlib.import_module(f"{name}.{m.name}"))
-                      for m in pkgutil.iter_modules(module.__path__)]
+                      for m in pkgutil.iter_modules(module.__path__) if f"{name}.{m.name}" not in HIDDEN_MODULES]
         for group_name, group in groups:
             members = [n for n in public_names(group) if not _is_submodule(group, n)]
             if group_name != name:

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import asperity2d as a
-from asperity2d.engine.validity import STEP_FRACTION, STEP_WARNING, Validity, load_capacity
+from asperity2d.engine.run_checks import STEP_FRACTION, STEP_WARNING, Validity, load_capacity
 from asperity2d.run import Run
 
 SMALL = {"lower_count": 4, "upper_count": 2}

@@ -3,13 +3,13 @@
 Every check is a function returning a :class:`Check` record: its name, the
 closed form, the expected and measured values, the relative error, the
 tolerance (with why it is that size) and the source of the closed form. The
-test suite parametrizes over :data:`CHECKS` (``tests/test_validation.py``) and
+test suite parametrizes over :data:`CHECKS` (``tests/test_closed_forms.py``) and
 the documentation's validation page tabulates the same records, so the page
 shows the errors the tests accept, measured at build time.
 
 Check an installation from the command line::
 
-    python -m asperity2d.validation          # the table; exit status 1 if a check fails
+    asperity2d validate          # the table; exit status 1 if a check fails
 
 The asperity checks run small pymunk scenes (under a second each); the belt
 checks run the exact event-driven solver. The whole set takes about 15 s of
@@ -40,7 +40,6 @@ from __future__ import annotations
 
 import functools
 import math
-import sys
 from dataclasses import dataclass
 from typing import Callable
 
@@ -94,6 +93,10 @@ class Check:
     def passed(self) -> bool:
         """True when :attr:`error` is within ``tolerance`` (and both values are finite)."""
         return math.isfinite(self.measured) and self.error <= self.tolerance
+
+    def to_dict(self) -> dict:
+        """The record as plain values, with its error and verdict (``asperity2d validate --json``)."""
+        return {**self.__dict__, "error": self.error, "passed": self.passed}
 
     def line(self) -> str:
         """One line for a terminal: verdict, name, expected and measured, error, tolerance."""
@@ -539,26 +542,3 @@ def minimal_growth_rate() -> Check:
         measured=math.log(abs(p[1]) / abs(p[0])) / t_end, unit="1/s", tolerance=1e-9,
         why="the projection is exact for the closed-form phase; only the state's round-off remains",
         source="Hoffmann, Fischer, Allgaier & Gaul (2002)")
-
-
-def main(argv=None) -> int:
-    """Print every check as one line; exit status 1 if any fails."""
-    import argparse
-
-    parser = argparse.ArgumentParser(prog="python -m asperity2d.validation", description=__doc__.splitlines()[0])
-    parser.add_argument("ids", nargs="*", help=f"checks to run (default all: {', '.join(CHECKS)})")
-    args = parser.parse_args(argv)
-    unknown = [i for i in args.ids if i not in CHECKS]
-    if unknown:
-        parser.error(f"unknown check {unknown[0]!r}; known: {', '.join(CHECKS)}")
-    checks = []
-    for check_id in args.ids or CHECKS:
-        checks.append(CHECKS[check_id]())
-        print(checks[-1].line(), flush=True)
-    failed = sum(not c.passed for c in checks)
-    print(f"{len(checks) - failed} of {len(checks)} checks within tolerance")
-    return 1 if failed else 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())
