@@ -12,12 +12,12 @@ import math
 import numpy as np
 import pytest
 
-import asperity2d.belt.contact_loop as contact_loop
+import asperity2d.belt.contact.loop as contact_loop
 from asperity2d import SimulationError
 from asperity2d.belt import simulate_chain
-from asperity2d.belt.contact_loop import VIOLATION, check_modes
-from asperity2d.belt.contact_phase import ContactTemplate
-from asperity2d.belt.finder import SWITCH_TOL, find_event
+from asperity2d.belt.contact.loop import VIOLATION, check_modes
+from asperity2d.belt.contact.phase import ContactTemplate
+from asperity2d.belt.phases.finder import SWITCH_TOL, find_event
 from asperity2d.belt.normal import SEPARATED, NormalContact
 
 # a hop of one event row: g = (Y + v·t - a·t²/2) - Y, the way a closed form gives a gap (the
@@ -26,7 +26,7 @@ V_UP, A_DOWN, Y, STEP = 0.0127, 10.0, 1.0, 0.0412778
 
 
 class Hop:
-    """The finder's event-row interface (:class:`asperity2d.belt.events.ModalEvents`) for ``rows``
+    """The finder's event-row interface (:class:`asperity2d.belt.phases.events.ModalEvents`) for ``rows``
     hops that start at the leftovers ``g0`` (one per row), each with a known g'''' = 0."""
 
     pointwise = True
@@ -130,7 +130,7 @@ def test_the_check_names_a_contact_that_pulls():
     """States handed to the check directly: two masses in rigid contact, pressed by a 45-degree spring
     (K_xy = 500 N/m) against a lifting preload (W = 9.81 - 20 N): N = W + 500·x is 39.8 N at
     x = 0.1 m, valid, and -10.2 N at x = 0 -- a contact that pulls, a lift-off the scan missed."""
-    from asperity2d.belt.contact import contact_spec
+    from asperity2d.belt.contact.steady import contact_spec
 
     spec = contact_spec([1.0, 1.0], [10.0, 10.0, 10.0], [0.0, 0.0, 0.0], mu_s=0.3, v_belt=0.1, x0=[0.0, 0.0],
                         v0=[0.0, 0.0], t_end=1.0, normal=NormalContact(inclined=((1000.0, 45.0),), preload=-20.0))

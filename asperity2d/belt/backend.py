@@ -64,7 +64,7 @@ class Event:
     ``kind`` is "stick", "slip", "reverse" (slip direction flips through belt
     speed) or "graze": the mass touched belt speed tangentially and the stick
     condition held only at that instant, so it kept slipping (see
-    ``asperity2d.belt.modes`` for the rule).
+    ``asperity2d.belt.chain.modes`` for the rule).
 
     Attributes
     ----------

@@ -38,7 +38,7 @@ The contact is either
 
 The energies: stored E = ½·q'ᵀMq' + ½·qᵀK_s·q + ½·k_c·Σδ² (compliant, in contact)
 + Σ W_i·y_i (work against the weight and the preload); E - E(0) = belt work -
-friction loss - damper loss - impact loss (:mod:`.contact_loop`).
+friction loss - damper loss - impact loss (:mod:`.contact.loop`).
 """
 
 from __future__ import annotations

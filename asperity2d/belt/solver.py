@@ -5,7 +5,7 @@ The driver validates every parameter (:mod:`.spec`, :mod:`asperity2d._inputs`, :
 :class:`~.normal.ContactSpec` when a normal contact is given -- picks the back-end from
 ``METHODS`` (the first entry of the method whose predicate accepts the spec; the contract:
 :mod:`.backend`) and turns the back-end's raw run into a :class:`~.result.BeltResult` (a
-:class:`~.contact_result.ContactResult` with a normal contact).
+:class:`~.contact.result.ContactResult` with a normal contact).
 """
 
 from __future__ import annotations
@@ -14,10 +14,10 @@ import time as _time
 
 from ..errors import SceneError
 from .backend import MAX_WALL_TIME, Backend, RunOptions
-from .hybrid import run_ode_phases, run_state_law
-from .linear import run_closed_form
+from .chain.hybrid import run_ode_phases, run_state_law
+from .chain.linear import run_closed_form
 from .result import BeltResult, assemble
-from .sign import run_sign
+from .chain.sign import run_sign
 from .spec import ChainSpec, ContactSpec, contact_spec
 from .._inputs import check_choice
 
@@ -25,7 +25,7 @@ __all__ = ["Backend", "METHODS", "simulate_chain"]
 
 
 def _run_contact(spec, options):
-    from .contact_loop import run_contact  # lazily: chains without a normal DOF never import it
+    from .contact.loop import run_contact  # lazily: chains without a normal DOF never import it
 
     return run_contact(spec, options)
 
@@ -106,7 +106,7 @@ def simulate_chain(
     degree of freedom and a unilateral contact (separated, sliding or sticking;
     ``asperity2d.belt.normal``); ``y0`` / ``vy0`` (m, m/s) are then the initial gaps and
     normal velocities (default: at rest on the contact) and the result is a
-    :class:`~.contact_result.ContactResult`.
+    :class:`~.contact.result.ContactResult`.
 
     Parameters
     ----------
@@ -213,7 +213,7 @@ def run_spec(spec, options: RunOptions, method: str = "exact") -> BeltResult:
     meta = {**raw.meta, "method": method, "backend": backend.name, "wall_time": _time.perf_counter() - clock,
             **{name: getattr(options, name) for name in backend.settings}}
     if isinstance(spec, ContactSpec):
-        from .contact_result import assemble_contact
+        from .contact.result import assemble_contact
 
         return assemble_contact(spec, raw, meta)
     return assemble(spec, raw, meta)

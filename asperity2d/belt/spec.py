@@ -334,14 +334,14 @@ class ChainSpec:
     #: The fields of ``to_dict()``'s record.
     RECORD = ("masses", "springs", "dampers", "friction", "v_belt", "x0", "v0", "t_end", "g", "normal_load")
 
-    #: What a chain document (:mod:`.chainfile`) may hold besides ``RECORD``: the coefficients in
+    #: What a chain document (``chainfile``) may hold besides ``RECORD``: the coefficients in
     #: place of ``friction``, and a normal contact.
     DOCUMENT = ("mu_s", "mu_k", "normal", "y0", "vy0")
 
     @classmethod
     def from_dict(cls, record: dict):
         """The chain ``to_dict()`` wrote (a saved result's ``chain`` record), validated again; or the
-        spec of a chain document (:func:`~.chainfile.document`: ``mu_s`` / ``mu_k`` in place of
+        spec of a chain document (``chainfile.document``: ``mu_s`` / ``mu_k`` in place of
         ``friction``, a ``normal`` table with ``y0`` / ``vy0`` -- then a :class:`ContactSpec`).
 
         ``friction`` is the law's own record (``law_from_dict``); a callable ``v_belt`` was saved
@@ -391,7 +391,7 @@ class ChainSpec:
 
     @classmethod
     def from_toml(cls, path):
-        """The spec of a TOML chain file (:mod:`.chainfile`; its run settings are left out): a
+        """The spec of a TOML chain file (``asperity2d.belt.chainfile``; its run settings are left out): a
         ChainSpec, or a :class:`ContactSpec` when the file has a ``[normal]`` table (or ``y0`` /
         ``vy0``). A key the file should not hold, a missing one or a bad table raises one
         ``SceneError`` naming the key and the file; a bad value one naming the parameter."""

@@ -24,8 +24,8 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from ..belt import presets, simulate_chain
-from ..belt.contact import steady_sliding
-from ..belt.minimal import MinimalModel
+from ..belt.contact.steady import steady_sliding
+from ..belt.contact.minimal import MinimalModel
 from ..belt.normal import SEPARATED, NormalContact
 from ..belt.regime import CONTACT_REGIMES, classify_contact
 from ..errors import SceneError

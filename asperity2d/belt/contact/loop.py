@@ -1,9 +1,9 @@
 """The event-driven run of a chain with a normal degree of freedom (separated, sliding, sticking).
 
-Phases (:class:`~.contact_phase.ContactPhase`, closed form) alternate with
-switching instants located by :func:`.finder.find_event` -- the same grid screen,
+Phases (:class:`~.contact.phase.ContactPhase`, closed form) alternate with
+switching instants located by :func:`.phases.finder.find_event` -- the same grid screen,
 root finder and touch rule as the tangential solver -- and resolved by
-:func:`.contact_modes.resolve_contact`. A phase whose motion grows (flutter) is
+:func:`.contact.modes.resolve_contact`. A phase whose motion grows (flutter) is
 restarted from its end state, with the same modes, before any of its modes has
 doubled: the screen's bound on the event functions' fourth derivative is taken
 for that span (no event is recorded at a restart).
@@ -15,7 +15,7 @@ The energy books (J, cumulative from t = 0):
 * damper loss    D_c = ∫ q'ᵀ·C_s·q' dt
 * impact loss    D_i = Σ ½·m·(y'-² - y'+²)               (rigid contacts)
 
-so that the stored energy (:class:`~.contact_result.ContactResult`) obeys
+so that the stored energy (:class:`~.contact.result.ContactResult`) obeys
 E - E(0) = W_b - D_f - D_c - D_i.
 
 Event kinds (:class:`~.backend.Event`): ``stick``, ``slip``, ``reverse``, ``graze`` as
@@ -29,13 +29,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import SimulationError
-from . import limits
-from .backend import ContactRun, Event
-from .contact_modes import resolve_contact
-from .contact_phase import GAP, NORMAL, SLIP, STICK, ContactPhase, ContactTemplate
-from .finder import SWITCH_TOL, find_event
-from .normal import SEPARATED
+from ...errors import SimulationError
+from .. import limits
+from ..backend import ContactRun, Event
+from .modes import resolve_contact
+from .phase import GAP, NORMAL, SLIP, STICK, ContactPhase, ContactTemplate
+from ..phases.finder import SWITCH_TOL, find_event
+from ..normal import SEPARATED
 
 #: bounded memory: at most this many cached mode patterns (and at most :data:`~.limits.CACHE_BYTES`)
 CACHE_SIZE = 512
@@ -176,7 +176,7 @@ def check_modes(template, Z, times):
     """Raise SimulationError where a state ``Z`` (4n, T) at ``times`` (s) breaks its phase's modes.
 
     The validity check of every contact run, as the asperity model's tunnelling check: each mode's
-    event function (:mod:`.contact_phase`: the gap of a separated mass, the normal force of one in
+    event function (:mod:`.contact.phase`: the gap of a separated mass, the normal force of one in
     contact, the relative velocity of a slipping one, the static margin of a stuck one) must not be
     below zero by more than :data:`VIOLATION` (twice the touch band). Beyond it a switch was missed
     -- a separated mass inside a rigid belt (or inside a compliant one, whose contact spring never

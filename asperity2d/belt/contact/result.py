@@ -16,11 +16,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._io import FileError, check_format, load_npz
-from .normal import SEPARATED, NormalContact
-from . import result as result_module
-from .result import ENERGY_SERIES, BeltResult, read_intervals, check_arrays, check_books, describe_error, read_record
-from .spec import ContactSpec, link_force
+from ..._io import FileError, check_format, load_npz
+from ..normal import SEPARATED, NormalContact
+from .. import result as result_module
+from ..result import ENERGY_SERIES, BeltResult, read_intervals, check_arrays, check_books, describe_error, read_record
+from ..spec import ContactSpec, link_force
 
 #: per-mass (n, T) and scalar (T,) series a contact result adds to a BeltResult's
 CONTACT_SERIES = ("y", "vy", "normal_force")

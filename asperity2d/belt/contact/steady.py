@@ -2,7 +2,7 @@
 
 ``simulate_chain(..., normal=NormalContact(...))`` builds a :class:`~.normal.ContactSpec`
 (:func:`~.normal.contact_spec`) and runs the back end ``METHODS["exact"]`` lists for it,
-:func:`~.contact_loop.run_contact`, into a :class:`~.contact_result.ContactResult`.
+:func:`~.contact.loop.run_contact`, into a :class:`~.contact.result.ContactResult`.
 
 :func:`steady_sliding` linearises a chain about steady sliding -- every mass in
 contact, slipping against the belt (s_i = -sign V), at rest -- with the *solver's
@@ -10,7 +10,7 @@ own* phase matrix for that mode pattern: its equilibrium solves A·z* + b0 = 0 a
 its eigenvalues are those of A. With mu·N coupling A is not symmetric: a pair of
 eigenvalues can leave the imaginary axis (flutter, the mode-coupling
 instability) where the undamped symmetric problem never could. For the one-mass
-minimal model the closed forms are in :mod:`.minimal`.
+minimal model the closed forms are in :mod:`.contact.minimal`.
 """
 
 from __future__ import annotations
@@ -19,9 +19,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import SceneError
-from .contact_phase import ContactTemplate
-from .spec import contact_spec
+from ...errors import SceneError
+from .phase import ContactTemplate
+from ..spec import contact_spec
 
 __all__ = ["SteadySliding", "contact_spec", "steady_sliding"]
 
