@@ -49,7 +49,18 @@ MAX_WALL_TIME = 30.0
 @dataclass(frozen=True)
 class Backend:
     """One solver back-end: ``run(spec, options) -> RawRun`` for the chains ``accepts(spec)`` is
-    True for (the module's contract); ``settings``: the run settings the result's meta records."""
+    True for (the module's contract); ``settings``: the run settings the result's meta records.
+
+    Examples
+    --------
+    >>> from asperity2d import belt
+    >>> [b.name for b in belt.METHODS["exact"]]  # in order of preference; the first that accepts runs
+    ['closed-form contact phases', 'state-variable ODE (Dahl, LuGre)', 'closed-form phases', 'integrated phases']
+    >>> r = belt.simulate_chain([1.0], [100.0, 0.0], [0.0, 0.0], mu_s=0.4, mu_k=0.3, v_belt=0.1, x0=[0.0],
+    ...                         v0=[0.1], t_end=2.0)
+    >>> r.meta["backend"], r.meta["rtol"]  # its `settings` are recorded
+    ('closed-form phases', 1e-08)
+    """
 
     name: str
     accepts: Callable[[object], bool]

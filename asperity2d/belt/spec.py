@@ -406,6 +406,20 @@ class ContactSpec:
     static load W = m·g + P, used for its scales); ``y0``, ``vy0`` the initial gaps (m)
     and normal velocities (m/s), ``None`` for the default: at rest in the static
     equilibrium of the contact (or on the surface, rigid).
+
+    Examples
+    --------
+    The spec of a chain document with a ``normal`` table; by default a compliant contact starts
+    in its static equilibrium, pressed in by m·g / (k_c + k_n) = 9.81 / 1.1e5 m:
+
+    >>> from asperity2d import belt
+    >>> spec = belt.ChainSpec.from_dict(dict(masses=[1.0], springs=[100.0, 0.0], dampers=[0.0, 0.0],
+    ...     mu_s=0.4, mu_k=0.3, v_belt=0.1, x0=[0.0], v0=[0.1], t_end=2.0,
+    ...     normal=dict(stiffness=1e4, contact_stiffness=1e5)))
+    >>> type(spec).__name__, spec.y0
+    ('ContactSpec', (-8.918181818181818e-05,))
+    >>> [b.name for b in belt.METHODS["exact"] if b.accepts(spec)]  # only the contact solver runs it
+    ['closed-form contact phases']
     """
 
     chain: object
