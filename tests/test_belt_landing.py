@@ -166,6 +166,9 @@ def test_a_lift_off_at_t0_logs_its_opening(normal, y0, vy0):
     r = simulate_chain(**ONE, normal=normal, y0=y0, vy0=vy0)
     assert r.events[0].kind == "open" and r.events[0].t == 0.0 and r.events[0].mass == 0
     assert r.separation_intervals[0][0][0] == 0.0  # the interval it opens
+    summary = r.summary()  # the contact's record in the result protocol's summary
+    assert summary["separations"] == len(r.separation_intervals[0]) == summary["masses"][0]["separations"]
+    assert summary["masses"][0]["separated_s"] == pytest.approx(sum(b - a for a, b in r.separation_intervals[0]))
     if normal.preload == 0:
         # thrown up at 0.5 m/s under g alone: it comes back at 2·vy0/g = 0.10194 s (a closed form; the
         # event is located to the finder's tolerance, far below 1e-9 s here)

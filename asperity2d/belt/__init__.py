@@ -34,12 +34,12 @@ _LAZY = {"Event": "backend", "BeltResult": "result", "load": "contact.result", "
          "simulate_chain": "solver", "ChainSpec": "spec", "NormalContact": "normal", "ContactResult": "contact.result",
          "load_contact": "contact.result", "MinimalModel": "contact.minimal", "steady_sliding": "contact.steady",
          "ContactSpec": "spec", "Backend": "backend", "classify": "regime", "classify_contact": "regime",
-         "regime_map": "regime", "belt_period": "period"}
+         "regime_map": "regime", "belt_period": "period", "read_chain": "chainfile"}
 _SUBMODULES = ("presets",)
 
 __all__ = ["simulate_chain", "BeltResult", "Event", "ChainSpec", "load", "METHODS", "presets", "NormalContact",
            "ContactResult", "load_contact", "MinimalModel", "steady_sliding", "classify", "classify_contact",
-           "regime_map", "belt_period", "ContactSpec", "Backend"]
+           "regime_map", "belt_period", "ContactSpec", "Backend", "read_chain"]
 
 
 __getattr__, __dir__ = exports(__name__, globals(), _LAZY, _SUBMODULES)

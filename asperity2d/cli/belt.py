@@ -17,6 +17,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from .. import _io
+from ..belt.chainfile import read_chain as load_chain  # noqa: F401 -- the model's reader, by its old name here
 from ..errors import SceneError
 
 #: What ``-o`` writes besides what :func:`asperity2d.render` draws of a chain (its suffixes come
@@ -41,9 +42,7 @@ def run(args) -> int:
     if args.chain is None or args.list_presets:
         kwargs = None
     else:
-        from ..belt.chainfile import read_chain
-
-        kwargs = read_chain(args.chain)
+        kwargs = load_chain(args.chain)
     from ..belt import presets
 
     if args.list_presets:

@@ -86,6 +86,17 @@ class ContactResult(BeltResult):
         return (self.belt_work, self.friction_dissipation, self.damper_dissipation, self.impact_dissipation,
                 self.kinetic_energy, self.spring_energy, self.load_energy)
 
+    def summary(self) -> dict:
+        """:meth:`BeltResult.summary` plus the normal contact's record: ``separations`` (how many
+        times the masses left the belt) and, per mass, its ``separations`` and ``separated_s``
+        (time out of contact, s)."""
+        out = super().summary()
+        for entry, intervals in zip(out["masses"], self.separation_intervals):
+            entry["separations"] = len(intervals)
+            entry["separated_s"] = float(sum(b - a for a, b in intervals))
+        out["separations"] = sum(len(per) for per in self.separation_intervals)
+        return out
+
     @property
     def separated(self) -> np.ndarray:
         """(n, T) True where a mass is out of contact."""
