@@ -386,8 +386,8 @@ def test_normal_contact_parameters_are_validated(bad, message):
     (dict(normal={"stiffness": 1.0}), "`normal` must be a NormalContact"),
     (dict(y0=[0.0]), "`y0` and `vy0` need `normal`"),
     (dict(normal=NormalContact(), normal_load=[5.0]), "not `normal_load`"),
-    (dict(normal=NormalContact(), method="sign"), "`method` 'sign' has no back end that accepts this chain (its "
-     "back ends: sign() friction through solve_ivp, with a normal contact); methods that do: 'exact'"),
+    (dict(normal=NormalContact(), method="sign"), "`method` 'sign' has no back end that accepts this chain with a "
+     "normal contact (its back ends: sign() friction through solve_ivp); methods that do: 'exact'"),
     (dict(normal=NormalContact(), y0=[-0.1]), "`y0` must be >= 0 with a rigid contact"),
     (dict(normal=NormalContact(), y0=[0.0, 1.0]), "`y0` must have 1 entries"),
     (dict(normal=NormalContact(), vy0=["fast"]), "`vy0` must be a real number at index 0"),

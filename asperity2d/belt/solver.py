@@ -204,9 +204,9 @@ def run_spec(spec, options: RunOptions, method: str = "exact") -> BeltResult:
     backend = next((b for b in METHODS[method] if b.accepts(spec)), None)
     if backend is None:  # a method whose back ends all refuse this chain (a normal contact with "sign")
         others = [name for name, backends in METHODS.items() if any(b.accepts(spec) for b in backends)]
-        raise SceneError(f"`method` {method!r} has no back end that accepts this chain "
-                         f"(its back ends: {'; '.join(b.name for b in METHODS[method])}"
-                         f"{'' if isinstance(spec, ChainSpec) else ', with a normal contact'}); "
+        raise SceneError(f"`method` {method!r} has no back end that accepts this chain"
+                         f"{'' if isinstance(spec, ChainSpec) else ' with a normal contact'} "
+                         f"(its back ends: {'; '.join(b.name for b in METHODS[method])}); "
                          f"methods that do: {', '.join(map(repr, others)) or 'none'}")
     clock = _time.perf_counter()
     raw = backend.run(spec, options)
