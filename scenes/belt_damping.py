@@ -10,7 +10,7 @@ m/s) with its damping varied (c = 0, 0.5, 2 N s/m; Figures 8-9): each of the
 thesis' statements about damping is a claim, judged as stated. One of the
 parameter studies of ``belt_parameters.py``, which runs them all.
 
-Run: ``python scenes/belt_damping.py [--quick] [-o DIR]``.
+Run: ``python scenes/belt_damping.py [--quick] [--plots] [-o DIR] [--json]``.
 """
 
 import sys
@@ -22,7 +22,7 @@ from asperity2d import scripting  # noqa: E402
 
 
 def main(argv=None) -> int:
-    return belt_parameters.main(argv, only="damping")
+    return belt_parameters.main(argv, only="damping", script=__file__)
 
 
 if __name__ == "__main__":

@@ -10,7 +10,7 @@ m/s) with its friction varied (mu0 = 0.2, 0.4; Figure 14): each of the thesis'
 statements about friction is a claim, judged as stated. One of the parameter
 studies of ``belt_parameters.py``, which runs them all.
 
-Run: ``python scenes/belt_friction.py [--quick] [-o DIR]``.
+Run: ``python scenes/belt_friction.py [--quick] [--plots] [-o DIR] [--json]``.
 """
 
 import sys
@@ -22,7 +22,7 @@ from asperity2d import scripting  # noqa: E402
 
 
 def main(argv=None) -> int:
-    return belt_parameters.main(argv, only="friction")
+    return belt_parameters.main(argv, only="friction", script=__file__)
 
 
 if __name__ == "__main__":

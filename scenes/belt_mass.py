@@ -10,7 +10,7 @@ m/s) with its mass varied (m = 1, 1.5, 2.5 kg; Figures 10-11): each of the
 thesis' statements about mass is a claim, judged as stated. One of the
 parameter studies of ``belt_parameters.py``, which runs them all.
 
-Run: ``python scenes/belt_mass.py [--quick] [-o DIR]``.
+Run: ``python scenes/belt_mass.py [--quick] [--plots] [-o DIR] [--json]``.
 """
 
 import sys
@@ -22,7 +22,7 @@ from asperity2d import scripting  # noqa: E402
 
 
 def main(argv=None) -> int:
-    return belt_parameters.main(argv, only="mass")
+    return belt_parameters.main(argv, only="mass", script=__file__)
 
 
 if __name__ == "__main__":

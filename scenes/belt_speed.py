@@ -10,7 +10,7 @@ m/s) with its speed varied (v_belt = 0.1, 0.4, 0.7 m/s; Figures 12-13): each
 of the thesis' statements about speed is a claim, judged as stated. One of the
 parameter studies of ``belt_parameters.py``, which runs them all.
 
-Run: ``python scenes/belt_speed.py [--quick] [-o DIR]``.
+Run: ``python scenes/belt_speed.py [--quick] [--plots] [-o DIR] [--json]``.
 """
 
 import sys
@@ -22,7 +22,7 @@ from asperity2d import scripting  # noqa: E402
 
 
 def main(argv=None) -> int:
-    return belt_parameters.main(argv, only="speed")
+    return belt_parameters.main(argv, only="speed", script=__file__)
 
 
 if __name__ == "__main__":

@@ -10,7 +10,7 @@ m/s) with its stiffness varied (k = 10, 20, 30 N/m; Figures 6-7): each of the
 thesis' statements about stiffness is a claim, judged as stated. One of the
 parameter studies of ``belt_parameters.py``, which runs them all.
 
-Run: ``python scenes/belt_stiffness.py [--quick] [-o DIR]``.
+Run: ``python scenes/belt_stiffness.py [--quick] [--plots] [-o DIR] [--json]``.
 """
 
 import sys
@@ -22,7 +22,7 @@ from asperity2d import scripting  # noqa: E402
 
 
 def main(argv=None) -> int:
-    return belt_parameters.main(argv, only="stiffness")
+    return belt_parameters.main(argv, only="stiffness", script=__file__)
 
 
 if __name__ == "__main__":

@@ -1,46 +1,74 @@
 """The multi-DOF belt thesis' studies: masses on a moving belt (the ``scenes/belt_*.py`` scripts).
 
 Every quantitative statement of the thesis becomes a claim record
-(:mod:`asperity2d.studies.claims`) whose numbers hold the thesis' value and the
+(:func:`asperity2d.experiments.verdicts.claim`) whose numbers hold the thesis' value and the
 computed one, judged by a criterion fixed before looking at the numbers
 (default: within ``REL_TOL`` = 5 % for a number read off a figure).
 :func:`belt_chain_run` is the sweep run function of ``scenes/belt_study.toml``.
+
+The scripts read their options with :mod:`asperity2d.scripting` like every scene script;
+:func:`claim_lines` says their claims in words.
 """
 
 from __future__ import annotations
 
-import argparse
 import math
-import os
-from pathlib import Path
 
 import numpy as np
 
 from .._format import si
-from .._io import write_json
-from ..belt import presets, regime, simulate_chain
-from ..belt.presets import preset
-from ..belt.regime import classify
-from .claims import claim
+from ..belt import classify, presets, simulate_chain
+from ..experiments.verdicts import claim
 
+#: A number read off one of the thesis' figures holds if the computed one is within this fraction.
 REL_TOL = 0.05
 
 
-def renders() -> Path:
-    """The default output directory of the belt-chain scripts: ``belt`` under
-    ``$ASPERITY2D_RENDERS`` (the scene scripts' output root) or ``renders/belt`` in the
-    working directory -- never inside the installed package."""
-    return Path(os.environ.get("ASPERITY2D_RENDERS", Path.cwd() / "renders")) / "belt"
+#: What solved the runs and how their claims are judged (each study's summary carries both).
+SOLVER = "asperity2d.belt exact event-driven (closed-form phases, brentq switches)"
+VERDICT_RULE = f"numbers read off the thesis' figures hold within {REL_TOL:.0%}; trends as stated"
 
 
 def run(name: str, *, quick: bool = False, **overrides):
-    """Simulate preset ``name`` (fewer output samples when ``quick``; the physics is unchanged)."""
-    return simulate_chain(**preset(name, n_samples=501 if quick else 4001, **overrides))
+    """Simulate one of the thesis' chains, a preset of ``asperity2d.belt.presets``.
+
+    Parameters
+    ----------
+    name : str
+        The preset's name (``"table1-2dof"``, ``"table2-3dof"``, ``"table3-k20"``, ...).
+    quick : bool, default False
+        Fewer output samples (501 instead of 4001); the events and the physics are unchanged.
+    **overrides
+        Arguments of :func:`asperity2d.belt.simulate_chain` that replace the preset's.
+
+    Returns
+    -------
+    asperity2d.belt.BeltResult
+        The exact run.
+    """
+    return simulate_chain(**presets.preset(name, n_samples=501 if quick else 4001, **overrides))
 
 
 def number_claim(text, thesis_value, computed, unit="s", rel_tol=REL_TOL):
-    """A number read off the thesis against the computed one (``numbers``: both as text in
-    engineering units, and the relative difference at full precision)."""
+    """A number read off the thesis against the computed one.
+
+    Parameters
+    ----------
+    text : str
+        The thesis' statement.
+    thesis_value, computed : float
+        The thesis' value and the computed one, in ``unit``.
+    unit : str, default "s"
+        Their SI unit.
+    rel_tol : float, default ``REL_TOL``
+        The claim holds if ``|computed - thesis_value| <= rel_tol * |thesis_value|``.
+
+    Returns
+    -------
+    dict
+        A claim record; its ``numbers`` hold both values as text in engineering units and the
+        relative difference at full precision.
+    """
     ok = abs(computed - thesis_value) <= rel_tol * abs(thesis_value)
     rel = (computed - thesis_value) / thesis_value if thesis_value and math.isfinite(computed) else math.nan
     return claim(text, ok, numbers={"thesis": si(thesis_value, unit, 3, trim=True),
@@ -49,11 +77,57 @@ def number_claim(text, thesis_value, computed, unit="s", rel_tol=REL_TOL):
 
 
 def trend_claim(text, labels, values, expect, criterion, unit=""):
-    """A stated trend: ``expect(values) -> bool``; values listed against labels."""
+    """A trend the thesis states, judged on one value per case.
+
+    Parameters
+    ----------
+    text : str
+        The thesis' statement.
+    labels : sequence of str
+        The cases (``"k=10"``, ``"k=20"``, ...).
+    values : sequence of float
+        The measured value of each case, in ``unit``.
+    expect : callable
+        ``expect(values) -> bool``: whether the trend holds.
+    criterion : str
+        The test in words.
+    unit : str, default ""
+        The values' SI unit ("" for a count).
+
+    Returns
+    -------
+    dict
+        A claim record whose ``numbers["computed"]`` maps each label to its value.
+    """
     ok = bool(expect(np.asarray(values, dtype=float)))
     return claim(text, ok, numbers={"thesis": "trend", "unit": unit,
                                     "computed": {str(lab): _r(v) for lab, v in zip(labels, values)}},
                  test=criterion)
+
+
+def claim_lines(claims) -> list[str]:
+    """The claim records of a belt study in words, one line each.
+
+    Parameters
+    ----------
+    claims : list of dict
+        Records of :func:`number_claim` and :func:`trend_claim` (or any claim record).
+
+    Returns
+    -------
+    list of str
+        ``"[verdict] statement: the thesis says X, computed Y"``; a trend lists its values.
+    """
+    lines = []
+    for c in claims:
+        n = c["numbers"]
+        computed = n.get("computed")
+        if isinstance(computed, dict):  # a trend: one value per case, in the claim's unit
+            computed = ", ".join(f"{label}: {si(v, n['unit'], 3) if n.get('unit') else f'{v:.3g}'}"
+                                 for label, v in computed.items())
+        said = "" if n.get("thesis") == "trend" else f"the thesis says {n.get('thesis')}, "
+        lines.append(f"[{c['verdict']:>13}] {c['claim']}: {said}computed {computed}")
+    return lines
 
 
 def _r(v):
@@ -61,7 +135,20 @@ def _r(v):
 
 
 def first_stick(result, i):
-    """(start, end) of mass i's first stick interval of positive length, or None."""
+    """Mass ``i``'s first stick interval of positive length.
+
+    Parameters
+    ----------
+    result : asperity2d.belt.BeltResult
+        A run.
+    i : int
+        The mass (0-based).
+
+    Returns
+    -------
+    tuple of float or None
+        (start, end) in s, or None if the mass never sticks.
+    """
     for a, b in result.stick_intervals[i]:
         if b > a:
             return (a, b)
@@ -69,7 +156,20 @@ def first_stick(result, i):
 
 
 def final_rest(result, i):
-    """Start of the stick interval that lasts to the end of the run (s), or None."""
+    """When mass ``i`` comes to rest for good: the start of a stick interval that lasts to the end.
+
+    Parameters
+    ----------
+    result : asperity2d.belt.BeltResult
+        A run.
+    i : int
+        The mass (0-based).
+
+    Returns
+    -------
+    float or None
+        The time (s), or None if the mass is moving at the end of the run.
+    """
     per = result.stick_intervals[i]
     if per and per[-1][1] >= result.t[-1]:
         return per[-1][0]
@@ -77,17 +177,53 @@ def final_rest(result, i):
 
 
 def total_stick(result):
+    """Total stick time of each mass.
+
+    Parameters
+    ----------
+    result : asperity2d.belt.BeltResult
+        A run.
+
+    Returns
+    -------
+    list of float
+        One total per mass (s).
+    """
     return [float(sum(b - a for a, b in per)) for per in result.stick_intervals]
 
 
 def amplitude(result, *, window=0.5):
-    """Half the peak-to-peak displacement of each mass over the last ``window`` of the run (m)."""
+    """Half the peak-to-peak displacement of each mass over the last part of the run.
+
+    Parameters
+    ----------
+    result : asperity2d.belt.BeltResult
+        A run.
+    window : float, default 0.5
+        The fraction of the run, at its end, that is measured.
+
+    Returns
+    -------
+    list of float
+        One amplitude per mass (m).
+    """
     sel = result.t >= (1 - window) * result.t[-1]
     return [float(a) for a in 0.5 * np.ptp(result.x[:, sel], axis=1)]
 
 
 def oscillations(result):
-    """Number of upward crossings of each mass's mean position (a count of oscillations)."""
+    """The number of oscillations of each mass: upward crossings of its mean position.
+
+    Parameters
+    ----------
+    result : asperity2d.belt.BeltResult
+        A run.
+
+    Returns
+    -------
+    list of int
+        One count per mass.
+    """
     out = []
     for x in result.x:
         y = x - x.mean()
@@ -96,6 +232,20 @@ def oscillations(result):
 
 
 def case_summary(result):
+    """What a study reports of one run.
+
+    Parameters
+    ----------
+    result : asperity2d.belt.BeltResult
+        A run.
+
+    Returns
+    -------
+    dict
+        Per mass: ``first_stick``, ``total_stick_time_s``, ``stick_count``, ``amplitude_m``,
+        ``oscillations``; the run's ``regime`` (:func:`asperity2d.belt.classify`), its ``events``
+        and its ``energy_balance_error``.
+    """
     return {
         "first_stick": [first_stick(result, i) for i in range(result.n)],
         "total_stick_time_s": [_r(s) for s in total_stick(result)],
@@ -106,37 +256,6 @@ def case_summary(result):
         "events": result.meta["n_events"],
         "energy_balance_error": result.energy_balance_error(),
     }
-
-
-def cli(study, name: str, argv=None) -> int:
-    """Common ``main``: parse --quick / --out, run ``study(quick) -> (summary, {label: result})``, write outputs."""
-    parser = argparse.ArgumentParser(prog=f"belt_{name}", description=study.__doc__)
-    parser.add_argument("--quick", action="store_true", help="fewer samples, no plots (for tests)")
-    parser.add_argument("--plots", action="store_true", help="write the plots with --quick too")
-    parser.add_argument("-o", "--out", type=Path, default=None,
-                        help="output directory (default renders/belt in the working directory)")
-    args = parser.parse_args(argv)
-    args.out = args.out or renders()
-    summary, results = study(args.quick)
-    summary["solver"] = "asperity2d.belt exact event-driven (closed-form phases, brentq switches)"
-    summary["verdict_rule"] = f"numbers read off the thesis' figures hold within {REL_TOL:.0%}; trends as stated"
-    if not args.quick or args.plots:
-        from ..renderers.belt import plot_chain
-
-        for label, result in results.items():
-            path = plot_chain(result, args.out / f"{name}_{label}.png", title=f"{name}: {label}")
-            summary.setdefault("plots", []).append(str(path))
-    write_json(args.out / f"{name}.json", summary)
-    for c in summary.get("claims", []):
-        n = c["numbers"]
-        computed = n["computed"]
-        if isinstance(computed, dict):  # a trend: one value per case, in the claim's unit
-            computed = ", ".join(f"{label}: {si(v, n['unit'], 3) if n.get('unit') else f'{v:.3g}'}"
-                                 for label, v in computed.items())
-        said = "" if n["thesis"] == "trend" else f"the thesis says {n['thesis']}, "
-        print(f"[{c['verdict']:>13}] {c['claim']}: {said}computed {computed}")
-    print(f"wrote {args.out / (name + '.json')}")
-    return 0
 
 
 def belt_chain_run(*, seed: int = 0, preset_name: str = "table2-3dof", ic_spread: float = 0.0,
@@ -154,7 +273,7 @@ def belt_chain_run(*, seed: int = 0, preset_name: str = "table2-3dof", ic_spread
         x0 = np.asarray(kwargs["x0"], dtype=float)
         kwargs["x0"] = list(x0 + rng.uniform(-ic_spread, ic_spread, len(x0)))
     result = simulate_chain(**kwargs)
-    label = regime.classify(result)
+    label = classify(result)
     return {"stick_slip": float(label == "stick-slip"), "quasi_harmonic": float(label == "quasi-harmonic"),
             "total_stick_s": float(sum(total_stick(result))), "amplitude_m": float(max(amplitude(result))),
             "energy_balance_error": float(result.energy_balance_error())}
