@@ -18,6 +18,7 @@ import numpy as np
 
 from .._format import si
 from ..belt import classify, presets, simulate_chain
+from ..dynamics.basins import LABELS, classify_chain
 from ..experiments.verdicts import claim
 
 #: A number read off one of the thesis' figures holds if the computed one is within this fraction.
@@ -256,6 +257,29 @@ def case_summary(result):
         "events": result.meta["n_events"],
         "energy_balance_error": result.energy_balance_error(),
     }
+
+
+def motion_class(result) -> dict:
+    """The kind of motion a belt run settles into, from its last quarter.
+
+    Rest, pure slip, stick-slip (a limit cycle of period n: its multiplicity) or irregular, as the
+    basin maps of ``asperity2d.dynamics`` classify their runs.
+
+    Parameters
+    ----------
+    result : asperity2d.belt.BeltResult
+        A run, long enough to have settled.
+
+    Returns
+    -------
+    dict
+        ``class`` (``"rest"``, ``"pure slip"``, ``"stick-slip"`` or ``"irregular"``),
+        ``multiplicity`` (int), ``period_s`` (the cycle's period, NaN if none) and
+        ``last_stick_s`` (the last stick onset, NaN if none).
+    """
+    found = classify_chain(result)
+    return {"class": LABELS[int(found["label"])], "multiplicity": int(found["multiplicity"]),
+            "period_s": found["period"], "last_stick_s": found["last_stick"]}
 
 
 def belt_chain_run(*, seed: int = 0, preset_name: str = "table2-3dof", ic_spread: float = 0.0,
