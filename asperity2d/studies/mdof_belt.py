@@ -18,7 +18,9 @@ import numpy as np
 
 from .._format import si
 from ..belt import classify, presets, simulate_chain
-from ..dynamics.basins import LABELS, classify_chain
+from ..dynamics import chain_lyapunov, flow_map
+from ..dynamics.basins import LABELS, RUN_CPU_LIMIT, chain_basins, classify_chain, cpu_limit, with_initial
+from ..errors import SimulationError
 from ..experiments.verdicts import claim
 
 #: A number read off one of the thesis' figures holds if the computed one is within this fraction.
@@ -280,6 +282,91 @@ def motion_class(result) -> dict:
     found = classify_chain(result)
     return {"class": LABELS[int(found["label"])], "multiplicity": int(found["multiplicity"]),
             "period_s": found["period"], "last_stick_s": found["last_stick"]}
+
+
+def initial_state_basins(chain: dict, x1, v1, *, store=None, workers=None, progress: bool = False):
+    """The basin map of a chain over mass 1's initial displacement and velocity.
+
+    Every grid point is one exact run from ``chain``'s initial state with (x1, v1) replaced,
+    classified as :func:`motion_class` does, through the sweep machinery (resumable).
+
+    Parameters
+    ----------
+    chain : dict
+        Keyword arguments of :func:`asperity2d.belt.simulate_chain` (a preset's), with ``t_end``.
+    x1, v1 : array_like
+        The grid: mass 1's initial displacements (m) and velocities (m/s).
+    store : str or os.PathLike, optional
+        The sweep's results folder: run again with it and only unfinished points are computed.
+    workers : int, optional
+        Worker processes (None: decided by cost).
+    progress : bool, default False
+        Show a progress bar.
+
+    Returns
+    -------
+    object
+        A ``BasinMap``: ``x_values``, ``y_values``, ``t_end``, ``failed``; ``values["label"]``
+        indexes the classes (``"rest"``, ``"pure slip"``, ``"stick-slip"``, ``"irregular"``; -1 a
+        failed run), ``values["multiplicity"]``, ``values["last_stick"]``,
+        ``values["stick_fraction"]``, ... per (x1, v1); ``to_dict()`` for the summary.
+    """
+    return chain_basins(chain, x=("x1", np.asarray(x1, dtype=float)), y=("v1", np.asarray(v1, dtype=float)),
+                        store=store, workers=workers, progress=progress)
+
+
+def recheck_irregular(bm, chain: dict, factor: int, count: int, chaos: int, steps: int, seed: int = 0) -> dict:
+    """Run grid points classed irregular again, longer: a long transient, or chaos?
+
+    A long transient (sparse sticks on the way to pure slip) changes class when run longer; a
+    sustained irregular motion does not. For the first ``chaos`` of those still irregular, the
+    largest Lyapunov exponent (Benettin, ``steps`` x 2 s after a transient of ``t_end``): positive
+    for chaos, about 0 (to about 1e-3 1/s over 300 s) for a cycle or a torus.
+
+    Parameters
+    ----------
+    bm : object
+        A ``BasinMap`` of :func:`initial_state_basins`.
+    chain : dict
+        The chain it was made of.
+    factor : int
+        How many times longer the re-runs are.
+    count : int
+        At most this many irregular points are re-run (picked at random with ``seed``).
+    chaos : int
+        At most this many Lyapunov exponents are computed.
+    steps : int
+        Benettin steps of 2 s each.
+    seed : int, default 0
+        The pick's random seed.
+
+    Returns
+    -------
+    dict
+        ``checked`` (how many), ``t_end_s``, ``classes`` (class -> count after the long run) and
+        ``lyapunov_of_still_irregular`` (x1, v1 and the exponent in 1/s).
+    """
+    i, j = np.nonzero(bm.values["label"] == 3)
+    if i.size == 0:
+        return {"checked": 0}
+    pick = np.random.default_rng(seed).choice(i.size, min(count, i.size), replace=False)
+    classes, exponents = [], []
+    for k in pick:
+        kw = with_initial(with_initial(chain, bm.x_name, bm.x_values[i[k]]), bm.y_name, bm.y_values[j[k]])
+        longer = dict(kw, t_end=factor * chain["t_end"], n_samples=factor * (chain["n_samples"] - 1) + 1)
+        try:
+            with cpu_limit(RUN_CPU_LIMIT):
+                classes.append(LABELS[int(classify_chain(simulate_chain(**longer))["label"])])
+        except SimulationError:
+            classes.append("failed")
+        if classes[-1] == "irregular" and len(exponents) < chaos:
+            s = flow_map(kw, np.concatenate([kw["x0"], kw["v0"]]), chain["t_end"])
+            settled = dict(kw, x0=s[:len(s) // 2].tolist(), v0=s[len(s) // 2:].tolist())
+            exponents.append({"x1": float(bm.x_values[i[k]]), "v1": float(bm.y_values[j[k]]),
+                              "lyapunov_per_s": chain_lyapunov(settled, steps=steps, interval=2.0).value})
+    return {"checked": len(classes), "t_end_s": factor * chain["t_end"],
+            "classes": {name: classes.count(name) for name in sorted(set(classes))},
+            "lyapunov_of_still_irregular": exponents}
 
 
 def belt_chain_run(*, seed: int = 0, preset_name: str = "table2-3dof", ic_spread: float = 0.0,
