@@ -1,4 +1,4 @@
-"""Contacts that open (issue 26): the studies behind ``scenes/belt_contact.py``.
+"""Contacts that open: the studies behind ``scenes/belt_contact.py``.
 
 The multi-DOF belt thesis lets its Coulomb contact be "separated, sliding or
 sticking" and names the mechanisms of friction-induced vibration beyond
@@ -13,7 +13,9 @@ friction curve. Here:
   sliding's growth rate (the solver's phase matrix) against the simulated first
   opening, over (k_c, mu, belt speed);
 * :func:`chain_states` -- the three states of a belt run in the table that
-  :func:`asperity2d.analysis.contact_states` fills for an asperity run.
+  :func:`asperity_states` fills for an asperity run;
+* :func:`plot_map`, :func:`plot_cycle`, :func:`plot_opening` and :func:`normal_sound` -- the
+  study's pictures and its sound.
 """
 
 from __future__ import annotations
@@ -23,11 +25,8 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from ..belt import presets, simulate_chain
-from ..belt.contact import steady_sliding
-from ..belt.minimal import MinimalModel
-from ..belt.normal import SEPARATED, NormalContact
-from ..belt.regime import CONTACT_REGIMES, classify_contact
+from ..belt import MinimalModel, NormalContact, classify_contact, presets, simulate_chain, steady_sliding
+from ..belt.regime import CONTACT_REGIMES  # the regimes classify_contact names, in its order
 from ..errors import SceneError
 
 MAP_RUN = "asperity2d.studies.contact:contact_map_run"
@@ -176,6 +175,149 @@ def normal_force_without_coupling(*, stiff: bool = True) -> dict:
             weight = r.chain.m[:, None] * r.chain.g
             if np.any(weight > 0):
                 worst = max(worst, float(np.max(np.abs(r.normal_force - weight) / weight)))
-            openings += sum(len(s) for s in r.separation_intervals) + int(np.any(r.state == SEPARATED))
+            openings += sum(len(s) for s in r.separation_intervals) + int(np.any(r.separated))
     return {"presets": len(presets.names()), "contacts": ["rigid", "compliant k_c = 1e6 N/m"][:len(contacts)],
             "max_relative_departure": worst, "openings": openings}
+
+
+def asperity_states(result, *, stick_speed: float | None = None):
+    """Separated / sliding / sticking time fractions, hops and touching tips of an asperity run.
+
+    The asperity model's row of the three-state table beside :func:`chain_states`' belt rows.
+
+    Parameters
+    ----------
+    result : asperity2d.Result
+        An asperity run (a free slider's, to see it separate).
+    stick_speed : float, optional
+        Below this slider speed (m/s) a sample counts as stuck; default half the drive speed.
+
+    Returns
+    -------
+    object
+        ``fractions`` ({"separated", "sliding", "sticking"}), ``hops``, ``hops_per_pass``,
+        ``touching_mean`` (lower tips touching, time average) and ``to_dict()``.
+    """
+    from ..analysis import contact_states
+
+    return contact_states(result, stick_speed=stick_speed)
+
+
+def normal_acceleration(result, mass: int = 0) -> np.ndarray:
+    """The pad's out-of-plane acceleration y'' (m/s²) of ``mass``, exact from the state.
+
+    (f0 - K_s q - C_s q' + N) / m: what a vibrating plate radiates follows its normal surface
+    motion, so the study's sounds play this.
+
+    Parameters
+    ----------
+    result : asperity2d.belt.ContactResult
+        A run with a normal contact.
+    mass : int, default 0
+        The mass (0-based).
+
+    Returns
+    -------
+    numpy.ndarray
+        y'' at every sample of ``result.t`` (m/s²).
+    """
+    spec = result.contact
+    n = spec.n
+    q = np.vstack([result.x, result.y])
+    qd = np.vstack([result.v, result.vy])
+    force = spec.constant_force[n + mass] - spec.stiffness_matrix[n + mass] @ q - spec.damping_matrix[n + mass] @ qd
+    return (force + result.normal_force[mass]) / spec.chain.m[mass]
+
+
+def normal_sound(result, path, *, mass: int = 0, time_scale: float = 1.0) -> dict:
+    """Write the normal acceleration of ``mass`` (:func:`normal_acceleration`) as a WAV.
+
+    Parameters
+    ----------
+    result : asperity2d.belt.ContactResult
+        A run with a normal contact, sampled finely enough for the sound (44.1 kHz for real time).
+    path : str or os.PathLike
+        The ``.wav`` file; its spectrogram goes beside it (``<name>.spectrogram.png``).
+    mass : int, default 0
+        The mass (0-based).
+    time_scale : float, default 1.0
+        Playback frequency over simulated frequency (1: real time).
+
+    Returns
+    -------
+    dict
+        What was written: ``path``, ``spectrogram``, ``sample_rate`` (Hz), ``samples``,
+        ``duration`` (s), ``time_scale``, ``dominant_hz``, ``gain``, ``level_db``, ``signal``.
+    """
+    from ..renderers.sound import write_wav
+
+    return write_wav((result.t, normal_acceleration(result, mass)), path, time_scale=time_scale).to_dict()
+
+
+def plot_map(contact_map: ContactMap, path, *, title: str = ""):
+    """Draw a :class:`ContactMap`: the regime of every (mu, belt speed), the closed-form flutter
+    onset mu_crit(eta) and the speed V*(mu) below which a growing flutter meets stick first.
+
+    Parameters
+    ----------
+    contact_map : ContactMap
+        A map of :func:`minimal_map`.
+    path : str or os.PathLike
+        The image file (``.png``, ``.svg``, ``.pdf``).
+    title : str, default ""
+        The title (default: the run length).
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+    """
+    from ..renderers.belt import plot_contact_map
+
+    return plot_contact_map(contact_map, path, title=title)
+
+
+def plot_cycle(result, path, *, title: str = ""):
+    """Draw a contact run: mass 1's slip velocity, gap and normal force over the last 3 % of the
+    run (separated intervals blue, stuck orange) and its normal phase portrait.
+
+    Parameters
+    ----------
+    result : asperity2d.belt.ContactResult
+        A run with a normal contact.
+    path : str or os.PathLike
+        The image file (``.png``, ``.svg``, ``.pdf``).
+    title : str, default ""
+        The title.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+    """
+    from ..renderers.belt import plot_contact_run
+
+    return plot_contact_run(result, path, title=title)
+
+
+def plot_opening(rows: list[dict], path, *, curves: dict | None = None):
+    """Draw :func:`thesis_opening`'s rows: steady sliding's growth rate against the contact
+    stiffness, one marker per run (filled where the contact opened).
+
+    Parameters
+    ----------
+    rows : list of dict
+        The rows of :func:`thesis_opening`.
+    path : str or os.PathLike
+        The image file (``.png``, ``.svg``, ``.pdf``).
+    curves : dict, optional
+        mu -> (contact stiffnesses, growth rates): the linearisation on a fine grid, drawn as lines.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+    """
+    from ..renderers.belt import plot_opening as draw
+
+    return draw(rows, path, curves=curves)
