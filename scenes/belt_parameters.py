@@ -106,7 +106,8 @@ def claims_for(which, labels, res):
 # ``quick`` keeps fewer output samples, the events are the same).
 
 def study(quick: bool, only: str | None = None):
-    """The claims and measures of the tables (``only`` one of them), and the runs to plot."""
+    """The claims and measures of the tables (``only`` one of them), and the runs to plot:
+    preset name -> (plot title, run)."""
     summary = {"study": "3-DOF parameter studies, initial conditions eq 3.12", "claims": [], "cases": {}}
     results = {}
     for which, (param, names, labels) in TABLES.items():
@@ -114,10 +115,10 @@ def study(quick: bool, only: str | None = None):
             continue
         res = [S.run(n, quick=quick) for n in names]
         summary["claims"] += claims_for(which, [f"{param}={v}" for v in labels], res)
-        for name, r in zip(names, res):
+        for name, r, value in zip(names, res, labels):
             summary["cases"][name] = S.case_summary(r)
             if name != "table2-3dof":
-                results[name] = r
+                results[name] = (f"{which}: {param} = {value:g} (preset {name})", r)
     summary["measures"] = ("amplitude: half peak-to-peak displacement over the last half of the 10 s run, "
                            "averaged over the masses; oscillations: upward crossings of the mean position, "
                            "summed over masses; stick: total stick time summed over masses")
@@ -146,8 +147,7 @@ def main(argv=None, only: str | None = None, script: str | None = None) -> int:
     summary["verdict_rule"] = S.VERDICT_RULE
     if not args.quick or args.plots:
         summary["plots"] = summary["outputs"] = [
-            a.render(r, out / f"{label}.png", title=f"{only or 'parameters'}: {label}").name
-            for label, r in results.items()]
+            a.render(r, out / f"{name}.png", title=title).name for name, (title, r) in results.items()]
     return scripting.finish(args, summary, out, S.claim_lines(summary["claims"]))
 
 
