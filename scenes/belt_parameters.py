@@ -49,6 +49,7 @@ TABLES = {
     "speed": ("v_belt", ["table2-3dof", "table6-v0.4", "table6-v0.7"], [0.1, 0.4, 0.7]),
     "friction": ("mu0", ["table2-3dof", "table7-mu0.4"], [0.2, 0.4]),
 }
+UNITS = {"k": "N/m", "c": "N s/m", "m": "kg", "v_belt": "m/s", "mu0": ""}
 
 
 # %%
@@ -118,7 +119,7 @@ def study(quick: bool, only: str | None = None):
         for name, r, value in zip(names, res, labels):
             summary["cases"][name] = S.case_summary(r)
             if name != "table2-3dof":
-                results[name] = (f"{which}: {param} = {value:g} (preset {name})", r)
+                results[name] = (f"{which}: {param} = {value:g} {UNITS[param]}".rstrip() + f" (preset {name})", r)
     summary["measures"] = ("amplitude: half peak-to-peak displacement over the last half of the 10 s run, "
                            "averaged over the masses; oscillations: upward crossings of the mean position, "
                            "summed over masses; stick: total stick time summed over masses")
