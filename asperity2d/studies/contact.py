@@ -37,8 +37,9 @@ FIRST = ("none", "stick", "open")
 
 def contact_map_run(*, mu: float, v_belt: float, model: str, t_end: float, kick: float, n_samples: int,
                     seed: int = 0) -> dict:
-    """Sweep run function: the minimal model (``model``: JSON of :class:`MinimalModel` fields) at one
-    (mu, v_belt) from steady sliding kicked by ``kick`` (m/s, normal velocity); ``seed`` unused."""
+    """Sweep run function: the minimal model (``model``: JSON of
+    :class:`asperity2d.belt.MinimalModel` fields) at one (mu, v_belt) from steady sliding kicked by
+    ``kick`` (m/s, normal velocity); ``seed`` unused."""
     from ..dynamics.basins import RUN_CPU_LIMIT, cpu_limit
 
     mm = MinimalModel(**json.loads(model))
@@ -58,7 +59,8 @@ class ContactMap:
     """Regimes of the minimal model over ``mu`` (rows) x ``v_belt`` (columns, m/s).
 
     ``values[key]`` (len(mu), len(v)) for ``MAP_KEYS``: ``label`` indexes ``CONTACT_REGIMES`` (-1 a
-    failed run), ``first`` indexes ``FIRST``; ``model`` the :class:`MinimalModel`; ``t_end`` (s).
+    failed run), ``first`` indexes ``FIRST``; ``model`` the :class:`asperity2d.belt.MinimalModel`;
+    ``t_end`` (s).
     """
 
     mu: np.ndarray
@@ -99,9 +101,36 @@ class ContactMap:
 def minimal_map(model: MinimalModel, mu_values, v_values, *, t_end: float, kick: float = 1e-2,
                 samples_per_period: int = 24, store=None, workers: int | None = None, progress: bool = True
                 ) -> ContactMap:
-    """Run the minimal model over ``mu_values`` x ``v_values`` (m/s) from kicked steady sliding (see the module doc).
+    """Run the minimal model over ``mu_values`` x ``v_values`` from kicked steady sliding.
 
-    ``store``/``workers`` as for :func:`asperity2d.dynamics.chain_basins` (resumable, local processes).
+    One exact run per grid point through the sweep machinery, classified by
+    :func:`asperity2d.belt.classify_contact`.
+
+    Parameters
+    ----------
+    model : asperity2d.belt.MinimalModel
+        The pad.
+    mu_values : sequence of float
+        Friction coefficients (mu_s = mu_k), the map's rows.
+    v_values : sequence of float
+        Belt speeds (m/s), its columns.
+    t_end : float
+        Length of each run (s).
+    kick : float, default 0.01
+        Normal velocity (m/s) added to steady sliding at t = 0.
+    samples_per_period : int, default 24
+        Output samples per period of the coalesced modes.
+    store : str or os.PathLike, optional
+        The sweep's results folder (resumable); default a temporary one.
+    workers : int, optional
+        Worker processes (None: decided by cost).
+    progress : bool, default True
+        Show a progress bar.
+
+    Returns
+    -------
+    ContactMap
+        The regimes, first events and fractions over the grid.
     """
     from ..dynamics.basins import _run as run_grid
     from ..sweep import Study
@@ -124,9 +153,25 @@ def minimal_map(model: MinimalModel, mu_values, v_values, *, t_end: float, kick:
 
 
 def chain_states(result, *, window: float = 1.0) -> dict:
-    """Time fractions {"separated", "sliding", "sticking"} of a belt run over its last ``window`` fraction,
-    all masses pooled, from the exact stick and separation intervals; ``hops`` (contacts opened and closed
-    again in the window), ``hops_per_second``, ``contacts_mean`` (masses in contact, time average)."""
+    """The three states of a belt run: time separated, sliding and sticking.
+
+    From the exact stick and separation intervals over the run's last ``window`` fraction, all
+    masses pooled.
+
+    Parameters
+    ----------
+    result : asperity2d.belt.BeltResult or asperity2d.belt.ContactResult
+        A run (without a normal contact nothing separates).
+    window : float, default 1.0
+        The fraction of the run, at its end, that is counted.
+
+    Returns
+    -------
+    dict
+        ``separated``, ``sliding``, ``sticking`` (fractions of time), ``hops`` (contacts opened
+        and closed again in the window), ``hops_per_second`` and ``contacts_mean`` (masses in
+        contact, time average).
+    """
     t0, t1 = result.t[-1] - window * (result.t[-1] - result.t[0]), result.t[-1]
     span = (t1 - t0) * result.n
 
@@ -142,9 +187,33 @@ def chain_states(result, *, window: float = 1.0) -> dict:
 
 def thesis_opening(contact_stiffness, mu_values, v_values, *, inclined=((10.0, 135.0),), t_end: float = 60.0,
                    progress: bool = True) -> list[dict]:
-    """The thesis' Table 2 chain (eq 3.12 start) with ``NormalContact(contact_stiffness=k_c, inclined=...)``
-    on every mass, over k_c x mu x v_belt: per point the steady sliding's growth rate (1/s) and normal
-    force (N), and the run's first contact opening (s, NaN if none), separated fraction and regime."""
+    """The thesis' Table 2 chain with a normal compliance: does its contact open, and where?
+
+    The chain from eq 3.12 with ``NormalContact(contact_stiffness=k_c, inclined=inclined)`` on
+    every mass, over k_c x mu x v_belt.
+
+    Parameters
+    ----------
+    contact_stiffness : sequence of float
+        Contact stiffnesses k_c (N/m).
+    mu_values : sequence of float
+        Friction coefficients (mu_s = mu_k).
+    v_values : sequence of float
+        Belt speeds (m/s).
+    inclined : tuple of (float, float), default ((10.0, 135.0),)
+        Inclined springs per mass: (stiffness in N/m, angle in degrees).
+    t_end : float, default 60.0
+        Length of each run (s).
+    progress : bool, default True
+        Show a progress bar.
+
+    Returns
+    -------
+    list of dict
+        One row per point: ``contact_stiffness``, ``mu``, ``v_belt``, steady sliding's
+        ``growth_rate`` (1/s) and ``steady_normal_force`` (N), the run's ``first_open_s`` (NaN if
+        none), ``openings``, ``separated_fraction`` and ``regime``.
+    """
     from tqdm import tqdm
 
     grid = [(float(k), float(m), float(v)) for k in contact_stiffness for m in mu_values for v in v_values]
@@ -163,9 +232,22 @@ def thesis_opening(contact_stiffness, mu_values, v_values, *, inclined=((10.0, 1
 
 
 def normal_force_without_coupling(*, stiff: bool = True) -> dict:
-    """Every thesis preset with a rigid (and, if ``stiff``, a compliant k_c = 1e6 N/m) contact and no inclined
-    spring: the largest relative departure of N from m·g and the number of openings (the normal equation is
-    decoupled from x)."""
+    """Without an inclined spring the normal force stays m g: every thesis preset, checked.
+
+    Each preset with a rigid (and, if ``stiff``, a compliant k_c = 1e6 N/m) contact and no
+    inclined spring: the normal equation is decoupled from x, so N must stay m g.
+
+    Parameters
+    ----------
+    stiff : bool, default True
+        Check the compliant contact too.
+
+    Returns
+    -------
+    dict
+        ``presets`` (how many), ``contacts`` (which), ``max_relative_departure`` (the largest
+        |N - m g| / m g) and ``openings`` (contacts that opened).
+    """
     worst, openings = 0.0, 0
     contacts = (NormalContact(), NormalContact(contact_stiffness=1e6)) if stiff else (NormalContact(),)
     for name in presets.names():

@@ -373,10 +373,24 @@ def belt_chain_run(*, seed: int = 0, preset_name: str = "table2-3dof", ic_spread
                    **overrides) -> dict:
     """Sweep run for a belt chain of the multi-DOF belt thesis: regime and stick-slip measures.
 
-    ``preset_name`` is a :mod:`asperity2d.belt.presets` name; ``overrides``
-    replace its ``simulate_chain`` arguments (``v_belt``, ``mu_s``, ...). With
-    ``ic_spread`` > 0 the initial displacements get seeded uniform noise of
-    that half-width (m): a Monte-Carlo over initial conditions.
+    Parameters
+    ----------
+    seed : int, default 0
+        Seeds the noise of ``ic_spread``.
+    preset_name : str, default "table2-3dof"
+        A preset of :mod:`asperity2d.belt.presets`.
+    ic_spread : float, default 0.0
+        If > 0, the initial displacements get seeded uniform noise of this half-width (m): a
+        Monte-Carlo over initial conditions.
+    **overrides
+        Arguments of :func:`asperity2d.belt.simulate_chain` that replace the preset's
+        (``v_belt``, ``mu_s``, ...).
+
+    Returns
+    -------
+    dict
+        ``stick_slip`` and ``quasi_harmonic`` (1.0 or 0.0: the run's regime), ``total_stick_s``,
+        ``amplitude_m`` (the largest mass's) and ``energy_balance_error``.
     """
     kwargs = presets.preset(preset_name, **overrides)
     if ic_spread > 0:
