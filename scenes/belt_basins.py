@@ -68,22 +68,18 @@ def basin_summary(bm) -> dict:
     return out
 
 
-def _counts(counts: dict) -> str:
-    """``"pure slip 4 (44 %), irregular 5 (56 %)"``: the classes that occurred."""
-    total = sum(counts.values()) or 1
-    return ", ".join(f"{k} {v} ({100 * v / total:.0f} %)" for k, v in counts.items() if v) or "none"
-
-
-def _recheck(record: dict) -> str:
-    """The long re-runs of irregular points in words."""
-    if not record.get("checked"):
-        return "none to check"
-    text = f"{record['checked']} checked over {record['t_end_s']:g} s: {_counts(record['classes'])}"
-    lyap = record.get("lyapunov_of_still_irregular") or []
-    if lyap:
-        text += "; largest Lyapunov exponents of those still irregular " + ", ".join(
-            f"{r['lyapunov_per_s']:+.3f} 1/s" for r in lyap)
-    return text
+def basin_map(name: str, chain: dict, size: int, quick: bool, out, workers, progress: bool) -> dict:
+    """One chain's map over (x1, v1): its record, its picture and the long re-runs of its
+    irregular points."""
+    bm = S.initial_state_basins(chain, np.linspace(*X_RANGE, size), np.linspace(*V_RANGE, size),
+                                store=out / f"{name}.runs", workers=workers, progress=progress)
+    title = ("Table 2 base case (mu = 0.2, c = 0)" if name == "base" else
+             "contrast: mu_s = 0.4 > mu_k = 0.2") + f", {size} x {size} runs of {chain['t_end']:g} s"
+    detail = "last_stick" if name == "base" else "stick_fraction"
+    return {**basin_summary(bm),
+            "plot": draw_basins(bm, out / f"basins_{name}.png", detail, title),
+            "irregular_rechecked": S.recheck_irregular(bm, chain, 2 if quick else 4, 2 if quick else 20,
+                                                       1 if quick else 3, 10 if quick else 150)}
 
 
 # %%
@@ -133,6 +129,69 @@ def draw_basins(bm, path, detail: str, title: str) -> str:
 
 
 # %%
+# 3. Stability: a cycle, or chaos?
+# --------------------------------
+#
+# The contrast chain reaches a stick-slip limit cycle from eq 3.12: its Floquet multipliers
+# (:func:`asperity2d.dynamics.floquet`; stable if every non-trivial one lies inside the unit
+# circle). The largest Lyapunov exponent of both chains from eq 3.12
+# (:func:`asperity2d.dynamics.chain_lyapunov`, Benettin): positive for chaos.
+
+def stability(quick: bool):
+    """The contrast cycle's Floquet multipliers (or why there are none) and both Lyapunov exponents."""
+    long = 120.0 if quick else 300.0
+    try:
+        fl = floquet(presets.preset("table2-3dof", mu_s=0.4, t_end=long, n_samples=int(100 * long) + 1)).to_dict()
+    except Exception as exc:  # noqa: BLE001 -- a run without a cycle is a result, reported as such
+        fl = {"error": str(exc)}
+    steps = 10 if quick else 150
+    lyapunov = {
+        "base": chain_lyapunov(presets.preset("table2-3dof"), steps=steps, interval=2.0).to_dict(),
+        "contrast_mu_s_0.4": chain_lyapunov(presets.preset("table2-3dof", mu_s=0.4), steps=steps,
+                                            interval=2.0).to_dict(),
+    }
+    return fl, lyapunov
+
+
+# %%
+# 4. The sound
+# ------------
+#
+# :func:`asperity2d.render` writes a run to ``.wav``: mass 1's acceleration over a long run, its
+# lowest mode heard at 440 Hz, with its spectrogram beside it.
+
+def sound(out, quick: bool) -> dict:
+    """The base case, heard."""
+    sound_t = 100.0 if quick else 3000.0
+    run = simulate_chain(**presets.preset("table2-3dof", t_end=sound_t, n_samples=int(50 * sound_t) + 1))
+    wav = a.render(run, out / "base_x1_acceleration.wav", signal="acceleration", mass=0)
+    return {"path": str(wav), "spectrogram": str(wav.with_name(wav.stem + ".spectrogram.png"))}
+
+
+# %%
+# In words
+# --------
+
+def _counts(counts: dict) -> str:
+    """``"pure slip 4 (44 %), irregular 5 (56 %)"``: the classes that occurred."""
+    total = sum(counts.values()) or 1
+    return ", ".join(f"{k} {v} ({100 * v / total:.0f} %)" for k, v in counts.items() if v) or "none"
+
+
+def _recheck(record: dict) -> str:
+    """The long re-runs of irregular points in words."""
+    if not record.get("checked"):
+        return "none to check"
+    text = f"{record['checked']} checked over {record['t_end_s']:g} s: {_counts(record['classes'])}"
+    lyap = record.get("lyapunov_of_still_irregular") or []
+    if lyap:
+        text += "; largest Lyapunov exponents of those still irregular " + ", ".join(
+            f"{r['lyapunov_per_s']:+.3f} 1/s" for r in lyap)
+    return text
+
+
+
+# %%
 # The command line
 # ----------------
 #
@@ -155,32 +214,9 @@ def main(argv=None) -> int:
     summary = {"grid": [grid, grid], "t_end_s": t_end, "axes": {"x1_m": X_RANGE, "v1_m_s": V_RANGE},
                "fixed": "x2, x3, v2, v3 from eq 3.12 (0.06 m, 0.07 m, 0.03 m/s, 0.05 m/s)"}
     for name, chain, size in (("base", base, grid), ("contrast_mu_s_0.4", contrast, max(2, grid // 2))):
-        bm = S.initial_state_basins(chain, np.linspace(*X_RANGE, size), np.linspace(*V_RANGE, size),
-                                    store=out / f"{name}.runs", workers=args.workers, progress=not args.json)
-        title = ("Table 2 base case (mu = 0.2, c = 0)" if name == "base" else
-                 "contrast: mu_s = 0.4 > mu_k = 0.2") + f", {size} x {size} runs of {t_end:g} s"
-        detail = "last_stick" if name == "base" else "stick_fraction"
-        summary[name] = {**basin_summary(bm),
-                         "plot": draw_basins(bm, out / f"basins_{name}.png", detail, title),
-                         "irregular_rechecked": S.recheck_irregular(bm, chain, 2 if quick else 4, 2 if quick else 20,
-                                                                  1 if quick else 3, 10 if quick else 150)}
-    # stability of the contrast's cycle reached from eq 3.12 (the base case has none to analyse)
-    long = 120.0 if quick else 300.0
-    try:
-        fl = floquet(presets.preset("table2-3dof", mu_s=0.4, t_end=long, n_samples=int(100 * long) + 1))
-        summary["floquet_contrast_eq312"] = fl.to_dict()
-    except Exception as exc:  # noqa: BLE001 -- a run without a cycle is a result, reported as such
-        summary["floquet_contrast_eq312"] = {"error": str(exc)}
-    steps = 10 if quick else 150
-    summary["lyapunov_eq312"] = {
-        "base": chain_lyapunov(presets.preset("table2-3dof"), steps=steps, interval=2.0).to_dict(),
-        "contrast_mu_s_0.4": chain_lyapunov(presets.preset("table2-3dof", mu_s=0.4), steps=steps,
-                                            interval=2.0).to_dict(),
-    }
-    sound_t = 100.0 if quick else 3000.0
-    run = simulate_chain(**presets.preset("table2-3dof", t_end=sound_t, n_samples=int(50 * sound_t) + 1))
-    wav = a.render(run, out / "base_x1_acceleration.wav", signal="acceleration", mass=0)
-    summary["sound"] = {"path": str(wav), "spectrogram": str(wav.with_name(wav.stem + ".spectrogram.png"))}
+        summary[name] = basin_map(name, chain, size, quick, out, args.workers, not args.json)
+    summary["floquet_contrast_eq312"], summary["lyapunov_eq312"] = stability(quick)
+    summary["sound"] = sound(out, quick)
     b, c = summary["base"], summary["contrast_mu_s_0.4"]
     lines = [f"base case, {grid} x {grid} initial states over {t_end:g} s: {_counts(b['counts'])}",
              f"  last stick onset: median {b['last_stick_s']['median']:.3g} s, max {b['last_stick_s']['max']:.3g} s",
