@@ -59,6 +59,8 @@ V_RANGE = (-0.6, 0.6)  # m/s
 # does not, and its largest Lyapunov exponent is positive.
 
 def basin_summary(bm) -> dict:
+    """A map's record: its ``to_dict()``, each class's fraction of the runs that finished, and the
+    10th and 90th percentiles of the last stick onset."""
     out = bm.to_dict()
     total = int(np.sum(bm.values["label"] >= 0))
     out["fractions"] = {k: v / max(total, 1) for k, v in out["counts"].items() if k != "failed"}

@@ -37,9 +37,11 @@ FIRST = ("none", "stick", "open")
 
 def contact_map_run(*, mu: float, v_belt: float, model: str, t_end: float, kick: float, n_samples: int,
                     seed: int = 0) -> dict:
-    """Sweep run function: the minimal model (``model``: JSON of
-    :class:`asperity2d.belt.MinimalModel` fields) at one (mu, v_belt) from steady sliding kicked by
-    ``kick`` (m/s, normal velocity); ``seed`` unused."""
+    """Sweep run function: one run of the minimal model from kicked steady sliding.
+
+    ``model`` is the JSON of a :class:`asperity2d.belt.MinimalModel`'s fields; the run starts at
+    (``mu``, ``v_belt``) from steady sliding kicked by ``kick`` (m/s, normal velocity); ``seed`` is
+    unused. Returns the ``MAP_KEYS`` of the run as floats."""
     from ..dynamics.basins import RUN_CPU_LIMIT, cpu_limit
 
     mm = MinimalModel(**json.loads(model))
