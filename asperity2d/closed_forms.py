@@ -33,7 +33,7 @@ References for the closed forms:
   R. Allgaier, L. Gaul, *A minimal model for studying properties of the
   mode-coupling type instability in friction induced oscillations*, Mech.
   Res. Commun. 29, 2002): its flutter onset μ_crit and growth rates from
-  the characteristic polynomial (:mod:`asperity2d.belt.minimal`).
+  the characteristic polynomial (:mod:`asperity2d.belt.contact.minimal`).
 """
 
 from __future__ import annotations

@@ -97,7 +97,7 @@ def kind_of_result(result) -> ResultKind | None:
 
 
 def _builtin() -> None:
-    from .belt.contact_result import ContactResult, load_contact
+    from .belt.contact.result import ContactResult, load_contact
     from .belt.result import BeltResult, load as load_belt
     from .result import LOWER_SERIES, SERIES, Result, load as load_asperity
 

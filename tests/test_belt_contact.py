@@ -1,6 +1,6 @@
 """Chains with a normal degree of freedom (issue 26): separated, sliding or sticking, against closed forms.
 
-Closed forms used (derivations in asperity2d/belt/minimal.py and normal.py):
+Closed forms used (derivations in asperity2d/belt/contact/minimal.py and normal.py):
 
 * free flight of a rigid contact's mass with no normal spring: y = vy0·t - ½·(W/m)·t², it
   lands at t = 2·vy0·m/W and rebounds at e·(its landing speed);
@@ -20,10 +20,10 @@ from scipy.optimize import brentq, linear_sum_assignment
 
 from asperity2d import SceneError
 from asperity2d.belt import presets, simulate_chain
-from asperity2d.belt.contact import contact_spec, steady_sliding
-from asperity2d.belt.contact_result import load_contact
-from asperity2d.belt.finder import SWITCH_TOL
-from asperity2d.belt.minimal import MinimalModel
+from asperity2d.belt.contact.steady import contact_spec, steady_sliding
+from asperity2d.belt.contact.result import load_contact
+from asperity2d.belt.phases.finder import SWITCH_TOL
+from asperity2d.belt.contact.minimal import MinimalModel
 from asperity2d.belt.normal import SEPARATED, NormalContact
 from asperity2d.friction.laws import Stribeck
 
@@ -308,7 +308,7 @@ def test_minimal_model_damped_onset_from_simulations_is_the_closed_form():
 
 
 def test_minimal_model_sliding_phase_agrees_with_an_independent_integration():
-    """The hand-written equations of motion (module docstring of belt/minimal.py) through DOP853 at
+    """The hand-written equations of motion (module docstring of belt/contact/minimal.py) through DOP853 at
     rtol 1e-12 against the solver's closed form, before any switch: 1e-8 of the motion."""
     mm = MinimalModel(eta=40.0)
     mu = 0.5
@@ -386,7 +386,8 @@ def test_normal_contact_parameters_are_validated(bad, message):
     (dict(normal={"stiffness": 1.0}), "`normal` must be a NormalContact"),
     (dict(y0=[0.0]), "`y0` and `vy0` need `normal`"),
     (dict(normal=NormalContact(), normal_load=[5.0]), "not `normal_load`"),
-    (dict(normal=NormalContact(), method="sign"), "`method` must be 'exact' with `normal`"),
+    (dict(normal=NormalContact(), method="sign"), "`method` 'sign' has no back end that accepts this chain with a "
+     "normal contact (its back ends: sign() friction through solve_ivp); methods that do: 'exact'"),
     (dict(normal=NormalContact(), y0=[-0.1]), "`y0` must be >= 0 with a rigid contact"),
     (dict(normal=NormalContact(), y0=[0.0, 1.0]), "`y0` must have 1 entries"),
     (dict(normal=NormalContact(), vy0=["fast"]), "`vy0` must be a real number at index 0"),

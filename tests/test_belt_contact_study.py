@@ -11,7 +11,7 @@ from scipy.io import wavfile
 
 from scene_scripts import run_script
 
-from asperity2d.belt.minimal import MinimalModel
+from asperity2d.belt.contact.minimal import MinimalModel
 
 
 def test_belt_contact_script_quick(tmp_path, capsys):

@@ -14,10 +14,10 @@ import scipy.sparse
 from scipy.integrate import quad
 
 from asperity2d.belt.backend import RunOptions, StepBudget
-from asperity2d.belt.events import ModalEvents, SampledEvents, event_rows
-from asperity2d.belt.hybrid import OdePhase, _atol, _work_atol
-from asperity2d.belt.linear import LinearPhase, Template
-from asperity2d.belt.modal import SPARSE_ABOVE, ModalForm, square_integral
+from asperity2d.belt.phases.events import ModalEvents, SampledEvents, event_rows
+from asperity2d.belt.chain.hybrid import OdePhase, _atol, _work_atol
+from asperity2d.belt.chain.linear import LinearPhase, Template
+from asperity2d.belt.phases.modal import SPARSE_ABOVE, ModalForm, square_integral
 from asperity2d.belt.spec import ChainSpec
 
 #: two masses, a spring and a damper everywhere; mass 0 stuck, mass 1 slipping forward

@@ -180,7 +180,7 @@ def test_a_cycle_of_modes_at_one_instant_is_refused_at_once(monkeypatch):
     # after a few dozen switches, not after max_events = 1e6 of them (~8 minutes)
     import time
 
-    from asperity2d.belt import finder
+    from asperity2d.belt.phases import finder
 
     real = finder._row_event
 

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from asperity2d.belt import presets, simulate_chain
-from asperity2d.belt.finder import SWITCH_TOL
+from asperity2d.belt.phases.finder import SWITCH_TOL
 
 G = 9.81
 

@@ -6,7 +6,7 @@ import re
 from pathlib import Path
 
 from asperity2d.belt import simulate_chain
-from asperity2d.belt.minimal import MinimalModel
+from asperity2d.belt.contact.minimal import MinimalModel
 
 GUIDE = Path(__file__).resolve().parents[1] / "docs" / "guide" / "belt.md"
 

@@ -12,12 +12,12 @@ import math
 import numpy as np
 import pytest
 
-import asperity2d.belt.contact_loop as contact_loop
+import asperity2d.belt.contact.loop as contact_loop
 from asperity2d import SimulationError
 from asperity2d.belt import simulate_chain
-from asperity2d.belt.contact_loop import VIOLATION, check_modes
-from asperity2d.belt.contact_phase import ContactTemplate
-from asperity2d.belt.finder import SWITCH_TOL, find_event
+from asperity2d.belt.contact.loop import VIOLATION, check_modes
+from asperity2d.belt.contact.phase import ContactTemplate
+from asperity2d.belt.phases.finder import SWITCH_TOL, find_event
 from asperity2d.belt.normal import SEPARATED, NormalContact
 
 # a hop of one event row: g = (Y + v·t - a·t²/2) - Y, the way a closed form gives a gap (the
@@ -26,7 +26,7 @@ V_UP, A_DOWN, Y, STEP = 0.0127, 10.0, 1.0, 0.0412778
 
 
 class Hop:
-    """The finder's event-row interface (:class:`asperity2d.belt.events.ModalEvents`) for ``rows``
+    """The finder's event-row interface (:class:`asperity2d.belt.phases.events.ModalEvents`) for ``rows``
     hops that start at the leftovers ``g0`` (one per row), each with a known g'''' = 0."""
 
     pointwise = True
@@ -130,7 +130,7 @@ def test_the_check_names_a_contact_that_pulls():
     """States handed to the check directly: two masses in rigid contact, pressed by a 45-degree spring
     (K_xy = 500 N/m) against a lifting preload (W = 9.81 - 20 N): N = W + 500·x is 39.8 N at
     x = 0.1 m, valid, and -10.2 N at x = 0 -- a contact that pulls, a lift-off the scan missed."""
-    from asperity2d.belt.contact import contact_spec
+    from asperity2d.belt.contact.steady import contact_spec
 
     spec = contact_spec([1.0, 1.0], [10.0, 10.0, 10.0], [0.0, 0.0, 0.0], mu_s=0.3, v_belt=0.1, x0=[0.0, 0.0],
                         v0=[0.0, 0.0], t_end=1.0, normal=NormalContact(inclined=((1000.0, 45.0),), preload=-20.0))
@@ -149,3 +149,42 @@ def test_the_check_names_a_contact_that_pulls():
     with pytest.raises(SimulationError, match=r"t = 0.5 s: mass 1 is .* m inside the belt while separated"):
         check_modes(template, Z, np.array([0.0, 0.5]))
     assert VIOLATION == 2 * SWITCH_TOL
+
+
+# -- a lift-off at t = 0 is an opening like any later one ------------------------------------------
+ONE = dict(masses=[1.0], springs=[100.0, 0.0], dampers=[0.0, 0.0], mu_s=0.4, mu_k=0.3, v_belt=0.1, x0=[0.0],
+           v0=[0.1], t_end=0.3, g=9.81)
+
+
+@pytest.mark.parametrize("normal, y0, vy0", [
+    (NormalContact(), [0.0], [0.5]),                                   # rigid, thrown off the surface
+    (NormalContact(preload=-20.0), [0.0], [0.0]),                      # rigid, pulled off by its load
+    (NormalContact(contact_stiffness=1e5), [0.0], [0.5]),              # compliant, thrown off
+    (NormalContact(contact_stiffness=1e5, preload=-20.0), [0.0], [0.0]),  # compliant, pulled off
+])
+def test_a_lift_off_at_t0_logs_its_opening(normal, y0, vy0):
+    r = simulate_chain(**ONE, normal=normal, y0=y0, vy0=vy0)
+    assert r.events[0].kind == "open" and r.events[0].t == 0.0 and r.events[0].mass == 0
+    assert r.separation_intervals[0][0][0] == 0.0  # the interval it opens
+    summary = r.summary()  # the contact's record in the result protocol's summary
+    assert summary["separations"] == len(r.separation_intervals[0]) == summary["masses"][0]["separations"]
+    assert summary["masses"][0]["separated_s"] == pytest.approx(sum(b - a for a, b in r.separation_intervals[0]))
+    if normal.preload == 0:
+        # thrown up at 0.5 m/s under g alone: it comes back at 2·vy0/g = 0.10194 s (a closed form; the
+        # event is located to the finder's tolerance, far below 1e-9 s here)
+        back = next(e for e in r.events if e.kind in ("impact", "close"))
+        assert back.t == pytest.approx(2 * 0.5 / 9.81, abs=1e-9)
+        assert [e.kind for e in r.events if e.t < back.t] == ["open"]  # in flight: nothing else
+    else:
+        # pulled off with 20 N against 9.81 N of weight and nothing holding it down: it never comes back
+        assert [e.kind for e in r.events] == ["open"] and r.separation_intervals == [[(0.0, 0.3)]]
+
+
+@pytest.mark.parametrize("normal, y0, vy0", [
+    (NormalContact(), [0.01], [0.0]),                        # starts above the surface: never in contact
+    (NormalContact(), [0.0], [0.0]),                         # rests on it
+    (NormalContact(contact_stiffness=1e5), None, None),      # rests at its compliant equilibrium
+])
+def test_a_start_off_or_on_the_surface_logs_no_opening_at_t0(normal, y0, vy0):
+    r = simulate_chain(**ONE, normal=normal, y0=y0, vy0=vy0)
+    assert not [e for e in r.events if e.t == 0.0 and e.kind == "open"]

@@ -9,10 +9,10 @@ import pytest
 from scipy.integrate import quad
 from scipy.linalg import expm
 
-import asperity2d.belt.modal as modal
+import asperity2d.belt.phases.modal as modal
 from asperity2d.belt import simulate_chain
-from asperity2d.belt.modal import ModalForm, phi, square_integral
-from asperity2d.belt.segment import TaylorGrid
+from asperity2d.belt.phases.modal import ModalForm, phi, square_integral
+from asperity2d.belt.phases.segment import TaylorGrid
 
 G = 9.81
 

@@ -30,9 +30,9 @@ import numpy as np
 import pytest
 
 from asperity2d.belt import presets, simulate_chain
-from asperity2d.belt.contact import contact_spec
-from asperity2d.belt.finder import SWITCH_TOL
-from asperity2d.belt.minimal import MinimalModel
+from asperity2d.belt.contact.steady import contact_spec
+from asperity2d.belt.phases.finder import SWITCH_TOL
+from asperity2d.belt.contact.minimal import MinimalModel
 from asperity2d.belt.normal import SEPARATED, NormalContact
 
 

@@ -154,6 +154,51 @@ def test_a_method_whose_back_ends_all_refuse_a_chain_is_one_line():
         del METHODS["picky"]
 
 
+def run_pressed(spec, options):
+    """A toy back end for chains with a normal contact: one mass pressed on a compliant contact
+    at its rest gap and stuck to the belt, held by a spring to the wall. The gap never moves, so
+    the normal force stays at the spec's rest value; the belt does the spring's energy gain
+    k v (x0 t + v t^2 / 2) and nothing slips or hits. Returns the contract's ContactRun."""
+    from asperity2d.belt.backend import ContactRun
+
+    t = np.asarray(options.samples, dtype=float)
+    chain, k_c = spec.chain, spec.normal.contact_stiffness
+    k, v, x0, y0 = float(chain.springs[0]), float(chain.v_belt), float(chain.x0[0]), float(spec.y0[0])
+    x = x0 + v * t
+    Z = np.stack([x, np.full_like(t, y0), np.full_like(t, v), np.zeros_like(t)])
+    work = np.zeros((4, t.size))
+    work[0] = k * v * (x0 * t + 0.5 * v * t * t)
+    return ContactRun(t=t, Z=Z, modes=np.zeros((1, t.size), dtype=int), friction_force=(k * x)[None, :],
+                      normal_force=np.full((1, t.size), -k_c * y0), work=work,
+                      stick_intervals=[[(float(t[0]), float(t[-1]))]], separation_intervals=[[]])
+
+
+def test_a_back_end_for_chains_with_a_normal_contact_runs_through_simulate_chain():
+    from asperity2d.belt import METHODS, Backend, ContactSpec
+
+    METHODS["pressed"] = (Backend("one mass pressed and stuck", lambda spec: isinstance(spec, ContactSpec),
+                                  run_pressed, settings=()),)
+    chain = dict(masses=[1.0], springs=[2.0, 0.0], dampers=[0.0, 0.0], mu_s=0.5, mu_k=0.3, v_belt=0.2, x0=[0.1],
+                 v0=[0.2], t_end=1.0, n_samples=21, method="pressed")
+    try:
+        result = a.belt.simulate_chain(**chain, normal=a.belt.NormalContact(stiffness=1e4, contact_stiffness=1e5))
+        assert isinstance(result, a.belt.ContactResult)
+        assert result.meta["backend"] == "one mass pressed and stuck" and "rtol" not in result.meta
+        np.testing.assert_array_equal(result.x[0], 0.1 + 0.2 * result.t)  # what the back end returned
+        # the rest gap the spec chose shares the weight between the normal spring and the contact:
+        # N = m g k_c / (k_c + k_n) = 9.81 * 1e5 / 1.1e5 N (to rounding: the gap is y = -N / k_c)
+        np.testing.assert_allclose(result.normal_force[0], 9.81 * 1e5 / 1.1e5, rtol=1e-12)
+        assert result.separation_intervals == [[]] and result.summary()["kind"] == "belt"
+        # the spring's energy gain is the belt's work: the books close (the driver checks them too)
+        assert abs(result.energy_balance_error()) < 1e-12
+        # the built-in back ends refuse it, and this one refuses a chain without a normal contact
+        with pytest.raises(a.SceneError, match="`method` 'pressed' has no back end .* methods that do: 'exact', "
+                                               "'sign'"):
+            a.belt.simulate_chain(**chain)
+    finally:
+        del METHODS["pressed"]
+
+
 # -- a friction law of the asperity model ---------------------------------------------------------
 from dataclasses import dataclass  # noqa: E402
 

@@ -44,7 +44,7 @@ MODULES = {
     "analysis": ("asperity2d/analysis.py", ["tests/test_analysis.py", "tests/test_contact_states.py"]),
     "stats": ("asperity2d/stats.py", ["tests/test_stats.py"]),
     "geometry": ("asperity2d/geometry.py", ["tests/test_geometry.py", "tests/test_scene_validation.py"]),
-    "belt-events": ("asperity2d/belt/events.py", ["tests/test_belt_events.py", "tests/test_belt_exact.py"]),
+    "belt-events": ("asperity2d/belt/phases/events.py", ["tests/test_belt_events.py", "tests/test_belt_exact.py"]),
 }
 #: mutmut's exit codes in the .meta files (mutmut.stats.status_by_exit_code): a test failed
 #: (1, 3), the time limit stopped it (36, +-24, 152, 255) or it crashed the process (-9, -11):

@@ -1,15 +1,27 @@
 """The belt back-end contract: what every solver back-end receives and what it returns.
 
-A back-end is a function ``run(spec, options) -> RawRun`` listed in
-``solver.METHODS`` with the predicate that says which chains it solves:
+A back-end is a :class:`Backend` -- a function ``run(spec, options) -> RawRun`` with the
+predicate ``accepts(spec)`` that says which chains it solves -- listed under a method name in
+``asperity2d.belt.METHODS``. ``simulate_chain`` builds one spec and runs the first back end of
+the chosen method that accepts it. The contract:
 
-* ``spec`` -- the validated :class:`~asperity2d.belt.spec.ChainSpec` (SI, with its scales);
-* ``options`` -- :class:`RunOptions`, the validated run settings;
-* the :class:`RawRun` it returns holds the sampled motion (SI) and the switching record;
-  :func:`asperity2d.belt.result.assemble` adds the derived forces and energies.
-
-Back-ends never print, never write files and raise only ``SceneError`` (bad input) or
-``SimulationError`` (a run that went wrong or over its budget).
+1. ``spec`` is validated (SI, with its scales): a :class:`~asperity2d.belt.spec.ChainSpec`
+   for a tangential chain, or a ``ContactSpec`` (``asperity2d.belt.ContactSpec``: the chain,
+   its ``NormalContact`` and the initial gaps ``y0`` / ``vy0``) when ``simulate_chain`` was
+   given a normal contact. ``accepts`` must return False, not raise, for a spec of the kind
+   its back end cannot run.
+2. ``options`` is :class:`RunOptions`, the validated run settings (sample times, tolerances,
+   budgets); a long loop calls :func:`watch` now and then so the wall-clock budget holds.
+3. ``run`` returns, for a ChainSpec, a :class:`RawRun`: the sampled motion (SI) and the
+   switching record; :func:`asperity2d.belt.result.assemble` adds the derived forces and
+   energies and makes a ``BeltResult``. For a ContactSpec it returns the contact's raw run
+   (``ContactRun``: the state [x; y; v; vy], the modes, the normal force, four energy books,
+   the separation intervals), which becomes a ``ContactResult``. Either result's energy books
+   are checked against its stored energy: a back end whose books do not close is refused.
+4. ``settings`` names the :class:`RunOptions` fields the back end uses that the result's meta
+   records (``rtol``, ``integrator`` by default; none for a back end that integrates nothing).
+5. Back-ends never print, never write files and raise only ``SceneError`` (bad input) or
+   ``SimulationError`` (a run that went wrong or over its budget).
 """
 
 from __future__ import annotations
@@ -19,6 +31,7 @@ import contextvars
 import math
 import time
 from dataclasses import dataclass, field
+from typing import Callable
 
 import numpy as np
 
@@ -34,13 +47,35 @@ MAX_WALL_TIME = 30.0
 
 
 @dataclass(frozen=True)
+class Backend:
+    """One solver back-end: ``run(spec, options) -> RawRun`` for the chains ``accepts(spec)`` is
+    True for (the module's contract); ``settings``: the run settings the result's meta records.
+
+    Examples
+    --------
+    >>> from asperity2d import belt
+    >>> [b.name for b in belt.METHODS["exact"]]  # in order of preference; the first that accepts runs
+    ['closed-form contact phases', 'state-variable ODE (Dahl, LuGre)', 'closed-form phases', 'integrated phases']
+    >>> r = belt.simulate_chain([1.0], [100.0, 0.0], [0.0, 0.0], mu_s=0.4, mu_k=0.3, v_belt=0.1, x0=[0.0],
+    ...                         v0=[0.1], t_end=2.0)
+    >>> r.meta["backend"], r.meta["rtol"]  # its `settings` are recorded
+    ('closed-form phases', 1e-08)
+    """
+
+    name: str
+    accepts: Callable[[object], bool]
+    run: Callable[[object, "RunOptions"], object]
+    settings: tuple = ("rtol", "integrator")
+
+
+@dataclass(frozen=True)
 class Event:
     """A switch of one mass at time ``t`` (s) at position ``x`` (m).
 
     ``kind`` is "stick", "slip", "reverse" (slip direction flips through belt
     speed) or "graze": the mass touched belt speed tangentially and the stick
     condition held only at that instant, so it kept slipping (see
-    ``asperity2d.belt.modes`` for the rule).
+    ``asperity2d.belt.chain.modes`` for the rule).
 
     Attributes
     ----------
@@ -180,6 +215,25 @@ class RawRun:
     work: np.ndarray
     events: list = field(default_factory=list)
     stick_intervals: list = field(default_factory=list)
+    meta: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class ContactRun:
+    """What a back-end returns for a ContactSpec (SI): samples ``t`` (T,), state ``Z`` (4n, T) = [x; y; v; vy],
+    ``modes`` (n, T), ``friction_force`` and ``normal_force`` (n, T, N), ``work`` (4, T, J: belt,
+    friction, dampers, impacts), ``events``, ``stick_intervals`` and ``separation_intervals`` (per
+    mass, (start, end) s), ``meta``."""
+
+    t: np.ndarray
+    Z: np.ndarray
+    modes: np.ndarray
+    friction_force: np.ndarray
+    normal_force: np.ndarray
+    work: np.ndarray
+    events: list = field(default_factory=list)
+    stick_intervals: list = field(default_factory=list)
+    separation_intervals: list = field(default_factory=list)
     meta: dict = field(default_factory=dict)
 
 

@@ -24,6 +24,9 @@ from ..errors import SceneError
 
 #: largest derived scale (rate, speed, length, force, energy) of a chain
 SCALE_LIMIT = 1e150
+#: relative tolerance that declares an event function zero (and two numbers equal at a switch):
+#: the switch finder's (:mod:`.phases.finder`), and the spec's static-limit band
+SWITCH_TOL = 1e-9
 #: the dense eigendecomposition of an all-slipping chain costs O(n³): minutes beyond this
 MAX_MASSES = 2000
 #: masses x output samples (each result holds ~8 such arrays of doubles)

@@ -38,21 +38,16 @@ The contact is either
 
 The energies: stored E = ½·q'ᵀMq' + ½·qᵀK_s·q + ½·k_c·Σδ² (compliant, in contact)
 + Σ W_i·y_i (work against the weight and the preload); E - E(0) = belt work -
-friction loss - damper loss - impact loss (:mod:`.contact_loop`).
+friction loss - damper loss - impact loss (:mod:`.contact.loop`).
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import cached_property
-
-import numpy as np
 
 from ..errors import SceneError
-from ..friction.laws import Coulomb, StaticKinetic
 from .. import _inputs as check
-from .limits import SCALE_LIMIT
 
 
 @dataclass(frozen=True)
@@ -173,155 +168,4 @@ def _inclined(value) -> tuple:
 #: per-mass codes of the contact solver's modes: stuck, slipping (±1) and separated
 STUCK, SEPARATED = 0, 2
 
-
-@dataclass(frozen=True)
-class ContactSpec:
-    """A validated chain with a normal degree of freedom per mass (built by ``simulate_chain``).
-
-    ``chain`` is the tangential :class:`~.spec.ChainSpec` (its ``normal_load`` holds the
-    static load W = m·g + P, used for its scales); ``y0``, ``vy0`` the initial gaps (m)
-    and normal velocities (m/s), ``None`` for the default: at rest in the static
-    equilibrium of the contact (or on the surface, rigid).
-    """
-
-    chain: object
-    normal: NormalContact
-    y0: tuple | None = None
-    vy0: tuple | None = None
-
-    def __post_init__(self):
-        chain, n = self.chain, self.chain.n
-        if not isinstance(self.normal, NormalContact):
-            raise SceneError(f"`normal` must be a NormalContact, got {check.show(self.normal)}")
-        if not isinstance(chain.law, (Coulomb, StaticKinetic)):
-            raise SceneError("`friction` must be Coulomb or StaticKinetic (or `mu_s` / `mu_k`) with `normal`: the "
-                             f"contact solver's phases are closed form, got {type(chain.law).__name__}")
-        if not chain.constant_belt:
-            raise SceneError("`v_belt` must be a constant with `normal` (the contact solver's phases are closed form)")
-        vy0 = (0.0,) * n if self.vy0 is None else check.check_vector("vy0", self.vy0, n)
-        y0 = self._rest_gaps() if self.y0 is None else check.check_vector("y0", self.y0, n)
-        if self.normal.rigid and min(y0) < 0:
-            i = int(np.argmin(y0))
-            raise SceneError(f"`y0` must be >= 0 with a rigid contact (the belt surface is y = 0), got "
-                             f"{check.show(y0[i])} at index {i}")
-        object.__setattr__(self, "y0", tuple(y0))
-        object.__setattr__(self, "vy0", tuple(vy0))
-        for what, value in (("normal rate bound (1/s)", self.rate_bound), ("gap scale (m)", self.gap_scale),
-                            ("normal force scale (N)", self.normal_scale)):
-            if not (math.isfinite(value) and value <= SCALE_LIMIT):
-                raise SceneError(f"the chain's {what} is {check.show(value)}, beyond {SCALE_LIMIT:g}: rescale "
-                                 "`normal` (stiffnesses, preload) or `masses`")
-
-    # -- what the budget check and RunOptions need (duck-typed like ChainSpec) --
-    @property
-    def n(self) -> int:
-        return self.chain.n
-
-    @property
-    def t_end(self) -> float:
-        return self.chain.t_end
-
-    @cached_property
-    def load(self) -> np.ndarray:
-        """W_i = m_i·g + P (N): what presses each mass on the belt at y = 0."""
-        return self.chain.m * self.chain.g + self.normal.preload
-
-    @cached_property
-    def stiffness_matrix(self) -> np.ndarray:
-        """K_s (2n, 2n, N/m) on q = [x; y]: the chain, the inclined springs, the normal springs."""
-        n = self.n
-        kxx, kxy, kyy = self.normal.coupling()
-        K = np.zeros((2 * n, 2 * n))
-        K[:n, :n] = self.chain.stiffness_matrix()
-        i = np.arange(n)
-        K[i, i] += kxx
-        K[i, n + i] = K[n + i, i] = kxy
-        K[n + i, n + i] = kyy + self.normal.stiffness
-        return K
-
-    @cached_property
-    def damping_matrix(self) -> np.ndarray:
-        """C_s (2n, 2n, N·s/m): the chain's dampers in x, the normal dampers in y."""
-        n = self.n
-        C = np.zeros((2 * n, 2 * n))
-        C[:n, :n] = self.chain.damping_matrix()
-        C[np.arange(n, 2 * n), np.arange(n, 2 * n)] = self.normal.damping
-        return C
-
-    @cached_property
-    def mass_vector(self) -> np.ndarray:
-        return np.concatenate([self.chain.m, self.chain.m])
-
-    @cached_property
-    def constant_force(self) -> np.ndarray:
-        """f0 (2n, N): -W on every y."""
-        return np.concatenate([np.zeros(self.n), -self.load])
-
-    def _rest_gaps(self) -> tuple:
-        """Default y0: rigid, on the surface; compliant, the static equilibrium at x0 (in contact if it presses)."""
-        n = self.n
-        if self.normal.rigid:
-            return (0.0,) * n
-        kxx, kxy, kyy = self.normal.coupling()
-        kyy += self.normal.stiffness
-        push = -(self.load + kxy * np.asarray(self.chain.x0))  # net normal force at y = 0 besides the contact
-        in_contact = push / (kyy + self.normal.contact_stiffness)
-        free = push / kyy if kyy > 0 else np.zeros(n)  # lifted off: where the springs balance the pull
-        return tuple(np.where(push < 0, in_contact, free).tolist())
-
-    # -- scales -------------------------------------------------------------
-    @cached_property
-    def rate_bound(self) -> float:
-        """Upper bound (1/s) on |lambda| of every phase: c' + sqrt(k') with k', c' the largest row sums
-        of |M⁻¹K| and |M⁻¹C| with the contact spring and the friction terms mu_s·|N row| added
-        (for lambda²M + lambda C + K singular, |lambda|² <= |lambda|·c' + k' in the induced inf-norm)."""
-        K = np.abs(self.stiffness_matrix)
-        n = self.n
-        kc = self.normal.contact_stiffness or 0.0
-        K[np.arange(n, 2 * n), np.arange(n, 2 * n)] += kc
-        mu = self.chain.law.static_coefficient
-        rows_N = np.abs(self.stiffness_matrix[n:]) + (kc * np.eye(n, 2 * n, n) if kc else 0.0)
-        K[:n] += mu * rows_N
-        C = np.abs(self.damping_matrix)
-        C[:n] += mu * np.abs(self.damping_matrix[n:])
-        m = self.mass_vector[:, None]
-        return float(np.max(np.sum(C / m, axis=1)) + math.sqrt(float(np.max(np.sum(K / m, axis=1)))))
-
-    @cached_property
-    def scan_step(self) -> float:
-        """1/16 of the fastest period (s) bound by :attr:`rate_bound`; ``t_end`` when nothing oscillates."""
-        rate = self.rate_bound
-        return 2 * math.pi / (16 * rate) if rate > 0 else self.t_end
-
-    @cached_property
-    def velocity_scale(self) -> float:
-        """The chain's velocity scale, or the largest initial normal speed (m/s)."""
-        return max(self.chain.velocity_scale, float(np.max(np.abs(self.vy0))))
-
-    @cached_property
-    def normal_scale(self) -> float:
-        """A force (N) > 0 normalising the normal-force event functions: the largest load W, at least
-        1e-12 of the chain's force scale."""
-        return max(float(np.max(np.abs(self.load))), 1e-12 * self.chain.force_scale)
-
-    @cached_property
-    def gap_scale(self) -> float:
-        """A length (m) normalising the gap event functions: for a compliant contact the penetration
-        that carries the force scale (N_scale / k_c, so opening at N = 0 and closing at y = 0 share one
-        tolerance); for a rigid one the chain's length scale or the initial gaps."""
-        if not self.normal.rigid:
-            return self.normal_scale / self.normal.contact_stiffness
-        return max(self.chain.length_scale, float(np.max(np.abs(self.y0))))
-
-    @cached_property
-    def limit_scale(self) -> np.ndarray:
-        """Per mass, the force (N) normalising the stick event functions: mu_s·|W_i|, floored."""
-        return np.maximum(self.chain.law.static_coefficient * np.abs(self.load),
-                          1e-12 * max(self.chain.force_scale, self.normal_scale))
-
-    @cached_property
-    def energy_scale(self) -> float:
-        return max(self.chain.energy_scale, self.normal_scale * self.gap_scale)
-
-    def to_dict(self) -> dict:
-        return {**self.normal.to_dict(), "y0": list(self.y0), "vy0": list(self.vy0)}
+#: (``ContactSpec``, the validated chain with its normal contact, is in :mod:`.spec`.)

@@ -1,45 +1,51 @@
 """``simulate_chain``: masses on a moving belt with exact stick/slip switching.
 
 The driver validates every parameter (:mod:`.spec`, :mod:`asperity2d._inputs`, :mod:`.limits`,
-:class:`~.backend.RunOptions`), picks the back-end from ``METHODS`` -- the
-first entry of the method whose predicate accepts the chain -- and turns the
-back-end's :class:`~.backend.RawRun` into a :class:`~.result.BeltResult`.
+:class:`~.backend.RunOptions`) into one spec -- a :class:`~.spec.ChainSpec`, or a
+:class:`~.normal.ContactSpec` when a normal contact is given -- picks the back-end from
+``METHODS`` (the first entry of the method whose predicate accepts the spec; the contract:
+:mod:`.backend`) and turns the back-end's raw run into a :class:`~.result.BeltResult` (a
+:class:`~.contact.result.ContactResult` with a normal contact).
 """
 
 from __future__ import annotations
 
 import time as _time
-from dataclasses import dataclass
-from typing import Callable
 
 from ..errors import SceneError
-from .backend import MAX_WALL_TIME, RawRun, RunOptions
-from .hybrid import run_ode_phases, run_state_law
-from .linear import run_closed_form
+from .backend import MAX_WALL_TIME, Backend, RunOptions
+from .chain.hybrid import run_ode_phases, run_state_law
+from .chain.linear import run_closed_form
 from .result import BeltResult, assemble
-from .sign import run_sign
-from .spec import ChainSpec
+from .chain.sign import run_sign
+from .spec import ChainSpec, ContactSpec, contact_spec
 from .._inputs import check_choice
 
-
-@dataclass(frozen=True)
-class Backend:
-    """One solver back-end: ``run(spec, options) -> RawRun`` for the chains ``accepts(spec)`` is True for."""
-
-    name: str
-    accepts: Callable[[ChainSpec], bool]
-    run: Callable[[ChainSpec, RunOptions], RawRun]
+__all__ = ["Backend", "METHODS", "simulate_chain"]
 
 
-#: method name -> back-ends in order of preference
+def _run_contact(spec, options):
+    from .contact.loop import run_contact  # lazily: chains without a normal DOF never import it
+
+    return run_contact(spec, options)
+
+
+def _tangential(spec) -> bool:
+    return isinstance(spec, ChainSpec)
+
+
+#: method name -> back-ends in order of preference (the contract: :mod:`.backend`)
 METHODS = {
     "exact": (
-        Backend("state-variable ODE (Dahl, LuGre)", lambda spec: spec.law.has_state, run_state_law),
-        Backend("closed-form phases", lambda spec: spec.constant_belt and spec.law.piecewise_constant,
+        Backend("closed-form contact phases", lambda spec: isinstance(spec, ContactSpec), _run_contact, settings=()),
+        Backend("state-variable ODE (Dahl, LuGre)", lambda spec: _tangential(spec) and spec.law.has_state,
+                run_state_law),
+        Backend("closed-form phases",
+                lambda spec: _tangential(spec) and spec.constant_belt and spec.law.piecewise_constant,
                 run_closed_form),
-        Backend("integrated phases", lambda spec: True, run_ode_phases),
+        Backend("integrated phases", _tangential, run_ode_phases),
     ),
-    "sign": (Backend("sign() friction through solve_ivp", lambda spec: True, run_sign),),
+    "sign": (Backend("sign() friction through solve_ivp", _tangential, run_sign),),
 }
 
 
@@ -100,7 +106,7 @@ def simulate_chain(
     degree of freedom and a unilateral contact (separated, sliding or sticking;
     ``asperity2d.belt.normal``); ``y0`` / ``vy0`` (m, m/s) are then the initial gaps and
     normal velocities (default: at rest on the contact) and the result is a
-    :class:`~.contact_result.ContactResult`.
+    :class:`~.contact.result.ContactResult`.
 
     Parameters
     ----------
@@ -180,24 +186,34 @@ def simulate_chain(
     [(0.0, 0.3924), (0.8656, 1.0618), (1.5349, 1.7311)]
     """
     method = check_choice("method", method, tuple(METHODS))
-    if normal is not None or y0 is not None or vy0 is not None:
-        from .contact import simulate_contact  # lazily: chains without a normal DOF never import it
-
-        return simulate_contact(
-            masses, springs, dampers, mu_s=mu_s, mu_k=mu_k, v_belt=v_belt, x0=x0, v0=v0, t_end=t_end, g=g,
-            normal_load=normal_load, friction=friction, method=method, n_samples=n_samples, t_eval=t_eval,
-            include_events=include_events, rtol=rtol, atol=atol, integrator=integrator, max_events=max_events,
-            max_steps=max_steps, max_wall_time=max_wall_time, normal=normal, y0=y0, vy0=vy0)
-    spec = ChainSpec(masses, springs, dampers, mu_s, mu_k, v_belt, x0, v0, t_end, g, normal_load, friction)
+    if normal is None and y0 is None and vy0 is None:
+        spec = ChainSpec(masses, springs, dampers, mu_s, mu_k, v_belt, x0, v0, t_end, g, normal_load, friction)
+    else:
+        spec = contact_spec(masses, springs, dampers, mu_s=mu_s, mu_k=mu_k, v_belt=v_belt, x0=x0, v0=v0,
+                            t_end=t_end, g=g, normal_load=normal_load, friction=friction, normal=normal, y0=y0,
+                            vy0=vy0)
     options = RunOptions.build(spec, n_samples=n_samples, t_eval=t_eval, include_events=include_events,
                                rtol=rtol, atol=atol, integrator=integrator, max_events=max_events,
                                max_steps=max_steps, max_wall_time=max_wall_time)
+    return run_spec(spec, options, method)
+
+
+def run_spec(spec, options: RunOptions, method: str = "exact") -> BeltResult:
+    """Run a validated spec (a ChainSpec, or a ContactSpec with its normal contact) with ``options``
+    by the first back end of ``METHODS[method]`` that accepts it; the result with its meta."""
     backend = next((b for b in METHODS[method] if b.accepts(spec)), None)
-    if backend is None:  # a method registered from outside whose back ends all refuse this chain
-        raise SceneError(f"`method` {method!r} has no back end that accepts this chain "
-                         f"(its back ends: {', '.join(b.name for b in METHODS[method])})")
+    if backend is None:  # a method whose back ends all refuse this chain (a normal contact with "sign")
+        others = [name for name, backends in METHODS.items() if any(b.accepts(spec) for b in backends)]
+        raise SceneError(f"`method` {method!r} has no back end that accepts this chain"
+                         f"{'' if isinstance(spec, ChainSpec) else ' with a normal contact'} "
+                         f"(its back ends: {'; '.join(b.name for b in METHODS[method])}); "
+                         f"methods that do: {', '.join(map(repr, others)) or 'none'}")
     clock = _time.perf_counter()
     raw = backend.run(spec, options)
     meta = {**raw.meta, "method": method, "backend": backend.name, "wall_time": _time.perf_counter() - clock,
-            "rtol": options.rtol, "integrator": options.integrator}
+            **{name: getattr(options, name) for name in backend.settings}}
+    if isinstance(spec, ContactSpec):
+        from .contact.result import assemble_contact
+
+        return assemble_contact(spec, raw, meta)
     return assemble(spec, raw, meta)

@@ -23,8 +23,11 @@ import numpy as np
 
 from ..errors import SceneError, SimulationError
 from ..friction.laws import Coulomb, FrictionLaw, StaticKinetic, law_from_dict
+from .. import _inputs as check
 from .._inputs import check_real, check_vector, show
-from . import limits
+from . import chainfile, limits
+from .limits import SCALE_LIMIT
+from .normal import NormalContact
 
 
 @dataclass(frozen=True)
@@ -249,9 +252,7 @@ class ChainSpec:
     @cached_property
     def limit_band(self) -> tuple:
         """Per mass, the static limit plus and minus the switching tolerance (N): (above, below)."""
-        from .finder import SWITCH_TOL  # (lazily: the spec does not need the solver to load)
-
-        tol = SWITCH_TOL * self.limit_scale
+        tol = limits.SWITCH_TOL * self.limit_scale
         return self.static_limit + tol, self.static_limit - tol
 
     @cached_property
@@ -333,9 +334,15 @@ class ChainSpec:
     #: The fields of ``to_dict()``'s record.
     RECORD = ("masses", "springs", "dampers", "friction", "v_belt", "x0", "v0", "t_end", "g", "normal_load")
 
+    #: What a chain document (``chainfile``) may hold besides ``RECORD``: the coefficients in
+    #: place of ``friction``, and a normal contact.
+    DOCUMENT = ("mu_s", "mu_k", "normal", "y0", "vy0")
+
     @classmethod
-    def from_dict(cls, record: dict) -> "ChainSpec":
-        """The chain ``to_dict()`` wrote (a saved result's ``chain`` record), validated again.
+    def from_dict(cls, record: dict):
+        """The chain ``to_dict()`` wrote (a saved result's ``chain`` record), validated again; or the
+        spec of a chain document (``chainfile.document``: ``mu_s`` / ``mu_k`` in place of
+        ``friction``, a ``normal`` table with ``y0`` / ``vy0`` -- then a :class:`ContactSpec`).
 
         ``friction`` is the law's own record (``law_from_dict``); a callable ``v_belt`` was saved
         by its name only and cannot be rebuilt. A record that is not a dict, lacks a field, has
@@ -343,18 +350,266 @@ class ChainSpec:
         field."""
         if not isinstance(record, dict):
             raise SceneError(f"`chain` must be a table of ChainSpec fields, got {show(record)}")
-        unknown = sorted(set(record) - set(cls.RECORD))
+        unknown = sorted(set(record) - set(cls.RECORD) - set(cls.DOCUMENT), key=str)
         if unknown:
-            raise SceneError(f"`chain.{unknown[0]}` is not a ChainSpec field (known: {', '.join(cls.RECORD)})")
-        missing = [name for name in cls.RECORD if name not in record and name not in ("g", "normal_load")]
+            raise SceneError(f"`chain.{unknown[0]}` is not a ChainSpec field (known: "
+                             f"{', '.join(cls.RECORD + cls.DOCUMENT)})")
+        missing = [name for name in cls.RECORD if name not in record and name not in ("g", "normal_load", "friction")]
+        if "friction" not in record and "mu_s" not in record:
+            missing.append("friction")
         if missing:
             raise SceneError(f"`chain.{missing[0]}` is missing")
         if isinstance(record["v_belt"], str):
             raise SceneError(f"`chain.v_belt` was a function ({record['v_belt']}), saved by its name only: "
                              "it cannot be rebuilt")
-        return cls(record["masses"], record["springs"], record["dampers"], None, None, record["v_belt"],
-                   record["x0"], record["v0"], record["t_end"], record.get("g", 9.81),
-                   record.get("normal_load"), law_from_dict(record["friction"]))
+        args = {k: v for k, v in record.items() if not (k == "normal_load" and v is None)}
+        if "friction" in args:
+            args["friction"] = law_from_dict(args["friction"])
+        if "normal" in args and not isinstance(args["normal"], NormalContact):
+            args["normal"] = NormalContact.from_dict(args["normal"])
+        return spec_of(args)
+
+    def arguments(self) -> dict:
+        """``simulate_chain`` keyword arguments that rebuild this spec and run it bit for bit the same."""
+        return chainfile.arguments(self)
+
+    def to_toml(self, path, **settings):
+        """Write this chain as a TOML chain file (``asperity2d belt FILE`` runs it, bit for bit as
+        ``simulate_chain(**spec.arguments())`` does); ``settings`` are run settings the file keeps
+        (``method``, ``n_samples``, ``rtol``, ``atol``, ``integrator``). Every number is written
+        exactly; a callable ``v_belt`` cannot be (``SceneError``). Returns the path.
+
+        Examples
+        --------
+        >>> from asperity2d import belt
+        >>> spec = belt.ChainSpec(masses=(1.0,), springs=(100.0, 0.0), dampers=(0.0, 0.0), mu_s=0.4,
+        ...                       mu_k=0.3, v_belt=0.1, x0=(0.0,), v0=(0.1,), t_end=2.0)
+        >>> belt.ChainSpec.from_toml(spec.to_toml("chain.toml")) == spec
+        True
+        """
+        return chainfile.write_chain(self, path, settings)
+
+    @classmethod
+    def from_toml(cls, path):
+        """The spec of a TOML chain file (``asperity2d.belt.chainfile``; its run settings are left out): a
+        ChainSpec, or a :class:`ContactSpec` when the file has a ``[normal]`` table (or ``y0`` /
+        ``vy0``). A key the file should not hold, a missing one or a bad table raises one
+        ``SceneError`` naming the key and the file; a bad value one naming the parameter."""
+        return spec_of(chainfile.read_chain(path))
+
+
+@dataclass(frozen=True)
+class ContactSpec:
+    """A validated chain with a normal degree of freedom per mass (built by ``simulate_chain``).
+
+    ``chain`` is the tangential :class:`~.spec.ChainSpec` (its ``normal_load`` holds the
+    static load W = m·g + P, used for its scales); ``y0``, ``vy0`` the initial gaps (m)
+    and normal velocities (m/s), ``None`` for the default: at rest in the static
+    equilibrium of the contact (or on the surface, rigid).
+
+    Examples
+    --------
+    The spec of a chain document with a ``normal`` table; by default a compliant contact starts
+    in its static equilibrium, pressed in by m·g / (k_c + k_n) = 9.81 / 1.1e5 m:
+
+    >>> from asperity2d import belt
+    >>> spec = belt.ChainSpec.from_dict(dict(masses=[1.0], springs=[100.0, 0.0], dampers=[0.0, 0.0],
+    ...     mu_s=0.4, mu_k=0.3, v_belt=0.1, x0=[0.0], v0=[0.1], t_end=2.0,
+    ...     normal=dict(stiffness=1e4, contact_stiffness=1e5)))
+    >>> type(spec).__name__, spec.y0
+    ('ContactSpec', (-8.918181818181818e-05,))
+    >>> [b.name for b in belt.METHODS["exact"] if b.accepts(spec)]  # only the contact solver runs it
+    ['closed-form contact phases']
+    """
+
+    chain: object
+    normal: NormalContact
+    y0: tuple | None = None
+    vy0: tuple | None = None
+
+    def __post_init__(self):
+        chain, n = self.chain, self.chain.n
+        if not isinstance(self.normal, NormalContact):
+            raise SceneError(f"`normal` must be a NormalContact, got {check.show(self.normal)}")
+        if not isinstance(chain.law, (Coulomb, StaticKinetic)):
+            raise SceneError("`friction` must be Coulomb or StaticKinetic (or `mu_s` / `mu_k`) with `normal`: the "
+                             f"contact solver's phases are closed form, got {type(chain.law).__name__}")
+        if not chain.constant_belt:
+            raise SceneError("`v_belt` must be a constant with `normal` (the contact solver's phases are closed form)")
+        vy0 = (0.0,) * n if self.vy0 is None else check.check_vector("vy0", self.vy0, n)
+        y0 = self._rest_gaps() if self.y0 is None else check.check_vector("y0", self.y0, n)
+        if self.normal.rigid and min(y0) < 0:
+            i = int(np.argmin(y0))
+            raise SceneError(f"`y0` must be >= 0 with a rigid contact (the belt surface is y = 0), got "
+                             f"{check.show(y0[i])} at index {i}")
+        object.__setattr__(self, "y0", tuple(y0))
+        object.__setattr__(self, "vy0", tuple(vy0))
+        for what, value in (("normal rate bound (1/s)", self.rate_bound), ("gap scale (m)", self.gap_scale),
+                            ("normal force scale (N)", self.normal_scale)):
+            if not (math.isfinite(value) and value <= SCALE_LIMIT):
+                raise SceneError(f"the chain's {what} is {check.show(value)}, beyond {SCALE_LIMIT:g}: rescale "
+                                 "`normal` (stiffnesses, preload) or `masses`")
+
+    # -- what the budget check and RunOptions need (duck-typed like ChainSpec) --
+    @property
+    def n(self) -> int:
+        return self.chain.n
+
+    @property
+    def t_end(self) -> float:
+        return self.chain.t_end
+
+    @cached_property
+    def load(self) -> np.ndarray:
+        """W_i = m_i·g + P (N): what presses each mass on the belt at y = 0."""
+        return self.chain.m * self.chain.g + self.normal.preload
+
+    @cached_property
+    def stiffness_matrix(self) -> np.ndarray:
+        """K_s (2n, 2n, N/m) on q = [x; y]: the chain, the inclined springs, the normal springs."""
+        n = self.n
+        kxx, kxy, kyy = self.normal.coupling()
+        K = np.zeros((2 * n, 2 * n))
+        K[:n, :n] = self.chain.stiffness_matrix()
+        i = np.arange(n)
+        K[i, i] += kxx
+        K[i, n + i] = K[n + i, i] = kxy
+        K[n + i, n + i] = kyy + self.normal.stiffness
+        return K
+
+    @cached_property
+    def damping_matrix(self) -> np.ndarray:
+        """C_s (2n, 2n, N·s/m): the chain's dampers in x, the normal dampers in y."""
+        n = self.n
+        C = np.zeros((2 * n, 2 * n))
+        C[:n, :n] = self.chain.damping_matrix()
+        C[np.arange(n, 2 * n), np.arange(n, 2 * n)] = self.normal.damping
+        return C
+
+    @cached_property
+    def mass_vector(self) -> np.ndarray:
+        return np.concatenate([self.chain.m, self.chain.m])
+
+    @cached_property
+    def constant_force(self) -> np.ndarray:
+        """f0 (2n, N): -W on every y."""
+        return np.concatenate([np.zeros(self.n), -self.load])
+
+    def _rest_gaps(self) -> tuple:
+        """Default y0: rigid, on the surface; compliant, the static equilibrium at x0 (in contact if it presses)."""
+        n = self.n
+        if self.normal.rigid:
+            return (0.0,) * n
+        kxx, kxy, kyy = self.normal.coupling()
+        kyy += self.normal.stiffness
+        push = -(self.load + kxy * np.asarray(self.chain.x0))  # net normal force at y = 0 besides the contact
+        in_contact = push / (kyy + self.normal.contact_stiffness)
+        free = push / kyy if kyy > 0 else np.zeros(n)  # lifted off: where the springs balance the pull
+        return tuple(np.where(push < 0, in_contact, free).tolist())
+
+    # -- scales -------------------------------------------------------------
+    @cached_property
+    def rate_bound(self) -> float:
+        """Upper bound (1/s) on |lambda| of every phase: c' + sqrt(k') with k', c' the largest row sums
+        of |M⁻¹K| and |M⁻¹C| with the contact spring and the friction terms mu_s·|N row| added
+        (for lambda²M + lambda C + K singular, |lambda|² <= |lambda|·c' + k' in the induced inf-norm)."""
+        K = np.abs(self.stiffness_matrix)
+        n = self.n
+        kc = self.normal.contact_stiffness or 0.0
+        K[np.arange(n, 2 * n), np.arange(n, 2 * n)] += kc
+        mu = self.chain.law.static_coefficient
+        rows_N = np.abs(self.stiffness_matrix[n:]) + (kc * np.eye(n, 2 * n, n) if kc else 0.0)
+        K[:n] += mu * rows_N
+        C = np.abs(self.damping_matrix)
+        C[:n] += mu * np.abs(self.damping_matrix[n:])
+        m = self.mass_vector[:, None]
+        return float(np.max(np.sum(C / m, axis=1)) + math.sqrt(float(np.max(np.sum(K / m, axis=1)))))
+
+    @cached_property
+    def scan_step(self) -> float:
+        """1/16 of the fastest period (s) bound by :attr:`rate_bound`; ``t_end`` when nothing oscillates."""
+        rate = self.rate_bound
+        return 2 * math.pi / (16 * rate) if rate > 0 else self.t_end
+
+    @cached_property
+    def velocity_scale(self) -> float:
+        """The chain's velocity scale, or the largest initial normal speed (m/s)."""
+        return max(self.chain.velocity_scale, float(np.max(np.abs(self.vy0))))
+
+    @cached_property
+    def normal_scale(self) -> float:
+        """A force (N) > 0 normalising the normal-force event functions: the largest load W, at least
+        1e-12 of the chain's force scale."""
+        return max(float(np.max(np.abs(self.load))), 1e-12 * self.chain.force_scale)
+
+    @cached_property
+    def gap_scale(self) -> float:
+        """A length (m) normalising the gap event functions: for a compliant contact the penetration
+        that carries the force scale (N_scale / k_c, so opening at N = 0 and closing at y = 0 share one
+        tolerance); for a rigid one the chain's length scale or the initial gaps."""
+        if not self.normal.rigid:
+            return self.normal_scale / self.normal.contact_stiffness
+        return max(self.chain.length_scale, float(np.max(np.abs(self.y0))))
+
+    @cached_property
+    def limit_scale(self) -> np.ndarray:
+        """Per mass, the force (N) normalising the stick event functions: mu_s·|W_i|, floored."""
+        return np.maximum(self.chain.law.static_coefficient * np.abs(self.load),
+                          1e-12 * max(self.chain.force_scale, self.normal_scale))
+
+    @cached_property
+    def energy_scale(self) -> float:
+        return max(self.chain.energy_scale, self.normal_scale * self.gap_scale)
+
+    def to_dict(self) -> dict:
+        return {**self.normal.to_dict(), "y0": list(self.y0), "vy0": list(self.vy0)}
+
+    def arguments(self) -> dict:
+        """``simulate_chain`` keyword arguments that rebuild this spec (``normal``, ``y0``, ``vy0`` included)."""
+        return chainfile.arguments(self)
+
+    def to_toml(self, path, **settings):
+        """Write the chain and its normal contact as a TOML chain file (a ``[normal]`` table, ``y0``,
+        ``vy0``); as :meth:`ChainSpec.to_toml`. Returns the path."""
+        return chainfile.write_chain(self, path, settings)
+
+    from_toml = ChainSpec.from_toml
+
+
+def contact_spec(masses, springs, dampers, *, mu_s=None, mu_k=None, v_belt, x0, v0, t_end, g=9.81, normal_load=None,
+                 friction=None, normal=None, y0=None, vy0=None) -> ContactSpec:
+    """The validated :class:`ContactSpec` of ``simulate_chain``'s arguments (with ``normal``)."""
+    if normal is None:
+        raise SceneError("`y0` and `vy0` need `normal` (a NormalContact): without it the chain has no normal "
+                         "coordinate")
+    if not isinstance(normal, NormalContact):
+        raise SceneError(f"`normal` must be a NormalContact, got {check.show(normal)}")
+    if normal_load is not None:
+        raise SceneError("give the load through `normal` (NormalContact(preload=...)), not `normal_load`: with a "
+                         "normal degree of freedom the normal force is computed, not imposed")
+    chain = ChainSpec(masses, springs, dampers, mu_s, mu_k, v_belt, x0, v0, t_end, g, None, friction)
+    load = np.abs(chain.m * chain.g + normal.preload)  # the chain's scales (velocity, force) see the real load
+    chain = ChainSpec(masses, springs, dampers, mu_s, mu_k, v_belt, x0, v0, t_end, g, tuple(load.tolist()), friction)
+    return ContactSpec(chain, normal, y0, vy0)
+
+
+def spec_of(kwargs: dict):
+    """The validated spec of ``simulate_chain`` keyword arguments (run settings left out): a
+    :class:`ChainSpec`, or a :class:`ContactSpec` when ``normal``, ``y0`` or ``vy0`` is given --
+    what ``simulate_chain`` runs. Bad values raise ``SceneError`` naming the parameter."""
+    chain = {k: v for k, v in kwargs.items() if k not in chainfile.SETTINGS}
+    unknown = sorted(set(chain) - set(chainfile.REQUIRED + chainfile.OPTIONAL))
+    if unknown:
+        raise SceneError(f"`{unknown[0]}` is not a chain parameter (allowed: {', '.join(sorted(chainfile.ALLOWED))})")
+    missing = [key for key in chainfile.REQUIRED if key not in chain]
+    if missing:
+        raise SceneError(f"`{missing[0]}` is missing (required: {', '.join(chainfile.REQUIRED)})")
+    masses, springs, dampers = chain.pop("masses"), chain.pop("springs"), chain.pop("dampers")
+    if any(key in chain for key in ("normal", "y0", "vy0")):
+        return contact_spec(masses, springs, dampers, **chain)
+    return ChainSpec(masses, springs, dampers, chain.get("mu_s"), chain.get("mu_k"), chain["v_belt"], chain["x0"],
+                     chain["v0"], chain["t_end"], chain.get("g", 9.81), chain.get("normal_load"),
+                     chain.get("friction"))
 
 
 def tridiagonal(links: np.ndarray) -> np.ndarray:

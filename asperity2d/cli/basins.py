@@ -47,9 +47,9 @@ def _chain(args) -> tuple[dict, str]:
 
         return presets.preset(args.preset), args.preset
     if args.chain_file:
-        from .belt import load_chain
+        from ..belt.chainfile import read_chain
 
-        return load_chain(args.chain_file), str(args.chain_file)
+        return read_chain(args.chain_file), str(args.chain_file)
     raise SceneError("`belt basins` needs `--preset` or `--chain-file`")
 
 

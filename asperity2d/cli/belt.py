@@ -6,13 +6,10 @@
     asperity2d belt --preset table3-k20 -o run.gif # or anything render() draws (.gif .mp4 .html .wav)
     asperity2d belt basins --preset table2-3dof -o basins.png   # initial-condition basins (asperity2d.cli.basins)
 
-A chain file holds the keyword arguments of ``simulate_chain`` at top level:
-``masses``, ``springs``, ``dampers``, ``v_belt``, ``x0``, ``v0``, ``t_end`` and
-``mu_s`` are required (``mu_s`` unless a ``[friction]`` table gives the law,
-e.g. ``law = "Stribeck"`` plus its parameters); ``mu_k``, ``g``,
-``normal_load``, ``method``, ``n_samples``, ``rtol``, ``atol`` and
-``integrator`` are optional. The parser is built in :mod:`asperity2d.cli.main`;
-this module only runs the parsed command. Thin: parse, call, print.
+A chain file holds the keyword arguments of ``simulate_chain`` (a normal contact as a
+``[normal]`` table with ``y0`` / ``vy0``); the model reads it (:mod:`asperity2d.belt.chainfile`,
+``ChainSpec.from_toml``), which lists its keys. The parser is built in
+:mod:`asperity2d.cli.main`; this module only runs the parsed command. Thin: parse, call, print.
 """
 
 from __future__ import annotations
@@ -20,14 +17,9 @@ from __future__ import annotations
 from pathlib import Path
 
 from .. import _io
+from ..belt.chainfile import read_chain as load_chain  # noqa: F401 -- the model's reader, by its old name here
 from ..errors import SceneError
 
-REQUIRED = ("masses", "springs", "dampers", "v_belt", "x0", "v0", "t_end")
-OPTIONAL = ("mu_s", "mu_k", "g", "normal_load", "method", "n_samples", "rtol", "atol", "integrator",
-            "friction")
-ALLOWED = frozenset(REQUIRED + OPTIONAL)
-#: Settings that the solver uses without checking their type first.
-_TYPES = {"method": (str,), "integrator": (str,), "n_samples": (int,), "rtol": (int, float)}
 #: What ``-o`` writes besides what :func:`asperity2d.render` draws of a chain (its suffixes come
 #: from the renderers' table, :func:`outputs`): the result (.npz) and its table (.csv).
 DATA_OUTPUTS = (".npz", ".csv")
@@ -41,43 +33,16 @@ def outputs() -> tuple[str, ...]:
     return DATA_OUTPUTS + suffixes("belt")
 
 
-def load_chain(path) -> dict:
-    """Keyword arguments for ``simulate_chain`` from a TOML chain file (``SceneError`` if unusable)."""
-    data = _io.read_toml("chain", path)
-    unknown = sorted(set(data) - ALLOWED)
-    if unknown:
-        raise SceneError(f"`{unknown[0]}` in {str(path)!r} is not a chain parameter "
-                         f"(allowed: {', '.join(sorted(ALLOWED))})")
-    missing = [key for key in REQUIRED if key not in data]
-    if "mu_s" not in data and "friction" not in data:
-        missing.append("mu_s")
-    if missing:
-        raise SceneError(f"`{missing[0]}` is missing from chain file {str(path)!r} (required: "
-                         f"{', '.join(REQUIRED)}, and mu_s or a [friction] table)")
-    for key, types in _TYPES.items():
-        if key in data and (isinstance(data[key], bool) or not isinstance(data[key], types)):
-            raise SceneError(f"`{key}` in {str(path)!r} must be of type "
-                             f"{' or '.join(t.__name__ for t in types)}, got {data[key]!r}")
-    if "friction" in data:
-        from ..friction.laws import law_from_dict
-
-        if not isinstance(data["friction"], dict):
-            raise SceneError(f"`friction` in {str(path)!r} must be a [friction] table with a `law`, "
-                             f"got {data['friction']!r}")
-        try:
-            data["friction"] = law_from_dict(data["friction"])
-        except TypeError as exc:  # a parameter the law does not take
-            raise SceneError(f"`friction` table is invalid: {exc}") from None
-    return data
-
-
 def run(args) -> int:
     """Run the parsed ``belt`` command; bad input raises ``SceneError`` (one line, exit 2)."""
     if (args.chain is None) == (args.preset is None) and not args.list_presets:
         raise SceneError("give either a `chain` TOML file or `--preset`")
     out = None if args.output is None else _io.output_path("--output", args.output, suffixes=outputs())
     # the user's file is read (and refused) before the solver and NumPy are imported
-    kwargs = None if args.chain is None or args.list_presets else load_chain(args.chain)
+    if args.chain is None or args.list_presets:
+        kwargs = None
+    else:
+        kwargs = load_chain(args.chain)
     from ..belt import presets
 
     if args.list_presets:

@@ -139,27 +139,31 @@ def cpu_limit(seconds: float):
 
 
 def _encode_chain(chain: dict) -> str:
-    data = dict(chain)
-    law = data.get("friction")
-    if law is not None:
-        if not hasattr(law, "to_dict"):
-            raise SceneError(f"`friction` must be a law from asperity2d.friction, got {law!r}")
-        data["friction"] = law.to_dict()
-    if callable(data.get("v_belt")):
+    """The JSON of ``simulate_chain`` kwargs: the chain's document (``spec``, the model's own
+    record: :func:`asperity2d.belt.chainfile.document`) and the other arguments as given."""
+    from ..belt.chainfile import REQUIRED, OPTIONAL, document
+    from ..belt.spec import spec_of
+
+    if callable(chain.get("v_belt")):
         raise SceneError("`v_belt` must be a constant for a basin map")
+    law = chain.get("friction")
+    if law is not None and not hasattr(law, "to_dict"):
+        raise SceneError(f"`friction` must be a law from asperity2d.friction, got {law!r}")
+    keys = set(REQUIRED + OPTIONAL)
+    rest = {k: v for k, v in chain.items() if k not in keys}
     try:
-        return json.dumps(data, sort_keys=True)
+        return json.dumps({"spec": document(spec_of({k: v for k, v in chain.items() if k in keys})), **rest},
+                          sort_keys=True)
     except TypeError as exc:
         raise SceneError(f"`chain` must hold numbers and lists only: {exc}") from None
 
 
 def _decode_chain(text: str) -> dict:
-    from ..friction.laws import law_from_dict
+    """``simulate_chain`` kwargs of :func:`_encode_chain`'s JSON (the spec rebuilt by ``ChainSpec.from_dict``)."""
+    from ..belt.spec import ChainSpec
 
     data = json.loads(text)
-    if isinstance(data.get("friction"), dict):
-        data["friction"] = law_from_dict(data["friction"])
-    return data
+    return {**ChainSpec.from_dict(data.pop("spec")).arguments(), **data}
 
 
 @dataclass(frozen=True)

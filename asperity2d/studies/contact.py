@@ -7,7 +7,7 @@ friction curve. Here:
 
 * :func:`minimal_map` -- regimes of the minimal model over (mu, belt speed), one exact
   run per grid point through the sweep machinery (resumable store, local
-  processes or Dask), classified by :func:`~asperity2d.belt.regime.classify_contact`;
+  processes or Dask), classified by :func:`asperity2d.belt.classify_contact`;
 * :func:`thesis_opening` -- when the thesis' 3-DOF chain (Table 2), given normal
   compliance k_c and one inclined spring per mass, loses contact: its steady
   sliding's growth rate (the solver's phase matrix) against the simulated first

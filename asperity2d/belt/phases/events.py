@@ -8,7 +8,7 @@ with F_req,i = m_i·dV/dt - F_springs+dampers,i the friction force needed to
 keep the mass on the belt. Two implementations share one interface:
 
 * :class:`ModalEvents` for closed-form phases: each g is a
-  :class:`~.modal.ModalForm`, so values and derivatives on a whole grid cost
+  :class:`~.phases.modal.ModalForm`, so values and derivatives on a whole grid cost
   one ``exp`` and one matrix product, a point costs one small ``exp``, and
   ``bound4`` bounds |g''''| rigorously (sum of |b|·|lam|⁴) for the grid screen;
 * :class:`SampledEvents` for integrated phases (and closed-form phases with an
@@ -20,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from .modal import ModalForm, linear_map, scale_columns, stack_rows
-from .spec import force_row, link_force
+from ..spec import force_row, link_force
 
 
 def event_rows(spec, modes):

@@ -58,9 +58,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import SceneError
-from .. import _inputs as check
-from .normal import NormalContact
+from ...errors import SceneError
+from ... import _inputs as check
+from ..normal import NormalContact
 
 
 @dataclass(frozen=True)

@@ -17,11 +17,11 @@ with the effective matrices of the mode pattern (:class:`ContactTemplate`):
   F_i = (K_s·q + C_s·q')_x_i.
 
 The free coordinates obey z' = A·z + b0 + b1·tau (the constrained ones enter as
-known ramps), solved in closed form by :mod:`.affine` (a
-:class:`~.modal.ModalForm` of all 4n rows) or, when A is singular or nearly
+known ramps), solved in closed form by :mod:`.contact.affine` (a
+:class:`~.phases.modal.ModalForm` of all 4n rows) or, when A is singular or nearly
 defective, by its Taylor grid.
 
-Event functions (positive while the mode holds, zero at a switch; :mod:`.finder`
+Event functions (positive while the mode holds, zero at a switch; :mod:`.phases.finder`
 locates them) per mass:
 
 * separated:          y_i / gap_scale                              ("gap": closing)
@@ -32,7 +32,7 @@ locates them) per mass:
 A *touch* of a gap, normal or slip row (its dip's lowest value within
 ``SWITCH_TOL`` of zero) ends the phase and is a graze when the mode holds; a
 touch of a stick row does not (the static force touched its limit and stays
-within it), exactly as in :mod:`.finder`.
+within it), exactly as in :mod:`.phases.finder`.
 """
 
 from __future__ import annotations
@@ -42,10 +42,10 @@ import math
 import numpy as np
 
 from .affine import AffineModes
-from .events import ModalEvents
-from .finder import SWITCH_TOL  # noqa: F401 -- the tolerance the docstring refers to
-from .modal import ModalForm
-from .normal import SEPARATED
+from ..phases.events import ModalEvents
+from ..phases.finder import SWITCH_TOL  # noqa: F401 -- the tolerance the docstring refers to
+from ..phases.modal import ModalForm
+from ..normal import SEPARATED
 
 #: event-row roles (column ``role`` of a template's rows)
 GAP, NORMAL, SLIP, STICK = "gap", "normal", "slip", "stick"
@@ -58,7 +58,7 @@ class ContactTemplate:
     """What a phase needs that depends only on the chain and its mode pattern (cached per run).
 
     ``modes`` (n,) ints; ``free`` the indices of the free coordinates in q; ``A`` and its
-    :class:`~.affine.AffineModes`; ``N_map`` (n, 4n), ``N_offset`` (n,): the normal
+    :class:`~.contact.affine.AffineModes`; ``N_map`` (n, 4n), ``N_offset`` (n,): the normal
     forces; ``F_map``, ``F_offset``: the friction forces; the event rows ``ev_map``,
     ``ev_offset`` with their ``role``, ``owner`` (mass) and ``kappa`` (stick bound).
     """
@@ -251,8 +251,8 @@ class ContactPhase:
 
 
 class ModalRows(ModalEvents):
-    """Event rows of a closed-form phase (the interface :func:`.finder.find_event` reads; values
-    and points as :class:`~.events.ModalEvents`).
+    """Event rows of a closed-form phase (the interface :func:`.phases.finder.find_event` reads; values
+    and points as :class:`~.phases.events.ModalEvents`).
 
     ``mass`` holds *row* numbers, so that the finder's touching / contradicted lists name
     rows (a mass has up to three); ``bound4`` bounds |g''''| over the phase's run
@@ -277,7 +277,7 @@ class SampledRows:
     """Event rows of a phase propagated on its Taylor grid (no modal form): g = L·Z + o, g' = L·Z'."""
 
     bound4 = None
-    pointwise = False  # (:attr:`~.events.ModalEvents.pointwise`: dense products over many times)
+    pointwise = False  # (:attr:`~.phases.events.ModalEvents.pointwise`: dense products over many times)
 
     def __init__(self, phase):
         t = phase.template

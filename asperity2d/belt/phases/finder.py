@@ -1,6 +1,6 @@
 """Locating the next switch of a phase: grid screen, then roots to machine precision.
 
-The event functions g (:mod:`.events`) are scanned on a grid of ``step`` (1/16
+The event functions g (:mod:`.phases.events`) are scanned on a grid of ``step`` (1/16
 of the fastest period) in chunks that double in length, so a long phase
 without switches costs a few vectorised calls. An interval is examined
 closely only where g may come within ``SWITCH_TOL`` of zero: it changes sign,
@@ -19,7 +19,7 @@ Each contact is then classified by the depth of its dip -- the **touch rule**:
   switch is at the first zero, located by safeguarded Newton steps;
 * the lowest value is within ±SWITCH_TOL of zero: a *touch*, at the dip's
   minimum (a simple zero of g', located to machine precision). For a
-  slipping mass the phase ends there and :func:`.modes.resolve_modes`
+  slipping mass the phase ends there and :func:`.chain.modes.resolve_modes`
   decides between stick and touch-and-go (a graze); for a stuck mass whose
   static force touches its limit the stick condition still holds, so the
   scan goes on.
@@ -38,8 +38,8 @@ from functools import partial
 
 import numpy as np
 
-#: relative tolerance that declares an event function zero (and two numbers equal at a switch)
-SWITCH_TOL = 1e-9
+from ..limits import SWITCH_TOL  # noqa: F401 -- relative tolerance that declares an event function zero
+
 _EPS = float(np.finfo(float).eps)  # (a plain float: the scalar root search does its arithmetic in floats)
 #: subdivisions of one interval for one row before it is declared free of contact
 _SUBDIVISIONS = 64
@@ -53,7 +53,7 @@ def find_event(events, horizon: float, step: float, chunk: int = 16, clock=None)
     run's wall-clock budget is watched inside the scan, not only between phases.
 
     None when nothing happens before ``horizon``. Contradicted masses left the zero of
-    their event function the wrong way at once (:func:`.modes.resolve_modes` reverses them).
+    their event function the wrong way at once (:func:`.chain.modes.resolve_modes` reverses them).
 
     Rows that start within SWITCH_TOL of zero (the switch that opened this phase) start at
     a known zero, whatever the sign of the rounding leftover their closed form gives at 0:

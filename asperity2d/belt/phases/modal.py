@@ -6,7 +6,7 @@ positions, velocities, accelerations, event functions, powers -- is a
 
     r(tau) = Re(B · exp(lam·tau)) + c0 + c1·tau
 
-with ``lam`` the modes of the slipping segments (:mod:`.segment`). Linear maps
+with ``lam`` the modes of the slipping segments (:mod:`.phases.segment`). Linear maps
 and time derivatives of a ModalForm are ModalForms, integrals and integrals of
 squares are closed form: event functions and their derivatives come exactly,
 and many times are evaluated with one ``exp``/``cos``/``sin`` and two real

@@ -3,7 +3,7 @@
 A chain with a normal degree of freedom and friction mu·N has, in a sliding phase,
 a stiffness that is *not* symmetric (the friction on x_i follows N_i, which follows
 y_i or x_i, but nothing acts back the same way): the symmetric modal solution of
-:mod:`.segment` does not apply. The first-order system is solved instead:
+:mod:`.phases.segment` does not apply. The first-order system is solved instead:
 
     z(tau) = exp(A·tau)·(z0 - alpha) + alpha + beta·tau,   A·beta = -b1,  A·alpha = beta - b0,
 
@@ -11,13 +11,13 @@ y_i or x_i, but nothing acts back the same way): the symmetric modal solution of
 with exp(A·tau) = W·diag(exp(lam·tau))·W⁻¹ from the eigendecomposition of A. A is
 real, so its complex eigenvalues come in conjugate pairs with conjugate
 eigenvectors: the real motion needs one of each pair (weight 2) and the real
-eigenvalues (weight 1), stored as a :class:`~.modal.ModalForm` -- the form every
+eigenvalues (weight 1), stored as a :class:`~.phases.modal.ModalForm` -- the form every
 event function, force and power of a phase is composed from.
 
 Where that form does not exist -- A singular (a free flight with no normal spring
 is a parabola; a mass no spring holds drifts) or nearly defective (two eigenvalues
 coalescing: the flutter onset itself, where cond(W) grows without bound) -- the
-augmented system [z, tau, 1] is propagated by :class:`~.segment.TaylorGrid`
+augmented system [z, tau, 1] is propagated by :class:`~.phases.segment.TaylorGrid`
 (exp(A·h) on a grid, a degree-16 Taylor series in between: exact to rounding) and
 the event functions are sampled from it.
 """
@@ -26,8 +26,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .modal import ModalForm
-from .segment import MAX_CONDITION, TaylorGrid
+from ..phases.modal import ModalForm
+from ..phases.segment import MAX_CONDITION, TaylorGrid
 
 #: |lambda| below this fraction of the largest counts as a zero eigenvalue (A singular)
 SINGULAR = 1e-10

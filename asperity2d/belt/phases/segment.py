@@ -18,7 +18,7 @@ K·beta = q, K·alpha = p - C·beta; the rest is a sum of modes:
   A = [[0, I], [-M⁻¹K, -M⁻¹C]] and y = Re(W·(coef·exp(lam·tau))) + y_p.
 
 Both are stored over the half spectrum (one eigenvalue of each conjugate
-pair, weight 2) as the (2L, S) block of a :class:`~.modal.ModalForm`. A
+pair, weight 2) as the (2L, S) block of a :class:`~.phases.modal.ModalForm`. A
 segment no spring anchors (singular K) or with a defective A has no such
 form: the augmented system [y, tau, 1] is propagated by :class:`TaylorGrid`.
 """
@@ -29,7 +29,7 @@ from functools import cached_property
 
 import numpy as np
 
-from .backend import watch
+from ..backend import watch
 from .modal import cmatmul, damped
 
 
@@ -76,7 +76,7 @@ class SegmentModes:
             self.half_weight = np.where(lam.imag[self.half] > 0, 2.0, 1.0)
             self.lam = lam[self.half].astype(complex)
             self.shapes = W[:, self.half].astype(complex)
-            #: :func:`~.modal.damped` of ``lam`` (exact segments)
+            #: :func:`~.phases.modal.damped` of ``lam`` (exact segments)
             self.damped = damped(self.lam)
 
     @cached_property

@@ -4,11 +4,11 @@ Between switches every mass is either stuck (x = x_s0 + V·tau, v = V exactly)
 or slipping under a constant kinetic force. The slipping masses split into
 independent *segments* -- maximal runs joined by a spring or damper -- since
 a stuck mass acts on its neighbours as a wall moving at V. Each segment moves
-as in :mod:`.modal`; the eigendecompositions are cached per segment for the
+as in :mod:`.phases.modal`; the eigendecompositions are cached per segment for the
 whole run, so a switch costs O(L²) per segment of L masses, not O(L³).
 
 When every segment has a modal form, the phase carries ``motion``: one
-:class:`~.modal.ModalForm` whose rows are x (n), v (n) and a (n), from which
+:class:`~.phases.modal.ModalForm` whose rows are x (n), v (n) and a (n), from which
 the event functions are composed in closed form.
 """
 
@@ -18,14 +18,14 @@ import math
 
 import numpy as np
 
-from .backend import RawRun
+from ..backend import RawRun
 from .energy import modal_work, power_maps, quadrature_work
-from .events import event_map
+from ..phases.events import event_map
 from .loop import event_loop
-from . import limits
-from .modal import ModalForm, block_matrix, scale_columns
-from .segment import Segment, SegmentModes
-from .spec import link_force
+from .. import limits
+from ..phases.modal import ModalForm, block_matrix, scale_columns
+from ..phases.segment import Segment, SegmentModes
+from ..spec import link_force
 
 #: bounded memory on long chains: at most this many cached segments and mode patterns (and at most
 #: :data:`~.limits.CACHE_BYTES` of each)
@@ -88,7 +88,7 @@ class Template:
         blocks, col = [], 0
         for lo, hi, m in self.runs:
             L, S = hi - lo + 1, m.lam.size
-            # (ranges of consecutive indices, as :func:`~.modal.block_matrix` takes them)
+            # (ranges of consecutive indices, as :func:`~.phases.modal.block_matrix` takes them)
             cols = range(col, col + S)
             blocks += [(range(lo, hi + 1), cols, m.shapes[:L]), (range(n + lo, n + hi + 1), cols, m.shapes[L:]),
                        (range(2 * n + lo, 2 * n + hi + 1), cols, m.shapes[L:] * m.lam)]
@@ -100,9 +100,9 @@ class Template:
         self.kind, self.mass, self.event_map, self.event_offset = event_map(spec, self.modes, self.V)
         self.event_shapes = self.event_map @ self.shapes
         self.event_shapes_abs = abs(self.event_shapes)
-        #: |lam|⁴ of the modes (the event functions' fourth-derivative bound, :class:`~.events.ModalEvents`)
+        #: |lam|⁴ of the modes (the event functions' fourth-derivative bound, :class:`~.phases.events.ModalEvents`)
         self.lam_abs4 = np.abs(self.lam) ** 4
-        #: whether any mode decays or grows (:func:`~.modal.damped`): undamped phases skip exp(Re lam·tau);
+        #: whether any mode decays or grows (:func:`~.phases.modal.damped`): undamped phases skip exp(Re lam·tau);
         #: the pattern's eigenvalues are its segments', so it is any segment's (found once per segment)
         self.damped = any(m.damped for _, _, m in self.runs)
         #: the particular solution's (c0, c1) rows [x; v; a] of stuck masses, c0's x rows to be set to x0
@@ -187,7 +187,7 @@ class LinearPhase:
             return x, v, self.friction_force(x, v, a, tau), quadrature_work(self, tau)
         n = self.spec.n
         # the rows x and v only (recording needs no accelerations): each row's value is its own
-        # sum, the same numbers as among all rows (:class:`~.events.ModalEvents`); the work
+        # sum, the same numbers as among all rows (:class:`~.phases.events.ModalEvents`); the work
         # integrals reuse these times' exponentials
         m = self.motion
         growth = m.growth(tau)

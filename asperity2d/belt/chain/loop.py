@@ -1,8 +1,8 @@
 """The event-driven loop shared by the closed-form and the integrated back-ends.
 
-Phases (a :class:`~.linear.LinearPhase` or an :class:`~.hybrid.OdePhase`)
-alternate with switching instants located by :func:`.finder.find_event` and
-resolved by :func:`.modes.resolve_modes`. Samples, event states and the energy
+Phases (a :class:`~.chain.linear.LinearPhase` or an :class:`~.chain.hybrid.OdePhase`)
+alternate with switching instants located by :func:`.phases.finder.find_event` and
+resolved by :func:`.chain.modes.resolve_modes`. Samples, event states and the energy
 integrals are taken from each phase before it is discarded:
 
 * belt work      W_b = ∫ Σ F_i·V dt         (power the belt delivers through the contacts, J)
@@ -10,17 +10,17 @@ integrals are taken from each phase before it is discarded:
 * damper loss    D_c = ∫ Σ c_j·(Δv_j)² dt   (J)
 * stored energy  E = Σ ½ m v² + Σ ½ k Δx²  so that E - E(0) = W_b - D_f - D_c.
 
-(see :mod:`.energy` for how each phase integrates them).
+(see :mod:`.chain.energy` for how each phase integrates them).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..errors import SimulationError
-from .backend import Event, RawRun
-from .events import ModalEvents, SampledEvents
-from .finder import find_event
+from ...errors import SimulationError
+from ..backend import Event, RawRun
+from ..phases.events import ModalEvents, SampledEvents
+from ..phases.finder import find_event
 from .modes import resolve_modes
 
 def event_loop(spec, options, make_phase) -> RawRun:

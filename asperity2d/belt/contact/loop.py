@@ -1,9 +1,9 @@
 """The event-driven run of a chain with a normal degree of freedom (separated, sliding, sticking).
 
-Phases (:class:`~.contact_phase.ContactPhase`, closed form) alternate with
-switching instants located by :func:`.finder.find_event` -- the same grid screen,
+Phases (:class:`~.contact.phase.ContactPhase`, closed form) alternate with
+switching instants located by :func:`.phases.finder.find_event` -- the same grid screen,
 root finder and touch rule as the tangential solver -- and resolved by
-:func:`.contact_modes.resolve_contact`. A phase whose motion grows (flutter) is
+:func:`.contact.modes.resolve_contact`. A phase whose motion grows (flutter) is
 restarted from its end state, with the same modes, before any of its modes has
 doubled: the screen's bound on the event functions' fourth derivative is taken
 for that span (no event is recorded at a restart).
@@ -15,7 +15,7 @@ The energy books (J, cumulative from t = 0):
 * damper loss    D_c = ∫ q'ᵀ·C_s·q' dt
 * impact loss    D_i = Σ ½·m·(y'-² - y'+²)               (rigid contacts)
 
-so that the stored energy (:class:`~.contact_result.ContactResult`) obeys
+so that the stored energy (:class:`~.contact.result.ContactResult`) obeys
 E - E(0) = W_b - D_f - D_c - D_i.
 
 Event kinds (:class:`~.backend.Event`): ``stick``, ``slip``, ``reverse``, ``graze`` as
@@ -27,39 +27,18 @@ also when it rebounds), ``graze-gap`` (the gap touched zero without closing) and
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 import numpy as np
 
-from ..errors import SimulationError
-from . import limits
-from .backend import Event
-from .contact_modes import resolve_contact
-from .contact_phase import GAP, NORMAL, SLIP, STICK, ContactPhase, ContactTemplate
-from .finder import SWITCH_TOL, find_event
-from .normal import SEPARATED
+from ...errors import SimulationError
+from .. import limits
+from ..backend import ContactRun, Event
+from .modes import resolve_contact
+from .phase import GAP, NORMAL, SLIP, STICK, ContactPhase, ContactTemplate
+from ..phases.finder import SWITCH_TOL, find_event
+from ..normal import SEPARATED
 
 #: bounded memory: at most this many cached mode patterns (and at most :data:`~.limits.CACHE_BYTES`)
 CACHE_SIZE = 512
-
-
-@dataclass(frozen=True)
-class ContactRun:
-    """What the contact back-end returns (SI): samples ``t`` (T,), state ``Z`` (4n, T) = [x; y; v; vy],
-    ``modes`` (n, T), ``friction_force`` and ``normal_force`` (n, T, N), ``work`` (4, T, J: belt,
-    friction, dampers, impacts), ``events``, ``stick_intervals`` and ``separation_intervals`` (per
-    mass, (start, end) s), ``meta``."""
-
-    t: np.ndarray
-    Z: np.ndarray
-    modes: np.ndarray
-    friction_force: np.ndarray
-    normal_force: np.ndarray
-    work: np.ndarray
-    events: list = field(default_factory=list)
-    stick_intervals: list = field(default_factory=list)
-    separation_intervals: list = field(default_factory=list)
-    meta: dict = field(default_factory=dict)
 
 
 def run_contact(spec, options) -> ContactRun:
@@ -85,7 +64,13 @@ def run_contact(spec, options) -> ContactRun:
     sep_start = [0.0 if modes[i] == SEPARATED else None for i in range(n)]
     sticks: list[list] = [[] for _ in range(n)]
     seps: list[list] = [[] for _ in range(n)]
-    events += [Event(t=0.0, mass=int(i), kind=kind, x=float(Z[i])) for i, kind in first if kind == "impact"]
+    # t = 0 logs the impacts, and the openings: a mass that starts on the surface (rigid: y0 = 0;
+    # compliant: y0 <= 0) and is out of contact once the start is resolved (moving away, or pulled
+    # off by its load) leaves it at t = 0 like any later opening; a rebound is its impact's
+    hit = [i for i, kind in first if kind == "impact"]
+    events += [Event(t=0.0, mass=int(i), kind="impact", x=float(Z[i])) for i in hit]
+    events += [Event(t=0.0, mass=int(i), kind="open", x=float(Z[i])) for i in range(n)
+               if y0[i] <= 0 and modes[i] == SEPARATED and i not in hit]
     with options.watching(lambda: t):  # loops deep in a phase watch the wall clock too
         while True:
             key = np.asarray(modes, dtype=np.int8).tobytes()
@@ -191,7 +176,7 @@ def check_modes(template, Z, times):
     """Raise SimulationError where a state ``Z`` (4n, T) at ``times`` (s) breaks its phase's modes.
 
     The validity check of every contact run, as the asperity model's tunnelling check: each mode's
-    event function (:mod:`.contact_phase`: the gap of a separated mass, the normal force of one in
+    event function (:mod:`.contact.phase`: the gap of a separated mass, the normal force of one in
     contact, the relative velocity of a slipping one, the static margin of a stuck one) must not be
     below zero by more than :data:`VIOLATION` (twice the touch band). Beyond it a switch was missed
     -- a separated mass inside a rigid belt (or inside a compliant one, whose contact spring never

@@ -25,10 +25,10 @@ import math
 
 import numpy as np
 
-from ..errors import SimulationError
-from .backend import RawRun, StepBudget, intervals_from_state
+from ...errors import SimulationError
+from ..backend import RawRun, StepBudget, intervals_from_state
 from .loop import event_loop
-from .spec import link_force
+from ..spec import link_force
 
 
 def _atol(spec, rtol, atol):

@@ -1,7 +1,8 @@
-"""Chains with a normal degree of freedom: the driver and the linearisation about steady sliding.
+"""Chains with a normal degree of freedom: the linearisation about steady sliding.
 
-``simulate_chain(..., normal=NormalContact(...))`` lands in :func:`simulate_contact`
-(validation, :func:`~.contact_loop.run_contact`, :class:`~.contact_result.ContactResult`).
+``simulate_chain(..., normal=NormalContact(...))`` builds a :class:`~.normal.ContactSpec`
+(:func:`~.normal.contact_spec`) and runs the back end ``METHODS["exact"]`` lists for it,
+:func:`~.contact.loop.run_contact`, into a :class:`~.contact.result.ContactResult`.
 
 :func:`steady_sliding` linearises a chain about steady sliding -- every mass in
 contact, slipping against the belt (s_i = -sign V), at rest -- with the *solver's
@@ -9,59 +10,20 @@ own* phase matrix for that mode pattern: its equilibrium solves A·z* + b0 = 0 a
 its eigenvalues are those of A. With mu·N coupling A is not symmetric: a pair of
 eigenvalues can leave the imaginary axis (flutter, the mode-coupling
 instability) where the undamped symmetric problem never could. For the one-mass
-minimal model the closed forms are in :mod:`.minimal`.
+minimal model the closed forms are in :mod:`.contact.minimal`.
 """
 
 from __future__ import annotations
 
-import time as _time
 from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import SceneError
-from .. import _inputs as check
-from .backend import MAX_WALL_TIME, RunOptions
-from .contact_loop import run_contact
-from .contact_phase import ContactTemplate
-from .contact_result import ContactResult, assemble_contact
-from .normal import ContactSpec, NormalContact
-from .spec import ChainSpec
+from ...errors import SceneError
+from .phase import ContactTemplate
+from ..spec import contact_spec
 
-
-def contact_spec(masses, springs, dampers, *, mu_s=None, mu_k=None, v_belt, x0, v0, t_end, g=9.81, normal_load=None,
-                 friction=None, normal, y0=None, vy0=None) -> ContactSpec:
-    """The validated :class:`~.normal.ContactSpec` of ``simulate_chain``'s arguments."""
-    if normal is None:
-        raise SceneError("`y0` and `vy0` need `normal` (a NormalContact): without it the chain has no normal "
-                         "coordinate")
-    if not isinstance(normal, NormalContact):
-        raise SceneError(f"`normal` must be a NormalContact, got {check.show(normal)}")
-    if normal_load is not None:
-        raise SceneError("give the load through `normal` (NormalContact(preload=...)), not `normal_load`: with a "
-                         "normal degree of freedom the normal force is computed, not imposed")
-    chain = ChainSpec(masses, springs, dampers, mu_s, mu_k, v_belt, x0, v0, t_end, g, None, friction)
-    load = np.abs(chain.m * chain.g + normal.preload)  # the chain's scales (velocity, force) see the real load
-    chain = ChainSpec(masses, springs, dampers, mu_s, mu_k, v_belt, x0, v0, t_end, g, tuple(load.tolist()), friction)
-    return ContactSpec(chain, normal, y0, vy0)
-
-
-def simulate_contact(masses, springs, dampers, *, method="exact", n_samples=2001, t_eval=None, include_events=True,
-                     rtol=1e-8, atol=None, integrator="LSODA", max_events=1_000_000, max_steps=1_000_000,
-                     max_wall_time=MAX_WALL_TIME, **chain) -> ContactResult:
-    """``simulate_chain`` with ``normal`` (see there); returns a :class:`ContactResult`."""
-    if method != "exact":
-        raise SceneError(f"`method` must be 'exact' with `normal` (the contact solver is event-driven), got "
-                         f"{check.show(method)}")
-    spec = contact_spec(masses, springs, dampers, **chain)
-    options = RunOptions.build(spec, n_samples=n_samples, t_eval=t_eval, include_events=include_events, rtol=rtol,
-                               atol=atol, integrator=integrator, max_events=max_events, max_steps=max_steps,
-                               max_wall_time=max_wall_time)
-    clock = _time.perf_counter()
-    raw = run_contact(spec, options)
-    meta = {**raw.meta, "method": method, "backend": "closed-form contact phases",
-            "wall_time": _time.perf_counter() - clock}
-    return assemble_contact(spec, raw, meta)
+__all__ = ["SteadySliding", "contact_spec", "steady_sliding"]
 
 
 @dataclass(frozen=True)

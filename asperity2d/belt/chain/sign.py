@@ -14,8 +14,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import SimulationError
-from .backend import RawRun, StepBudget, intervals_from_state
+from ...errors import SimulationError
+from ..backend import RawRun, StepBudget, intervals_from_state
 
 #: samples within this fraction of the velocity scale of belt speed count as "stuck"
 STICK_BAND = 1e-3

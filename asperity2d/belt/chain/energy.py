@@ -10,21 +10,21 @@ Closed-form phases integrate exactly: with constant belt speed, the belt and
 friction powers are linear in the state (kinetic forces are constant, stuck
 masses have v = V and need F = -F_springs+dampers), so they are modal forms
 whose integrals are closed form; the damper power is a sum of squares of modal
-forms (:func:`~.modal.square_integral`). The books then close to rounding while
+forms (:func:`~.phases.modal.square_integral`). The books then close to rounding while
 the stored energy is computed separately from the sampled x and v -- an
 independent check of the solution. Closed-form phases without a modal form
 (unanchored or critically damped segments) use 10-point Gauss-Legendre
 quadrature on pieces no longer than 1/4 of the fastest period (error below
 1e-19 of the integrand's scale for the exponentials and low-degree polynomials
-present); integrated phases carry the integrals as ODE states (:mod:`.hybrid`).
+present); integrated phases carry the integrals as ODE states (:mod:`.chain.hybrid`).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from .modal import linear_map, square_integral
-from .spec import force_row
+from ..phases.modal import linear_map, square_integral
+from ..spec import force_row
 
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(10)
 #: quadrature pieces span at most this many scan steps (1/16 period each)
@@ -60,7 +60,7 @@ def power_maps(spec, stuck, fric_slip, V):
 
 def modal_work(phase, taus, growth=None):
     """(3, T) work integrals of a closed-form phase at ``taus`` (s); ``growth``: the phase
-    motion's :meth:`~.modal.ModalForm.growth` at ``taus``, if at hand."""
+    motion's :meth:`~.phases.modal.ModalForm.growth` at ``taus``, if at hand."""
     t = phase.template
     power = phase.form(t.power_shapes, t.power_map, t.power_offset)
     work = np.empty((3, np.size(taus)))

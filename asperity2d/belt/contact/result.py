@@ -16,11 +16,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._io import FileError, check_format, load_npz
-from .normal import SEPARATED, ContactSpec, NormalContact
-from . import result as result_module
-from .result import ENERGY_SERIES, BeltResult, read_intervals, check_arrays, check_books, describe_error, read_record
-from .spec import link_force
+from ..._io import FileError, check_format, load_npz
+from ..normal import SEPARATED, NormalContact
+from .. import result as result_module
+from ..result import ENERGY_SERIES, BeltResult, read_intervals, check_arrays, check_books, describe_error, read_record
+from ..spec import ContactSpec, link_force
 
 #: per-mass (n, T) and scalar (T,) series a contact result adds to a BeltResult's
 CONTACT_SERIES = ("y", "vy", "normal_force")
@@ -85,6 +85,17 @@ class ContactResult(BeltResult):
     def _energy_parts(self) -> tuple:
         return (self.belt_work, self.friction_dissipation, self.damper_dissipation, self.impact_dissipation,
                 self.kinetic_energy, self.spring_energy, self.load_energy)
+
+    def summary(self) -> dict:
+        """:meth:`BeltResult.summary` plus the normal contact's record: ``separations`` (how many
+        times the masses left the belt) and, per mass, its ``separations`` and ``separated_s``
+        (time out of contact, s)."""
+        out = super().summary()
+        for entry, intervals in zip(out["masses"], self.separation_intervals):
+            entry["separations"] = len(intervals)
+            entry["separated_s"] = float(sum(b - a for a, b in intervals))
+        out["separations"] = sum(len(per) for per in self.separation_intervals)
+        return out
 
     @property
     def separated(self) -> np.ndarray:
@@ -201,7 +212,7 @@ def load(path: str | os.PathLike) -> BeltResult:
 
 
 def assemble_contact(spec: ContactSpec, raw, meta: dict) -> ContactResult:
-    """Build a ContactResult from :class:`~.contact_loop.ContactRun` (adds forces and stored energies)."""
+    """Build a ContactResult from :class:`~.backend.ContactRun` (adds forces and stored energies)."""
     n, D = spec.n, 2 * spec.n
     Z = raw.Z
     q, qd = Z[:D], Z[D:]

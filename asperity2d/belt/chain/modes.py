@@ -6,7 +6,7 @@ mu_s·N; otherwise it slips in the direction of the net force (which covers a
 reversal through belt speed). At the limit itself (within SWITCH_TOL of it)
 the trend of F_req decides: moving outwards, the mass slips.
 
-**Grazes.** :func:`.finder.find_event` ends a phase where a slipping mass
+**Grazes.** :func:`.phases.finder.find_event` ends a phase where a slipping mass
 *touches* belt speed (its relative velocity has a minimum within the tolerance
 of zero, located to machine precision). There the relative acceleration is
 zero, so F_req equals the kinetic force -s·mu_k·N:
@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .finder import SWITCH_TOL
+from ..phases.finder import SWITCH_TOL
 
 
 def resolve_modes(spec, x, v, V, a_belt, previous, v_scale, touching=(), contradicted=()):

@@ -25,13 +25,13 @@ static-limit scales):
    negative (within the tolerance: when it falls). A compliant contact is closed
    when the mass is below the surface, or on it and moving (or, at rest,
    accelerating) into it.
-3. **Tangential state** of each mass in contact, as :mod:`.modes` decides it
+3. **Tangential state** of each mass in contact, as :mod:`.chain.modes` decides it
    with the static limit mu_s·N of the *actual* normal force: at belt speed it
    sticks when the force it needs is within the limit (at the limit itself, when
    the margin mu_s·N - |F| is growing), else it slips the way the net force
    pushes it.
 
-**Grazes** (the touch rule of :mod:`.finder`): a gap whose dip's lowest point
+**Grazes** (the touch rule of :mod:`.phases.finder`): a gap whose dip's lowest point
 is within the tolerance of zero has touched the surface without closing (a
 rigid contact there would have to pull, a compliant one stays unloaded); a
 normal force whose dip touches zero has not opened. Those rows keep their
@@ -45,9 +45,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .contact_phase import GAP, NORMAL, SLIP, STICK
-from .finder import SWITCH_TOL
-from .normal import SEPARATED
+from .phase import GAP, NORMAL, SLIP, STICK
+from ..phases.finder import SWITCH_TOL
+from ..normal import SEPARATED
 
 
 def resolve_contact(spec, Z, previous, touched=(), contradicted=()):
