@@ -10,8 +10,16 @@ m/s) with its damping varied (c = 0, 0.5, 2 N s/m; Figures 8-9): each of the
 thesis' statements about damping is a claim, judged as stated. One of the
 parameter studies of ``belt_parameters.py``, which runs them all.
 
-Run: ``python scenes/belt_damping.py [--quick] [-o DIR]``.
+Run::
+
+    python scenes/belt_damping.py [--quick] [--plots] [-o DIR] [--json]
 """
+
+# %%
+# This table's runs, measures and claims are ``belt_parameters.py``'s (its lesson shows each
+# step); this script runs the damping table alone: ``belt_parameters.main`` with ``only="damping"``,
+# its outputs in this script's own folder. The script sits beside ``belt_parameters.py`` in
+# ``scenes/``, so that folder goes on the import path.
 
 import sys
 from pathlib import Path
@@ -21,8 +29,15 @@ import belt_parameters  # noqa: E402
 from asperity2d import scripting  # noqa: E402
 
 
+# %%
+# The command line
+# ----------------
+#
+# The options are ``belt_parameters.py``'s but ``--only``: ``--quick``, ``--plots``, ``-o``,
+# ``--json``.
+
 def main(argv=None) -> int:
-    return belt_parameters.main(argv, only="damping")
+    return belt_parameters.main(argv, only="damping", script=__file__)
 
 
 if __name__ == "__main__":

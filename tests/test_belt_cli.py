@@ -70,8 +70,9 @@ def _scene(name):
 
 @pytest.mark.parametrize("name,n_claims", [("belt_2dof", 5), ("belt_3dof", 3), ("belt_speed", 4)])
 def test_study_scripts_write_claims(name, n_claims, tmp_path, capsys):
-    assert _scene(name).main(["--quick", "--out", str(tmp_path)]) == 0
-    (out,) = tmp_path.glob("*.json")
+    assert _scene(name).main(["--quick", "-o", str(tmp_path)]) == 0
+    (out,) = tmp_path.glob("*.json")  # the summary alone: no plots without --plots
     summary = json.loads(out.read_text())
+    assert out.name == "summary.json" and summary["solver"].startswith("asperity2d.belt exact")
     assert len(summary["claims"]) == n_claims
     assert all(c["verdict"] in ("holds", "does not hold") for c in summary["claims"])

@@ -230,12 +230,11 @@ def scene_outputs(block, block_vars, gallery_conf) -> str:
 
 
 def _claims(out: Path) -> list[dict]:
-    """The claim records the script wrote (its summary.json, or a belt study's <name>.json)."""
+    """The claim records the script wrote (its summary.json)."""
     import json
 
-    paths = [out / "summary.json"] if (out / "summary.json").exists() else sorted(out.glob("*.json"))
     found = []
-    for path in paths:
+    for path in [out / "summary.json"]:
         try:
             data = json.loads(path.read_text(encoding="utf-8"))
         except (OSError, ValueError):

@@ -40,8 +40,9 @@ STUDIES = {
 
 
 def claims_of(directory: Path) -> list[dict]:
-    """The claim records a script wrote to ``directory`` (its summary.json, or the belt
-    studies' <name>.json), in the order written."""
+    """The claim records a script wrote to ``directory`` (its summary.json; a folder without one,
+    as the belt studies wrote before they used the common script harness: every <name>.json in
+    it), in the order written."""
     found = []
     candidates = [directory / "summary.json"] if (directory / "summary.json").exists() else \
         sorted(directory.glob("*.json"))
