@@ -49,11 +49,10 @@ import numpy as np
 
 from asperity2d import make_scene
 from asperity2d import scripting
-from asperity2d.studies.claims import claim, verdict_line
-from asperity2d.studies.rough import rough_run
-from asperity2d.sweep.engine import map_calls
+from asperity2d.experiments.verdicts import claim, verdict_line
+from asperity2d.studies.rough import MIN_LENGTH_RATIO, rough_run
+from asperity2d.sweep import map_calls
 from asperity2d.surface import fraction_above
-from asperity2d.units import MIN_LENGTH_RATIO
 
 MEAN, STD, BASE = 0.5e-6, 0.1e-6, 1e-6  # m
 LEVELS = (-1.5, -1.0, -0.5, 0.0, 0.5, 1.0, 1.5)  # (L - mean) / std
@@ -130,9 +129,10 @@ def analyse(rows: list[dict], size: dict, levels, n_seeds: int) -> tuple[dict, l
 
 
 def plot(table: dict, path) -> None:
-    from asperity2d.renderers.plots import figure, save
+    from matplotlib.figure import Figure  # a user's own figure (no pyplot)
 
-    fig, (ax,) = figure(1, width=6.5, height=3.6)
+    fig = Figure(figsize=(6.5, 3.6), layout="constrained")
+    ax = fig.add_subplot()
     grid = np.linspace(MEAN - 2.2 * STD, MEAN + 2.2 * STD, 200)
     for i, (dist, rows) in enumerate(table.items()):
         ax.plot(grid * 1e6, [fraction_above(g, mean=MEAN, std=STD, distribution=dist) for g in grid],
@@ -146,7 +146,7 @@ def plot(table: dict, path) -> None:
     ax.set_ylabel("fraction of lower asperities touched")
     ax.set_title(f"heights {MEAN * 1e6:g} ± {STD * 1e6:g} µm", fontsize=9)
     ax.legend(fontsize=7)
-    save(fig, path, 120)
+    fig.savefig(path, dpi=120)
 
 
 def main(argv=None) -> int:

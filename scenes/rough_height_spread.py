@@ -50,9 +50,9 @@ import numpy as np
 from asperity2d import stats
 from asperity2d.scene import OOTEN_DEFAULTS, kinetic_default
 from asperity2d import scripting
-from asperity2d.studies.claims import HOLDS, UNTESTABLE, claim, judge, verdict_line
+from asperity2d.experiments.verdicts import HOLDS, UNTESTABLE, claim, judge, verdict_line
 from asperity2d.studies.rough import rough_run, spearman, trend_claim
-from asperity2d.sweep.engine import map_calls
+from asperity2d.sweep import map_calls
 
 SPREADS = (0.0, 0.05, 0.1, 0.15, 0.2)  # sigma / base
 QUICK_SPREADS = (0.0, 0.2)
@@ -141,9 +141,10 @@ def analyse(setup: str, rows: list[dict], spreads) -> tuple[dict, list[dict]]:
 
 
 def plot(results: dict, path) -> None:
-    from asperity2d.renderers.plots import figure, save
+    from matplotlib.figure import Figure  # a user's own figure (no pyplot)
 
-    fig, axes = figure(2, width=9.0, height=3.0, sharex=True)
+    fig = Figure(figsize=(9.0, 2 * 3.0), layout="constrained")
+    axes = fig.subplots(2, 1, sharex=True)
     for ax, q, label in ((axes[0], "critical_force_N", "critical force (mN)"),
                          (axes[1], "mean_stick_force_N", "mean stick force (mN)")):
         for i, (setup, rows) in enumerate(results.items()):
@@ -158,7 +159,7 @@ def plot(results: dict, path) -> None:
         ax.legend(fontsize=8)
     axes[1].set_xlabel("height spread sigma / base")
     axes[0].set_title("random heights, regular spacing; points: seeds", fontsize=9)
-    save(fig, path, 120)
+    fig.savefig(path, dpi=120)
 
 
 def main(argv=None) -> int:

@@ -46,9 +46,9 @@ import numpy as np
 from asperity2d import stats
 from asperity2d.scene import OOTEN_DEFAULTS, kinetic_default
 from asperity2d import scripting
-from asperity2d.studies.claims import UNTESTABLE, claim, verdict_line
+from asperity2d.experiments.verdicts import UNTESTABLE, claim, verdict_line
 from asperity2d.studies.rough import self_affine_run, spearman, trend_claim
-from asperity2d.sweep.engine import map_calls
+from asperity2d.sweep import map_calls
 
 HURSTS, QUICK_HURSTS = (0.3, 0.5, 0.7, 0.9), (0.3, 0.9)
 RMS = 0.15e-6  # m
@@ -106,9 +106,10 @@ def analyse(setup: str, rows: list[dict], hursts, load: float) -> tuple[dict, li
 
 
 def plot(results: dict, path) -> None:
-    from asperity2d.renderers.plots import figure, save
+    from matplotlib.figure import Figure  # a user's own figure (no pyplot)
 
-    fig, axes = figure(3, width=8.0, height=2.6, sharex=True)
+    fig = Figure(figsize=(8.0, 3 * 2.6), layout="constrained")
+    axes = fig.subplots(3, 1, sharex=True)
     for ax, q, label, scale in ((axes[0], "critical_force_N", "critical force (mN)", 1e3),
                                 (axes[1], "mean_stick_force_N", "mean stick force (mN)", 1e3),
                                 (axes[2], "steepest_touched_flank_deg", "steepest flank touched (°)", 1.0)):
@@ -124,7 +125,7 @@ def plot(results: dict, path) -> None:
     axes[0].set_yscale("log")
     axes[1].set_yscale("log")
     axes[2].set_xlabel("Hurst exponent H (rms height fixed at 0.15 µm)")
-    save(fig, path, 120)
+    fig.savefig(path, dpi=120)
 
 
 def main(argv=None) -> int:

@@ -17,7 +17,7 @@ lower asperities that touched the slider, the most contacts at once, the
 steepest flank among the asperities that touched, and the contact angle the
 breakaway forces imply (:func:`breakaway_angle`), to tell which flanks set them.
 The scripts map them over parameter sets with
-:func:`asperity2d.sweep.engine.map_calls` and summarise with :mod:`asperity2d.stats`.
+:func:`asperity2d.sweep.map_calls` and summarise with :mod:`asperity2d.stats`.
 """
 
 from __future__ import annotations
@@ -32,6 +32,12 @@ from ..critical import critical_force
 from ..errors import SceneError
 from ..scene import Scene, SpringDrive
 from ..run import simulate
+from ..units import MIN_LENGTH_RATIO
+
+#: Smallest height (and interference) the engine resolves, in asperity bases (the package's
+#: ``asperity2d.units.MIN_LENGTH_RATIO``): a summit closer than this to a fixed track is a
+#: contact the engine cannot resolve.
+MIN_LENGTH_RATIO = MIN_LENGTH_RATIO
 
 
 def flank_angles(scene: Scene) -> dict[str, np.ndarray]:
