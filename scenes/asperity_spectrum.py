@@ -33,13 +33,12 @@ import itertools
 
 import numpy as np
 
-from asperity2d._format import si
-from asperity2d import make_scene, simulate
+from matplotlib.figure import Figure
+
+from asperity2d import make_scene, render, simulate
 from asperity2d.dynamics import signal, spectrum
 from asperity2d.dynamics.asperity_basins import WINDOW, asperity_basins, classify_asperity
 from asperity2d.dynamics.basins import LABELS
-from asperity2d.renderers.dynamics import plot_spectra
-from asperity2d.renderers.sound import write_wav
 from asperity2d import scripting
 
 DRIVES = {"default": (3_720.0, 120), "stiff": (37_200.0, 40)}  # N/m, lower asperities
@@ -55,7 +54,27 @@ def line_fraction(sp, f_pitch, harmonics=5):
     return float(p[above & near].sum() / p[above].sum())
 
 
+def plot_spectra(curves, path, *, f_max: float, title: str) -> str:
+    """The friction force's PSD (N²/Hz, log scale) of each (label, Spectrum) up to ``f_max`` (Hz),
+    its dominant frequency and harmonics marked by dots."""
+    fig = Figure(figsize=(7.5, 3.6), layout="constrained")
+    ax = fig.add_subplot()
+    for label, sp in curves:
+        keep = (sp.frequency > 0) & (sp.frequency <= f_max)
+        line, = ax.semilogy(sp.frequency[keep] / 1e6, sp.power[keep], lw=0.9,
+                            label=f"{label}: {sp.dominant / 1e6:.4g} MHz, THD {sp.thd:.2f}")
+        marks = [h.frequency for h in sp.harmonics if np.isfinite(h.power) and h.power > 0 and h.frequency <= f_max]
+        ax.plot(np.divide(marks, 1e6), np.interp(marks, sp.frequency, sp.power), "o", ms=3, color=line.get_color())
+    ax.set_xlabel("frequency (MHz)")
+    ax.set_ylabel("PSD (N²/Hz)")
+    ax.legend(fontsize=7, loc="upper right")
+    ax.set_title(title, fontsize=9)
+    fig.savefig(path, dpi=120)
+    return str(path)
+
+
 def main(argv=None) -> int:
+    si = scripting.si
     p = scripting.parser(scripting.title(__doc__))
     scripting.add_workers(p)
     args = p.parse_args(argv)
@@ -89,8 +108,9 @@ def main(argv=None) -> int:
         row["slip_events_in_window"] = int(cls["events"])
         row["pitches_per_cycle"] = cls["pitches_per_cycle"]
         summary["runs"][f"{spacing}_{drive}"] = row
-    summary["plot"] = str(plot_spectra(curves, out / "friction_spectra.png", unit="N", f_max=6 * 16e6,
-                                       title="friction force spectra, fixed track (V/pitch = 16 MHz)"))
+    summary["plot"] = plot_spectra(curves, out / "friction_spectra.png", f_max=6 * 16e6,
+                                   title="friction force spectra, fixed track (V/pitch = 16 MHz); "
+                                         "dots: dominant frequency and its harmonics")
     summary["notes"] = "scan and sound use the stiff drive (many slips on a 40-asperity surface)"
     preloads = (0.0, 0.01) if args.quick else (0.0, 0.005, 0.01, 0.02, 0.03)
     stiffness, count = drives["stiff"]
@@ -101,8 +121,9 @@ def main(argv=None) -> int:
                                "classes": [LABELS[int(c)] if c >= 0 else "failed" for c in scan.values["label"][:, 0]],
                                "slip_events": scan.values["events"][:, 0].tolist(), **scan.to_dict()}
     f_pitch = regular.scene.drive.velocity / regular.scene.lower.spacing.mean_pitch
-    summary["sound"] = write_wav(regular, out / "regular_friction.wav", signal="friction_force",
-                                 time_scale=110.0 / f_pitch).to_dict()
+    wav = render(regular, out / "regular_friction.wav", signal="friction_force", time_scale=110.0 / f_pitch)
+    summary["sound"] = {"path": str(wav), "spectrogram": str(wav.with_name(wav.stem + ".spectrogram.png")),
+                        "signal": "friction_force", "time_scale": 110.0 / f_pitch}
     lines = []
     for name, row in summary["runs"].items():
         fr = row["friction_force"]
