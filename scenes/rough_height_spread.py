@@ -186,6 +186,14 @@ def main(argv=None) -> int:
                          f"mean stick {n['mean_stick_force_N']['mean'] * 1e3:.3g} mN, touched "
                          f"{n['touched_fraction']['mean']:.2f}, contacts at once {n['max_contacts']['mean']:.2g}")
     lines += [verdict_line(c) for c in summary["claims"]]
+    untestable = sum(c["verdict"] == UNTESTABLE for c in summary["claims"])
+    if untestable:
+        runs = 1 + (len(spreads) - 1) * args.seeds  # sigma = 0 is one run
+        needed = next(n for n in range(1, 64) if 0.5 ** n < ALPHA)  # one-sided Wilcoxon: p >= 1 / 2**n
+        lines.append(f"{untestable} claims not testable: {len(spreads)} spreads x {args.seeds} seed(s) give "
+                     f"{runs} runs per set-up; a rank correlation needs 3 or more, and the comparison with the "
+                     f"uniform surface {needed} seeds or more to reach p < {ALPHA:g} (the full study: "
+                     f"{len(SPREADS)} spreads x 8 seeds)")
     return scripting.finish(args, summary, out, lines)
 
 

@@ -149,11 +149,19 @@ def main(argv=None) -> int:
     for setup in SETUPS:
         for h in hursts:
             n = summary["setups"][setup]["per_hurst"][f"{h:g}"]
+            stick = n["mean_stick_force_N"]["mean"]
+            stick = (f"mean stick {stick * 1e3:.3g} mN" if math.isfinite(stick) else
+                     "no stick-slip event in any run (so no mean stick force)")
             lines.append(f"{setup} H = {h:g}: {n['lower_count']['mean']:.3g} asperities, rms slope "
                          f"{n['rms_slope']['mean']:.2f}, critical {n['critical_force_N']['mean'] * 1e3:.3g} mN, "
-                         f"mean stick {n['mean_stick_force_N']['mean'] * 1e3:.3g} mN, steepest flank touched "
-                         f"{n['steepest_touched_flank_deg']['mean']:.3g}°")
+                         f"{stick}, steepest flank touched {n['steepest_touched_flank_deg']['mean']:.3g}°")
     lines += [verdict_line(c) for c in summary["claims"]]
+    untestable = sum(c["verdict"] == UNTESTABLE for c in summary["claims"])
+    if untestable:
+        runs = len(hursts) * args.seeds
+        lines.append(f"{untestable} claims not testable: {len(hursts)} Hurst exponents x {args.seeds} seed(s) "
+                     f"give {runs} runs per set-up, and a rank correlation needs 3 or more (the full study: "
+                     f"{len(HURSTS)} x 5 seeds, {len(HURSTS) * 5} runs)")
     return scripting.finish(args, summary, out, lines)
 
 
