@@ -50,6 +50,13 @@ from asperity2d.experiments.verdicts import UNTESTABLE, claim, verdict_line
 from asperity2d.studies.rough import self_affine_run, spearman, trend_claim
 from asperity2d.sweep import map_calls
 
+# %%
+# The settings
+# ------------
+#
+# The Hurst exponents tried, the profiles (fixed rms height), the slider and the two set-ups;
+# the quick setting (the one the documentation ran) is a smoke test whose trends cannot be tested.
+
 HURSTS, QUICK_HURSTS = (0.3, 0.5, 0.7, 0.9), (0.3, 0.9)
 RMS = 0.15e-6  # m
 PROFILE = dict(rms_height=RMS, length=16e-6, points=2048, shortest=0.25e-6, longest=4e-6)
@@ -63,6 +70,16 @@ QUANTITIES = ("critical_force_N", "mean_stick_force_N", "lower_count", "rms_slop
 MU_K = kinetic_default(OOTEN_DEFAULTS["mu_static"])
 ALPHA = 0.05
 
+
+# %%
+# 1. Judge the trends
+# -------------------
+#
+# Each run (in ``main`` below) is :func:`asperity2d.studies.rough.self_affine_run`: a seeded
+# :func:`asperity2d.surface.self_affine_profile` made into a scene by
+# ``make_scene(lower_surface=profile)`` and measured, mapped over the workers with
+# :func:`asperity2d.sweep.map_calls`. The trends with H are judged by a Spearman rank
+# correlation (:func:`asperity2d.studies.rough.trend_claim`).
 
 def analyse(setup: str, rows: list[dict], hursts, load: float) -> tuple[dict, list[dict]]:
     valid = [r for r in rows if r.get("valid") == 1.0]
@@ -105,6 +122,13 @@ def analyse(setup: str, rows: list[dict], hursts, load: float) -> tuple[dict, li
     return {"per_hurst": per_h, "sanity": sanity, "spearman_vs_hurst": observed}, claims
 
 
+# %%
+# 2. Plot
+# -------
+#
+# The forces and the steepest flank touched against H, each seed a point and the mean a line
+# (a plain matplotlib figure).
+
 def plot(results: dict, path) -> None:
     from matplotlib.figure import Figure  # a user's own figure (no pyplot)
 
@@ -127,6 +151,13 @@ def plot(results: dict, path) -> None:
     axes[2].set_xlabel("Hurst exponent H (rms height fixed at 0.15 µm)")
     fig.savefig(path, dpi=120)
 
+
+# %%
+# The command line
+# ----------------
+#
+# ``main`` reads the options (``--quick``, ``--seeds``, ``--workers``, ``-o``, ``--json``), runs
+# the steps, draws and prints the numbers and the verdicts.
 
 def main(argv=None) -> int:
     args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=5, minimum_seeds=1,
