@@ -5,8 +5,8 @@ Critical force and mean stick force against the spread of the asperity heights.
 
 The surfaces of E. Ooten, *Precision Motion Control at Low Velocities in the
 Presence of Friction* (senior thesis, Texas A&M University, 1997-98): 10 lower /
-3 upper 45° full triangles on a 1 µm base, 1.25 µm pitch, Table 1 steel, with Gaussian random heights on both surfaces:
-every asperity keeps its 1 µm base and gets its own height about 0.5 µm with
+3 upper 45° full triangles on a 1 µm base, 1.25 µm pitch, Table 1 steel, with
+Gaussian random heights on both surfaces: every asperity keeps its 1 µm base and gets its own height about 0.5 µm with
 standard deviation sigma, so sigma / base = 0 (today's surfaces) to 0.2; the
 spacing stays regular. Both set-ups: the free slider under 10 mN, and seed
 000's fixed track whose deepest upper tip runs 0.125 µm below the tallest

@@ -32,12 +32,12 @@ from ..critical import critical_force
 from ..errors import SceneError
 from ..scene import Scene, SpringDrive
 from ..run import simulate
-from ..units import MIN_LENGTH_RATIO
+from .. import units as _units
 
 #: Smallest height (and interference) the engine resolves, in asperity bases (the package's
 #: ``asperity2d.units.MIN_LENGTH_RATIO``): a summit closer than this to a fixed track is a
 #: contact the engine cannot resolve.
-MIN_LENGTH_RATIO = MIN_LENGTH_RATIO
+MIN_LENGTH_RATIO = _units.MIN_LENGTH_RATIO
 
 
 def flank_angles(scene: Scene) -> dict[str, np.ndarray]:
