@@ -30,18 +30,53 @@ from __future__ import annotations
 
 import math
 
+from matplotlib.figure import Figure
+
 import asperity2d as a
-from asperity2d._format import si
 from asperity2d import scripting
-from asperity2d.critical import critical_force_bracket
 from asperity2d.studies.ooten import pushed
 
 
+# %%
+# 1. The scene
+# ------------
+#
+# Ooten's set-up with regular spacing and a constant-force drive. The quick setting (the one
+# the documentation ran) uses 6 lower asperities and 2 tips instead of 12 and 3;
+# ``track="free"`` swaps the fixed-height track for the free slider under its load.
+
 def build_scene(quick: bool = False, **overrides):
+    """Regular spacing under a constant force (fewer asperities if ``quick``)."""
     params = dict(lower_count=6 if quick else 12, upper_count=2 if quick else 3)
     params.update(overrides)
     return a.make_scene(spacing="regular", drive="force", **params)
 
+
+# %%
+# 2. The critical force from rest, by bisection
+# ---------------------------------------------
+#
+# :func:`asperity2d.critical_force_bracket` settles the slider at rest on the surface, applies
+# a force at once and halves the bracket between a force that stops and one that passes until
+# it is 1 % wide. Then :func:`asperity2d.studies.ooten.pushed` pushes from that same rest with
+# 5 % less and 5 % more: the first run stops on a flank, the second passes.
+
+def critical_and_pushes(scene):
+    """The bracket of the critical force from rest and the runs at 0.95 x and 1.05 x it."""
+    bracket = a.critical_force_bracket(scene, rel_tol=0.01)  # from rest (the default start)
+    runs = {label: pushed(scene, factor * bracket.value, start="rest")
+            for label, factor in (("below", 0.95), ("above", 1.05))}
+    return bracket, runs
+
+
+# %%
+# 3. The closed form beside it
+# ----------------------------
+#
+# The free slider climbs one flank under its load L: the kinetic flank law
+# L tan(theta + atan mu_k) is its critical force. On the fixed track a slow push needs the
+# static flank law for all n tips, n k delta tan(theta + atan mu_s); a force applied at once
+# undercuts it, and the ratio says by how much.
 
 def flank_law(scene) -> tuple[float, str]:
     """The set-up's flank law (N) and its formula in words (see the module docstring)."""
@@ -55,24 +90,48 @@ def flank_law(scene) -> tuple[float, str]:
                  f"n k delta tan(45 deg + atan mu_s), a bound a force applied at once undercuts")
 
 
+# %%
+# 4. Plot the two runs
+# --------------------
+#
+# The slider's travel against time for both pushes (Ooten's figure 10): a plateau is where
+# the slider stopped on a flank. A plain matplotlib figure, from the runs' ``t`` and ``x``.
+
+def plot_travel(runs: dict, path) -> None:
+    """Travel (µm) against time (µs, or ns for a run shorter than 1 µs) of the runs below and
+    above the critical force."""
+    longest = max(float(run.t[-1]) for run in runs.values())
+    scale, unit = (1e6, "µs") if longest >= 1e-6 else (1e9, "ns")
+    fig = Figure(figsize=(7.0, 3.2), layout="constrained")
+    ax = fig.add_subplot()
+    for label, factor in (("below", 0.95), ("above", 1.05)):
+        run = runs[label]
+        ax.plot(run.t * scale, (run.x - run.x[0]) * 1e6, label=f"{factor:.2f} x critical ({run.status})")
+    ax.set_xlabel(f"time ({unit})")
+    ax.set_ylabel("slider travel (µm)")
+    ax.legend(loc="best", fontsize="small")
+    fig.savefig(path, dpi=120)
+
+
+# %%
+# The command line
+# ----------------
+#
+# ``main`` reads the options (``--quick``, ``--track``, ``-o``, ``--json``, ``--no-gif``),
+# runs the steps, draws the run that passes with :func:`asperity2d.render` and prints.
+
 def main(argv=None) -> int:
+    si = scripting.si
     p = scripting.parser(scripting.title(__doc__))
     p.add_argument("--track", choices=("fixed", "free"), default="fixed",
                    help="Ooten's fixed track (default) or the free slider under its load")
     args = p.parse_args(argv)
     out = scripting.out_dir(args, __file__)
     scene = build_scene(args.quick, track=args.track)
-    bracket = critical_force_bracket(scene, rel_tol=0.01)  # from rest (the default start)
-    runs = {label: pushed(scene, factor * bracket.value, start="rest")
-            for label, factor in (("below", 0.95), ("above", 1.05))}
-    from asperity2d.renderers import render
-    from asperity2d.renderers.plots import plot_positions
-
-    plot_positions([runs["below"], runs["above"]],
-                   [f"0.95 x critical ({runs['below'].status})", f"1.05 x critical ({runs['above'].status})"],
-                   out / "positions.png")
+    bracket, runs = critical_and_pushes(scene)
+    plot_travel(runs, out / "positions.png")
     if not args.no_gif:
-        render(runs["above"], out / "run.gif", frames=args.frames or (40 if args.quick else 100))
+        a.render(runs["above"], out / "run.gif", frames=args.frames or (40 if args.quick else 100))
     law, law_words = flank_law(scene)
     summary = {
         "track": scene.slider.track, "start": "rest",

@@ -1,7 +1,11 @@
 """A measured-style profile turned into asperities
 ===============================================
 
-A measured-style surface profile turned into triangular asperities, with its statistics.
+A measured-style surface profile turned into triangular asperities, with its statistics: the
+lesson reads a profile, levels it, fits its Hurst exponent, and turns its summits into the
+asperities a scene is made of. The stiffness and mass rules are those of E. Ooten,
+*Precision Motion Control at Low Velocities in the Presence of Friction* (senior thesis, Texas
+A&M University, 1997-98), Table 1 and Appendix A.
 
 Reads ``scenes/data/measured_style_profile.csv`` (a SYNTHETIC self-affine
 trace with instrument-like noise and tilt, made by
@@ -9,7 +13,8 @@ trace with instrument-like noise and tilt, made by
 tilt, and reports the rms height, rms slope and the Hurst exponent fitted to
 the power spectrum between the wavelengths length / 8 (6.25 µm; the longest
 ones are few and smeared by the window) and 0.2 µm (above the noise floor);
-the recipe asked for H = 0.8 between 10 µm and 0.1 µm. The summits with prominence
+the recipe asked for H = 0.8 between 10 µm and 0.1 µm (the quick run's quarter trace is too
+short for the fit to find it: it reports its own H with its error). The summits with prominence
 >= 20 nm (ten times the noise) and width at half prominence >= 0.1 µm become
 triangular asperities by the rule of ``asperity2d.surface.asperities``;
 track stiffness from Ooten's Table 1's rule K = 2 E b with its printed
@@ -28,15 +33,21 @@ Run::
 
 from __future__ import annotations
 
+import json
 import math
 from pathlib import Path
 
 import numpy as np
 
 from asperity2d import scripting
-from asperity2d._io import write_json
 from asperity2d import surface
-from asperity2d.renderers import surface as surface_plots
+
+# %%
+# The settings
+# ------------
+#
+# The shipped trace, the rule that decides which summits become asperities (prominence and
+# width, above the trace's noise), and Ooten's rules for each asperity's track stiffness and mass.
 
 DATA = Path(__file__).resolve().parent / "data" / "measured_style_profile.csv"
 MIN_PROMINENCE = 20e-9  # m: ten times the 2 nm rms noise of the shipped trace
@@ -46,10 +57,121 @@ DENSITY = 7850.0  # kg/m^3, steel
 SHORTEST_FIT_WAVELENGTH = 0.2e-6  # m
 
 
+# %%
+# 1. Read and level the profile
+# -----------------------------
+#
+# :func:`asperity2d.surface.read_profile` reads a two-column file (or an instrument's file) in
+# the unit it is given; :meth:`~asperity2d.surface.SurfaceProfile.detrended` removes the tilt.
+# The quick setting (the one the documentation ran) keeps the first quarter of the trace.
+
+def load_profile(path, unit: str, quick: bool):
+    """The levelled profile of the file ``path`` (the first quarter of it if ``quick``)."""
+    measured = surface.read_profile(path, unit=unit)
+    if quick:  # the first quarter of the trace
+        keep = slice(0, max(64, measured.count // 4))
+        measured = surface.SurfaceProfile(measured.x[keep], measured.z[keep], name=measured.name,
+                                          metadata={**measured.metadata, "cropped": "first quarter"})
+    return measured.detrended()
+
+
+# %%
+# 2. Its spectrum and Hurst exponent
+# ----------------------------------
+#
+# :func:`asperity2d.surface.power_spectrum` gives C(q); a self-affine surface has
+# C(q) ~ q^-(1 + 2H). :func:`asperity2d.surface.fit_hurst` fits H over a band of wavenumbers:
+# from 8 times the longest wavelength's q (the longest ones are few and smeared by the window)
+# to the shortest wavelength above the noise floor.
+
+def hurst_fit(profile):
+    """The profile's power spectrum and the Hurst fit over the band the text explains."""
+    spectrum = surface.power_spectrum(profile)
+    fit = surface.fit_hurst(spectrum, q_min=8 * float(spectrum.q[0]),
+                            q_max=2 * math.pi / SHORTEST_FIT_WAVELENGTH)
+    return spectrum, fit
+
+
+# %%
+# 3. Summits into asperities
+# --------------------------
+#
+# :func:`asperity2d.surface.find_asperities` keeps the summits of enough prominence and width
+# and makes each a triangle (its feet, apex and base level); with ``modulus`` and ``density`` it
+# gives each its track stiffness K = 2 E b and its mass rho b^2 h / 3.
+
+def to_asperities(profile, min_prominence: float = MIN_PROMINENCE, min_width: float = MIN_WIDTH):
+    """The triangular asperities of ``profile`` by the rule above."""
+    return surface.find_asperities(profile, min_prominence=min_prominence, min_width=min_width,
+                                   modulus=MODULUS, density=DENSITY)
+
+
+# %%
+# 4. Plot
+# -------
+#
+# Two plain matplotlib figures: the profile with its triangles over it, and the spectrum with
+# the fitted line over its band.
+
 def _stats(values: np.ndarray) -> dict:
     return {"mean": float(np.mean(values)), "std": float(np.std(values)),
             "min": float(np.min(values)), "max": float(np.max(values))}
 
+
+def plot_asperities(profile, asperities, path, *, x_range=None, highlight=None, level=None) -> None:
+    """The profile (line) with its triangular asperities over it (µm); ``x_range`` (m) zooms in,
+    ``highlight`` (one bool per asperity) colours those blue, ``level`` (m) draws a line."""
+    from matplotlib.collections import PolyCollection
+    from matplotlib.figure import Figure  # a user's own figure (no pyplot)
+
+    x, z, rec = profile.x, profile.z, asperities
+    lo, hi = x_range if x_range is not None else (x[0], x[-1])
+    shown = (rec.right_feet >= lo) & (rec.left_feet <= hi)
+    inside = (x >= lo) & (x <= hi)
+    corners = [(rec.left_feet, rec.base_levels), (rec.apex_x, rec.summits), (rec.right_feet, rec.base_levels)]
+    triangles = np.stack([np.column_stack(c) for c in corners], axis=1)[shown] * 1e6
+    marked = np.zeros(rec.count, bool) if highlight is None else np.asarray(highlight, bool)
+    fig = Figure(figsize=(8.0, 2.6), layout="constrained")
+    ax = fig.add_subplot()
+    ax.add_collection(PolyCollection(triangles, facecolors=np.where(marked[shown], "tab:blue", "tab:orange"),
+                                     edgecolors="tab:red", alpha=0.35, linewidths=0.8))
+    ax.fill([], [], facecolor="tab:orange", edgecolor="tab:red", alpha=0.35, label="asperities")
+    if highlight is not None:
+        ax.fill([], [], facecolor="tab:blue", edgecolor="tab:red", alpha=0.35,
+                label=f"touched ({int(marked.sum())})")
+    if level is not None:
+        ax.axhline(level * 1e6, color="tab:green", lw=0.8, ls="--", label="track height")
+    ax.plot(x[inside] * 1e6, z[inside] * 1e6, color="0.2", lw=0.6, label="profile")
+    ax.plot(rec.apex_x[shown] * 1e6, rec.summits[shown] * 1e6, "v", color="tab:red", ms=3, label="summits")
+    ax.set_xlabel("x (µm)")
+    ax.set_ylabel("z (µm)")
+    ax.set_title(f"{profile.name or 'profile'}: {int(shown.sum())} of {rec.count} asperities shown", fontsize=9)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7)  # beside the axes
+    fig.savefig(path, dpi=120)
+
+
+def plot_spectrum(spectrum, fit, path) -> None:
+    """The power spectral density C(q) on log-log axes, with the Hurst fit's line over its band."""
+    from matplotlib.figure import Figure  # a user's own figure (no pyplot)
+
+    fig = Figure(figsize=(6.0, 3.6), layout="constrained")
+    ax = fig.add_subplot()
+    ax.loglog(spectrum.q, spectrum.psd, color="0.3", lw=0.7, label=f"C(q), {spectrum.method}")
+    q = np.geomspace(fit.q_min, fit.q_max, 50)
+    ax.loglog(q, fit.prefactor * q ** fit.slope, color="tab:red", lw=2,
+              label=f"fit: H = {fit.hurst:.3f} ± {fit.hurst_stderr:.3f}")
+    ax.set_xlabel("wavenumber q (rad/m)")
+    ax.set_ylabel("C(q) (m³)")
+    ax.legend(fontsize=8)
+    fig.savefig(path, dpi=120)
+
+
+# %%
+# The command line
+# ----------------
+#
+# ``main`` reads the options (``--quick``, ``--profile``, ``--unit``, ``--min-prominence``,
+# ``--min-width``, ``-o``, ``--json``), runs the steps, writes the record and prints.
 
 def main(argv=None) -> int:
     p = scripting.parser(scripting.title(__doc__))
@@ -59,22 +181,14 @@ def main(argv=None) -> int:
     p.add_argument("--min-width", type=float, default=MIN_WIDTH, help="m")
     args = p.parse_args(argv)
     out = scripting.out_dir(args, __file__)
-    measured = surface.read_profile(args.profile, unit=args.unit)
-    if args.quick:  # the first quarter of the trace
-        keep = slice(0, max(64, measured.count // 4))
-        measured = surface.SurfaceProfile(measured.x[keep], measured.z[keep], name=measured.name,
-                                          metadata={**measured.metadata, "cropped": "first quarter"})
-    profile = measured.detrended()
-    spectrum = surface.power_spectrum(profile)
-    fit = surface.fit_hurst(spectrum, q_min=8 * float(spectrum.q[0]),
-                            q_max=2 * math.pi / SHORTEST_FIT_WAVELENGTH)
-    asperities = surface.find_asperities(profile, min_prominence=args.min_prominence,
-                                         min_width=args.min_width, modulus=MODULUS, density=DENSITY)
-    surface_plots.plot_asperities(profile, asperities, out / "profile_asperities.png")
+    profile = load_profile(args.profile, args.unit, args.quick)
+    spectrum, fit = hurst_fit(profile)
+    asperities = to_asperities(profile, args.min_prominence, args.min_width)
+    plot_asperities(profile, asperities, out / "profile_asperities.png")
     x0 = float(profile.x[0])
-    surface_plots.plot_asperities(profile, asperities, out / "profile_zoom.png", x_range=(x0, x0 + 10e-6))
-    surface_plots.plot_spectrum(spectrum, out / "spectrum.png", fit=fit)
-    write_json(out / "asperities.json", asperities.to_dict(), indent=None)
+    plot_asperities(profile, asperities, out / "profile_zoom.png", x_range=(x0, x0 + 10e-6))
+    plot_spectrum(spectrum, fit, out / "spectrum.png")
+    (out / "asperities.json").write_text(json.dumps(asperities.to_dict(), allow_nan=False) + "\n", encoding="utf-8")
     a = asperities
     summary = {
         "profile": {"file": str(args.profile), "points": profile.count, "length_m": profile.length,

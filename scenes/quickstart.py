@@ -41,8 +41,9 @@ from __future__ import annotations
 import math
 
 import asperity2d as a
+from asperity2d import scripting
 from asperity2d.experiments.measures import MEASURES as NAMED, measure_label
-from asperity2d.renderers.plots import plot_comparison
+from asperity2d.experiments.verdicts import effect, verdict_line
 
 MEASURES = ("critical", "peak-stick")
 ALPHA = NAMED["critical"].rule.alpha  # every measure's verdict rule: p < 0.01
@@ -111,10 +112,7 @@ def verdict(comparison, setup: str) -> dict:
 # the three steps and prints the summary.
 
 def main(argv=None) -> int:
-    from asperity2d._format import si
-    from asperity2d import scripting
-    from asperity2d.studies import claims
-
+    si = scripting.si
     args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=8, minimum_seeds=2)
     out = scripting.out_dir(args, __file__)
     size = {"lower_count": 8, "upper_count": 3} if args.quick else {}
@@ -129,8 +127,8 @@ def main(argv=None) -> int:
         for name in MEASURES:
             comparison = spacing_comparison(name, setup, size, args.seeds, args.workers, not args.json)
             comparison.save(out / f"{setup}_{name}.json")
-            plot_comparison(comparison, out / f"{setup}_{name}.png",
-                            label=f"{measure_label(name)} (mN), {setup} set-up")
+            a.render(comparison, out / f"{setup}_{name}.png",
+                     label=f"{measure_label(name)} (mN), {setup} set-up")
             record = verdict(comparison, setup)
             summary["comparisons"][f"{setup}/{name}"] = comparison.summary()
             summary["claims"].append(record)
@@ -146,12 +144,10 @@ def main(argv=None) -> int:
     ]
     for name in MEASURES:
         fixed, free = verdicts["fixed", name], verdicts["free", name]
-        lines.append(f"  {claims.verdict_line({**fixed, 'setup': None})}"
-                     f"  | free slider: {free['verdict']} ({claims.effect(free['numbers'])})")
+        lines.append(f"  {verdict_line({**fixed, 'setup': None})}"
+                     f"  | free slider: {free['verdict']} ({effect(free['numbers'])})")
     return scripting.finish(args, summary, out, lines)
 
 
 if __name__ == "__main__":
-    from asperity2d import scripting
-
     scripting.run(main)

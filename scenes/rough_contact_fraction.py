@@ -49,11 +49,17 @@ import numpy as np
 
 from asperity2d import make_scene
 from asperity2d import scripting
-from asperity2d.studies.claims import claim, verdict_line
-from asperity2d.studies.rough import rough_run
-from asperity2d.sweep.engine import map_calls
+from asperity2d.experiments.verdicts import claim, verdict_line
+from asperity2d.studies.rough import MIN_LENGTH_RATIO, rough_run
+from asperity2d.sweep import map_calls
 from asperity2d.surface import fraction_above
-from asperity2d.units import MIN_LENGTH_RATIO
+
+# %%
+# The settings
+# ------------
+#
+# The heights' mean and spread, the track heights L tried (in standard deviations about the mean)
+# and the surfaces' sizes; the quick setting (the one the documentation ran) is a smoke test.
 
 MEAN, STD, BASE = 0.5e-6, 0.1e-6, 1e-6  # m
 LEVELS = (-1.5, -1.0, -0.5, 0.0, 0.5, 1.0, 1.5)  # (L - mean) / std
@@ -62,6 +68,15 @@ SIZE = dict(lower_count=24, upper_count=1)
 QUICK_SIZE = dict(lower_count=6, upper_count=1, drive_velocity=100.0)  # a smoke test: 5x faster drive
 DISTRIBUTIONS = ("gaussian", "uniform")
 
+
+# %%
+# 1. The runs
+# -----------
+#
+# :func:`asperity2d.make_scene` draws the heights (``lower_height_std``,
+# ``height_distribution``); the fixed track's interference below the tallest tip puts the tip at
+# height L. :func:`asperity2d.sweep.map_calls` runs :func:`asperity2d.studies.rough.rough_run`
+# (one spring-driven pass, every step recorded) for every seed and level, on the workers.
 
 def scene_kw(size: dict, distribution: str) -> dict:
     return dict(size, track="fixed", height=MEAN, lower_height_std=STD, height_distribution=distribution)
@@ -90,6 +105,15 @@ def jobs_for(size: dict, distribution: str, levels, seeds) -> tuple[list, list[d
                                        interference=top - level)))
     return jobs, empty, unresolved
 
+
+# %%
+# 2. Compare with the closed form
+# -------------------------------
+#
+# :func:`asperity2d.surface.fraction_above` is the fraction of heights above L (the Gaussian tail,
+# or a linear ramp for uniform heights); the fraction touched, pooled over seeds, must match it
+# within three binomial standard errors, and each realisation must touch exactly its summits above
+# L (:func:`asperity2d.experiments.verdicts.claim` records each check).
 
 def analyse(rows: list[dict], size: dict, levels, n_seeds: int) -> tuple[dict, list[dict]]:
     n = size["lower_count"]
@@ -129,10 +153,18 @@ def analyse(rows: list[dict], size: dict, levels, n_seeds: int) -> tuple[dict, l
     return table, claims
 
 
-def plot(table: dict, path) -> None:
-    from asperity2d.renderers.plots import figure, save
+# %%
+# 3. Plot
+# -------
+#
+# The closed form against L, and the fraction touched with its two-standard-error bars (a plain
+# matplotlib figure).
 
-    fig, (ax,) = figure(1, width=6.5, height=3.6)
+def plot(table: dict, path) -> None:
+    from matplotlib.figure import Figure  # a user's own figure (no pyplot)
+
+    fig = Figure(figsize=(6.5, 3.6), layout="constrained")
+    ax = fig.add_subplot()
     grid = np.linspace(MEAN - 2.2 * STD, MEAN + 2.2 * STD, 200)
     for i, (dist, rows) in enumerate(table.items()):
         ax.plot(grid * 1e6, [fraction_above(g, mean=MEAN, std=STD, distribution=dist) for g in grid],
@@ -146,8 +178,15 @@ def plot(table: dict, path) -> None:
     ax.set_ylabel("fraction of lower asperities touched")
     ax.set_title(f"heights {MEAN * 1e6:g} ± {STD * 1e6:g} µm", fontsize=9)
     ax.legend(fontsize=7)
-    save(fig, path, 120)
+    fig.savefig(path, dpi=120)
 
+
+# %%
+# The command line
+# ----------------
+#
+# ``main`` reads the options (``--quick``, ``--seeds``, ``--workers``, ``-o``, ``--json``), runs
+# the steps, draws and prints the numbers and the verdicts.
 
 def main(argv=None) -> int:
     args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=6, minimum_seeds=1,

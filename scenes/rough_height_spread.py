@@ -3,13 +3,14 @@
 
 Critical force and mean stick force against the spread of the asperity heights.
 
-Ooten's surfaces (10 lower / 3 upper 45° full triangles on a 1 µm base,
-1.25 µm pitch, Table 1 steel) with Gaussian random heights on both surfaces:
-every asperity keeps its 1 µm base and gets its own height about 0.5 µm with
+The surfaces of E. Ooten, *Precision Motion Control at Low Velocities in the
+Presence of Friction* (senior thesis, Texas A&M University, 1997-98): 10 lower /
+3 upper 45° full triangles on a 1 µm base, 1.25 µm pitch, Table 1 steel, with
+Gaussian random heights on both surfaces: every asperity keeps its 1 µm base and gets its own height about 0.5 µm with
 standard deviation sigma, so sigma / base = 0 (today's surfaces) to 0.2; the
 spacing stays regular. Both set-ups: the free slider under 10 mN, and seed
 000's fixed track whose deepest upper tip runs 0.125 µm below the tallest
-lower tip. Per (set-up, sigma, seed) one scene (``asperity2d.rough.rough_run``):
+lower tip. Per (set-up, sigma, seed) one scene (``asperity2d.studies.rough.rough_run``):
 its critical constant force and, from a spring-driven pass, the mean drive
 force at the stick-to-slip transitions (``mean_stick_force``), the asperities
 touched, the most contacts at once and the steepest lower flank touched.
@@ -50,9 +51,16 @@ import numpy as np
 from asperity2d import stats
 from asperity2d.scene import OOTEN_DEFAULTS, kinetic_default
 from asperity2d import scripting
-from asperity2d.studies.claims import HOLDS, UNTESTABLE, claim, judge, verdict_line
+from asperity2d.experiments.verdicts import HOLDS, UNTESTABLE, claim, judge, verdict_line
 from asperity2d.studies.rough import rough_run, spearman, trend_claim
-from asperity2d.sweep.engine import map_calls
+from asperity2d.sweep import map_calls
+
+# %%
+# The settings
+# ------------
+#
+# The height spreads sigma / base tried, the surfaces' sizes and the two set-ups; the quick
+# setting (the one the documentation ran) is a smoke test whose claims cannot be tested.
 
 SPREADS = (0.0, 0.05, 0.1, 0.15, 0.2)  # sigma / base
 QUICK_SPREADS = (0.0, 0.2)
@@ -66,6 +74,14 @@ LOAD, MU_K = OOTEN_DEFAULTS["normal_load"], kinetic_default(OOTEN_DEFAULTS["mu_s
 ALPHA = 0.05
 
 
+# %%
+# 1. The runs
+# -----------
+#
+# ``height_std`` in :func:`asperity2d.make_scene` gives every asperity its own Gaussian height;
+# :func:`asperity2d.sweep.map_calls` runs :func:`asperity2d.studies.rough.rough_run` (the
+# critical force and one spring-driven pass) for every spread and seed, on the workers.
+
 def measure(setup: str, spreads, seeds, size, workers: int | None) -> list[dict]:
     """One row per (spread, seed); a spread of 0 is deterministic: one run."""
     keys = [(s, seed) for s in spreads for seed in (seeds if s else seeds[:1])]
@@ -74,6 +90,14 @@ def measure(setup: str, spreads, seeds, size, workers: int | None) -> list[dict]
     rows = map_calls(rough_run, jobs, workers=workers)
     return [{**r, "spread": s, "seed": seed} for r, (s, seed) in zip(rows, keys)]
 
+
+# %%
+# 2. Judge the trends
+# -------------------
+#
+# :func:`asperity2d.studies.rough.trend_claim` judges a rise or fall with the spread by a Spearman
+# rank correlation; the comparison with the uniform surface is a one-sided Wilcoxon test
+# (:func:`asperity2d.stats.versus_reference`) judged by :func:`asperity2d.experiments.verdicts.judge`.
 
 def _below_uniform(text: str, rows: list[dict], q: str, spreads, setup: str) -> dict:
     """Every spread's values below the uniform surface's: one-sided Wilcoxon against it at each."""
@@ -140,10 +164,17 @@ def analyse(setup: str, rows: list[dict], spreads) -> tuple[dict, list[dict]]:
     return {"per_spread": per_spread, "sanity": sanity, "spearman_vs_spread": observed}, claims
 
 
-def plot(results: dict, path) -> None:
-    from asperity2d.renderers.plots import figure, save
+# %%
+# 3. Plot
+# -------
+#
+# Both forces against the spread, each seed a point and the mean a line (a plain matplotlib figure).
 
-    fig, axes = figure(2, width=9.0, height=3.0, sharex=True)
+def plot(results: dict, path) -> None:
+    from matplotlib.figure import Figure  # a user's own figure (no pyplot)
+
+    fig = Figure(figsize=(9.0, 2 * 3.0), layout="constrained")
+    axes = fig.subplots(2, 1, sharex=True)
     for ax, q, label in ((axes[0], "critical_force_N", "critical force (mN)"),
                          (axes[1], "mean_stick_force_N", "mean stick force (mN)")):
         for i, (setup, rows) in enumerate(results.items()):
@@ -158,8 +189,15 @@ def plot(results: dict, path) -> None:
         ax.legend(fontsize=8)
     axes[1].set_xlabel("height spread sigma / base")
     axes[0].set_title("random heights, regular spacing; points: seeds", fontsize=9)
-    save(fig, path, 120)
+    fig.savefig(path, dpi=120)
 
+
+# %%
+# The command line
+# ----------------
+#
+# ``main`` reads the options (``--quick``, ``--seeds``, ``--workers``, ``-o``, ``--json``), runs
+# the steps, draws and prints the numbers and the verdicts.
 
 def main(argv=None) -> int:
     args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=8, minimum_seeds=1,
@@ -185,6 +223,14 @@ def main(argv=None) -> int:
                          f"mean stick {n['mean_stick_force_N']['mean'] * 1e3:.3g} mN, touched "
                          f"{n['touched_fraction']['mean']:.2f}, contacts at once {n['max_contacts']['mean']:.2g}")
     lines += [verdict_line(c) for c in summary["claims"]]
+    untestable = sum(c["verdict"] == UNTESTABLE for c in summary["claims"])
+    if untestable:
+        runs = 1 + (len(spreads) - 1) * args.seeds  # sigma = 0 is one run
+        needed = next(n for n in range(1, 64) if 0.5 ** n < ALPHA)  # one-sided Wilcoxon: p >= 1 / 2**n
+        lines.append(f"{untestable} claims not testable: {len(spreads)} spreads x {args.seeds} seed(s) give "
+                     f"{runs} runs per set-up; a rank correlation needs 3 or more, and the comparison with the "
+                     f"uniform surface {needed} seeds or more to reach p < {ALPHA:g} (the full study: "
+                     f"{len(SPREADS)} spreads x 8 seeds)")
     return scripting.finish(args, summary, out, lines)
 
 

@@ -46,9 +46,16 @@ import numpy as np
 from asperity2d import stats
 from asperity2d.scene import OOTEN_DEFAULTS, kinetic_default
 from asperity2d import scripting
-from asperity2d.studies.claims import UNTESTABLE, claim, verdict_line
+from asperity2d.experiments.verdicts import UNTESTABLE, claim, verdict_line
 from asperity2d.studies.rough import self_affine_run, spearman, trend_claim
-from asperity2d.sweep.engine import map_calls
+from asperity2d.sweep import map_calls
+
+# %%
+# The settings
+# ------------
+#
+# The Hurst exponents tried, the profiles (fixed rms height), the slider and the two set-ups;
+# the quick setting (the one the documentation ran) is a smoke test whose trends cannot be tested.
 
 HURSTS, QUICK_HURSTS = (0.3, 0.5, 0.7, 0.9), (0.3, 0.9)
 RMS = 0.15e-6  # m
@@ -63,6 +70,16 @@ QUANTITIES = ("critical_force_N", "mean_stick_force_N", "lower_count", "rms_slop
 MU_K = kinetic_default(OOTEN_DEFAULTS["mu_static"])
 ALPHA = 0.05
 
+
+# %%
+# 1. Judge the trends
+# -------------------
+#
+# Each run (in ``main`` below) is :func:`asperity2d.studies.rough.self_affine_run`: a seeded
+# :func:`asperity2d.surface.self_affine_profile` made into a scene by
+# ``make_scene(lower_surface=profile)`` and measured, mapped over the workers with
+# :func:`asperity2d.sweep.map_calls`. The trends with H are judged by a Spearman rank
+# correlation (:func:`asperity2d.studies.rough.trend_claim`).
 
 def analyse(setup: str, rows: list[dict], hursts, load: float) -> tuple[dict, list[dict]]:
     valid = [r for r in rows if r.get("valid") == 1.0]
@@ -105,10 +122,18 @@ def analyse(setup: str, rows: list[dict], hursts, load: float) -> tuple[dict, li
     return {"per_hurst": per_h, "sanity": sanity, "spearman_vs_hurst": observed}, claims
 
 
-def plot(results: dict, path) -> None:
-    from asperity2d.renderers.plots import figure, save
+# %%
+# 2. Plot
+# -------
+#
+# The forces and the steepest flank touched against H, each seed a point and the mean a line
+# (a plain matplotlib figure).
 
-    fig, axes = figure(3, width=8.0, height=2.6, sharex=True)
+def plot(results: dict, path) -> None:
+    from matplotlib.figure import Figure  # a user's own figure (no pyplot)
+
+    fig = Figure(figsize=(8.0, 3 * 2.6), layout="constrained")
+    axes = fig.subplots(3, 1, sharex=True)
     for ax, q, label, scale in ((axes[0], "critical_force_N", "critical force (mN)", 1e3),
                                 (axes[1], "mean_stick_force_N", "mean stick force (mN)", 1e3),
                                 (axes[2], "steepest_touched_flank_deg", "steepest flank touched (°)", 1.0)):
@@ -124,8 +149,15 @@ def plot(results: dict, path) -> None:
     axes[0].set_yscale("log")
     axes[1].set_yscale("log")
     axes[2].set_xlabel("Hurst exponent H (rms height fixed at 0.15 µm)")
-    save(fig, path, 120)
+    fig.savefig(path, dpi=120)
 
+
+# %%
+# The command line
+# ----------------
+#
+# ``main`` reads the options (``--quick``, ``--seeds``, ``--workers``, ``-o``, ``--json``), runs
+# the steps, draws and prints the numbers and the verdicts.
 
 def main(argv=None) -> int:
     args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=5, minimum_seeds=1,
@@ -148,11 +180,19 @@ def main(argv=None) -> int:
     for setup in SETUPS:
         for h in hursts:
             n = summary["setups"][setup]["per_hurst"][f"{h:g}"]
+            stick = n["mean_stick_force_N"]["mean"]
+            stick = (f"mean stick {stick * 1e3:.3g} mN" if math.isfinite(stick) else
+                     "no stick-slip event in any run (so no mean stick force)")
             lines.append(f"{setup} H = {h:g}: {n['lower_count']['mean']:.3g} asperities, rms slope "
                          f"{n['rms_slope']['mean']:.2f}, critical {n['critical_force_N']['mean'] * 1e3:.3g} mN, "
-                         f"mean stick {n['mean_stick_force_N']['mean'] * 1e3:.3g} mN, steepest flank touched "
-                         f"{n['steepest_touched_flank_deg']['mean']:.3g}°")
+                         f"{stick}, steepest flank touched {n['steepest_touched_flank_deg']['mean']:.3g}°")
     lines += [verdict_line(c) for c in summary["claims"]]
+    untestable = sum(c["verdict"] == UNTESTABLE for c in summary["claims"])
+    if untestable:
+        runs = len(hursts) * args.seeds
+        lines.append(f"{untestable} claims not testable: {len(hursts)} Hurst exponents x {args.seeds} seed(s) "
+                     f"give {runs} runs per set-up, and a rank correlation needs 3 or more (the full study: "
+                     f"{len(HURSTS)} x 5 seeds, {len(HURSTS) * 5} runs)")
     return scripting.finish(args, summary, out, lines)
 
 

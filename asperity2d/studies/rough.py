@@ -1,4 +1,4 @@
-"""Issue 14's rough-surface studies: measures of rough scenes, shared by ``scenes/rough_*.py``.
+"""The rough-surface studies: measures of rough scenes, shared by the gallery's rough-surface scripts.
 
 Top-level, picklable run functions (``fn(*, seed, **params) -> dict of numbers``,
 the signature :mod:`asperity2d.sweep` runs too), each building one scene with
@@ -17,7 +17,7 @@ lower asperities that touched the slider, the most contacts at once, the
 steepest flank among the asperities that touched, and the contact angle the
 breakaway forces imply (:func:`breakaway_angle`), to tell which flanks set them.
 The scripts map them over parameter sets with
-:func:`asperity2d.sweep.engine.map_calls` and summarise with :mod:`asperity2d.stats`.
+:func:`asperity2d.sweep.map_calls` and summarise with :mod:`asperity2d.stats`.
 """
 
 from __future__ import annotations
@@ -32,22 +32,52 @@ from ..critical import critical_force
 from ..errors import SceneError
 from ..scene import Scene, SpringDrive
 from ..run import simulate
+from .. import units as _units
+
+#: Smallest height (and interference) the engine resolves, in asperity bases (the package's
+#: ``asperity2d.units.MIN_LENGTH_RATIO``): a summit closer than this to a fixed track is a
+#: contact the engine cannot resolve.
+MIN_LENGTH_RATIO = _units.MIN_LENGTH_RATIO
 
 
 def flank_angles(scene: Scene) -> dict[str, np.ndarray]:
-    """Angles (degrees) of the flanks that face each other as the slider moves to +x: the
-    lower asperities' left flanks and the upper ones' right (front) flanks."""
+    """Angles of the flanks that face each other as the slider moves to +x.
+
+    Parameters
+    ----------
+    scene : Scene
+        Any scene.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        ``"lower"``: the lower asperities' left flanks, ``"upper"``: the upper ones' right
+        (front) flanks, in degrees, one per asperity.
+    """
     lower, upper = scene.lower.shape_set(), scene.slider.shape_set()
     return {"lower": np.degrees(np.arctan2(lower.heights, np.asarray(lower.left_runs))),
             "upper": np.degrees(np.arctan2(upper.heights, np.asarray(upper.right_runs)))}
 
 
 def breakaway_angle(result, events) -> float:
-    """Mean contact angle (degrees) at the stick-to-slip transitions: atan(F / N) - atan(mu_s),
-    the angle of the flank a single contact at the friction limit would be on (the flank law
-    read backwards), with F the drive force at each breakaway and N the vertical contact force
+    """Mean contact angle at the stick-to-slip transitions, the flank law read backwards.
+
+    atan(F / N) - atan(mu_s) is the angle of the flank a single contact at the friction limit
+    would be on, with F the drive force at each breakaway and N the vertical contact force
     averaged over the stick before it (quasi-static there; single samples carry impact spikes).
-    NaN without events."""
+
+    Parameters
+    ----------
+    result : Result
+        A spring-driven run.
+    events : list of Event
+        Its stick-slip events (:func:`asperity2d.stick_slip_events`).
+
+    Returns
+    -------
+    float
+        The mean angle (degrees); NaN without events.
+    """
     t = np.asarray(result.t)
     normal, drive = np.asarray(result.normal_force), np.asarray(result.drive_force)
     phi = math.atan(result.scene.contact.mu_static)
@@ -62,21 +92,63 @@ def breakaway_angle(result, events) -> float:
 
 
 def track_level(scene: Scene) -> float:
-    """Height (m) of the fixed track's deepest upper tip above the lower datum; NaN for a free slider."""
+    """Height of the fixed track's deepest upper tip above the lower datum.
+
+    Parameters
+    ----------
+    scene : Scene
+        Any scene.
+
+    Returns
+    -------
+    float
+        The height (m); NaN for a free slider.
+    """
     if scene.slider.track != "fixed":
         return math.nan
     return scene.lower.top - scene.slider.interference
 
 
 def measure(scene: Scene, *, critical: bool = True) -> dict:
-    """The critical force (N; optional) and one spring-driven pass's measures (module notes)."""
+    """The critical force and one spring-driven pass's measures (see the module notes).
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene; its drive is replaced by the default spring for the pass if it has none.
+    critical : bool, default True
+        Also find the critical force from rest (:func:`asperity2d.critical_force`); NaN if not.
+
+    Returns
+    -------
+    dict of str to float
+        ``critical_force_N`` and the keys of :func:`pass_measures`.
+    """
     out = {"critical_force_N": critical_force(scene) if critical else math.nan}
     out.update(pass_measures(scene)[0])
     return out
 
 
 def pass_measures(scene: Scene):
-    """One spring-driven pass of ``scene`` (its drive, or the default spring): ``(measures, result)``."""
+    """One spring-driven pass of ``scene`` and its measures.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene; driven by its own spring, or the default spring if its drive is a force.
+
+    Returns
+    -------
+    measures : dict of str to float
+        ``mean_stick_force_N`` (N, NaN without stick-slip events), ``events``,
+        ``touched_fraction`` and ``touched_count`` (lower asperities that touched the slider),
+        on a fixed track ``above_level_fraction`` and ``touched_matches_above_level`` (1 if the
+        asperities touched are exactly those whose summit is above the track), the flank
+        angles in contact (degrees), ``breakaway_angle_deg`` (:func:`breakaway_angle`) and
+        sanity flags (``passed``, ``floor_touched``, ``track_bottomed``).
+    result : Result
+        The run (every step recorded on a fixed track, every tenth on a free slider).
+    """
     if not isinstance(scene.drive, SpringDrive):
         scene = scene.replace(drive=SpringDrive())
     fixed = scene.slider.track == "fixed"
@@ -142,15 +214,48 @@ def _missed_within_a_step(scene: Scene, result, touched, above, level: float, fi
 
 
 def rough_run(*, seed: int = 0, critical: bool = True, **params) -> dict:
-    """:func:`measure` of ``make_scene(seed=seed, **params)`` (e.g. ``height_std=...``)."""
+    """:func:`measure` of ``make_scene(seed=seed, **params)``: a sweep's run function.
+
+    Parameters
+    ----------
+    seed : int, default 0
+        The scene's seed.
+    critical : bool, default True
+        Also find the critical force (as in :func:`measure`).
+    **params
+        Keyword arguments of :func:`asperity2d.make_scene` (e.g. ``height_std=...``).
+
+    Returns
+    -------
+    dict of str to float
+        The measures of :func:`measure`.
+    """
     return measure(make_scene(seed=seed, **params), critical=critical)
 
 
 def fixed_track_interference(lower, separation: float, margin: float) -> tuple[float, bool]:
-    """Interference (m) that runs a fixed track's deepest tip ``separation`` above the lower
-    profile's mean line, or ``margin`` above its rigid valley floor where that is higher (a
-    rigid slider cannot pass below the valleys between summits: it would jam); and whether
-    the valley floor set it."""
+    """The interference that runs a fixed track's deepest tip a given height above a profile.
+
+    The tip runs ``separation`` above the lower profile's mean line, or ``margin`` above its
+    rigid valley floor where that is higher (a rigid slider cannot pass below the valleys
+    between summits: it would jam).
+
+    Parameters
+    ----------
+    lower : LowerSurface
+        The lower surface of a scene made from a profile (``scene.lower``).
+    separation : float
+        Height (m) of the track above the profile's mean line.
+    margin : float
+        Smallest height (m) of the track above the rigid valley floor.
+
+    Returns
+    -------
+    interference : float
+        The interference (m) to give :func:`asperity2d.make_scene`.
+    raised : bool
+        Whether the valley floor set it.
+    """
     floor = max((z for line in lower.substrate or () for _, z in line), default=-math.inf)
     level = max(separation, floor + margin)
     return lower.top - level, level > separation
@@ -161,14 +266,37 @@ def self_affine_run(*, seed: int = 0, hurst: float, rms_height: float, length: f
                     critical: bool = True, **params) -> dict:
     """:func:`measure` of a scene whose lower surface is a self-affine profile.
 
-    The profile (seeded with ``seed``): ``points`` samples over ``length`` (m),
-    rms height ``rms_height`` (m), Hurst exponent ``hurst``, power between the
-    wavelengths ``longest`` (with a roll-off plateau below that wavenumber) and
-    ``shortest`` (m). On a fixed track the deepest upper tip runs ``separation``
-    (m) above the profile's mean line, or 5 % of the rms height above its rigid
-    valley floor where that is higher (:func:`fixed_track_interference`;
-    ``level_raised`` = 1); returns ``valid`` = 0 and no measures when that
-    level is above every summit. ``params`` go to ``make_scene``.
+    On a fixed track the deepest upper tip runs ``separation`` above the profile's mean line,
+    or 5 % of the rms height above its rigid valley floor where that is higher
+    (:func:`fixed_track_interference`).
+
+    Parameters
+    ----------
+    seed : int, default 0
+        Seed of the profile (:func:`asperity2d.surface.self_affine_profile`) and the scene.
+    hurst : float
+        Hurst exponent of the profile.
+    rms_height : float
+        Its rms height (m).
+    length : float
+        Its length (m).
+    points : int
+        Its number of samples.
+    shortest, longest : float
+        The wavelengths (m) its power lies between (a roll-off plateau beyond ``longest``).
+    separation : float, optional
+        Height (m) of the fixed track above the mean line; required on the fixed track.
+    critical : bool, default True
+        Also find the critical force (as in :func:`measure`).
+    **params
+        Further keyword arguments of :func:`asperity2d.make_scene` (``track`` defaults to fixed).
+
+    Returns
+    -------
+    dict of str to float
+        The measures of :func:`measure`, ``valid`` (1), ``rms_slope`` and, on a fixed track,
+        ``level_raised`` (1 if the valley floor set the track); only ``valid`` = 0 and
+        ``level_raised`` when the track would lie above every summit.
     """
     from ..surface import rms_slope, self_affine_profile
 
@@ -191,9 +319,29 @@ def self_affine_run(*, seed: int = 0, hurst: float, rms_height: float, length: f
 
 
 def trend_claim(text: str, x, y, sign: int, *, setup: str | None = None, alpha: float = 0.05) -> dict:
-    """A claim record (:func:`asperity2d.studies.claims.claim`) that ``y`` rises (``sign`` = 1) or
-    falls (-1) with ``x``: holds if the Spearman correlation has that sign with p < ``alpha``."""
-    from .claims import UNTESTABLE, claim
+    """The claim that ``y`` rises or falls with ``x``, judged by a Spearman rank correlation.
+
+    Parameters
+    ----------
+    text : str
+        The claim's statement.
+    x, y : array_like
+        The paired values (non-finite pairs are left out).
+    sign : {1, -1}
+        1: ``y`` rises with ``x``; -1: it falls.
+    setup : str, optional
+        The set-up the claim is about (e.g. ``"fixed"``).
+    alpha : float, default 0.05
+        The two-sided p-value the correlation must be under.
+
+    Returns
+    -------
+    dict
+        A claim record (:func:`asperity2d.experiments.verdicts.claim`): holds if the
+        correlation has the sign ``sign`` with p < ``alpha``; not testable when fewer than 3
+        finite pairs or a constant series give no p-value.
+    """
+    from ..experiments.verdicts import UNTESTABLE, claim
 
     rho, p = spearman(x, y)
     n = int(np.sum(np.isfinite(np.asarray(x, float)) & np.isfinite(np.asarray(y, float))))
@@ -204,7 +352,21 @@ def trend_claim(text: str, x, y, sign: int, *, setup: str | None = None, alpha: 
 
 
 def spearman(x, y) -> tuple[float, float]:
-    """Spearman rank correlation of the finite pairs and its two-sided p-value (SciPy)."""
+    """Spearman rank correlation of the finite pairs and its two-sided p-value.
+
+    Parameters
+    ----------
+    x, y : array_like
+        The paired values.
+
+    Returns
+    -------
+    rho : float
+        The correlation (:func:`scipy.stats.spearmanr`); NaN for fewer than 3 finite pairs or a
+        constant series.
+    p : float
+        Its two-sided p-value (NaN likewise).
+    """
     from scipy.stats import spearmanr
 
     x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
