@@ -15,13 +15,13 @@ needs many asperities to show several cycles) and a tenfold stiffer
 37 200 N/m (the lower asperities' own stiffness) over 40. For regular and
 random (seed 0) spacing the friction force and the drive force are analysed
 over the part of the run where the slider is on the surface (15-90 % of the
-run, ``asperity2d.dynamics.asperity_basins.WINDOW``):
+run, ``asperity2d.dynamics.ASPERITY_WINDOW``):
 
 * periodogram, dominant frequency in units of drive speed / mean pitch;
 * ``line_fraction``: the share of the force's variance (above 0.2 V/pitch)
   within ±2 bins of the harmonics k·V/pitch, k = 1..5 -- near 1 for a
   spectrum of sharp lines at the pitch frequency, small when smeared;
-* the slip sequence's class (``asperity2d.dynamics.asperity_basins.classify_asperity``).
+* the slip sequence's class (``asperity2d.dynamics.classify_asperity``).
 
 Then a scan over the drive preload (the initial condition the public API
 offers: ``asperity2d.dynamics.asperity_basins`` says why the spacing
@@ -36,8 +36,7 @@ from matplotlib.figure import Figure
 
 from asperity2d import make_scene, render, simulate
 from asperity2d.dynamics import signal, spectrum
-from asperity2d.dynamics.asperity_basins import WINDOW, asperity_basins, classify_asperity
-from asperity2d.dynamics.basins import LABELS
+from asperity2d.dynamics import ASPERITY_WINDOW as WINDOW, BASIN_LABELS as LABELS, asperity_basins, classify_asperity
 from asperity2d import scripting
 
 # %%

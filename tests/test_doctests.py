@@ -31,7 +31,8 @@ PUBLIC = {
     "asperity2d.scripting": None,
 }
 #: Names that are not callables or classes (the version string, submodules, tables).
-NOT_CALLABLE = {"asperity2d.__version__", "asperity2d.belt.presets", "asperity2d.belt.METHODS"}
+NOT_CALLABLE = {"asperity2d.__version__", "asperity2d.belt.presets", "asperity2d.belt.METHODS",
+                "asperity2d.dynamics.ASPERITY_WINDOW", "asperity2d.dynamics.BASIN_LABELS"}
 
 #: Public names still without an Examples section (shrinks; never grows).
 WITHOUT_EXAMPLES: set[str] = set()

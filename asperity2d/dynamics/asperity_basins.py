@@ -25,11 +25,11 @@ from .cycles import detect_period
 RUN = "asperity2d.dynamics.asperity_basins:asperity_basin_run"
 KEYS = ("label", "multiplicity", "period", "events", "pitches_per_cycle", "amplitude")
 #: part of the run analysed (fractions of its duration): the slider is over the surface, past its entry
-WINDOW = (0.15, 0.9)
+ASPERITY_WINDOW = (0.15, 0.9)
 
 
 def classify_asperity(result, *, rtol: float = 0.05, max_multiplicity: int = 12) -> dict:
-    """Class of a spring-driven asperity run, from its stick-slip events in the window :data:`WINDOW`.
+    """Class of a spring-driven asperity run, from its stick-slip events in the window :data:`ASPERITY_WINDOW`.
 
     ``rest``: the run ended stuck (status "stuck"); ``pure slip``: no
     stick-slip event in the window (:func:`asperity2d.stick_slip_events`);
@@ -43,11 +43,32 @@ def classify_asperity(result, *, rtol: float = 0.05, max_multiplicity: int = 12)
     many times.) ``pitches_per_cycle`` is the drive's advance per period
     over the mean pitch of the lower surface; ``amplitude`` is half the
     peak-to-peak drive force in the window (N).
+
+    Returns
+    -------
+    dict
+        ``label`` (an index into :data:`BASIN_LABELS`, as a float), ``events``, ``multiplicity``,
+        ``period`` (s), ``pitches_per_cycle`` and ``amplitude`` (N).
+
+    See Also
+    --------
+    asperity_basins : the class over a scan of the drive preload.
+
+    Examples
+    --------
+    Two stick-slip events in the window of a short surface are too few to show a repeating
+    cycle, so the run is "irregular":
+
+    >>> import asperity2d as a
+    >>> from asperity2d.dynamics import BASIN_LABELS, classify_asperity
+    >>> c = classify_asperity(a.simulate(a.make_scene(lower_count=8, upper_count=2)))
+    >>> BASIN_LABELS[int(c["label"])], c["events"]
+    ('irregular', 2.0)
     """
     from ..analysis import stick_slip_events
 
     t = result.t
-    a, b = t[0] + WINDOW[0] * (t[-1] - t[0]), t[0] + WINDOW[1] * (t[-1] - t[0])
+    a, b = t[0] + ASPERITY_WINDOW[0] * (t[-1] - t[0]), t[0] + ASPERITY_WINDOW[1] * (t[-1] - t[0])
     w = (t >= a) & (t <= b)
     force = result.drive_force[w]
     out = {"multiplicity": 0.0, "period": float("nan"), "pitches_per_cycle": float("nan"),
@@ -91,7 +112,26 @@ def asperity_basins(scene: dict, preloads, *, seeds=(0,), duration: float | None
     and must use ``drive="spring"``; ``duration`` (s) as in ``simulate``
     (None: until the slider has crossed the surface). The map's x axis is
     ``drive_preload``, its y axis ``seed``; ``store`` / ``workers`` /
-    ``scheduler`` as in :func:`asperity2d.dynamics.basins.chain_basins`.
+    ``scheduler`` as in the belt chains' basin maps (``asperity2d belt basins``): a resumable
+    store, worker processes, a Dask scheduler.
+
+    Returns
+    -------
+    BasinMap
+        ``values[key][i, j]`` for preload ``i`` and seed ``j``, ``key`` one of ``label`` (an
+        index into :data:`BASIN_LABELS`), ``events``, ``multiplicity``, ``period``,
+        ``pitches_per_cycle``, ``amplitude``.
+
+    See Also
+    --------
+    classify_asperity : the class of one run.
+
+    Examples
+    --------
+    >>> from asperity2d.dynamics import BASIN_LABELS, asperity_basins
+    >>> m = asperity_basins(dict(lower_count=6, upper_count=2), (0.0, 0.01), workers=1, progress=False)
+    >>> [BASIN_LABELS[int(c)] for c in m.values["label"][:, 0]], m.values["events"][:, 0].tolist()
+    (['irregular', 'irregular'], [1.0, 1.0])
     """
     from ..builders import make_scene
     from ..sweep import Study
