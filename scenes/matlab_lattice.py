@@ -32,15 +32,34 @@ from __future__ import annotations
 
 import numpy as np
 
+from matplotlib.figure import Figure
+
 import asperity2d as a
-from asperity2d._format import si
 from asperity2d import scripting
 from asperity2d.experiments.quasistatic import SEED_DRIVE_VELOCITY
-from asperity2d.renderers.plots import plot_position_velocity
 
 K = 37_200.0  # N/m, Ooten's Table 1 (all springs)
 MASS = 2.88e-16  # kg, Ooten's Table 1 (all peaks and the slider)
 DRIVE_VELOCITY = 20.0  # m/s = 4000 x Ooten's 5e-3 m/s
+
+
+def plot_position_velocity(result, path, *, title: str = "") -> None:
+    """Ooten's figure 17: slider position (µm) and velocity (m/s) against time (µs); the
+    velocity panel shows the collision spikes where the slider hits a lower flank."""
+    fig = Figure(figsize=(7.0, 4.8), layout="constrained")
+    ax_x, ax_v = fig.subplots(2, 1, sharex=True)
+    t = np.asarray(result.t) * 1e6
+    ax_x.plot(t, (np.asarray(result.x) - result.x[0]) * 1e6, lw=1.0, label="slider")
+    if np.isfinite(result.drive_x).any():
+        ax_x.plot(t, (np.asarray(result.drive_x) - result.x[0]) * 1e6, lw=0.8, ls="--", label="drive spring end")
+    ax_x.set_ylabel("position (µm)")
+    ax_x.legend(loc="upper left", fontsize=8)
+    ax_v.plot(t, result.v, lw=0.8, color="C3")
+    ax_v.set_ylabel("velocity (m/s)")
+    ax_v.set_xlabel("time (µs)")
+    if title:
+        ax_x.set_title(title, fontsize=9)
+    fig.savefig(path, dpi=120)
 
 
 def build_scene(quick: bool = False, **overrides):
@@ -112,7 +131,7 @@ def main(argv=None) -> int:
         "max_lateral_peak_displacement_m": float(np.max(np.abs(result.lower_dx))),
         "lateral_stiffness_matrix_N_per_m": scene.lower.lateral_stiffness_matrix().tolist(),
     }
-    lines = [f"{scene.name}: {result.status} after {si(result.t[-1], 's', 3)}",
+    lines = [f"{scene.name}: {result.status} after {scripting.si(result.t[-1], 's', 3)}",
              f"contact cases: {' -> '.join(cases)} (Ooten's Table 2: none, 1, none, 2, none, 3, none)"]
     lines += [f"peak {i + 1}: contact " + ", ".join(f"{s * 1e9:.1f}-{e * 1e9:.1f} ns" for s, e in eps)
               for i, eps in enumerate(episodes)]

@@ -23,7 +23,7 @@ spacing on both surfaces over seeds, measuring per spring-driven pass:
 Claim (abstract: "regularity enhances stick-slip, randomness reduces it"),
 per set-up: random spacing lowers the mean force drop per slip, one-sample
 Wilcoxon signed-rank test of the random passes against the regular value,
-one-sided (lower), holds if p < 0.01 and the change is at least 1 % (``asperity2d.studies.claims.judge``).
+one-sided (lower), holds if p < 0.01 and the change is at least 1 % (:func:`asperity2d.experiments.verdicts.judge`).
 
 Run::
 
@@ -40,10 +40,9 @@ import asperity2d as a
 from asperity2d import stats
 from asperity2d.experiments.compare import Comparison
 from asperity2d.experiments.quasistatic import SEED_DRIVE_VELOCITY
-from asperity2d.renderers.plots import plot_comparison
 from asperity2d import scripting
-from asperity2d.studies import claims
-from asperity2d.sweep.engine import map_calls
+from asperity2d.experiments import verdicts
+from asperity2d.sweep import map_calls
 
 TABLE1 = dict(base=1e-6, mass=2.88e-16, stiffness=37_200.0, flank_angle=45.0)
 FACTOR = 2000.0
@@ -114,19 +113,19 @@ def main(argv=None) -> int:
                 results[q.removesuffix("_N") + "_over_load"] = {
                     "regular": c.values["regular"][0] / LOAD,
                     "random": stats.describe(np.asarray(c.values["random"]) / LOAD)}
-            plot_comparison(c, out / f"{setup}_{q}.png", unit=unit, label=f"{label}, {setup} set-up")
+            a.render(c, out / f"{setup}_{q}.png", unit=unit, label=f"{label}, {setup} set-up")
         summary["results"][setup] = results
         amp = results["force_drop_mean_N"]["versus_regular"]
         spread = results["force_drop_std_N"]
-        record = claims.claim(
+        record = verdicts.claim(
             "random spacing lowers the stick-slip amplitude (mean force drop per slip) at the micro "
             "scale (abstract: regularity enhances stick-slip, randomness reduces it)",
-            claims.judge(amp, ALPHA), amp,
-            f"{amp['test']}, one-sided (lower): p = {amp['p_wilcoxon']:.3g}; holds if p < {ALPHA} and the change is at least {100 * claims.MIN_EFFECT:g} %",
+            verdicts.judge(amp, ALPHA), amp,
+            f"{amp['test']}, one-sided (lower): p = {amp['p_wilcoxon']:.3g}; holds if p < {ALPHA} and the change is at least {100 * verdicts.MIN_EFFECT:g} %",
             setup=setup) | {"measure": "force_drop_mean_N"}
         summary["claims"].append(record)
         gap = results["static_kinetic_gap_N"]
-        lines += [claims.verdict_line(record),
+        lines += [verdicts.verdict_line(record),
                   f"    [{setup}] mean force drop per slip: regular {amp['reference'] * 1e3:.3g} mN, random "
                   f"{amp['mean'] * 1e3:.3g} mN; spread (std) regular {spread['regular'] * 1e3:.2g} mN, random "
                   f"{spread['random']['mean'] * 1e3:.2g} mN; static - kinetic gap regular "

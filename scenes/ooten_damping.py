@@ -39,14 +39,14 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from matplotlib.figure import Figure
 
 import asperity2d as a
 from asperity2d import stats
-from asperity2d.renderers.plots import plot_positions
 from asperity2d import scripting
 from asperity2d.studies import ooten as studies
-from asperity2d.studies.claims import claim
-from asperity2d.sweep.engine import map_calls
+from asperity2d.experiments.verdicts import claim
+from asperity2d.sweep import map_calls
 
 FACTOR = 0.9
 ALPHA = 0.01
@@ -126,14 +126,26 @@ def mechanism_line(setup: str, numbers: dict) -> str:
     return f"[{setup}] over the damped slider's path, % of the drive work: " + "; ".join(parts)
 
 
+def plot_positions(results, labels, path) -> None:
+    """Slider travel against time for several runs on one axis (Ooten's figure 10 style):
+    plateaus are where a slider stopped on a flank."""
+    fig = Figure(figsize=(7.0, 3.2), layout="constrained")
+    ax = fig.subplots()
+    for result, label in zip(results, labels):
+        ax.plot(result.t * 1e6, (result.x - result.x[0]) * 1e6, label=label)
+    ax.set_xlabel("time (µs)")
+    ax.set_ylabel("slider travel (µm)")
+    ax.legend(loc="best", fontsize="small")
+    fig.savefig(path, dpi=120)
+
+
 def plot_shares(summary: dict, path) -> None:
     """Stacked bars: where the drive work went over the damped slider's path, per set-up and
     reading (pooled shares, %; "stored" includes the kinetic energy the slider still has)."""
-    from asperity2d.renderers.plots import figure, save
-
     names = ("friction_work", "normal_work", "damper_work", "stop_work", "stored_energy_change", "numerical")
     legend = ("friction", "impacts (normal)", "dampers", "travel stops", "stored (change)", "numerical")
-    fig, (ax,) = figure(1, width=7.5, height=3.6, sharex=False)
+    fig = Figure(figsize=(7.5, 3.6), layout="constrained")
+    ax = fig.subplots()
     ticks = []
     for i, (setup, numbers) in enumerate(summary["results"].items()):
         for j, label in enumerate(LABELS):
@@ -149,7 +161,7 @@ def plot_shares(summary: dict, path) -> None:
     ax.set_title("over the damped slider's path (to where it stopped)", fontsize="small")
     ax.axhline(0.0, color="k", lw=0.5)
     ax.legend(fontsize="x-small", ncol=3, loc="upper center", bbox_to_anchor=(0.5, -0.22))
-    save(fig, path, 120)
+    fig.savefig(path, dpi=120)
 
 
 def main(argv=None) -> int:

@@ -33,12 +33,12 @@ from __future__ import annotations
 
 import math
 
+from matplotlib.figure import Figure
+
 import asperity2d as a
-from asperity2d.critical import critical_force_bracket
-from asperity2d.renderers.plots import plot_positions
 from asperity2d import scripting
-from asperity2d.studies import claims as claims_module
-from asperity2d.studies.claims import claim
+from asperity2d.experiments import verdicts
+from asperity2d.experiments.verdicts import claim
 from asperity2d.studies import ooten as studies
 
 FACTORS = {"below": 0.95, "above": 1.05}
@@ -66,7 +66,7 @@ def run_setup(setup: str, size: dict) -> tuple[dict, dict, list[dict]]:
     """Constant-force runs from rest either side of the critical force, and one spring-driven pass."""
     base = {**size, **studies.SETUPS[setup]}
     scene = a.make_scene(spacing="regular", drive="force", **base)
-    bracket = critical_force_bracket(scene, start="rest")
+    bracket = a.critical_force_bracket(scene, start="rest")
     runs = {k: studies.pushed(scene, f * bracket.value, start="rest") for k, f in FACTORS.items()}
     runs["spring"] = a.simulate(a.make_scene(spacing="regular", drive="spring", **base))
     events = a.stick_slip_events(runs["spring"])
@@ -104,6 +104,19 @@ def run_setup(setup: str, size: dict) -> tuple[dict, dict, list[dict]]:
     return numbers, runs, claims
 
 
+def plot_positions(results, labels, path) -> None:
+    """Slider travel against time for several runs on one axis (Ooten's figure 10 style):
+    plateaus are where a slider stopped on a flank."""
+    fig = Figure(figsize=(7.0, 3.2), layout="constrained")
+    ax = fig.subplots()
+    for result, label in zip(results, labels):
+        ax.plot(result.t * 1e6, (result.x - result.x[0]) * 1e6, label=label)
+    ax.set_xlabel("time (µs)")
+    ax.set_ylabel("slider travel (µm)")
+    ax.legend(loc="best", fontsize="small")
+    fig.savefig(path, dpi=120)
+
+
 def main(argv=None) -> int:
     args = scripting.parser(scripting.title(__doc__)).parse_args(argv)
     out = scripting.out_dir(args, __file__)
@@ -128,7 +141,7 @@ def main(argv=None) -> int:
                      f"breakaway {spring['first_breakaway_N'] * 1e3:.3g} mN, peak stick force "
                      f"{spring['peak_stick_force_N'] * 1e3:.3g} mN, mean stick force "
                      f"{spring['mean_stick_force_N'] * 1e3:.3g} mN, mean force drop {ev['force_drop_mean'] * 1e3:.3g} mN")
-        lines += [claims_module.verdict_line(c) for c in claims]
+        lines += [verdicts.verdict_line(c) for c in claims]
         if setup == "fixed" and not args.no_gif:  # Ooten's own set-up
             a.render(runs["spring"], out / "spring_fixed.gif", frames=args.frames or (30 if args.quick else 120))
     return scripting.finish(args, summary, out, lines)

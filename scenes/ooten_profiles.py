@@ -51,17 +51,16 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from matplotlib.figure import Figure
 
 import asperity2d as a
 from asperity2d import stats
 from asperity2d.experiments.compare import Comparison
 from asperity2d.experiments.measures import measure_label
-from asperity2d.critical import critical_force
-from asperity2d.renderers.plots import plot_comparison, plot_positions
 from asperity2d import scripting
-from asperity2d.studies import claims
+from asperity2d.experiments import verdicts
 from asperity2d.studies import ooten as studies
-from asperity2d.sweep.engine import map_calls
+from asperity2d.sweep import map_calls
 
 ALPHA = 0.01
 FRICTIONS = {"mu_s > mu_k": {"mu_static": 0.3, "mu_kinetic": 0.2},
@@ -171,15 +170,15 @@ def claims_for(setup: str, friction: str, data: dict, comparisons: dict) -> list
             numbers["regular_half_over_full"] = _ratio(regular["half"], regular["full"])
             numbers["regular_N"] = regular
             numbers["random_half_over_full"] = _ratio(numbers["mean"], numbers["reference"])
-            verdict = claims.judge(numbers, ALPHA, direction=direction)
+            verdict = verdicts.judge(numbers, ALPHA, direction=direction)
             text = (f"at one constant force full triangles travel farther than {shape} (figure 10), {friction}"
                     if travel else f"{shape} need a larger {label.rsplit(' (', 1)[0]} than full triangles "
                                    f"(figures 9-10), {friction}")
-            out.append(claims.claim(
+            out.append(verdicts.claim(
                 text, verdict, numbers,
                 f"{numbers['test']}, half vs full over random seeds, one-sided ({direction}): "
                 f"p = {numbers['p_wilcoxon']:.3g}; holds if p < {ALPHA} and the change is at least "
-                f"{100 * claims.MIN_EFFECT:g} %; {numbers['missing']} seeds missing (slider fell through). Regular "
+                f"{100 * verdicts.MIN_EFFECT:g} %; {numbers['missing']} seeds missing (slider fell through). Regular "
                 f"spacing (deterministic): half / full = {numbers['regular_half_over_full']:.3f}", setup=setup)
                 | {"measure": name, "friction": friction, "half": half})
     return out
@@ -277,16 +276,29 @@ def mechanism_lines(setup: str, mech: dict) -> list[str]:
     return lines
 
 
+def plot_positions(results, labels, path) -> None:
+    """Slider travel against time for several runs on one axis (Ooten's figure 10 style):
+    plateaus are where a slider stopped on a flank."""
+    fig = Figure(figsize=(7.0, 3.2), layout="constrained")
+    ax = fig.subplots()
+    for result, label in zip(results, labels):
+        ax.plot(result.t * 1e6, (result.x - result.x[0]) * 1e6, label=label)
+    ax.set_xlabel("time (µs)")
+    ax.set_ylabel("slider travel (µm)")
+    ax.legend(loc="best", fontsize="small")
+    fig.savefig(path, dpi=120)
+
+
 def figure10(size: dict, seed: int, force_fraction: float, path) -> dict:
     """Figure 10 analogue: one constant force, full vs half triangles, with the builder's run-up
     (fixed track, random spacing seed ``seed``): ``force_fraction`` x the half-triangle
     slider's critical force with a run-up, at that measure's step."""
-    from asperity2d.critical import measure_dt
+    from asperity2d.experiments.measures import measure_step
 
     base = {**size, **studies.SETUPS["fixed"], "spacing": "random", "seed": seed, "drive": "force"}
     scenes = {"full": a.make_scene(**base), "half": a.make_scene(**base, **HALF)}
-    force = force_fraction * critical_force(scenes["half"], start="run-up")
-    runs = {p: studies.pushed(sc, force, start="run-up", dt=measure_dt(sc, "run-up")) for p, sc in scenes.items()}
+    force = force_fraction * a.critical_force(scenes["half"], start="run-up")
+    runs = {p: studies.pushed(sc, force, start="run-up", dt=measure_step("critical-run-up", sc)) for p, sc in scenes.items()}
     plot_positions(list(runs.values()), [f"{p} triangles, {force * 1e3:.3g} mN with a run-up ({r.status})"
                                           for p, r in runs.items()], path)
     return {"force_N": force, "seed": seed,
@@ -318,7 +330,7 @@ def main(argv=None) -> int:
             for name, comparison in comparisons.items():
                 label = MEASURES[name][1]
                 unit = "µm" if label.endswith("(m)") else "mN"
-                plot_comparison(comparison, out / f"{setup}_{tag}_{name}.png", unit=unit,
+                a.render(comparison, out / f"{setup}_{tag}_{name}.png", unit=unit,
                                 label=label.replace("(N)", "(mN)").replace("(m)", "(µm)") + f", {setup}, {friction}")
             summary["results"].setdefault(setup, {})[friction] = {
                 "regular": {p: d["regular"] for p, d in data.items()},

@@ -49,10 +49,9 @@ from asperity2d import stats
 from asperity2d import scripting
 from asperity2d.experiments.compare import Comparison
 from asperity2d.experiments.measures import measure_label
-from asperity2d.renderers.plots import plot_comparison
-from asperity2d.studies import claims
+from asperity2d.experiments import verdicts
 from asperity2d.studies import ooten as studies
-from asperity2d.sweep.engine import map_calls
+from asperity2d.sweep import map_calls
 
 VARIANTS = {"regular": {"spacing": "regular"}, "random-upper": {"spacing": "random-upper"},
             "random": {"spacing": "random"}}
@@ -102,23 +101,23 @@ def claims_for(setup: str, found: dict[str, Comparison]) -> list[dict]:
         for variant in ("random-upper", "random"):
             numbers = with_effect(comparison.versus(variant, "regular", alternative="less"),
                                   comparison.values[variant], regular)
-            out.append(claims.claim(
-                f"random spacing ({variant}) lowers the {label}", claims.judge(numbers, ALPHA), numbers,
+            out.append(verdicts.claim(
+                f"random spacing ({variant}) lowers the {label}", verdicts.judge(numbers, ALPHA), numbers,
                 f"{numbers['test']}, one-sided (lower): p = {numbers['p_wilcoxon']:.3g}; holds if p < {ALPHA} "
-                f"and the change is at least {100 * claims.MIN_EFFECT:g} %", setup=setup)
+                f"and the change is at least {100 * verdicts.MIN_EFFECT:g} %", setup=setup)
                 | {"measure": name, "variant": variant})
         both = with_effect(comparison.versus("random", "random-upper", alternative="less"),
                            comparison.values["random"], comparison.values["random-upper"])
-        verdict = claims.judge(both, ALPHA)
-        if verdict == claims.HOLDS and both["mean"] >= comparison.summary()["regular"]["mean"]:
-            verdict = claims.FAILS  # smallest of the three, not just below random-upper
+        verdict = verdicts.judge(both, ALPHA)
+        if verdict == verdicts.HOLDS and both["mean"] >= comparison.summary()["regular"]["mean"]:
+            verdict = verdicts.FAILS  # smallest of the three, not just below random-upper
         means = {v: s["mean"] for v, s in comparison.summary().items()}
         both["smallest_variant"] = min(means, key=lambda v: means[v] if math.isfinite(means[v]) else math.inf)
-        out.append(claims.claim(
+        out.append(verdicts.claim(
             f"random on both surfaces needs the smallest {label} (figure 11)", verdict, both,
             f"paired Wilcoxon random/random - random-upper (same seeds), one-sided (lower): "
             f"p = {both['p_wilcoxon']:.3g}, and below regular; holds if p < {ALPHA} and the change is at least "
-            f"{100 * claims.MIN_EFFECT:g} %", setup=setup) | {"measure": name, "variant": "random vs random-upper"})
+            f"{100 * verdicts.MIN_EFFECT:g} %", setup=setup) | {"measure": name, "variant": "random vs random-upper"})
     return out
 
 
@@ -149,16 +148,16 @@ def main(argv=None) -> int:
         summary["results"][setup] = {}
         for name, comparison in found.items():
             comparison.save(out / f"{setup}_{name}.json")
-            plot_comparison(comparison, out / f"{setup}_{name}.png",
+            a.render(comparison, out / f"{setup}_{name}.png",
                             label=f"{measure_label(name)} (mN), {setup} set-up")
             summary["results"][setup][name] = comparison.summary()
         setup_claims = claims_for(setup, found)
         summary["claims"] += setup_claims
-        lines += [claims.verdict_line(c) for c in setup_claims if c["measure"] in HEADLINE or args.quick]
+        lines += [verdicts.verdict_line(c) for c in setup_claims if c["measure"] in HEADLINE or args.quick]
     if not args.no_gif:
         result = a.simulate(a.make_scene(spacing="random", seed=0, **size, **studies.SETUPS["fixed"]))
         a.render(result, out / "random_fixed_spring.gif", frames=args.frames or (30 if args.quick else 100))
-    held = [c for c in summary["claims"] if c["verdict"] == claims.HOLDS]
+    held = [c for c in summary["claims"] if c["verdict"] == verdicts.HOLDS]
     lines.append(f"{len(held)} of {len(summary['claims'])} claims hold; every claim with its numbers in summary.json")
     return scripting.finish(args, summary, out, lines)
 

@@ -18,7 +18,7 @@ stick-slip events, the stick-slip amplitude -- the mean force drop per slip
 Claim tested per set-up and stiffness: the random surfaces' mean force drop
 per slip is below the deterministic regular value (one-sample Wilcoxon
 signed-rank test over the random seeds, one-sided "lower"; holds if p < 0.01,
-``asperity2d.studies.claims.judge``). A pass with no complete slip (one
+:func:`asperity2d.experiments.verdicts.judge`). A pass with no complete slip (one
 slip carried the slider across) has no force drop and counts as missing.
 Whether the verdict changes with the drive stiffness is reported as
 ``drive_dependent``.
@@ -33,13 +33,14 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from matplotlib.figure import Figure
 
 import asperity2d as a
 from asperity2d import stats
 from asperity2d import scripting
-from asperity2d.studies import claims
+from asperity2d.experiments import verdicts
 from asperity2d.studies import ooten as studies
-from asperity2d.sweep.engine import map_calls
+from asperity2d.sweep import map_calls
 
 STIFFNESSES = (1_176.0, 3_720.0, 11_760.0)  # N/m
 ALPHA = 0.01
@@ -49,10 +50,8 @@ AMPLITUDE = "stick-slip amplitude (mean force drop per slip)"
 
 def plot_amplitudes(results: dict, path) -> None:
     """Mean force drop against drive stiffness, regular (line) and random (mean, 95 % CI)."""
-    from asperity2d.renderers.plots import figure, save
-
-    fig, axes = figure(1, len(results), width=7.0, height=3.2, sharex=False)
-    axes = axes[0]
+    fig = Figure(figsize=(7.0, 3.2), layout="constrained")
+    axes = fig.subplots(1, len(results), squeeze=False)[0]
     for ax, (setup, per_k) in zip(axes, results.items()):
         ks = [float(k) for k in per_k]
         reg = [per_k[k]["regular"]["force_drop_mean_N"] * 1e3 for k in per_k]
@@ -66,7 +65,7 @@ def plot_amplitudes(results: dict, path) -> None:
         ax.set_ylabel("mean force drop per slip (mN)")
         ax.set_title(f"{setup} slider", fontsize=9)
         ax.legend(fontsize=8)
-    save(fig, path, 110)
+    fig.savefig(path, dpi=110)
 
 
 def main(argv=None) -> int:
@@ -83,7 +82,7 @@ def main(argv=None) -> int:
         jobs = [dict(base, drive_stiffness=k, spacing=sp, seed=s) for k in stiffnesses
                 for sp, s in [("regular", 0)] + [("random", s) for s in range(n_seeds)]]
         rows = map_calls(studies.spring_pass_run, jobs, workers=args.workers)
-        per_k, verdicts = {}, {}
+        per_k, judged = {}, {}
         for i, k in enumerate(stiffnesses):
             block = rows[i * (n_seeds + 1):(i + 1) * (n_seeds + 1)]
             regular, randoms = block[0], block[1:]
@@ -93,13 +92,13 @@ def main(argv=None) -> int:
                                            regular["force_drop_mean_N"], alternative="less")
             e = stats.relative_effect([r["force_drop_mean_N"] for r in randoms], regular["force_drop_mean_N"])
             amp.update(ratio_hl=e["ratio"], ratio_ci_low=1 + e["ci_low"], ratio_ci_high=1 + e["ci_high"])
-            verdict = claims.judge(amp, ALPHA) if math.isfinite(regular["force_drop_mean_N"]) else claims.FAILS
-            verdicts[str(k)] = verdict
+            verdict = verdicts.judge(amp, ALPHA) if math.isfinite(regular["force_drop_mean_N"]) else verdicts.FAILS
+            judged[str(k)] = verdict
             numbers = {"drive_stiffness_N_per_m": k, "force_drop": amp,
                        "regular": per_k[str(k)]["regular"], "random": described,
                        "fraction_random_seeds_with_fewer_events":
                            float(np.mean([r["events"] < regular["events"] for r in randoms]))}
-            record = claims.claim(
+            record = verdicts.claim(
                 f"random spacing lowers the {AMPLITUDE} (abstract: regularity enhances stick-slip), "
                 f"drive stiffness {k:g} N/m", verdict, numbers,
                 f"one-sample Wilcoxon signed-rank of the random passes' mean force drop per slip vs the "
@@ -107,7 +106,7 @@ def main(argv=None) -> int:
                 f"{amp['missing']} passes without a complete slip left out", setup=setup)
             summary["claims"].append(record | {"measure": "force_drop_mean_N",
                                                "drive_stiffness_N_per_m": k})
-            lines.append(claims.verdict_line({**record, "numbers": amp}))
+            lines.append(verdicts.verdict_line({**record, "numbers": amp}))
             lines.append(
                 f"    regular {regular['events']:.0f} events, drop {regular['force_drop_mean_N'] * 1e3:.3g} mN "
                 f"(std {regular['force_drop_std_N'] * 1e3:.3g}, CV {regular['regularity']:.2f}); random "
@@ -115,8 +114,8 @@ def main(argv=None) -> int:
                 f"{amp['effect_size_d']:.2f}, std {described['force_drop_std_N']['mean'] * 1e3:.3g}, "
                 f"CV {described['regularity']['mean']:.2f})")
         summary["results"][setup] = per_k
-        summary["drive_dependent"][setup] = {"verdicts": verdicts,
-                                             "depends_on_drive": len(set(verdicts.values()) - {claims.UNTESTABLE}) > 1}
+        summary["drive_dependent"][setup] = {"verdicts": judged,
+                                             "depends_on_drive": len(set(judged.values()) - {verdicts.UNTESTABLE}) > 1}
         lines.append(f"[{setup}] verdict depends on the drive stiffness: "
                      f"{summary['drive_dependent'][setup]['depends_on_drive']}")
     plot_amplitudes(summary["results"], out / "force_drop_vs_stiffness.png")

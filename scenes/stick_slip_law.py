@@ -20,7 +20,7 @@ its mean period. Then:
   the random surfaces against the regular one: Ooten's abstract
   ("randomness reduces stick-slip") read as "random spacing lowers the gap",
   one-sample Wilcoxon over seeds against the regular value, one-sided
-  (lower), holds if p < 0.01 and the change is at least 1 % (``asperity2d.studies.claims.judge``).
+  (lower), holds if p < 0.01 and the change is at least 1 % (:func:`asperity2d.experiments.verdicts.judge`).
 
 The scene is the free slider under load only: a friction law is a force per
 unit normal load, which a fixed-height track does not have.
@@ -34,15 +34,16 @@ from __future__ import annotations
 
 
 import numpy as np
+from matplotlib.figure import Figure
 
 import asperity2d as a
-from asperity2d.belt.period import belt_period
-from asperity2d.friction import fits as ft
+from asperity2d import friction as ft
+from asperity2d.belt import belt_period
 from asperity2d import scripting
 from asperity2d.experiments import tribometer as tb
 from asperity2d import stats
-from asperity2d.studies import claims
-from asperity2d.sweep.engine import map_calls
+from asperity2d.experiments import verdicts
+from asperity2d.sweep import map_calls
 
 STIFFNESS = 1000.0  # N/m, drive spring
 VELOCITY = 10.0  # m/s, drive speed (quasi-static: see scenes/tribometer.py)
@@ -73,9 +74,8 @@ def _describe(result, law) -> dict:
 
 
 def _plot(table, path):
-    from asperity2d.renderers.plots import figure, save
-
-    fig, (ax_gap, ax_period) = figure(2, height=2.6, sharex=False)
+    fig = Figure(figsize=(7.0, 5.2), layout="constrained")
+    ax_gap, ax_period = fig.subplots(2, 1)
     regular = table["regular"][0]
     rows = table["random"]
     seeds = [r["seed"] for r in rows]
@@ -97,7 +97,7 @@ def _plot(table, path):
     ax_period.set_xlabel("asperity stick-slip period (pitches)")
     ax_period.set_ylabel("belt solver (pitches)")
     ax_period.legend(fontsize=7)
-    return save(fig, path, 120)
+    fig.savefig(path, dpi=120)
 
 
 def main(argv=None) -> int:
@@ -132,11 +132,11 @@ def main(argv=None) -> int:
     }
     gap = stats.versus_reference(gaps, reg["gap"], alternative="less")
     summary["claims"] = [
-        claims.claim("random spacing lowers the static/kinetic gap mu_s - mu_k of the stick-slip law "
-                     "(abstract: randomness reduces stick-slip)", claims.judge(gap, ALPHA), gap,
+        verdicts.claim("random spacing lowers the static/kinetic gap mu_s - mu_k of the stick-slip law "
+                     "(abstract: randomness reduces stick-slip)", verdicts.judge(gap, ALPHA), gap,
                      f"one-sample Wilcoxon signed-rank of the random surfaces' gaps vs the regular value, "
-                     f"one-sided (lower): p = {gap['p_wilcoxon']:.3g}; holds if p < {ALPHA} and the change is at least {100 * claims.MIN_EFFECT:g} %", setup="free"),
-        claims.claim("the static/kinetic law pooled over calibration seeds predicts the held-out seeds' "
+                     f"one-sided (lower): p = {gap['p_wilcoxon']:.3g}; holds if p < {ALPHA} and the change is at least {100 * verdicts.MIN_EFFECT:g} %", setup="free"),
+        verdicts.claim("the static/kinetic law pooled over calibration seeds predicts the held-out seeds' "
                      "mean stick-slip period in the belt solver within 10 %",
                      summary["held_out_ratio"]["max_abs_error"] < 0.10, summary["held_out_ratio"],
                      "direct: largest |belt period / asperity period - 1| over the held-out seeds < 0.10",
@@ -153,7 +153,7 @@ def main(argv=None) -> int:
              *(f"  seed {r['seed']}: asperities {r['period_pitches']:.3f} pitches, belt ratio {r['ratio']:.3f} "
                f"(regular-surface law {r['regular_law_ratio']:.3f})" for r in held),
              f"held-out max error {summary['held_out_ratio']['max_abs_error']:.1%}",
-             *(claims.verdict_line(c) for c in summary["claims"])]
+             *(verdicts.verdict_line(c) for c in summary["claims"])]
     return scripting.finish(args, summary, out, lines)
 
 

@@ -6,8 +6,11 @@
   cycles of asperity runs (SciPy least squares).
 """
 
+from .fits import (Fit, fit_coulomb_viscous, fit_dahl, fit_lugre, fit_stick_slip, fit_stribeck, steady_mask,
+                   stick_slip_cycles)
 from .laws import (Coulomb, CoulombViscous, Dahl, FrictionLaw, LuGre, StaticKinetic, Stribeck,
                    law_from_dict)
 
 __all__ = ["FrictionLaw", "Coulomb", "StaticKinetic", "CoulombViscous", "Stribeck", "Dahl", "LuGre",
-           "law_from_dict"]
+           "law_from_dict", "Fit", "fit_coulomb_viscous", "fit_stribeck", "fit_dahl", "fit_lugre", "fit_stick_slip",
+           "stick_slip_cycles", "steady_mask"]
