@@ -23,10 +23,21 @@ slip carried the slider across) has no force drop and counts as missing.
 Whether the verdict changes with the drive stiffness is reported as
 ``drive_dependent``.
 
+The lesson: a distribution over random seeds against one deterministic value,
+repeated along a parameter (the drive stiffness), and whether the verdict
+depends on it.
+
 Run::
 
     python scenes/ooten_stickslip.py [--seeds 20] [--workers auto|N]
 """
+
+# %%
+# The steps are in ``main`` below, made of the package's public calls; it reads the command
+# line, runs them and prints. The gallery runs it with ``--quick`` (4 lower and 2 upper
+# asperities, 2 seeds, the softest and stiffest spring): a one-sided signed-rank test over n
+# seeds cannot give p below 1/2**n, so its verdicts read "not testable"; a verdict needs 7 seeds
+# or more (the default run uses 20).
 
 from __future__ import annotations
 
@@ -48,6 +59,13 @@ METRICS = ("events", "force_drop_mean_N", "force_drop_std_N", "regularity")
 AMPLITUDE = "stick-slip amplitude (mean force drop per slip)"
 
 
+# %%
+# 1. The picture
+# --------------
+#
+# The mean force drop per slip against the drive stiffness: the regular surface's single value
+# and the random surfaces' mean with its 95 % interval, drawn with matplotlib.
+
 def plot_amplitudes(results: dict, path) -> None:
     """Mean force drop against drive stiffness, regular (line) and random (mean, 95 % CI)."""
     fig = Figure(figsize=(7.0, 3.2), layout="constrained")
@@ -67,6 +85,19 @@ def plot_amplitudes(results: dict, path) -> None:
         ax.legend(fontsize=8)
     fig.savefig(path, dpi=110)
 
+
+# %%
+# 2. Passes, statistics, verdicts
+# -------------------------------
+#
+# For each set-up and stiffness: one spring-driven pass per surface (``studies.spring_pass_run``:
+# :func:`asperity2d.make_scene` with ``drive="spring"`` and ``drive_stiffness=``, then
+# :func:`asperity2d.simulate`, :func:`asperity2d.stick_slip_events` and
+# :func:`asperity2d.event_statistics`), run on worker processes by
+# :func:`asperity2d.sweep.map_calls`; the random seeds against the regular value with
+# :func:`asperity2d.stats.versus_reference` and :func:`asperity2d.stats.relative_effect`, judged
+# by :func:`asperity2d.experiments.verdicts.judge`. Last, a regular pass on the softest spring,
+# rendered as a GIF and a time series (:func:`asperity2d.render`).
 
 def main(argv=None) -> int:
     args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=20, minimum_seeds=2)
@@ -118,6 +149,10 @@ def main(argv=None) -> int:
                                              "depends_on_drive": len(set(judged.values()) - {verdicts.UNTESTABLE}) > 1}
         lines.append(f"[{setup}] verdict depends on the drive stiffness: "
                      f"{summary['drive_dependent'][setup]['depends_on_drive']}")
+    if 0.5 ** n_seeds >= ALPHA:
+        lines.append(f"not testable here: {n_seeds} seeds cannot give p < {ALPHA} (a one-sided signed-rank "
+                     f"test over n seeds reaches at best 1/2**n); the claims need "
+                     f"{math.ceil(math.log2(1 / ALPHA))} seeds or more")
     plot_amplitudes(summary["results"], out / "force_drop_vs_stiffness.png")
     if not args.no_gif:
         result = a.simulate(a.make_scene(spacing="regular", drive_stiffness=stiffnesses[0], **size,

@@ -9,7 +9,7 @@ The stick-slip friction law of regular and random surfaces (Table 1 steel, belt-
 The tribometer's asperities (Table 1 steel, two tips at 1 mN) on a 1000 N/m
 drive spring at 10 m/s: the regular surface, and random surfaces (both
 surfaces random, Ooten's case) over seeds. For every run, the
-static/kinetic law of its stick-slip cycles (``fitting.fit_stick_slip``) and
+static/kinetic law of its stick-slip cycles (:func:`asperity2d.friction.fit_stick_slip`) and
 its mean period. Then:
 
 * **transfer**: the random seeds are split in two; the law pooled over the
@@ -25,10 +25,20 @@ its mean period. Then:
 The scene is the free slider under load only: a friction law is a force per
 unit normal load, which a fixed-height track does not have.
 
+The lesson: a friction law fitted on some seeds and tested on others (a held-out
+check), and a distribution over seeds against one deterministic value.
+
 Run::
 
     python scenes/stick_slip_law.py [--seeds 20] [--workers auto|N] [--quick]
 """
+
+# %%
+# The steps are functions made of the package's public calls; ``main`` at the bottom reads the
+# command line, runs them and prints. ``--quick`` runs 4 random seeds on 24 lower asperities: a
+# one-sided signed-rank test over n seeds cannot give p below 1/2**n, so the gap's verdict reads
+# "not testable" there (it needs 7 seeds or more; the default run uses 20); the transfer check
+# is direct and gives its verdict.
 
 from __future__ import annotations
 
@@ -51,12 +61,29 @@ LOWER_COUNT = 32  # lower asperities: ~10 cycles of ~3 pitches on a random surfa
 ALPHA = 0.01
 
 
+# %%
+# 1. One spring-driven run per surface
+# ------------------------------------
+#
+# The tribometer's scene (``tb.make_tribometer_scene``) on a 1000 N/m spring at 10 m/s, regular
+# or random, run by :func:`asperity2d.simulate`; ``main`` runs one per seed on worker processes
+# (:func:`asperity2d.sweep.map_calls`).
+
 def run_surface(spacing: str, seed: int, lower_count: int):
     """One spring-driven run of the tribometer scene (a picklable job)."""
     scene = tb.make_tribometer_scene(drive_stiffness=STIFFNESS, drive_velocity=VELOCITY,
                                      lower_count=lower_count, spacing=spacing, seed=seed)
     return a.simulate(scene)
 
+
+# %%
+# 2. Each run's law, and what a law predicts for it
+# -------------------------------------------------
+#
+# :func:`asperity2d.friction.fit_stick_slip` fits the run's own static/kinetic law to its
+# cycles (:func:`asperity2d.friction.stick_slip_cycles`); :func:`asperity2d.belt.belt_period`
+# runs a given law in the belt solver on the same mass and spring: the ratio of the two
+# periods says how well that law transfers.
 
 def _describe(result, law) -> dict:
     """A run's own law, its mean period and what ``law`` predicts for it in the belt solver."""
@@ -72,6 +99,13 @@ def _describe(result, law) -> dict:
             "period_cv": float(np.std(cycles["periods_s"]) / cycles["period_s"]),
             "predicted_period_s": belt, "ratio": belt / cycles["period_s"]}
 
+
+# %%
+# 3. The picture
+# --------------
+#
+# The static - kinetic gap of each random seed against the regular surface's, and the held-out
+# seeds' periods as the belt solver predicts them, drawn with matplotlib.
 
 def _plot(table, path):
     fig = Figure(figsize=(7.0, 5.2), layout="constrained")
@@ -99,6 +133,15 @@ def _plot(table, path):
     ax_period.legend(fontsize=7)
     fig.savefig(path, dpi=120)
 
+
+# %%
+# 4. Calibrate on half the seeds, predict the other half, judge
+# -------------------------------------------------------------
+#
+# The law pooled over the first half of the random seeds predicts the held-out seeds' periods;
+# the gaps of all random seeds are tested against the regular one
+# (:func:`asperity2d.stats.versus_reference`, judged by
+# :func:`asperity2d.experiments.verdicts.judge`).
 
 def main(argv=None) -> int:
     args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=20, minimum_seeds=4,

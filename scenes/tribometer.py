@@ -14,10 +14,18 @@ soft drive spring (stick-slip): a static/kinetic law fitted to the cycles at
 held-out drive stiffnesses and speeds; the steady-sliding Stribeck law is
 run too, to show why it cannot.
 
+The lesson: measuring a friction law on simulated asperities, fitting the
+classic laws to it, and checking the fitted law where it was not fitted.
+
 Run::
 
     python scenes/tribometer.py [--quick] [--json]
 """
+
+# %%
+# The steps are functions made of the package's public calls; ``main`` at the bottom reads the
+# command line, runs them and prints. ``--quick`` runs three speeds (one decade each) and two
+# stick-slip runs: the calibration one and one held-out stiffness.
 
 from __future__ import annotations
 
@@ -32,6 +40,16 @@ from asperity2d import scripting
 from asperity2d.belt import belt_period
 from asperity2d.experiments import tribometer as tb
 
+
+# %%
+# 1. The measured law and its fit
+# -------------------------------
+#
+# ``tb.steady_curve`` slides the tribometer's asperities at a ladder of speeds (a stiff drive:
+# velocity control) and returns the mean friction force at each; ``tb.reversal_loops`` the
+# pre-sliding loops from rest. :func:`asperity2d.friction.steady_mask` marks the points that
+# stayed in contact; the Stribeck fit (:func:`asperity2d.friction.fit_stribeck`) is drawn over
+# them with matplotlib.
 
 def _plots(curve, loops, fits, path):
     fig = Figure(figsize=(7.0, 6.0), layout="constrained")
@@ -57,6 +75,17 @@ STICK_SLIP_RUNS = ((1000.0, 10.0, 16), (500.0, 10.0, 24), (2000.0, 10.0, 12), (3
                    (1000.0, 3.0, 16), (1000.0, 30.0, 16))
 QUICK_STICK_SLIP_RUNS = ((1000.0, 10.0, 16), (2000.0, 10.0, 12))
 
+
+# %%
+# 2. From asperities to a friction law, and back
+# ----------------------------------------------
+#
+# On a soft drive spring the same asperities stick and slip.
+# :func:`asperity2d.friction.fit_stick_slip` fits a static/kinetic law to the cycles of the first
+# run (``STICK_SLIP_RUNS``); :func:`asperity2d.belt.belt_period` runs that law in the belt
+# solver on the same mass and spring, and predicts the stick-slip period of the held-out drive
+# stiffnesses and speeds. The steady-sliding Stribeck law, run the same way, shows why a law
+# measured in steady sliding cannot.
 
 def _stick_slip_periods(stribeck, *, quick: bool) -> tuple:
     """(calibrated law, report): stick-slip periods of the asperity scene vs the belt solver."""
@@ -95,6 +124,13 @@ def _stick_slip_periods(stribeck, *, quick: bool) -> tuple:
                  "belt_curve": {"velocity_m_per_s": velocity, "stiffness_N_per_m": grid.tolist(), "pitches": line}}
 
 
+# %%
+# 3. Periods: asperities against the belt solver
+# ----------------------------------------------
+#
+# The stick-slip period in pitches against the drive stiffness, drawn with matplotlib: the
+# asperity runs as points, the calibrated law in the belt solver as a line.
+
 def _period_plot(periods, path):
     """Stick-slip period in pitches against drive stiffness: asperities vs belt solver."""
     fig = Figure(figsize=(7.0, 3.0), layout="constrained")
@@ -114,6 +150,15 @@ def _period_plot(periods, path):
     ax.legend(fontsize=7)
     fig.savefig(path, dpi=120)
 
+
+# %%
+# 4. The law in a multi-DOF belt chain
+# ------------------------------------
+#
+# The multi-DOF belt thesis' 3-DOF chain (``asperity2d.belt.presets``) with the asperity-measured
+# law: written as a chain file (``asperity2d belt <file>`` runs it again), read back, its
+# ``[friction]`` table made a law again by :func:`asperity2d.friction.law_from_dict`, solved by
+# :func:`asperity2d.belt.simulate_chain` and drawn by :func:`asperity2d.render`.
 
 def _macroscopic_chain(law, out) -> dict:
     """The multi-DOF belt thesis' 3-DOF chain (Table 2, from rest) with the asperity-measured law.
@@ -144,6 +189,15 @@ def _macroscopic_chain(law, out) -> dict:
 def _ratio(value: float) -> str:
     return "gives no stick-slip" if not np.isfinite(value) else f"{value:.2f}"
 
+
+# %%
+# 5. The whole tribometer
+# -----------------------
+#
+# The scene (``tb.make_tribometer_scene``: Table 1 steel asperities, two tips at 1 mN), the
+# steady curve and the loops, the four fits (Coulomb + viscous, Stribeck, Dahl, LuGre), the
+# energy balance of one window (``tb.energy_window``), then steps 2-4. ``main`` reads the
+# options with :mod:`asperity2d.scripting`.
 
 def main(argv=None) -> int:
     args = scripting.parser(scripting.title(__doc__)).parse_args(argv)

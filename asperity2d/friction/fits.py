@@ -71,7 +71,7 @@ def steady_mask(curve) -> np.ndarray:
     """Points of steady contact sliding, the ones the fits use.
 
     A point qualifies with a nonzero force, a per-pitch spread below 30 % of
-    it, and the slider in contact for at least :data:`MIN_CONTACT_FRACTION`
+    it, and the slider in contact for at least ``MIN_CONTACT_FRACTION`` (0.9)
     of the window. From a few hundred m/s the slider lifts off the tips (its
     load cannot pull it back down within a pitch): on the Table 1 tribometer
     it is in contact 99 % of the time at 100 m/s, 20-40 % at 300 m/s and
