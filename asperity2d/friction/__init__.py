@@ -2,8 +2,9 @@
 
 * :mod:`.laws` -- the laws a belt chain (or any model) can use: Coulomb, static/kinetic,
   Coulomb + viscous, Stribeck, and the state-variable Dahl and LuGre laws;
-* :mod:`.fits` -- fitting those laws to the virtual tribometer's data and to stick-slip
-  cycles of asperity runs (SciPy least squares).
+* the fits -- fitting those laws to the virtual tribometer's data (:func:`fit_coulomb_viscous`,
+  :func:`fit_stribeck`, :func:`fit_dahl`, :func:`fit_lugre`) and to the stick-slip cycles of
+  asperity runs (:func:`fit_stick_slip`, :func:`stick_slip_cycles`), by SciPy least squares.
 """
 
 from .fits import (Fit, fit_coulomb_viscous, fit_dahl, fit_lugre, fit_stick_slip, fit_stribeck, steady_mask,
