@@ -79,6 +79,11 @@ def plot_amplitudes(results: dict, path) -> None:
         err = np.array([[r["mean"] - r["ci_low"], r["ci_high"] - r["mean"]] for r in rnd]).T * 1e3
         ax.errorbar(ks, mean, yerr=np.nan_to_num(err), fmt="s--", capsize=3, label="random (95 % CI)")
         ax.set_xscale("log")
+        ax.set_xlim(min(ks) / 1.6, max(ks) * 1.6)
+        for k, r, m in zip(ks, reg, mean):  # a pass that one slip carried across has no force drop
+            if not (np.isfinite(r) or np.isfinite(m)):
+                ax.text(k, 0.5, "no complete\nslip", transform=ax.get_xaxis_transform(), ha="center",
+                        va="center", fontsize=8, color="0.4")
         ax.set_xlabel("drive stiffness (N/m)")
         ax.set_ylabel("mean force drop per slip (mN)")
         ax.set_title(f"{setup} slider", fontsize=9)
