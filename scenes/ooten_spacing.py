@@ -93,9 +93,9 @@ def critical_over_seeds(setup: str, size: dict, seeds, workers) -> a.Comparison:
 # study runs one job per (variant, seed) instead: ``studies.measures_run`` makes the scene and
 # takes every measure of it (:func:`asperity2d.critical_force_bracket` from rest and with a
 # run-up, the quasi-static ramp, the spring-driven passes), and :func:`asperity2d.sweep.map_calls`
-# runs the jobs on worker processes. The values are the ones ``compare`` gives (``main`` checks
-# the critical forces of step 1 against them). The regular scene does not depend on the seed: it
-# is measured once.
+# runs the jobs on worker processes. The critical forces are the ones ``compare`` gives (``main``
+# checks step 1's against them); the stick forces average 5 passes (``passes``) where the named
+# measures average 3. The regular scene does not depend on the seed: it is measured once.
 
 def rows_for(setup: str, *, size: dict, seeds: list[int], workers: int | None, passes: int,
              quasi_static: bool = True) -> dict:

@@ -60,8 +60,8 @@ def measures_run(*, seed: int = 0, passes: int = 5, starts: tuple = ("rest", "ru
 
     The measures of :mod:`asperity2d.experiments.measures`, taken on
     ``make_scene(seed=seed, drive="force", **params)``: one job per scene, so a study of many
-    measures builds each scene once. The values equal those :func:`asperity2d.compare` gives
-    for the same measure, scene and seed.
+    measures builds each scene once. The critical forces equal those :func:`asperity2d.compare`
+    gives for the same measure, scene and seed.
 
     Parameters
     ----------
