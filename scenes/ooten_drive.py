@@ -80,7 +80,7 @@ def restarts(result, *, min_stop: float = 0.0) -> int:
 
 # %%
 # 2. Either side of the threshold, and a spring
-# --------------------------------------------
+# ---------------------------------------------
 #
 # :func:`asperity2d.critical_force_bracket` bisects the critical force from rest on a regular
 # scene (``drive="force"``); ``studies.pushed`` pushes the slider from that same rest with 0.95 x
