@@ -23,25 +23,67 @@ rigid-body contacts, and the JSON lists the contact episodes per peak.
 Steel values of Table 1 (45 deg flanks, height 0.5 um for a 1 um base), drive
 sped up from Ooten's 5e-3 m/s (the factor is reported).
 
+The lesson: a coupled lower surface (``lateral_stiffness``) and reading a
+run's contact arrays.
+
 Run::
 
     python scenes/matlab_lattice.py        # or: asperity2d run scenes/matlab_lattice.py
 """
 
+# %%
+# The steps are functions made of the package's public calls; ``main`` at the bottom reads the
+# command line, runs them and prints. One deterministic run: ``--quick`` gives the same contact
+# cases with fewer animation frames.
+
 from __future__ import annotations
 
 import numpy as np
 
+from matplotlib.figure import Figure
+
 import asperity2d as a
-from asperity2d._format import si
 from asperity2d import scripting
 from asperity2d.experiments.quasistatic import SEED_DRIVE_VELOCITY
-from asperity2d.renderers.plots import plot_position_velocity
 
 K = 37_200.0  # N/m, Ooten's Table 1 (all springs)
 MASS = 2.88e-16  # kg, Ooten's Table 1 (all peaks and the slider)
 DRIVE_VELOCITY = 20.0  # m/s = 4000 x Ooten's 5e-3 m/s
 
+
+# %%
+# 1. Ooten's figure 17, drawn with matplotlib
+# -------------------------------------------
+#
+# Position and velocity of the slider against time from the :class:`asperity2d.Result`'s
+# arrays: the velocity spikes are the impacts on the lattice's peaks.
+
+def plot_position_velocity(result, path, *, title: str = "") -> None:
+    """Ooten's figure 17: slider position (µm) and velocity (m/s) against time (µs); the
+    velocity panel shows the collision spikes where the slider hits a lower flank."""
+    fig = Figure(figsize=(7.0, 4.8), layout="constrained")
+    ax_x, ax_v = fig.subplots(2, 1, sharex=True)
+    t = np.asarray(result.t) * 1e6
+    ax_x.plot(t, (np.asarray(result.x) - result.x[0]) * 1e6, lw=1.0, label="slider")
+    if np.isfinite(result.drive_x).any():
+        ax_x.plot(t, (np.asarray(result.drive_x) - result.x[0]) * 1e6, lw=0.8, ls="--", label="drive spring end")
+    ax_x.set_ylabel("position (µm)")
+    ax_x.legend(loc="upper left", fontsize=8)
+    ax_v.plot(t, result.v, lw=0.8, color="C3")
+    ax_v.set_ylabel("velocity (m/s)")
+    ax_v.set_xlabel("time (µs)")
+    if title:
+        ax_x.set_title(title, fontsize=9)
+    fig.savefig(path, dpi=120)
+
+
+# %%
+# 2. The lattice as a scene
+# -------------------------
+#
+# :func:`asperity2d.make_scene` with ``lateral_stiffness`` joins the lower peaks to each other
+# and to the walls by horizontal springs: Ooten's lattice. Three peaks, one slider tip on a
+# fixed track, Table 1's mass and stiffness, the drive sped up.
 
 def build_scene(quick: bool = False, **overrides):
     params = dict(lower_count=3, upper_count=1, track="fixed", interference=0.25e-6,
@@ -51,6 +93,14 @@ def build_scene(quick: bool = False, **overrides):
     params.update(overrides)
     return a.make_scene(**params)
 
+
+# %%
+# 3. Ooten's contact cases, read off the run
+# ------------------------------------------
+#
+# ``result.lower_contact`` says, at every recorded step, which lower peak touches the slider;
+# its runs are the contact episodes, and their order is Ooten's Table 2 of contact cases, which
+# the MATLAB code had to script as if-branches.
 
 def contact_episodes(result, *, merge_gap: float = 0.0) -> list[list[tuple[float, float]]]:
     """Per lower peak, the (start, end) times (s) of each contact with the slider.
@@ -87,6 +137,13 @@ def contact_cases(episodes, t_end: float) -> list[str]:
     return cases
 
 
+# %%
+# 4. Run, save, draw
+# ------------------
+#
+# :func:`asperity2d.simulate` runs the scene (``record_every=2``), ``result.save`` writes it
+# (read back with :func:`asperity2d.load`), and :func:`asperity2d.render` animates it.
+
 def main(argv=None) -> int:
     args = scripting.parser(scripting.title(__doc__)).parse_args(argv)
     out = scripting.out_dir(args, __file__)
@@ -112,7 +169,7 @@ def main(argv=None) -> int:
         "max_lateral_peak_displacement_m": float(np.max(np.abs(result.lower_dx))),
         "lateral_stiffness_matrix_N_per_m": scene.lower.lateral_stiffness_matrix().tolist(),
     }
-    lines = [f"{scene.name}: {result.status} after {si(result.t[-1], 's', 3)}",
+    lines = [f"{scene.name}: {result.status} after {scripting.si(result.t[-1], 's', 3)}",
              f"contact cases: {' -> '.join(cases)} (Ooten's Table 2: none, 1, none, 2, none, 3, none)"]
     lines += [f"peak {i + 1}: contact " + ", ".join(f"{s * 1e9:.1f}-{e * 1e9:.1f} ns" for s, e in eps)
               for i, eps in enumerate(episodes)]

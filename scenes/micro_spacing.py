@@ -23,12 +23,22 @@ spacing on both surfaces over seeds, measuring per spring-driven pass:
 Claim (abstract: "regularity enhances stick-slip, randomness reduces it"),
 per set-up: random spacing lowers the mean force drop per slip, one-sample
 Wilcoxon signed-rank test of the random passes against the regular value,
-one-sided (lower), holds if p < 0.01 and the change is at least 1 % (``asperity2d.studies.claims.judge``).
+one-sided (lower), holds if p < 0.01 and the change is at least 1 % (:func:`asperity2d.experiments.verdicts.judge`).
+
+The lesson: a scene built from a paper's table of material values, one
+spring-driven pass reduced to numbers, and a distribution over seeds against
+one deterministic value.
 
 Run::
 
     python scenes/micro_spacing.py [--seeds 20] [--workers auto|N]
 """
+
+# %%
+# The steps are functions made of the package's public calls; ``main`` at the bottom reads the
+# command line, runs them and prints. The gallery runs it with ``--quick`` (2 seeds): a one-sided
+# signed-rank test over n seeds cannot give p below 1/2**n, so its verdicts read "not testable";
+# a verdict needs 7 seeds or more (the default run uses 20).
 
 from __future__ import annotations
 
@@ -40,10 +50,9 @@ import asperity2d as a
 from asperity2d import stats
 from asperity2d.experiments.compare import Comparison
 from asperity2d.experiments.quasistatic import SEED_DRIVE_VELOCITY
-from asperity2d.renderers.plots import plot_comparison
 from asperity2d import scripting
-from asperity2d.studies import claims
-from asperity2d.sweep.engine import map_calls
+from asperity2d.experiments import verdicts
+from asperity2d.sweep import map_calls
 
 TABLE1 = dict(base=1e-6, mass=2.88e-16, stiffness=37_200.0, flank_angle=45.0)
 FACTOR = 2000.0
@@ -61,6 +70,15 @@ QUANTITIES = {
     "events": ("complete stick-slip events per pass", ""),
 }
 
+
+# %%
+# 1. One spring-driven pass and its numbers
+# -----------------------------------------
+#
+# :func:`asperity2d.make_scene` takes Table 1's steel values (``TABLE1``: base, mass, stiffness,
+# flank angle) and a drive 2000 times Ooten's speed; :func:`asperity2d.simulate` runs one pass
+# and :func:`asperity2d.stick_slip_events` cuts it into events, whose force drops and stick
+# forces give the numbers. The friction while slipping is read from the run's own arrays.
 
 def measure_run(setup: str, spacing: str, seed: int, quick: bool) -> dict:
     """One spring-driven pass of the steel scene; its stick-slip amplitude and static/kinetic gap (SI)."""
@@ -86,6 +104,14 @@ def measure_run(setup: str, spacing: str, seed: int, quick: bool) -> dict:
     return out
 
 
+# %%
+# 2. Regular once, random over seeds
+# ----------------------------------
+#
+# Regular spacing does not depend on the seed: one pass. The random passes run on worker
+# processes (:func:`asperity2d.sweep.map_calls`); each quantity becomes a
+# :class:`asperity2d.Comparison` of the two spacings.
+
 def run_setup(setup: str, seeds: list[int], *, quick: bool, workers: int | None) -> dict[str, Comparison]:
     """Per quantity, the regular value (for every seed) against the random passes."""
     jobs = [{"setup": setup, "spacing": "regular", "seed": 0, "quick": quick}]
@@ -94,6 +120,15 @@ def run_setup(setup: str, seeds: list[int], *, quick: bool, workers: int | None)
     return {q: Comparison(values={"regular": (rows[0][q],) * len(seeds), "random": tuple(r[q] for r in rows[1:])},
                           seeds=tuple(seeds), measure=q) for q in QUANTITIES}
 
+
+# %%
+# 3. Compare, judge, draw
+# -----------------------
+#
+# Per set-up: :meth:`asperity2d.Comparison.versus` tests the random passes against the regular
+# value (one-sided Wilcoxon), :func:`asperity2d.experiments.verdicts.judge` decides, and
+# :func:`asperity2d.render` draws each comparison. ``main`` reads the options with
+# :mod:`asperity2d.scripting`.
 
 def main(argv=None) -> int:
     args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=20, minimum_seeds=2)
@@ -114,23 +149,27 @@ def main(argv=None) -> int:
                 results[q.removesuffix("_N") + "_over_load"] = {
                     "regular": c.values["regular"][0] / LOAD,
                     "random": stats.describe(np.asarray(c.values["random"]) / LOAD)}
-            plot_comparison(c, out / f"{setup}_{q}.png", unit=unit, label=f"{label}, {setup} set-up")
+            a.render(c, out / f"{setup}_{q}.png", unit=unit, label=f"{label}, {setup} set-up")
         summary["results"][setup] = results
         amp = results["force_drop_mean_N"]["versus_regular"]
         spread = results["force_drop_std_N"]
-        record = claims.claim(
+        record = verdicts.claim(
             "random spacing lowers the stick-slip amplitude (mean force drop per slip) at the micro "
             "scale (abstract: regularity enhances stick-slip, randomness reduces it)",
-            claims.judge(amp, ALPHA), amp,
-            f"{amp['test']}, one-sided (lower): p = {amp['p_wilcoxon']:.3g}; holds if p < {ALPHA} and the change is at least {100 * claims.MIN_EFFECT:g} %",
+            verdicts.judge(amp, ALPHA), amp,
+            f"{amp['test']}, one-sided (lower): p = {amp['p_wilcoxon']:.3g}; holds if p < {ALPHA} and the change is at least {100 * verdicts.MIN_EFFECT:g} %",
             setup=setup) | {"measure": "force_drop_mean_N"}
         summary["claims"].append(record)
         gap = results["static_kinetic_gap_N"]
-        lines += [claims.verdict_line(record),
+        lines += [verdicts.verdict_line(record),
                   f"    [{setup}] mean force drop per slip: regular {amp['reference'] * 1e3:.3g} mN, random "
                   f"{amp['mean'] * 1e3:.3g} mN; spread (std) regular {spread['regular'] * 1e3:.2g} mN, random "
                   f"{spread['random']['mean'] * 1e3:.2g} mN; static - kinetic gap regular "
                   f"{gap['regular'] * 1e3:.3g} mN, random {gap['random']['mean'] * 1e3:.3g} mN"]
+    if 0.5 ** len(seeds) >= ALPHA:
+        lines.append(f"not testable here: {len(seeds)} seeds cannot give p < {ALPHA} (a one-sided signed-rank "
+                     f"test over n seeds reaches at best 1/2**n); the claims need "
+                     f"{math.ceil(math.log2(1 / ALPHA))} seeds or more")
     if not args.no_gif:
         scene = a.make_scene(spacing="random", seed=0, lower_count=8, upper_count=4, **SETUPS["fixed"],
                              drive_velocity=SEED_DRIVE_VELOCITY * FACTOR, **TABLE1)

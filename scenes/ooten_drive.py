@@ -24,25 +24,41 @@ period -- what stick-slip under a constant force would need. Momentary stops
 (bounces off a flank) are counted separately. Writes the
 positions plot (seed figure 10 style), the spring run's time series and a GIF.
 
+The lesson: the two drives of :func:`asperity2d.make_scene` (``drive="force"``,
+``drive="spring"``), the critical force as a threshold, and stick-slip events.
+
 Run::
 
     python scenes/ooten_drive.py
 """
 
+# %%
+# The steps are functions made of the package's public calls; ``main`` at the bottom reads the
+# command line, runs them and prints. Nothing here is random (regular spacing): the verdicts are
+# direct checks of single runs, so ``--quick`` (4 lower and 2 upper asperities) gives them too.
+
 from __future__ import annotations
 
 import math
 
+from matplotlib.figure import Figure
+
 import asperity2d as a
-from asperity2d.critical import critical_force_bracket
-from asperity2d.renderers.plots import plot_positions
 from asperity2d import scripting
-from asperity2d.studies import claims as claims_module
-from asperity2d.studies.claims import claim
+from asperity2d.experiments import verdicts
+from asperity2d.experiments.verdicts import claim
 from asperity2d.studies import ooten as studies
 
 FACTORS = {"below": 0.95, "above": 1.05}
 
+
+# %%
+# 1. What stick-slip under a constant force would look like
+# ---------------------------------------------------------
+#
+# A run's velocity (``result.v``) tells: the slider stops (speed under 1 % of a characteristic
+# speed) for at least the scene's slowest natural period, then moves forward again. Bounces off
+# a flank, where the velocity only passes through zero, are counted apart.
 
 def restarts(result, *, min_stop: float = 0.0) -> int:
     """Times a constant-force slider moves forward again after having stopped for >= ``min_stop`` s.
@@ -62,11 +78,22 @@ def restarts(result, *, min_stop: float = 0.0) -> int:
     return count
 
 
+# %%
+# 2. Either side of the threshold, and a spring
+# ---------------------------------------------
+#
+# :func:`asperity2d.critical_force_bracket` bisects the critical force from rest on a regular
+# scene (``drive="force"``); ``studies.pushed`` pushes the slider from that same rest with 0.95 x
+# and 1.05 x it. :func:`asperity2d.simulate` then runs the default spring drive
+# (``drive="spring"``), whose stick-slip events :func:`asperity2d.stick_slip_events` finds and
+# :func:`asperity2d.event_statistics` sums up. Each claim is a record of
+# :func:`asperity2d.experiments.verdicts.claim`.
+
 def run_setup(setup: str, size: dict) -> tuple[dict, dict, list[dict]]:
     """Constant-force runs from rest either side of the critical force, and one spring-driven pass."""
     base = {**size, **studies.SETUPS[setup]}
     scene = a.make_scene(spacing="regular", drive="force", **base)
-    bracket = critical_force_bracket(scene, start="rest")
+    bracket = a.critical_force_bracket(scene, start="rest")
     runs = {k: studies.pushed(scene, f * bracket.value, start="rest") for k, f in FACTORS.items()}
     runs["spring"] = a.simulate(a.make_scene(spacing="regular", drive="spring", **base))
     events = a.stick_slip_events(runs["spring"])
@@ -104,6 +131,34 @@ def run_setup(setup: str, size: dict) -> tuple[dict, dict, list[dict]]:
     return numbers, runs, claims
 
 
+# %%
+# 3. The three runs in one picture
+# --------------------------------
+#
+# The slider's travel against time, drawn with matplotlib: one run stops on a flank, one runs
+# away, the spring-driven one climbs in steps. :func:`asperity2d.render` draws the spring run's
+# time series.
+
+def plot_positions(results, labels, path) -> None:
+    """Slider travel against time for several runs on one axis (Ooten's figure 10 style):
+    plateaus are where a slider stopped on a flank."""
+    fig = Figure(figsize=(7.0, 3.2), layout="constrained")
+    ax = fig.subplots()
+    for result, label in zip(results, labels):
+        ax.plot(result.t * 1e6, (result.x - result.x[0]) * 1e6, label=label)
+    ax.set_xlabel("time (µs)")
+    ax.set_ylabel("slider travel (µm)")
+    ax.legend(loc="best", fontsize="small")
+    fig.savefig(path, dpi=120)
+
+
+# %%
+# 4. Both set-ups
+# ---------------
+#
+# Ooten's fixed-height track first, then the free slider under its load. ``main`` reads the
+# options with :mod:`asperity2d.scripting`.
+
 def main(argv=None) -> int:
     args = scripting.parser(scripting.title(__doc__)).parse_args(argv)
     out = scripting.out_dir(args, __file__)
@@ -128,7 +183,7 @@ def main(argv=None) -> int:
                      f"breakaway {spring['first_breakaway_N'] * 1e3:.3g} mN, peak stick force "
                      f"{spring['peak_stick_force_N'] * 1e3:.3g} mN, mean stick force "
                      f"{spring['mean_stick_force_N'] * 1e3:.3g} mN, mean force drop {ev['force_drop_mean'] * 1e3:.3g} mN")
-        lines += [claims_module.verdict_line(c) for c in claims]
+        lines += [verdicts.verdict_line(c) for c in claims]
         if setup == "fixed" and not args.no_gif:  # Ooten's own set-up
             a.render(runs["spring"], out / "spring_fixed.gif", frames=args.frames or (30 if args.quick else 120))
     return scripting.finish(args, summary, out, lines)

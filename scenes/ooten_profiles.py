@@ -41,27 +41,37 @@ half triangles (``half_shape="full-base"``: the full base and flank angle,
 twice the height), which cannot fall through. ``--quick`` runs the first
 friction pair only.
 
+The lesson: pairing two variants seed by seed (the same random draws) and
+judging a one-sided claim with its effect size; then the mechanism behind it
+in the runs' own energy books.
+
 Run::
 
     python scenes/ooten_profiles.py [--seeds 24] [--workers auto|N]
 """
+
+# %%
+# The steps are functions made of the package's public calls; ``main`` at the bottom reads the
+# command line, runs them and prints. The gallery runs it with ``--quick`` (4 lower and 2 upper
+# asperities, 2 seeds, the first friction pair, no slow ramp): its verdicts read "not testable",
+# because a one-sided signed-rank test over n seeds cannot give p below 1/2**n (0.25 for 2
+# seeds); a verdict needs 7 seeds or more (the default run uses 24).
 
 from __future__ import annotations
 
 import math
 
 import numpy as np
+from matplotlib.figure import Figure
 
 import asperity2d as a
 from asperity2d import stats
 from asperity2d.experiments.compare import Comparison
 from asperity2d.experiments.measures import measure_label
-from asperity2d.critical import critical_force
-from asperity2d.renderers.plots import plot_comparison, plot_positions
 from asperity2d import scripting
-from asperity2d.studies import claims
+from asperity2d.experiments import verdicts
 from asperity2d.studies import ooten as studies
-from asperity2d.sweep.engine import map_calls
+from asperity2d.sweep import map_calls
 
 ALPHA = 0.01
 FRICTIONS = {"mu_s > mu_k": {"mu_static": 0.3, "mu_kinetic": 0.2},
@@ -89,6 +99,17 @@ MEASURES = {
     "first-breakaway": ("first_breakaway_N", f"{measure_label('first-breakaway')} (N)"),
 }
 
+
+# %%
+# 2. Measure both profiles over seeds
+# -----------------------------------
+#
+# One job per scene, run on worker processes by :func:`asperity2d.sweep.map_calls`:
+# ``studies.measures_run`` takes the critical force from every start
+# (:func:`asperity2d.critical_force_bracket`) and the quasi-static breakaway;
+# ``studies.spring_pass_run`` one spring-driven pass with its contact-work books;
+# ``studies.travel_run`` figure 10's travel under one constant force. A free slider whose half
+# triangles fell between two lower asperities onto the floor guard is left out.
 
 def measure(setup: str, friction: str, *, size: dict, seeds: list[int], workers: int | None,
             quasi_static: bool = True) -> dict:
@@ -122,6 +143,17 @@ def fell_through(row: dict) -> bool:
     return row["floor_work_J"] != 0.0
 
 
+# %%
+# 3. Half against full, seed by seed
+# ----------------------------------
+#
+# Each measure becomes a :class:`asperity2d.Comparison` of the profiles over the random seeds.
+# Half and full triangles of one seed share their draws, so :meth:`asperity2d.Comparison.versus`
+# pairs them (paired Wilcoxon, one-sided: half needs more); the Hodges-Lehmann ratio half / full
+# (:func:`asperity2d.stats.relative_effect`) gives the effect and
+# :func:`asperity2d.experiments.verdicts.judge` the verdict. Regular spacing gives one
+# deterministic ratio, reported beside it.
+
 def compare_profiles(data: dict, seeds: list[int]) -> dict[str, Comparison]:
     """Per measure: every profile over the random seeds (paired by seed)."""
     first = next(iter(data.values()))["regular"]
@@ -133,6 +165,15 @@ def compare_profiles(data: dict, seeds: list[int]) -> dict[str, Comparison]:
 def _ratio(a_value: float, b_value: float) -> float:
     return a_value / b_value if b_value and math.isfinite(a_value) and math.isfinite(b_value) else math.nan
 
+
+# %%
+# 1. Two profiles, the same tips
+# ------------------------------
+#
+# :func:`asperity2d.make_scene` with ``profile="half"`` cuts every triangle through its apex.
+# With ``min_gap`` half a base (``HALF``) a random surface of half triangles draws the same
+# gaps as the full one of the same seed, so every tip stays where it was: only the shape
+# changes. This checks it on the scenes' own geometry.
 
 def check_same_tips(size: dict, seed: int = 1) -> None:
     """Every half-triangle variant puts its tips where the full triangles' are (random spacing)."""
@@ -171,19 +212,29 @@ def claims_for(setup: str, friction: str, data: dict, comparisons: dict) -> list
             numbers["regular_half_over_full"] = _ratio(regular["half"], regular["full"])
             numbers["regular_N"] = regular
             numbers["random_half_over_full"] = _ratio(numbers["mean"], numbers["reference"])
-            verdict = claims.judge(numbers, ALPHA, direction=direction)
+            verdict = verdicts.judge(numbers, ALPHA, direction=direction)
             text = (f"at one constant force full triangles travel farther than {shape} (figure 10), {friction}"
                     if travel else f"{shape} need a larger {label.rsplit(' (', 1)[0]} than full triangles "
                                    f"(figures 9-10), {friction}")
-            out.append(claims.claim(
+            out.append(verdicts.claim(
                 text, verdict, numbers,
                 f"{numbers['test']}, half vs full over random seeds, one-sided ({direction}): "
                 f"p = {numbers['p_wilcoxon']:.3g}; holds if p < {ALPHA} and the change is at least "
-                f"{100 * claims.MIN_EFFECT:g} %; {numbers['missing']} seeds missing (slider fell through). Regular "
+                f"{100 * verdicts.MIN_EFFECT:g} %; {numbers['missing']} seeds missing (slider fell through). Regular "
                 f"spacing (deterministic): half / full = {numbers['regular_half_over_full']:.3f}", setup=setup)
                 | {"measure": name, "friction": friction, "half": half})
     return out
 
+
+# %%
+# 4. Why: the back-flank push
+# ---------------------------
+#
+# Ooten's explanation: past an apex, a full triangle's lower spring pushes the slider on along
+# the back flank; a half triangle's vertical face cannot. The contact-work books of the spring
+# passes weigh that push against the resisting work, and the two friction pairs separate it
+# from the static/kinetic switch. On the free slider the regular critical force is compared
+# with the flank laws under its load, L tan(45° + atan mu).
 
 def contact_books(rows: list[dict]) -> dict:
     """Contact work of some runs: pushing / resisting (fraction) and the mean pushing force (N)."""
@@ -277,22 +328,51 @@ def mechanism_lines(setup: str, mech: dict) -> list[str]:
     return lines
 
 
+# %%
+# 5. Figure 10: one force, two profiles
+# -------------------------------------
+#
+# One constant force, 0.9 x the half triangles' critical force with a run-up, pushes both
+# sliders of one random seed (``studies.pushed``); their travel against time, drawn with
+# matplotlib, shows the half-triangle slider stopping first.
+
+def plot_positions(results, labels, path) -> None:
+    """Slider travel against time for several runs on one axis (Ooten's figure 10 style):
+    plateaus are where a slider stopped on a flank."""
+    fig = Figure(figsize=(7.0, 3.2), layout="constrained")
+    ax = fig.subplots()
+    for result, label in zip(results, labels):
+        ax.plot(result.t * 1e6, (result.x - result.x[0]) * 1e6, label=label)
+    ax.set_xlabel("time (µs)")
+    ax.set_ylabel("slider travel (µm)")
+    ax.legend(loc="best", fontsize="small")
+    fig.savefig(path, dpi=120)
+
+
 def figure10(size: dict, seed: int, force_fraction: float, path) -> dict:
     """Figure 10 analogue: one constant force, full vs half triangles, with the builder's run-up
     (fixed track, random spacing seed ``seed``): ``force_fraction`` x the half-triangle
     slider's critical force with a run-up, at that measure's step."""
-    from asperity2d.critical import measure_dt
+    from asperity2d.experiments.measures import measure_step
 
     base = {**size, **studies.SETUPS["fixed"], "spacing": "random", "seed": seed, "drive": "force"}
     scenes = {"full": a.make_scene(**base), "half": a.make_scene(**base, **HALF)}
-    force = force_fraction * critical_force(scenes["half"], start="run-up")
-    runs = {p: studies.pushed(sc, force, start="run-up", dt=measure_dt(sc, "run-up")) for p, sc in scenes.items()}
+    force = force_fraction * a.critical_force(scenes["half"], start="run-up")
+    runs = {p: studies.pushed(sc, force, start="run-up", dt=measure_step("critical-run-up", sc)) for p, sc in scenes.items()}
     plot_positions(list(runs.values()), [f"{p} triangles, {force * 1e3:.3g} mN with a run-up ({r.status})"
                                           for p, r in runs.items()], path)
     return {"force_N": force, "seed": seed,
             **{f"travel_{p}_m": float(r.x[-1] - r.x[0]) for p, r in runs.items()},
             **{f"status_{p}": r.status for p, r in runs.items()}}
 
+
+# %%
+# 6. The whole study
+# ------------------
+#
+# For each set-up (Ooten's fixed track first, then the free slider) and friction pair: measure,
+# compare, judge, save and draw each comparison (:func:`asperity2d.render`), then the mechanism
+# and figure 10. ``main`` reads the options with :mod:`asperity2d.scripting`.
 
 def main(argv=None) -> int:
     args = scripting.study_args(scripting.title(__doc__), argv, default_seeds=24, minimum_seeds=2)
@@ -318,8 +398,8 @@ def main(argv=None) -> int:
             for name, comparison in comparisons.items():
                 label = MEASURES[name][1]
                 unit = "µm" if label.endswith("(m)") else "mN"
-                plot_comparison(comparison, out / f"{setup}_{tag}_{name}.png", unit=unit,
-                                label=label.replace("(N)", "(mN)").replace("(m)", "(µm)") + f", {setup}, {friction}")
+                a.render(comparison, out / f"{setup}_{tag}_{name}.png", unit=unit,
+                         label=label.replace("(N)", "(mN)").replace("(m)", "(µm)") + f", {setup}, {friction}")
             summary["results"].setdefault(setup, {})[friction] = {
                 "regular": {p: d["regular"] for p, d in data.items()},
                 "random": {p: {k: stats.describe([r[k] for r in d["random"]]) for k in d["random"][0]}
@@ -339,6 +419,10 @@ def main(argv=None) -> int:
     if not args.no_gif:
         result = a.simulate(a.make_scene(**HALF, **size, **studies.SETUPS["fixed"]))
         a.render(result, out / "half_fixed_spring.gif", frames=args.frames or (30 if args.quick else 100))
+    if 0.5 ** args.seeds >= ALPHA:
+        lines.append(f"not testable here: {args.seeds} seeds cannot give p < {ALPHA} (a one-sided signed-rank "
+                     f"test over n seeds reaches at best 1/2**n); the claims need "
+                     f"{math.ceil(math.log2(1 / ALPHA))} seeds or more")
     return scripting.finish(args, summary, out, lines)
 
 

@@ -44,7 +44,26 @@ from .laws import CoulombViscous, Dahl, FrictionLaw, LuGre, StaticKinetic, Strib
 
 @dataclass(frozen=True)
 class Fit:
-    """A fitted law and its residuals (per unit normal load)."""
+    """A fitted law and its residuals (per unit normal load).
+
+    Parameters
+    ----------
+    law : FrictionLaw
+        The fitted law.
+    rms : float
+        RMS residual (force per unit normal load).
+    relative_rms : float
+        ``rms`` over the RMS of the data.
+    points : int
+        The number of points fitted.
+
+    Examples
+    --------
+    >>> from asperity2d import friction
+    >>> fit = friction.Fit(friction.Coulomb(0.2), rms=0.0, relative_rms=0.0, points=3)
+    >>> fit.to_dict()["points"]
+    3
+    """
 
     law: FrictionLaw
     rms: float
@@ -71,12 +90,32 @@ def steady_mask(curve) -> np.ndarray:
     """Points of steady contact sliding, the ones the fits use.
 
     A point qualifies with a nonzero force, a per-pitch spread below 30 % of
-    it, and the slider in contact for at least :data:`MIN_CONTACT_FRACTION`
+    it, and the slider in contact for at least ``MIN_CONTACT_FRACTION`` (0.9)
     of the window. From a few hundred m/s the slider lifts off the tips (its
     load cannot pull it back down within a pitch): on the Table 1 tribometer
     it is in contact 99 % of the time at 100 m/s, 20-40 % at 300 m/s and
     0-5 % at 1000 m/s. A one-pitch window has no spread, so the contact
     fraction is what excludes those points there.
+
+    Parameters
+    ----------
+    curve : SteadyCurve
+        The tribometer's steady-sliding curve (:func:`asperity2d.experiments.tribometer.steady_curve`).
+
+    Returns
+    -------
+    numpy.ndarray of bool
+        One flag per point of the curve.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from asperity2d import friction
+    >>> from asperity2d.experiments.tribometer import SteadyCurve
+    >>> curve = SteadyCurve(np.array([-1.0, 1.0, 300.0]), np.array([-1e-3, 1e-3, 1e-3]),
+    ...                     np.zeros(3), 4e-3, contact=np.array([1.0, 1.0, 0.3]))
+    >>> friction.steady_mask(curve)  # at 300 m/s the slider is off the tips 70 % of the time
+    array([ True,  True, False])
     """
     f, s = np.abs(curve.force), np.asarray(curve.spread)
     keep = (f > 0) & (s < 0.3 * f)
@@ -93,7 +132,34 @@ def _curve_data(curve, use):
 
 
 def fit_coulomb_viscous(curve, *, use=None) -> Fit:
-    """F/N = mu sign(v) + sigma2 v on the steady curve (``use``: mask of points)."""
+    """Coulomb + viscous law, F/N = mu sign(v) + sigma2 v, fitted to the steady curve.
+
+    Parameters
+    ----------
+    curve : SteadyCurve
+        The tribometer's steady-sliding curve (:func:`asperity2d.experiments.tribometer.steady_curve`).
+    use : numpy.ndarray of bool, optional
+        The points to fit; default those of :func:`steady_mask`.
+
+    Returns
+    -------
+    Fit
+        The law (per unit normal load), its RMS residual, relative RMS and point count.
+
+    Examples
+    --------
+    A curve made from a known law (what the tribometer measures, here without noise):
+
+    >>> import numpy as np
+    >>> from asperity2d import friction
+    >>> from asperity2d.experiments.tribometer import SteadyCurve
+    >>> v = np.concatenate([-np.logspace(-2, 2, 9)[::-1], np.logspace(-2, 2, 9)])  # m/s
+    >>> law = friction.CoulombViscous(mu=0.2, sigma2=1e-3)
+    >>> curve = SteadyCurve(v, law.curve(v) * 4e-3, np.zeros(len(v)), normal_load=4e-3)
+    >>> fit = friction.fit_coulomb_viscous(curve)
+    >>> round(float(fit.law.mu), 6), round(float(fit.law.sigma2), 6), fit.points
+    (0.2, 0.001, 18)
+    """
     v, y = _curve_data(curve, use)
 
     def residual(p):
@@ -104,7 +170,36 @@ def fit_coulomb_viscous(curve, *, use=None) -> Fit:
 
 
 def fit_stribeck(curve, *, mu_s: float, use=None) -> Fit:
-    """Stribeck curve with the static level ``mu_s`` given; fits mu_k, v_s, delta, sigma2."""
+    """Stribeck law fitted to the steady curve: mu_k, v_s, delta and sigma2, the static level given.
+
+    Parameters
+    ----------
+    curve : SteadyCurve
+        The tribometer's steady-sliding curve (:func:`asperity2d.experiments.tribometer.steady_curve`).
+    mu_s : float
+        The static coefficient (e.g. the loops' largest force over the load).
+    use : numpy.ndarray of bool, optional
+        The points to fit; default those of :func:`steady_mask`.
+
+    Returns
+    -------
+    Fit
+        The law (per unit normal load), its RMS residual, relative RMS and point count.
+
+    Examples
+    --------
+    A curve made from a known law (what the tribometer measures, here without noise):
+
+    >>> import numpy as np
+    >>> from asperity2d import friction
+    >>> from asperity2d.experiments.tribometer import SteadyCurve
+    >>> v = np.concatenate([-np.logspace(-2, 2, 9)[::-1], np.logspace(-2, 2, 9)])  # m/s
+    >>> law = friction.Stribeck(mu_s=0.3, mu_k=0.2, v_s=1.0, delta=2.0, sigma2=1e-3)
+    >>> curve = SteadyCurve(v, law.curve(v) * 4e-3, np.zeros(len(v)), normal_load=4e-3)
+    >>> fit = friction.fit_stribeck(curve, mu_s=0.3)
+    >>> [round(float(x), 4) for x in (fit.law.mu_k, fit.law.v_s, fit.law.delta)]
+    [0.2, 1.0, 2.0]
+    """
     v, y = _curve_data(curve, use)
     vmin = float(np.min(np.abs(v)))
 
@@ -158,6 +253,33 @@ def fit_dahl(loops, *, reach: float = 2.0) -> Fit:
     Only the strokes up to ``reach`` x the breakaway displacement are used:
     beyond it the tips climb the next flanks and the force follows the
     flank geometry (the wedge law), which no single-state law describes.
+
+    Parameters
+    ----------
+    loops : ReversalLoops
+        The tribometer's pre-sliding loops from rest (:func:`asperity2d.experiments.tribometer.reversal_loops`).
+    reach : float, default 2.0
+        Strokes up to this multiple of the breakaway displacement are used.
+
+    Returns
+    -------
+    Fit
+        The law (per unit normal load), its RMS residual, relative RMS and point count.
+
+    Examples
+    --------
+    One stroke from rest made from a Dahl law (sigma0 1e8 1/m, mu 0.3): along it F/N = mu (1 -
+    exp(-sigma0 x / mu)).
+
+    >>> import numpy as np
+    >>> from asperity2d import friction
+    >>> from asperity2d.experiments.tribometer import ReversalLoops
+    >>> x = np.linspace(0.0, 1e-8, 200)  # m
+    >>> force = 4e-3 * 0.3 * (1 - np.exp(-1e8 * x / 0.3))  # N, under a 4 mN load
+    >>> loops = ReversalLoops(x, force, drive=x, normal_load=4e-3, amplitudes=(1e-8,))
+    >>> fit = friction.fit_dahl(loops)
+    >>> f"{float(fit.law.sigma0):.4g} 1/m, mu {float(fit.law.mu):.4g}"
+    '1e+08 1/m, mu 0.3'
     """
     x, y = _presliding(loops, reach)
     mu0 = float(np.max(np.abs(y)))
@@ -171,7 +293,38 @@ def fit_dahl(loops, *, reach: float = 2.0) -> Fit:
 
 
 def fit_lugre(loops, stribeck: Stribeck, *, reach: float = 2.0) -> Fit:
-    """LuGre with sigma0 fitted to the loops, g(v) from ``stribeck`` (delta -> 2), sigma1 = 0."""
+    """LuGre law: sigma0 fitted to the loops, g(v) from ``stribeck`` (delta -> 2), sigma1 = 0.
+
+    Parameters
+    ----------
+    loops : ReversalLoops
+        The tribometer's pre-sliding loops from rest (:func:`asperity2d.experiments.tribometer.reversal_loops`).
+    stribeck : Stribeck
+        A fitted Stribeck law (:func:`fit_stribeck`).
+    reach : float, default 2.0
+        Strokes up to this multiple of the breakaway displacement are used.
+
+    Returns
+    -------
+    Fit
+        The law (per unit normal load), its RMS residual, relative RMS and point count.
+
+    Examples
+    --------
+    One stroke from rest made from a Dahl law (sigma0 1e8 1/m, mu 0.3): along it F/N = mu (1 -
+    exp(-sigma0 x / mu)).
+
+    >>> import numpy as np
+    >>> from asperity2d import friction
+    >>> from asperity2d.experiments.tribometer import ReversalLoops
+    >>> x = np.linspace(0.0, 1e-8, 200)  # m
+    >>> force = 4e-3 * 0.3 * (1 - np.exp(-1e8 * x / 0.3))  # N, under a 4 mN load
+    >>> loops = ReversalLoops(x, force, drive=x, normal_load=4e-3, amplitudes=(1e-8,))
+    >>> stribeck = friction.Stribeck(mu_s=0.3, mu_k=0.2, v_s=1.0, delta=2.0, sigma2=1e-3)
+    >>> fit = friction.fit_lugre(loops, stribeck)
+    >>> f"{float(fit.law.sigma0):.4g} 1/m"
+    '1e+08 1/m'
+    """
     x, y = _presliding(loops, reach)
     mu_s = stribeck.mu_s  # quasi-static loops: g(v) ~ mu_s at the reversal speed
 
@@ -192,6 +345,35 @@ def stick_slip_cycles(result, *, skip: int = 1) -> dict:
     Returns ``breakaway_N`` (drive force at each stick-to-slip transition),
     ``restick_N`` (drive force when that cycle's stick began), the periods
     (s, breakaway to breakaway), their mean ``period_s``, and ``normal_load_N``.
+
+    Parameters
+    ----------
+    result : Result
+        A spring-driven asperity run (:func:`asperity2d.simulate`).
+    skip : int, default 1
+        Complete events left out at the start.
+
+    Returns
+    -------
+    dict
+        The arrays and values named above.
+
+    Raises
+    ------
+    SceneError
+        Fewer than 2 complete cycles after ``skip``.
+
+    Examples
+    --------
+    A spring-driven run of the tribometer's asperities (Table 1 steel) on a soft spring:
+
+    >>> import asperity2d as a
+    >>> from asperity2d import friction
+    >>> from asperity2d.experiments.tribometer import make_tribometer_scene
+    >>> run = a.simulate(make_tribometer_scene(drive_stiffness=1000.0, drive_velocity=10.0, lower_count=8))
+    >>> cycles = friction.stick_slip_cycles(run)
+    >>> len(cycles["breakaway_N"]), f"{cycles['period_s'] * 1e9:.0f} ns"
+    (2, '250 ns')
     """
     from ..analysis import stick_slip_events
 
@@ -219,6 +401,30 @@ def fit_stick_slip(result, *, skip: int = 1) -> Fit:
     re-sticks at 2 F_k - F_s, so this law has the measured force drop, hence
     the measured stick time. The residuals are the RMS over cycles of the
     breakaway and half-drop deviations from the law (per unit load).
+
+    Parameters
+    ----------
+    result : Result or sequence of Result
+        Spring-driven asperity runs (one normal load).
+    skip : int, default 1
+        Complete events left out at the start of each run.
+
+    Returns
+    -------
+    Fit
+        A static/kinetic law (:class:`asperity2d.friction.StaticKinetic`) and its residuals.
+
+    Examples
+    --------
+    A spring-driven run of the tribometer's asperities (Table 1 steel) on a soft spring:
+
+    >>> import asperity2d as a
+    >>> from asperity2d import friction
+    >>> from asperity2d.experiments.tribometer import make_tribometer_scene
+    >>> run = a.simulate(make_tribometer_scene(drive_stiffness=1000.0, drive_velocity=10.0, lower_count=8))
+    >>> fit = friction.fit_stick_slip(run)
+    >>> round(fit.law.mu_s, 2), round(fit.law.mu_k, 2), fit.points
+    (1.86, 1.25, 2)
     """
     runs = [result] if hasattr(result, "drive_force") else list(result)
     if not runs:

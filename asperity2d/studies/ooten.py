@@ -6,7 +6,7 @@ and with a run-up, first breakaway, peak and mean stick force over a pass)
 and these sweep run functions, ``run(*, seed, **params) -> dict[str, float]``
 (``params`` are :func:`asperity2d.make_scene` arguments), top-level so they
 run in worker processes and on Dask. Their claims are records of
-:mod:`asperity2d.studies.claims`.
+:func:`asperity2d.experiments.verdicts.claim`.
 """
 
 from __future__ import annotations
@@ -34,24 +34,58 @@ SETUPS = {"fixed": {"track": "fixed", "interference": 0.125e-6}, "free": {"track
 
 
 def critical_force_run(*, seed: int = 0, start: str = "rest", **params) -> dict:
-    """Sweep run: critical constant force (N) of ``make_scene(seed=seed, drive="force", **params)``
-    from ``start`` (see :func:`asperity2d.critical_force`)."""
+    """Sweep run: the critical constant force of one scene.
+
+    Parameters
+    ----------
+    seed : int, default 0
+        The scene's seed.
+    start : {"rest", "entry", "run-up"}, default "rest"
+        Where the force starts (:func:`asperity2d.critical_force`).
+    **params
+        :func:`asperity2d.make_scene` arguments (``drive`` is ``"force"``).
+
+    Returns
+    -------
+    dict
+        ``critical_force_N``: the critical force (N).
+    """
     scene = make_scene(seed=seed, drive="force", **params)
     return {"critical_force_N": critical_force(scene, start=start)}
 
 
 def measures_run(*, seed: int = 0, passes: int = 5, starts: tuple = ("rest", "run-up"),
                  quasi_static: bool = True, **params) -> dict:
-    """Sweep run: the named measures of ``make_scene(seed=seed, **params)``
-    (:mod:`asperity2d.experiments.measures`), each with what it reports about itself.
+    """Sweep run: the named measures of one scene, each with what it reports about itself.
 
-    Returns (N): ``critical_<start>_N`` for each of ``starts`` and its non-monotone band
-    (``critical_<start>_band_low_N`` / ``_high_N``, NaN when monotone) and run count;
-    ``quasi_static_N`` and its ``quasi_static_rate_change`` (the ramp's convergence); over
-    ``passes`` spring-driven passes (:func:`~asperity2d.experiments.measures.stick_forces`)
-    ``peak_stick_N`` and ``mean_stick_N`` (ensemble means), every pass's values
-    (``peak_stick_passes_N``, ``mean_stick_passes_N``, lists) and ``first_breakaway_N`` of
-    the pass at the nominal drive speed (the middle one).
+    The measures of :mod:`asperity2d.experiments.measures`, taken on
+    ``make_scene(seed=seed, drive="force", **params)``: one job per scene, so a study of many
+    measures builds each scene once. The critical forces equal those :func:`asperity2d.compare`
+    gives for the same measure, scene and seed.
+
+    Parameters
+    ----------
+    seed : int, default 0
+        The scene's seed.
+    passes : int, default 5
+        Spring-driven passes for the stick forces (0: none).
+    starts : tuple of str, default ("rest", "run-up")
+        Starts of the critical force (:func:`asperity2d.critical_force_bracket`).
+    quasi_static : bool, default True
+        Also the quasi-static breakaway (a slowly ramped force; slow).
+    **params
+        :func:`asperity2d.make_scene` arguments.
+
+    Returns
+    -------
+    dict
+        ``critical_<start>_N`` for each of ``starts`` (N), its non-monotone band
+        (``critical_<start>_band_low_N`` / ``_high_N``, NaN when monotone), run count and step;
+        ``quasi_static_N`` and its ``quasi_static_rate_change`` (the ramp's convergence); over
+        the passes (:func:`asperity2d.experiments.measures.stick_forces`) ``peak_stick_N`` and
+        ``mean_stick_N`` (ensemble means), every pass's values (``peak_stick_passes_N``,
+        ``mean_stick_passes_N``, lists) and ``first_breakaway_N`` of the pass at the nominal
+        drive speed (the middle one).
     """
     from ..critical import critical_force_bracket
     from ..experiments.measures import quasi_static_breakaway, stick_forces
@@ -77,9 +111,25 @@ def measures_run(*, seed: int = 0, passes: int = 5, starts: tuple = ("rest", "ru
 
 
 def travel_run(*, seed: int = 0, force: float, start: str = "run-up", **params) -> dict:
-    """Sweep run: Ooten's figure 10, how far a constant ``force`` (N) carries the slider of
-    ``make_scene(seed=seed, **params)`` from ``start``: ``travel_m`` and ``passed`` / ``stuck`` (1/0),
-    at the step policy's step (that of the critical force from ``start``, ``dt_s``)."""
+    """Sweep run: Ooten's figure 10, how far a constant force carries the slider.
+
+    Parameters
+    ----------
+    seed : int, default 0
+        The scene's seed.
+    force : float
+        The constant force (N).
+    start : {"rest", "entry", "run-up"}, default "run-up"
+        Where the force starts (as for :func:`asperity2d.critical_force`).
+    **params
+        :func:`asperity2d.make_scene` arguments (``drive`` is ``"force"``).
+
+    Returns
+    -------
+    dict
+        ``travel_m`` (m), ``passed`` and ``stuck`` (1/0), ``force_N`` and ``dt_s``, the step
+        (the step policy's for the critical force from ``start``).
+    """
     from ..experiments.measures import measure_step, travel_under_force
 
     scene = make_scene(seed=seed, drive="force", **params)
@@ -90,11 +140,26 @@ def travel_run(*, seed: int = 0, force: float, start: str = "run-up", **params) 
 
 
 def pushed(scene, force: float, *, start: str = "rest", dt: float | None = None):
-    """A constant ``force`` (N) applied to ``scene`` from ``start`` (as
-    :func:`asperity2d.critical_force` begins each run: ``"rest"`` on the surface,
-    every tip against its flank; ``"run-up"`` from the builder's position), with step ``dt``
-    (s, default :func:`asperity2d.run.default_dt`).
-    Returns the :class:`~asperity2d.result.Result` (ended by the default stops)."""
+    """A constant force applied to a scene from a start, as :func:`asperity2d.critical_force`
+    begins each of its runs.
+
+    Parameters
+    ----------
+    scene : asperity2d.Scene
+        The scene (its drive is replaced by the constant force).
+    force : float
+        The force (N).
+    start : {"rest", "entry", "run-up"}, default "rest"
+        ``"rest"``: at rest on the surface, every tip against its flank; ``"run-up"``: from the
+        builder's position.
+    dt : float, optional
+        The step (s); default the scene's default step.
+
+    Returns
+    -------
+    asperity2d.Result
+        The run, ended by the default stops (passed, stuck or the time limit).
+    """
     pushed_scene = scene.replace(drive=ConstantForce(force=force))
     run = settled_run(scene, start=start, dt=dt)
     run.set_drive_force(force)
@@ -103,11 +168,24 @@ def pushed(scene, force: float, *, start: str = "rest", dt: float | None = None)
 
 
 def spring_pass(scene, *, contact_work: bool = False, dt: float | None = None):
-    """One spring-driven pass of ``scene`` (:func:`asperity2d.simulate` with the default stops) at
-    ``dt`` (s; default the step policy's for stick forces,
-    :func:`asperity2d.experiments.measures.measure_step`); with ``contact_work`` also its
-    contact-work books (``result.meta["contact_work"]``, :class:`asperity2d.engine.energy.ContactWork`).
-    Returns (result, books or None)."""
+    """One spring-driven pass of a scene (:func:`asperity2d.simulate` with the default stops).
+
+    Parameters
+    ----------
+    scene : asperity2d.Scene
+        A scene with a spring drive.
+    contact_work : bool, default False
+        Also keep the contact-work books (``result.meta["contact_work"]``).
+    dt : float, optional
+        The step (s); default the step policy's for stick forces
+        (:func:`asperity2d.experiments.measures.measure_step`).
+
+    Returns
+    -------
+    tuple
+        ``(result, books)``: the :class:`asperity2d.Result` and the contact-work books (a
+        mapping of J) or None.
+    """
     from ..experiments.measures import measure_step
 
     dt = measure_step("peak-stick", scene) if dt is None else dt
@@ -116,18 +194,30 @@ def spring_pass(scene, *, contact_work: bool = False, dt: float | None = None):
 
 
 def spring_pass_run(*, seed: int = 0, contact_work: bool = False, **params) -> dict:
-    """One full spring-driven pass of ``make_scene(seed=seed, drive="spring", **params)``.
+    """Sweep run: one full spring-driven pass of ``make_scene(seed=seed, drive="spring", **params)``.
 
-    Returns (N, m, J): ``first_breakaway_N`` (first stick-to-slip; on the
+    Parameters
+    ----------
+    seed : int, default 0
+        The scene's seed.
+    contact_work : bool, default False
+        Also the contact-work books of the pass.
+    **params
+        :func:`asperity2d.make_scene` arguments.
+
+    Returns
+    -------
+    dict
+        (N, m, J): ``first_breakaway_N`` (first stick-to-slip; on the
     fixed track the front tip entering alone), ``peak_stick_force_N``
     (largest) and ``mean_stick_force_N`` (mean force at the stick-to-slip
     transitions); from the first breakaway on, ``mean_drive_force_N`` (time
     average) and ``keep_moving_force_N`` (the displacement-weighted average,
     work / distance: the mean force needed to keep the slider moving at the
-    drive speed); the stick-slip statistics of :func:`event_statistics`
+    drive speed); the stick-slip statistics of :func:`asperity2d.event_statistics`
     (``events``, ``force_drop_mean_N``, ``force_drop_std_N``,
     ``slip_distance_mean_m``, ``regularity``); ``travel_m`` (whole pass).
-    With ``contact_work``: the :class:`ContactWork` books of the whole pass,
+    With ``contact_work``: the contact-work books of the whole pass,
     ``contact_work_pushing_J``, ``contact_work_rebound_J``,
     ``contact_work_resisting_J`` and ``floor_work_J``, and
     ``pushing_force_mean_N`` (pushing work per metre of travel).
@@ -160,13 +250,14 @@ def spring_pass_run(*, seed: int = 0, contact_work: bool = False, **params) -> d
 
 
 #: Energy channels :func:`damping_travel_run` reports for each run (J, see
-#: :mod:`asperity2d.engine.energy`); ``numerical`` sums the method's channels.
+#: ``asperity2d.engine.energy``); ``numerical`` sums the method's channels.
 DAMPING_CHANNELS = ("drive_work", "stored_energy_change", "friction_work", "normal_work", "damper_work",
                     "stop_work", "numerical")
 
 
 def damping_travel_run(*, seed: int = 0, factor: float = 0.9, **params) -> dict:
-    """Ooten's figure 12: constant force ``factor`` x the damped critical force, damped vs undamped.
+    """Sweep run, Ooten's figure 12: a constant force, ``factor`` x the damped critical force,
+    on damped and undamped scenes.
 
     The critical force is bisected on the damped scene (``params`` as given);
     the same force then pushes three scenes: ``damped`` (as given),
@@ -176,10 +267,25 @@ def damping_travel_run(*, seed: int = 0, factor: float = 0.9, **params) -> dict:
     farthest it got (``travel_<label>_m``, ``reach_<label>_m``, m), whether
     it passed or came to rest (``passed_<label>``, ``stuck_<label>``, 1/0;
     neither: the time limit) and its energy books (``<label>_<channel>_J``
-    for :data:`DAMPING_CHANNELS`), also over the damped slider's travel only
+    for ``DAMPING_CHANNELS``), also over the damped slider's travel only
     (``<label>_same_<channel>_J``: the books when it first got as far as the
     damped one stopped; NaN if it never did), which compares the channels
     over one path.
+
+    Parameters
+    ----------
+    seed : int, default 0
+        The scenes' seed.
+    factor : float, default 0.9
+        The force as a fraction of the damped scene's critical force with a run-up.
+    **params
+        :func:`asperity2d.make_scene` arguments (``damping`` is ignored).
+
+    Returns
+    -------
+    dict
+        ``critical_force_N`` and ``force_N`` (N), and per scene (``damped``, ``undamped``,
+        ``elastic``) the travel, reach, status and energy books described above.
     """
     params = {k: v for k, v in params.items() if k != "damping"}
     damped = make_scene(seed=seed, drive="force", **params)
