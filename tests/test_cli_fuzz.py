@@ -34,7 +34,7 @@ from hypothesis import strategies as st
 from asperity2d import SceneError
 from asperity2d.cli.asperity import scene_from_toml
 from asperity2d.belt.chainfile import ALLOWED as CHAIN_KEYS
-from asperity2d.belt.chainfile import read_chain as load_chain
+from asperity2d.belt import read_chain as load_chain
 from asperity2d.cli import main
 
 FAST = settings(max_examples=40, deadline=None, derandomize=True,

@@ -77,7 +77,7 @@ def _toml_kind(data: dict) -> str:
 @pytest.mark.parametrize("page", [p for p in PAGES if blocks(p, "toml")], ids=_id)
 def test_toml_snippets_build(page, scratch):
     from asperity2d.cli.asperity import scene_from_toml
-    from asperity2d.belt.chainfile import read_chain as load_chain
+    from asperity2d.belt import read_chain as load_chain
     from asperity2d.scene import Scene
     from asperity2d.sweep import load_study
 

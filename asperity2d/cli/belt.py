@@ -17,7 +17,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from .. import _io
-from ..belt.chainfile import read_chain as load_chain  # noqa: F401 -- the model's reader, by its old name here
+from ..belt.chainfile import read_chain
 from ..errors import SceneError
 
 #: What ``-o`` writes besides what :func:`asperity2d.render` draws of a chain (its suffixes come
@@ -42,7 +42,7 @@ def run(args) -> int:
     if args.chain is None or args.list_presets:
         kwargs = None
     else:
-        kwargs = load_chain(args.chain)
+        kwargs = read_chain(args.chain)
     from ..belt import presets
 
     if args.list_presets:
