@@ -169,7 +169,7 @@ def out_dir(args, script_file: str) -> Path:
 def finish(args, summary: dict, directory: Path, lines: list[str]) -> int:
     """Write ``summary.json`` atomically and print the summary (JSON or text).
 
-    Strict JSON (:func:`asperity2d._io.to_json`): undefined statistics (NaN, infinities) are
+    Strict JSON: undefined statistics (NaN, infinities) are
     ``null``, NumPy values plain. Returns 0, the script's exit status.
 
     Examples

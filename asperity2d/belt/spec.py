@@ -510,9 +510,10 @@ class ContactSpec:
     # -- scales -------------------------------------------------------------
     @cached_property
     def rate_bound(self) -> float:
-        """Upper bound (1/s) on |lambda| of every phase: c' + sqrt(k') with k', c' the largest row sums
-        of |M⁻¹K| and |M⁻¹C| with the contact spring and the friction terms mu_s·|N row| added
-        (for lambda²M + lambda C + K singular, |lambda|² <= |lambda|·c' + k' in the induced inf-norm)."""
+        """Upper bound (1/s) on ``abs(lambda)`` of every phase: ``c' + sqrt(k')`` with k', c' the
+        largest row sums of ``abs(M⁻¹K)`` and ``abs(M⁻¹C)`` with the contact spring and the friction
+        terms ``mu_s·abs(N row)`` added (for ``lambda²M + lambda C + K`` singular,
+        ``abs(lambda)² <= abs(lambda)·c' + k'`` in the induced inf-norm)."""
         K = np.abs(self.stiffness_matrix)
         n = self.n
         kc = self.normal.contact_stiffness or 0.0
@@ -553,7 +554,7 @@ class ContactSpec:
 
     @cached_property
     def limit_scale(self) -> np.ndarray:
-        """Per mass, the force (N) normalising the stick event functions: mu_s·|W_i|, floored."""
+        """Per mass, the force (N) normalising the stick event functions: ``mu_s·abs(W_i)``, floored."""
         return np.maximum(self.chain.law.static_coefficient * np.abs(self.load),
                           1e-12 * max(self.chain.force_scale, self.normal_scale))
 

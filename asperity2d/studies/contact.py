@@ -248,7 +248,7 @@ def normal_force_without_coupling(*, stiff: bool = True) -> dict:
     -------
     dict
         ``presets`` (how many), ``contacts`` (which), ``max_relative_departure`` (the largest
-        |N - m g| / m g) and ``openings`` (contacts that opened).
+        ``abs(N - m g) / (m g)``) and ``openings`` (contacts that opened).
     """
     worst, openings = 0.0, 0
     contacts = (NormalContact(), NormalContact(contact_stiffness=1e6)) if stiff else (NormalContact(),)
