@@ -25,6 +25,13 @@ Directives (reStructuredText; in a MyST page wrap them in an ``{eval-rst}`` bloc
     and 8 equal"), the claim picked by its fields (``measure=critical; setup=fixed``): a count
     quoted in prose comes from the data, not typed.
 
+``.. stick-precision-table::`` (option ``:seeds: FIRST-LAST``)
+    the stick forces' step bias (dt -> dt/2 -> dt/4) and per-seed precision, computed from the
+    measured passes in ``docs/data/measures/stick_bias.json`` by ``docs/data/stick_precision.py``;
+    ``{stick-figure}`MEASURE; FIELD; FIRST-LAST``` quotes one of its numbers in prose (FIELD:
+    ``1.0->0.5``, ``0.5->0.25``, ``per_seed_sd``, ``per_pass_sd``, ``seeds_for_5_percent``,
+    ``seeds``).
+
 ``.. constant-value:: module.NAME``
     a constant's value as a reader wants it: a table of records (one row per record, one column
     per field), a table of a mapping's keys and values, or the literal (the API reference's
@@ -318,6 +325,71 @@ def claim_seeds_role(name, rawtext, text, lineno, inliner, options=None, content
     n = found[0]["numbers"]
     equal = n["n"] - n["above"] - n["below"]
     return [nodes.Text(f"{n['above']}/{n['n']} above, {n['below']} below and {equal} equal")], []
+
+
+# -- the stick forces' step bias and precision, from docs/data/measures/stick_bias.json ---------
+_STICK_SUMMARIES: dict = {}
+
+
+def stick_summary(seeds: str | None) -> dict:
+    """docs/data/stick_precision.py's summary of the seeds ``"FIRST-LAST"`` (all if None), cached."""
+    if seeds not in _STICK_SUMMARIES:
+        import importlib.util
+
+        spec = importlib.util.spec_from_file_location("_stick_precision", DOCS / "data" / "stick_precision.py")
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+        _STICK_SUMMARIES[seeds] = (module, module.summary(seeds=module.seed_range(seeds)))
+    return _STICK_SUMMARIES[seeds]
+
+
+def _shift(s: dict) -> str:
+    return (f"{100 * s['mean']:+.1f} ± {100 * s['se']:.1f} %".replace("-", "−")
+            + f" ({s['up']} up, {s['down']} down; p {s['p_wilcoxon']:.2g})")
+
+
+def _seeds_for(n) -> str:
+    return "more than 3,200" if n is None else f"{n:,}"
+
+
+class StickPrecisionTable(_Generated):
+    option_spec = {"seeds": directives.unchanged}
+
+    def lines(self):
+        module, result = stick_summary(self.options.get("seeds"))
+        self.state.document.settings.record_dependencies.add(str(module.DATA))
+        rows = [[e["label"], _shift(e["1.0->0.5"]), _shift(e["0.5->0.25"]), f"{100 * e['per_seed_sd']:.1f} %",
+                 f"{100 * e['per_pass_sd']:.1f} %", _seeds_for(e["seeds_for_5_percent"])]
+                for e in result["measures"].values()]
+        lines = list_table(["stick force (mean of the passes)", "dt → dt/2", "dt/2 → dt/4 (the policy's check)",
+                            "per-seed sd at dt/2", "one pass's sd", "seeds for a 5 % difference"],
+                           rows, widths="16 19 19 14 12 20", cls="stick-precision-table")
+        return lines + [f"Seeds {module.seeds_text(result['seeds'])}, {result['setup']} track 10/3, random spacing, "
+                        f"{result['passes']} passes each at dt, dt/2 and dt/4 ({result['cpu_minutes']:.0f} CPU-minutes); "
+                        "shifts are the mean over seeds ± one standard error, with the seeds up and down and a "
+                        "two-sided Wilcoxon p. Seeds for a 5 % difference: the fewest at which 80 % of "
+                        "comparisons against a reference 5 % away hold by the verdict rule (one-sided Wilcoxon "
+                        "p < 0.01, a change of at least 1 %; never fewer than 7), the seeds drawn from the "
+                        "measured per-seed values.", ""]
+
+
+def stick_figure_role(name, rawtext, text, lineno, inliner, options=None, content=None):
+    """``{stick-figure}`peak; 0.5->0.25; 9401-9424``` -> "−1.4 ± 3.0 %"."""
+    parts = [part.strip() for part in text.split(";")]
+    try:
+        measure, field = parts[0], parts[1]
+        module, result = stick_summary(parts[2] if len(parts) > 2 else None)
+        if field == "seeds":
+            out = module.seeds_text(result["seeds"])
+        else:
+            value = result["measures"][measure][field]
+            out = (f"{100 * value['mean']:+.1f} ± {100 * value['se']:.1f} %".replace("-", "−") if isinstance(value, dict)
+                   else _seeds_for(value) if field == "seeds_for_5_percent" else f"{100 * value:.0f} %")
+    except (OSError, ValueError, KeyError, IndexError) as exc:
+        msg = inliner.reporter.error(f"stick-figure: cannot quote {text!r}: {exc}", line=lineno)
+        return [inliner.problematic(rawtext, rawtext, msg)], [msg]
+    inliner.document.settings.record_dependencies.add(str(module.DATA))
+    return [nodes.Text(out)], []
 
 
 # -- benchmarks: the cost model, from benchmarks/results.json ------------------------------------
@@ -706,6 +778,8 @@ def setup(app):
     app.add_directive("cli-help", CliHelp)
     app.add_directive("constant-value", ConstantValue)
     app.add_role("claim-seeds", claim_seeds_role)
+    app.add_directive("stick-precision-table", StickPrecisionTable)
+    app.add_role("stick-figure", stick_figure_role)
     app.add_directive("benchmark-tables", BenchmarkTables)
     app.connect("autodoc-process-docstring", _drop_type_docstring)
     return {"version": "1", "parallel_read_safe": True, "parallel_write_safe": True}
