@@ -32,6 +32,11 @@ Directives (reStructuredText; in a MyST page wrap them in an ``{eval-rst}`` bloc
     ``1.0->0.5``, ``0.5->0.25``, ``per_seed_sd``, ``per_pass_sd``, ``seeds_for_5_percent``,
     ``seeds``).
 
+``.. measure-steps::``
+    every named measure with the step it runs at (a fraction of the default step, from
+    :func:`asperity2d.experiments.measures.measure_step`) and the tolerance halving it again is
+    held to (``STEP_TOLERANCE``).
+
 ``.. constant-value:: module.NAME``
     a constant's value as a reader wants it: a table of records (one row per record, one column
     per field), a table of a mapping's keys and values, or the literal (the API reference's
@@ -390,6 +395,29 @@ def stick_figure_role(name, rawtext, text, lineno, inliner, options=None, conten
         return [inliner.problematic(rawtext, rawtext, msg)], [msg]
     inliner.document.settings.record_dependencies.add(str(module.DATA))
     return [nodes.Text(out)], []
+
+
+class MeasureSteps(_Generated):
+    """The step policy as the code has it: each named measure's step and tolerance."""
+
+    def lines(self):
+        import asperity2d as a
+        from asperity2d.experiments import measures
+        from asperity2d.run import default_dt
+
+        scene = a.make_scene()
+        words = {1.0: "dt", 0.5: "dt/2", 0.25: "dt/4", 0.125: "dt/8"}
+        rows = []
+        for name, m in measures.MEASURES.items():
+            if name not in measures.STEP_TOLERANCE:
+                continue
+            fraction = measures.measure_step(name, scene) / default_dt(scene)
+            rows.append([f"``{name}``", cell(m.label), words.get(round(fraction, 6), f"{fraction:g} dt"),
+                         f"{100 * measures.STEP_TOLERANCE[name]:g} %" + (" of the mean over seeds" if m.distribution
+                                                                         else " of the larger of itself and a pitch"
+                                                                         if name == "travel" else "")])
+        return list_table(["measure", "what it is", "its step", "halving it again moves it by less than"], rows,
+                          widths="18 42 12 28", cls="measure-steps-table")
 
 
 # -- benchmarks: the cost model, from benchmarks/results.json ------------------------------------
@@ -780,6 +808,7 @@ def setup(app):
     app.add_role("claim-seeds", claim_seeds_role)
     app.add_directive("stick-precision-table", StickPrecisionTable)
     app.add_role("stick-figure", stick_figure_role)
+    app.add_directive("measure-steps", MeasureSteps)
     app.add_directive("benchmark-tables", BenchmarkTables)
     app.connect("autodoc-process-docstring", _drop_type_docstring)
     return {"version": "1", "parallel_read_safe": True, "parallel_write_safe": True}
