@@ -59,3 +59,8 @@ def test_summary_reads_the_shift_of_each_seed(tmp_path):
     assert result["measures"]["peak"]["0.5->0.25"]["mean"] == pytest.approx(0.0, abs=1e-15)
     # one pass's spread about its seed's mean: (-1/2, 0, +1/2) on 2 seeds, 4 degrees of freedom
     assert result["measures"]["mean"]["per_pass_sd"] == pytest.approx(math.sqrt(4 * 0.25 / 4))
+
+
+def test_seeds_are_written_as_runs():
+    assert sp.seeds_text([7601, 7602, 7603, 9401, 9403, 9404]) == "7601–7603, 9401, 9403–9404 (6 seeds)"
+    assert sp.seed_range("9401-9424") == (9401, 9424) and sp.seed_range("") is None

@@ -30,7 +30,7 @@ Directives (reStructuredText; in a MyST page wrap them in an ``{eval-rst}`` bloc
     measured passes in ``docs/data/measures/stick_bias.json`` by ``docs/data/stick_precision.py``;
     ``{stick-figure}`MEASURE; FIELD; FIRST-LAST``` quotes one of its numbers in prose (FIELD:
     ``1.0->0.5``, ``0.5->0.25``, ``per_seed_sd``, ``per_pass_sd``, ``seeds_for_5_percent``,
-    ``seeds``).
+    ``seeds``, ``regular 1.0->0.5``: the regular surface's shift).
 
 ``.. measure-steps::``
     every named measure with the step it runs at (a fraction of the default step, from
@@ -386,6 +386,11 @@ def stick_figure_role(name, rawtext, text, lineno, inliner, options=None, conten
         module, result = stick_summary(parts[2] if len(parts) > 2 else None)
         if field == "seeds":
             out = module.seeds_text(result["seeds"])
+        elif field.startswith("regular "):
+            value = result["measures"][measure]["regular"][field.split()[1]]
+            if not math.isfinite(value):
+                raise ValueError("the regular surface was not measured at these steps")
+            out = f"{100 * value:+.1f} %".replace("-", "−")
         else:
             value = result["measures"][measure][field]
             out = (f"{100 * value['mean']:+.1f} ± {100 * value['se']:.1f} %".replace("-", "−") if isinstance(value, dict)

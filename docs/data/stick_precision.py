@@ -14,6 +14,8 @@ For each stick force of a pass (first breakaway, peak, mean; the 5-pass ensemble
 * the per-seed precision at the policy's step (dt/2): the standard deviation over seeds of the
   per-seed value relative to its mean -- the spread of the per-seed ratio to a seed-independent
   reference such as the regular surface -- and one pass's spread about its seed's mean;
+* the regular surface's shift from step to step (``"regular"``; NaN where it was not measured:
+  key ``"<setup>-regular/0/<factor>"``), which a ratio random / regular divides by;
 * how many seeds a 5 % difference needs at the package's verdict rule (one-sided Wilcoxon
   p < 0.01 and a change of at least 1 %, :class:`asperity2d.experiments.verdicts.VerdictRule`):
   the smallest n at which 80 % of comparisons of n seeds against a reference 5 % away hold, the
@@ -126,14 +128,22 @@ def summary(path: Path = DATA, *, setup: str = "fixed", seeds: tuple[int, int] |
         entry.update(per_seed_sd=float(relative.std(ddof=1)),
                      per_pass_sd=float(math.sqrt(np.sum(rel ** 2) / (len(rel) - len(used)))),
                      seeds_for_5_percent=seeds_needed(relative))
+        regular = [np.nanmean(data[f"{setup}-regular/0/{f}"][name]) if f"{setup}-regular/0/{f}" in data else math.nan
+                   for f in FACTORS]
+        entry["regular"] = {"1.0->0.5": float(regular[1] / regular[0] - 1.0),
+                            "0.5->0.25": float(regular[2] / regular[1] - 1.0)}
         out["measures"][name] = entry
     return out
 
 
 def seeds_text(seeds: list[int]) -> str:
-    """``"9401–9424 (24 seeds)"``, or the seeds listed when they are not one run of integers."""
-    run = seeds == list(range(seeds[0], seeds[-1] + 1))
-    return (f"{seeds[0]}–{seeds[-1]}" if run else ", ".join(map(str, seeds))) + f" ({len(seeds)} seeds)"
+    """``"7601–7610, 9401–9424 (34 seeds)"``: the seeds as runs of consecutive integers."""
+    runs, start = [], seeds[0]
+    for before, seed in zip(seeds, seeds[1:] + [None]):
+        if seed != before + 1:
+            runs.append(f"{start}–{before}" if before != start else str(start))
+            start = seed
+    return ", ".join(runs) + f" ({len(seeds)} seed{'s' if len(seeds) != 1 else ''})"
 
 
 def report(result: dict) -> str:
@@ -144,6 +154,8 @@ def report(result: dict) -> str:
             s = e[step]
             lines.append(f"  {name:15s} dt*{step}: {100 * s['mean']:+.2f} +- {100 * s['se']:.2f} % (one standard "
                          f"error; sd {100 * s['sd']:.1f} %; {s['up']} up, {s['down']} down; Wilcoxon p {s['p_wilcoxon']:.2g})")
+        lines.append(f"  {name:15s} regular surface: dt -> dt/2 {100 * e['regular']['1.0->0.5']:+.2f} %, "
+                     f"dt/2 -> dt/4 {100 * e['regular']['0.5->0.25']:+.2f} %")
         lines.append(f"  {name:15s} at dt/2: per-seed sd {100 * e['per_seed_sd']:.1f} %, one pass {100 * e['per_pass_sd']:.1f} %; "
                      f"a 5 % difference needs {e['seeds_for_5_percent']} seeds (one-sided Wilcoxon p < {ALPHA:g}, "
                      f"{100 * POWER:.0f} % of the time)")
