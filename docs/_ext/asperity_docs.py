@@ -348,9 +348,20 @@ def stick_summary(seeds: str | None) -> dict:
     return _STICK_SUMMARIES[seeds]
 
 
+def _pm(mean: float, se: float) -> str:
+    """``"+1.4 ± 2.5 %"``; three decimals for a shift under 0.1 % (the first breakaway's)."""
+    digits = 1 if max(abs(mean), se) >= 1e-3 else 3
+    return f"{100 * mean:+.{digits}f} ± {100 * se:.{digits}f} %".replace("-", "−")
+
+
+def _percent(x: float) -> str:
+    if x < 5e-6:
+        return "under 0.001 %"
+    return f"{100 * x:.0f} %" if x >= 0.1 else f"{100 * x:.1f} %" if x >= 1e-3 else f"{100 * x:.3f} %"
+
+
 def _shift(s: dict) -> str:
-    return (f"{100 * s['mean']:+.1f} ± {100 * s['se']:.1f} %".replace("-", "−")
-            + f" ({s['up']} up, {s['down']} down; p {s['p_wilcoxon']:.2g})")
+    return _pm(s["mean"], s["se"]) + f" ({s['up']} up, {s['down']} down; p {s['p_wilcoxon']:.2g})"
 
 
 def _seeds_for(n) -> str:
@@ -361,10 +372,13 @@ class StickPrecisionTable(_Generated):
     option_spec = {"seeds": directives.unchanged}
 
     def lines(self):
-        module, result = stick_summary(self.options.get("seeds"))
+        try:
+            module, result = stick_summary(self.options.get("seeds"))
+        except (OSError, ValueError, KeyError) as exc:
+            raise self.error(f"stick-precision-table: {exc}")
         self.state.document.settings.record_dependencies.add(str(module.DATA))
-        rows = [[e["label"], _shift(e["1.0->0.5"]), _shift(e["0.5->0.25"]), f"{100 * e['per_seed_sd']:.1f} %",
-                 f"{100 * e['per_pass_sd']:.1f} %", _seeds_for(e["seeds_for_5_percent"])]
+        rows = [[e["label"], _shift(e["1.0->0.5"]), _shift(e["0.5->0.25"]), _percent(e["per_seed_sd"]),
+                 _percent(e["per_pass_sd"]), _seeds_for(e["seeds_for_5_percent"])]
                 for e in result["measures"].values()]
         lines = list_table(["stick force (mean of the passes)", "dt → dt/2", "dt/2 → dt/4 (the policy's check)",
                             "per-seed sd at dt/2", "one pass's sd", "seeds for a 5 % difference"],
@@ -390,11 +404,11 @@ def stick_figure_role(name, rawtext, text, lineno, inliner, options=None, conten
             value = result["measures"][measure]["regular"][field.split()[1]]
             if not math.isfinite(value):
                 raise ValueError("the regular surface was not measured at these steps")
-            out = f"{100 * value:+.1f} %".replace("-", "−")
+            out = f"{100 * value:+.{1 if abs(value) >= 1e-3 else 2}f} %".replace("-", "−")
         else:
             value = result["measures"][measure][field]
-            out = (f"{100 * value['mean']:+.1f} ± {100 * value['se']:.1f} %".replace("-", "−") if isinstance(value, dict)
-                   else _seeds_for(value) if field == "seeds_for_5_percent" else f"{100 * value:.0f} %")
+            out = (_pm(value["mean"], value["se"]) if isinstance(value, dict)
+                   else _seeds_for(value) if field == "seeds_for_5_percent" else _percent(value))
     except (OSError, ValueError, KeyError, IndexError) as exc:
         msg = inliner.reporter.error(f"stick-figure: cannot quote {text!r}: {exc}", line=lineno)
         return [inliner.problematic(rawtext, rawtext, msg)], [msg]
