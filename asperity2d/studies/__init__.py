@@ -9,6 +9,6 @@ Study code, kept apart from the model a user imports:
   set-ups, scene sizes and the sweep run functions of the ``scenes/ooten_*`` scripts;
 * :mod:`.mdof_belt` -- the belt-chain studies of the thesis *Vibration Analysis of Multi Degree
   of Freedom Self-excited Systems* (``scenes/belt_*``);
-* :mod:`.rough` -- issue 14's rough-surface studies (``scenes/rough_*``): measures of
+* :mod:`.rough` -- the rough-surface studies (``scenes/rough_*``): measures of
   random-height and profile scenes;
 """

@@ -25,6 +25,18 @@ Directives (reStructuredText; in a MyST page wrap them in an ``{eval-rst}`` bloc
     and 8 equal"), the claim picked by its fields (``measure=critical; setup=fixed``): a count
     quoted in prose comes from the data, not typed.
 
+``.. stick-precision-table::`` (option ``:seeds: FIRST-LAST``)
+    the stick forces' step bias (dt -> dt/2 -> dt/4) and per-seed precision, computed from the
+    measured passes in ``docs/data/measures/stick_bias.json`` by ``docs/data/stick_precision.py``;
+    ``{stick-figure}`MEASURE; FIELD; FIRST-LAST``` quotes one of its numbers in prose (FIELD:
+    ``1.0->0.5``, ``0.5->0.25``, ``per_seed_sd``, ``per_pass_sd``, ``seeds_for_5_percent``,
+    ``seeds``, ``regular 1.0->0.5``: the regular surface's shift).
+
+``.. measure-steps::``
+    every named measure with the step it runs at (a fraction of the default step, from
+    :func:`asperity2d.experiments.measures.measure_step`) and the tolerance halving it again is
+    held to (``STEP_TOLERANCE``).
+
 ``.. constant-value:: module.NAME``
     a constant's value as a reader wants it: a table of records (one row per record, one column
     per field), a table of a mapping's keys and values, or the literal (the API reference's
@@ -318,6 +330,113 @@ def claim_seeds_role(name, rawtext, text, lineno, inliner, options=None, content
     n = found[0]["numbers"]
     equal = n["n"] - n["above"] - n["below"]
     return [nodes.Text(f"{n['above']}/{n['n']} above, {n['below']} below and {equal} equal")], []
+
+
+# -- the stick forces' step bias and precision, from docs/data/measures/stick_bias.json ---------
+_STICK_SUMMARIES: dict = {}
+
+
+def stick_summary(seeds: str | None) -> dict:
+    """docs/data/stick_precision.py's summary of the seeds ``"FIRST-LAST"`` (all if None), cached."""
+    if seeds not in _STICK_SUMMARIES:
+        import importlib.util
+
+        spec = importlib.util.spec_from_file_location("_stick_precision", DOCS / "data" / "stick_precision.py")
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+        _STICK_SUMMARIES[seeds] = (module, module.summary(seeds=module.seed_range(seeds)))
+    return _STICK_SUMMARIES[seeds]
+
+
+def _pm(mean: float, se: float) -> str:
+    """``"+1.4 ± 2.5 %"``; three decimals for a shift under 0.1 % (the first breakaway's)."""
+    digits = 1 if max(abs(mean), se) >= 1e-3 else 3
+    return f"{100 * mean:+.{digits}f} ± {100 * se:.{digits}f} %".replace("-", "−")
+
+
+def _percent(x: float) -> str:
+    if x < 5e-6:
+        return "under 0.001 %"
+    return f"{100 * x:.0f} %" if x >= 0.1 else f"{100 * x:.1f} %" if x >= 1e-3 else f"{100 * x:.3f} %"
+
+
+def _shift(s: dict) -> str:
+    return _pm(s["mean"], s["se"]) + f" ({s['up']} up, {s['down']} down; p {s['p_wilcoxon']:.2g})"
+
+
+def _seeds_for(n) -> str:
+    return "more than 3,200" if n is None else f"{n:,}"
+
+
+class StickPrecisionTable(_Generated):
+    option_spec = {"seeds": directives.unchanged}
+
+    def lines(self):
+        try:
+            module, result = stick_summary(self.options.get("seeds"))
+        except (OSError, ValueError, KeyError) as exc:
+            raise self.error(f"stick-precision-table: {exc}")
+        self.state.document.settings.record_dependencies.add(str(module.DATA))
+        rows = [[e["label"], _shift(e["1.0->0.5"]), _shift(e["0.5->0.25"]), _percent(e["per_seed_sd"]),
+                 _percent(e["per_pass_sd"]), _seeds_for(e["seeds_for_5_percent"])]
+                for e in result["measures"].values()]
+        lines = list_table(["stick force (mean of the passes)", "dt → dt/2", "dt/2 → dt/4 (the policy's check)",
+                            "per-seed sd at dt/2", "one pass's sd", "seeds for a 5 % difference"],
+                           rows, widths="16 19 19 14 12 20", cls="stick-precision-table")
+        return lines + [f"Seeds {module.seeds_text(result['seeds'])}, {result['setup']} track 10/3, random spacing, "
+                        f"{result['passes']} passes each at dt, dt/2 and dt/4 ({result['cpu_minutes']:.0f} CPU-minutes); "
+                        "shifts are the mean over seeds ± one standard error, with the seeds up and down and a "
+                        "two-sided Wilcoxon p. Seeds for a 5 % difference: the fewest at which 80 % of "
+                        "comparisons against a reference 5 % away hold by the verdict rule (one-sided Wilcoxon "
+                        "p < 0.01, a change of at least 1 %; never fewer than 7), the seeds drawn from the "
+                        "measured per-seed values.", ""]
+
+
+def stick_figure_role(name, rawtext, text, lineno, inliner, options=None, content=None):
+    """``{stick-figure}`peak; 0.5->0.25; 9401-9424``` -> "−1.4 ± 3.0 %"."""
+    parts = [part.strip() for part in text.split(";")]
+    try:
+        measure, field = parts[0], parts[1]
+        module, result = stick_summary(parts[2] if len(parts) > 2 else None)
+        if field == "seeds":
+            out = module.seeds_text(result["seeds"])
+        elif field.startswith("regular "):
+            value = result["measures"][measure]["regular"][field.split()[1]]
+            if not math.isfinite(value):
+                raise ValueError("the regular surface was not measured at these steps")
+            out = f"{100 * value:+.{1 if abs(value) >= 1e-3 else 2}f} %".replace("-", "−")
+        else:
+            value = result["measures"][measure][field]
+            out = (_pm(value["mean"], value["se"]) if isinstance(value, dict)
+                   else _seeds_for(value) if field == "seeds_for_5_percent" else _percent(value))
+    except (OSError, ValueError, KeyError, IndexError) as exc:
+        msg = inliner.reporter.error(f"stick-figure: cannot quote {text!r}: {exc}", line=lineno)
+        return [inliner.problematic(rawtext, rawtext, msg)], [msg]
+    inliner.document.settings.record_dependencies.add(str(module.DATA))
+    return [nodes.Text(out)], []
+
+
+class MeasureSteps(_Generated):
+    """The step policy as the code has it: each named measure's step and tolerance."""
+
+    def lines(self):
+        import asperity2d as a
+        from asperity2d.experiments import measures
+        from asperity2d.run import default_dt
+
+        scene = a.make_scene()
+        words = {1.0: "dt", 0.5: "dt/2", 0.25: "dt/4", 0.125: "dt/8"}
+        rows = []
+        for name, m in measures.MEASURES.items():
+            if name not in measures.STEP_TOLERANCE:
+                continue
+            fraction = measures.measure_step(name, scene) / default_dt(scene)
+            rows.append([f"``{name}``", cell(m.label), words.get(round(fraction, 6), f"{fraction:g} dt"),
+                         f"{100 * measures.STEP_TOLERANCE[name]:g} %" + (" of the mean over seeds" if m.distribution
+                                                                         else " of the larger of itself and a pitch"
+                                                                         if name == "travel" else "")])
+        return list_table(["measure", "what it is", "its step", "halving it again moves it by less than"], rows,
+                          widths="18 42 12 28", cls="measure-steps-table")
 
 
 # -- benchmarks: the cost model, from benchmarks/results.json ------------------------------------
@@ -706,6 +825,9 @@ def setup(app):
     app.add_directive("cli-help", CliHelp)
     app.add_directive("constant-value", ConstantValue)
     app.add_role("claim-seeds", claim_seeds_role)
+    app.add_directive("stick-precision-table", StickPrecisionTable)
+    app.add_role("stick-figure", stick_figure_role)
+    app.add_directive("measure-steps", MeasureSteps)
     app.add_directive("benchmark-tables", BenchmarkTables)
     app.connect("autodoc-process-docstring", _drop_type_docstring)
     return {"version": "1", "parallel_read_safe": True, "parallel_write_safe": True}

@@ -13,27 +13,15 @@ DATA = Path(__file__).resolve().parents[2] / "docs" / "data" / "measures"
 
 
 def stick_bias(setup="fixed"):
-    d = json.loads((DATA / "stick_bias.json").read_text())
-    F = ("1.0", "0.5", "0.25")
-    seeds = sorted({k.split("/")[1] for k in d if k.startswith(setup + "/")})
-    seeds = [s for s in seeds if all(f"{setup}/{s}/{f}" in d for f in F)]
-    cpu = sum(d[f"{setup}/{s}/{f}"]["cpu_s"] for s in seeds for f in F)
-    print(f"stick forces, {setup} track 10/3 random, 5 passes, seeds {seeds[0]}-{seeds[-1]} "
-          f"({len(seeds)} seeds, {cpu / 60:.1f} CPU-minutes)")
-    for name in ("first_breakaway", "peak", "mean"):
-        avg = {f: np.array([np.nanmean(d[f"{setup}/{s}/{f}"][name]) for s in seeds]) for f in F}
-        for x, y in (("1.0", "0.5"), ("0.5", "0.25"), ("1.0", "0.25")):
-            r = avg[y] / avg[x] - 1
-            print(f"  {name:15s} dt*{x} -> dt*{y}: {100 * r.mean():+.2f} +- {100 * r.std(ddof=1) / math.sqrt(len(r)):.2f} % "
-                  f"(one standard error; sd over seeds {100 * r.std(ddof=1):.1f} %)")
-        # per-pass spread about the seed's ensemble mean, at the policy's step (dt/2)
-        rel = np.concatenate([np.asarray(d[f"{setup}/{s}/0.5"][name], float) / np.nanmean(d[f"{setup}/{s}/0.5"][name]) - 1
-                              for s in seeds])
-        rel = rel[np.isfinite(rel)]
-        s_pass = float(np.sqrt(np.sum(rel ** 2) / (len(rel) - len(seeds))))  # pooled within-seed sd
-        need = 2 * (2 * s_pass / 0.05) ** 2  # paired difference of two variants, 2 standard errors = 5 %
-        print(f"  {name:15s} one pass: sd {100 * s_pass:.1f} % of its seed's mean; a P-pass mean {100 * s_pass:.1f}/sqrt(P) %; "
-              f"a 5 % difference between two variants (two standard errors) needs passes x seeds >= {need:.0f}")
+    """The stick forces' bias and precision: docs/data/stick_precision.py's report, on the 24
+    seeds 9401-9424, the 10 before them (7601-7610) and all pooled."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("stick_precision", DATA.parent / "stick_precision.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    for seeds in ((9401, 9424), (7601, 7610), None):
+        print(module.report(module.summary(DATA / "stick_bias.json", setup=setup, seeds=seeds)))
 
 
 def travel():

@@ -1,7 +1,9 @@
 """Investigation: the 5-pass stick forces at dt, dt/2, dt/4 on seeds the studies never used
 (Ooten's 10/3 scenes, random spacing), to measure their step bias and their per-pass spread.
-python tools/investigate/stick_bias.py SETUP FIRST_SEED COUNT ; appends to
-renders/measures/stick_bias.json (key "setup/seed/factor")."""
+python tools/investigate/stick_bias.py SETUP FIRST_SEED COUNT [WORKERS] ; appends to
+renders/measures/stick_bias.json (key "setup/seed/factor") as each run finishes, so a stopped
+run keeps what it measured. SETUP "fixed-regular" / "free-regular": the regular surface (one
+scene, whatever the seed: python tools/investigate/stick_bias.py fixed-regular 0 1)."""
 import dataclasses, json, sys, time
 from pathlib import Path
 
@@ -17,7 +19,8 @@ PASSES = 5
 
 
 def one(setup, seed, factor):
-    scene = a.make_scene(spacing="random", seed=seed, **STUDY_SIZE, **SETUPS[setup])
+    base, _, spacing = setup.partition("-")
+    scene = a.make_scene(spacing=spacing or "random", seed=seed, **STUDY_SIZE, **SETUPS[base])
     t0 = time.process_time()
     sf = stick_forces(scene, passes=PASSES, dt=factor * default_dt(scene))
     return {**dataclasses.asdict(sf), "cpu_s": time.process_time() - t0}
