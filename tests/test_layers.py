@@ -83,3 +83,22 @@ def test_matplotlib_is_drawn_only_in_the_renderers_and_never_through_pyplot():
             outside.append(path.relative_to(ROOT))
     assert not pyplot, f"pyplot used in {pyplot}"
     assert not outside, f"matplotlib imported outside asperity2d/renderers: {outside}"
+
+
+def test_the_one_import_by_name_points_down_to_a_module_that_answers():
+    """The model's notebook display hands objects to a back end named by a string
+    (``asperity2d._display.BACKEND``: the dependency inversion that keeps the model below the
+    renderers, as pandas' plotting back ends do). The contract cannot read a string, so this
+    holds it: the name is a module of the renderers layer, and it draws a scene."""
+    import importlib
+    import tomllib
+
+    import asperity2d as a
+    from asperity2d import _display
+
+    layers = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["tool"]["importlinter"]
+    order = [layer.strip() for layer in layers["contracts"][0]["layers"]]
+    assert _display.BACKEND.split(".")[1] == "renderers" and order.index("renderers") < order.index(
+        "_io | _inputs | _version | _lazy | _format | _display")
+    assert callable(importlib.import_module(_display.BACKEND).represent)
+    assert a.make_scene(lower_count=4, upper_count=2)._repr_svg_().lstrip().startswith("<")
