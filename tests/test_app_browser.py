@@ -85,9 +85,11 @@ def state(browser, expr="s"):
 
 
 def wait_for(browser, expr, timeout=60.0, every=0.05):
+    # the workbench may not exist yet (a module still importing): not yet, rather than an error
     end = time.monotonic() + timeout
     while time.monotonic() < end:
-        value = state(browser, expr)
+        value = browser.execute_script(
+            f"const w = window.asperityWorkbench; if (!w) return null; const s = w.state(); return {expr};")
         if value:
             return value
         time.sleep(every)
