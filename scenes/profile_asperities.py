@@ -39,6 +39,7 @@ from pathlib import Path
 
 import numpy as np
 
+import asperity2d as a
 from asperity2d import scripting
 from asperity2d import surface
 
@@ -110,60 +111,12 @@ def to_asperities(profile, min_prominence: float = MIN_PROMINENCE, min_width: fl
 # 4. Plot
 # -------
 #
-# Two plain matplotlib figures: the profile with its triangles over it, and the spectrum with
-# the fitted line over its band.
+# :func:`asperity2d.render` draws both: the asperities over their profile (``profile=``;
+# ``x_range=`` zooms in) and the spectrum with the fitted line over its band (``fit=``).
 
 def _stats(values: np.ndarray) -> dict:
     return {"mean": float(np.mean(values)), "std": float(np.std(values)),
             "min": float(np.min(values)), "max": float(np.max(values))}
-
-
-def plot_asperities(profile, asperities, path, *, x_range=None, highlight=None, level=None) -> None:
-    """The profile (line) with its triangular asperities over it (µm); ``x_range`` (m) zooms in,
-    ``highlight`` (one bool per asperity) colours those blue, ``level`` (m) draws a line."""
-    from matplotlib.collections import PolyCollection
-    from matplotlib.figure import Figure  # a user's own figure (no pyplot)
-
-    x, z, rec = profile.x, profile.z, asperities
-    lo, hi = x_range if x_range is not None else (x[0], x[-1])
-    shown = (rec.right_feet >= lo) & (rec.left_feet <= hi)
-    inside = (x >= lo) & (x <= hi)
-    corners = [(rec.left_feet, rec.base_levels), (rec.apex_x, rec.summits), (rec.right_feet, rec.base_levels)]
-    triangles = np.stack([np.column_stack(c) for c in corners], axis=1)[shown] * 1e6
-    marked = np.zeros(rec.count, bool) if highlight is None else np.asarray(highlight, bool)
-    fig = Figure(figsize=(8.0, 2.6), layout="constrained")
-    ax = fig.add_subplot()
-    ax.add_collection(PolyCollection(triangles, facecolors=np.where(marked[shown], "tab:blue", "tab:orange"),
-                                     edgecolors="tab:red", alpha=0.35, linewidths=0.8))
-    ax.fill([], [], facecolor="tab:orange", edgecolor="tab:red", alpha=0.35, label="asperities")
-    if highlight is not None:
-        ax.fill([], [], facecolor="tab:blue", edgecolor="tab:red", alpha=0.35,
-                label=f"touched ({int(marked.sum())})")
-    if level is not None:
-        ax.axhline(level * 1e6, color="tab:green", lw=0.8, ls="--", label="track height")
-    ax.plot(x[inside] * 1e6, z[inside] * 1e6, color="0.2", lw=0.6, label="profile")
-    ax.plot(rec.apex_x[shown] * 1e6, rec.summits[shown] * 1e6, "v", color="tab:red", ms=3, label="summits")
-    ax.set_xlabel("x (µm)")
-    ax.set_ylabel("z (µm)")
-    ax.set_title(f"{profile.name or 'profile'}: {int(shown.sum())} of {rec.count} asperities shown", fontsize=9)
-    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7)  # beside the axes
-    fig.savefig(path, dpi=120)
-
-
-def plot_spectrum(spectrum, fit, path) -> None:
-    """The power spectral density C(q) on log-log axes, with the Hurst fit's line over its band."""
-    from matplotlib.figure import Figure  # a user's own figure (no pyplot)
-
-    fig = Figure(figsize=(6.0, 3.6), layout="constrained")
-    ax = fig.add_subplot()
-    ax.loglog(spectrum.q, spectrum.psd, color="0.3", lw=0.7, label=f"C(q), {spectrum.method}")
-    q = np.geomspace(fit.q_min, fit.q_max, 50)
-    ax.loglog(q, fit.prefactor * q ** fit.slope, color="tab:red", lw=2,
-              label=f"fit: H = {fit.hurst:.3f} ± {fit.hurst_stderr:.3f}")
-    ax.set_xlabel("wavenumber q (rad/m)")
-    ax.set_ylabel("C(q) (m³)")
-    ax.legend(fontsize=8)
-    fig.savefig(path, dpi=120)
 
 
 # %%
@@ -184,12 +137,11 @@ def main(argv=None) -> int:
     profile = load_profile(args.profile, args.unit, args.quick)
     spectrum, fit = hurst_fit(profile)
     asperities = to_asperities(profile, args.min_prominence, args.min_width)
-    plot_asperities(profile, asperities, out / "profile_asperities.png")
+    a.render(asperities, out / "profile_asperities.png", profile=profile)
     x0 = float(profile.x[0])
-    plot_asperities(profile, asperities, out / "profile_zoom.png", x_range=(x0, x0 + 10e-6))
-    plot_spectrum(spectrum, fit, out / "spectrum.png")
+    a.render(asperities, out / "profile_zoom.png", profile=profile, x_range=(x0, x0 + 10e-6))
+    a.render(spectrum, out / "spectrum.png", fit=fit)
     (out / "asperities.json").write_text(json.dumps(asperities.to_dict(), allow_nan=False) + "\n", encoding="utf-8")
-    a = asperities
     summary = {
         "profile": {"file": str(args.profile), "points": profile.count, "length_m": profile.length,
                     "spacing_m": profile.spacing, "synthetic": Path(args.profile) == DATA,
@@ -201,11 +153,11 @@ def main(argv=None) -> int:
         "rule": {"min_prominence_m": args.min_prominence, "min_width_m": args.min_width,
                  "stiffness": "K = 2 E b (Ooten's Table 1)", "modulus_Pa": MODULUS,
                  "mass": "rho b^2 h / 3 (Ooten's Appendix A pyramid)", "density_kg_m3": DENSITY},
-        "asperities": {"count": a.count, "absorbed": a.absorbed, "trimmed": a.trimmed,
-                       "base_m": _stats(a.bases), "height_m": _stats(a.heights),
-                       "summit_m": _stats(a.summits), "left_angle_deg": _stats(a.left_angles),
-                       "right_angle_deg": _stats(a.right_angles),
-                       "stiffness_N_m": _stats(a.stiffness), "mass_kg": _stats(a.mass)},
+        "asperities": {"count": asperities.count, "absorbed": asperities.absorbed, "trimmed": asperities.trimmed,
+                       "base_m": _stats(asperities.bases), "height_m": _stats(asperities.heights),
+                       "summit_m": _stats(asperities.summits), "left_angle_deg": _stats(asperities.left_angles),
+                       "right_angle_deg": _stats(asperities.right_angles),
+                       "stiffness_N_m": _stats(asperities.stiffness), "mass_kg": _stats(asperities.mass)},
         "outputs": ["profile_asperities.png", "profile_zoom.png", "spectrum.png", "asperities.json"],
     }
     lines = [
@@ -214,10 +166,10 @@ def main(argv=None) -> int:
         f"rms slope {summary['profile']['rms_slope']:.3f}",
         f"Hurst exponent {fit.hurst:.3f} ± {fit.hurst_stderr:.3f} over q = {fit.q_min:.3g} .. "
         f"{fit.q_max:.3g} rad/m ({fit.points} points)",
-        f"{a.count} asperities ({a.absorbed} summits absorbed, {a.trimmed} trimmed): base "
-        f"{np.mean(a.bases) * 1e6:.2f} ± {np.std(a.bases) * 1e6:.2f} µm, height "
-        f"{np.mean(a.heights) * 1e9:.1f} ± {np.std(a.heights) * 1e9:.1f} nm, flank "
-        f"{np.mean(a.left_angles):.1f}° / {np.mean(a.right_angles):.1f}°",
+        f"{asperities.count} asperities ({asperities.absorbed} summits absorbed, {asperities.trimmed} trimmed): base "
+        f"{np.mean(asperities.bases) * 1e6:.2f} ± {np.std(asperities.bases) * 1e6:.2f} µm, height "
+        f"{np.mean(asperities.heights) * 1e9:.1f} ± {np.std(asperities.heights) * 1e9:.1f} nm, flank "
+        f"{np.mean(asperities.left_angles):.1f}° / {np.mean(asperities.right_angles):.1f}°",
     ]
     return scripting.finish(args, summary, out, lines)
 

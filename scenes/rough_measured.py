@@ -161,40 +161,7 @@ def judge_runs(runs: dict, count: int) -> list[dict]:
 # -------
 #
 # The profile with its asperities, those the fixed-track pass touched in blue and the track's
-# height as a dashed line (a plain matplotlib figure); the pass itself with
-# :func:`asperity2d.render`.
-
-def plot_asperities(profile, asperities, path, *, x_range=None, highlight=None, level=None) -> None:
-    """The profile (line) with its triangular asperities over it (µm); ``x_range`` (m) zooms in,
-    ``highlight`` (one bool per asperity) colours those blue, ``level`` (m) draws a line."""
-    from matplotlib.collections import PolyCollection
-    from matplotlib.figure import Figure  # a user's own figure (no pyplot)
-
-    x, z, rec = profile.x, profile.z, asperities
-    lo, hi = x_range if x_range is not None else (x[0], x[-1])
-    shown = (rec.right_feet >= lo) & (rec.left_feet <= hi)
-    inside = (x >= lo) & (x <= hi)
-    corners = [(rec.left_feet, rec.base_levels), (rec.apex_x, rec.summits), (rec.right_feet, rec.base_levels)]
-    triangles = np.stack([np.column_stack(c) for c in corners], axis=1)[shown] * 1e6
-    marked = np.zeros(rec.count, bool) if highlight is None else np.asarray(highlight, bool)
-    fig = Figure(figsize=(8.0, 2.6), layout="constrained")
-    ax = fig.add_subplot()
-    ax.add_collection(PolyCollection(triangles, facecolors=np.where(marked[shown], "tab:blue", "tab:orange"),
-                                     edgecolors="tab:red", alpha=0.35, linewidths=0.8))
-    ax.fill([], [], facecolor="tab:orange", edgecolor="tab:red", alpha=0.35, label="asperities")
-    if highlight is not None:
-        ax.fill([], [], facecolor="tab:blue", edgecolor="tab:red", alpha=0.35,
-                label=f"touched ({int(marked.sum())})")
-    if level is not None:
-        ax.axhline(level * 1e6, color="tab:green", lw=0.8, ls="--", label="track height")
-    ax.plot(x[inside] * 1e6, z[inside] * 1e6, color="0.2", lw=0.6, label="profile")
-    ax.plot(rec.apex_x[shown] * 1e6, rec.summits[shown] * 1e6, "v", color="tab:red", ms=3, label="summits")
-    ax.set_xlabel("x (µm)")
-    ax.set_ylabel("z (µm)")
-    ax.set_title(f"{profile.name or 'profile'}: {int(shown.sum())} of {rec.count} asperities shown", fontsize=9)
-    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7)  # beside the axes
-    fig.savefig(path, dpi=120)
-
+# height as a dashed line, and the pass itself: both with :func:`asperity2d.render`.
 
 # %%
 # The command line
@@ -212,8 +179,8 @@ def main(argv=None) -> int:
     shapes, rms = lower.shapes, made["rms"]
     runs, pass_result = run_all(made)
     touched = pass_result.lower_contact.any(axis=1)
-    plot_asperities(made["levelled"], made["record"], out / "profile_touched.png", highlight=touched,
-                    level=probe.lower.top - fixed.slider.interference)
+    a.render(made["record"], out / "profile_touched.png", profile=made["levelled"], highlight=touched,
+             level=probe.lower.top - fixed.slider.interference)
     a.render(pass_result, out / "fixed_run.png")
     outputs = ["profile_touched.png", "fixed_run.png"]
     if not (args.no_gif or args.quick):

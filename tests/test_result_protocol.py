@@ -357,7 +357,7 @@ def test_a_saved_belt_result_renders_as_a_gif_and_a_player_from_the_command_line
     for name in ("r.gif", "r.html"):
         assert main(["render", saved, "-o", str(tmp_path / name)]) == 0
         assert (tmp_path / name).stat().st_size > 1000
-    with pytest.raises(a.SceneError, match="`result` must be a Result, a BeltResult or a Comparison, got dict"):
+    with pytest.raises(a.SceneError, match="`result` must be a Result, a BeltResult, a Comparison, Asperities or a PowerSpectrum, got dict"):
         a.render({"t": []}, tmp_path / "r.gif")
 
 

@@ -221,6 +221,22 @@ def test_plots_are_written_atomically(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.png", "s.svg"]
 
 
+def test_render_draws_a_surface_s_asperities_and_spectrum_by_extension(tmp_path):
+    import asperity2d as a
+
+    profile = self_affine_profile(n=2000, length=2e-5, rms_height=1e-7, hurst=0.8, seed=1)
+    found = find_asperities(profile, min_prominence=2e-8, **UNIT)
+    assert a.render(found, tmp_path / "a.png", profile=profile, highlight=[True] * found.count,
+                    level=0.0).read_bytes().startswith(b"\x89PNG")
+    spectrum = power_spectrum(profile)
+    assert b"<svg" in a.render(spectrum, tmp_path / "s.svg", fit=fit_hurst(spectrum)).read_bytes()[:300]
+    with pytest.raises(SceneError, match="`profile` is needed"):  # asperities alone have no profile to draw on
+        a.render(found, tmp_path / "b.png")
+    with pytest.raises(SceneError, match="for a asperities result|must end in one of"):
+        a.render(found, tmp_path / "b.gif", profile=profile)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.png", "s.svg"]
+
+
 def test_profile_script_reads_the_shipped_profile_and_writes_its_outputs(tmp_path, capsys):
     from asperity2d.cli.args import load_script
 

@@ -58,6 +58,20 @@ def _chain_plot(result, path, **options):
     return plot_chain(result, path, **options)
 
 
+def _asperities_plot(asperities, path, **options):
+    from .surface import plot_asperities
+
+    if "profile" not in options:
+        raise SceneError("`profile` is needed to draw asperities: render(asperities, path, profile=...)")
+    return plot_asperities(options.pop("profile"), asperities, path, **options)
+
+
+def _spectrum_plot(spectrum, path, **options):
+    from .surface import plot_spectrum
+
+    return plot_spectrum(spectrum, path, **options)
+
+
 def _comparison_plot(comparison, path, **options):
     from .plots import plot_comparison
 
@@ -133,8 +147,10 @@ for _fmt in (
                  "animation"),
     OutputFormat(".html", "the interactive player, one self-contained page", dict.fromkeys(_BOTH, _player),
                  "player"),
-    *(OutputFormat(ext, "time-series plot (a comparison: its values per variant)",
-                   {"asperity": _plot, "belt": _chain_plot, "comparison": _comparison_plot}, "plot")
+    *(OutputFormat(ext, "time-series plot (a comparison: its values per variant; a surface's asperities or "
+                        "its power spectrum)",
+                   {"asperity": _plot, "belt": _chain_plot, "comparison": _comparison_plot,
+                    "asperities": _asperities_plot, "spectrum": _spectrum_plot}, "plot")
       for ext in (".png", ".svg", ".pdf")),
     OutputFormat(".wav", "the slider's sound", dict.fromkeys(_BOTH, _sound), "sound"),
 ):
@@ -212,11 +228,14 @@ def render(result, path: str | os.PathLike, **options) -> Path:
     ``plot_chain`` (``.png``, ``.svg``, ``.pdf``)
     or ``write_wav`` (``.wav``). A :class:`~asperity2d.Comparison` plots as its values per
     variant and seed, with each variant's mean and 95 % interval, in its measure's unit
-    (``.png``, ``.svg``, ``.pdf``; ``label=`` names the axis, ``reference=`` draws a line).
+    (``.png``, ``.svg``, ``.pdf``; ``label=`` names the axis, ``reference=`` draws a line). A
+    rough surface's :class:`~asperity2d.surface.Asperities` draw over their profile
+    (``profile=``, required; ``x_range=``, ``highlight=``, ``level=``) and its
+    :class:`~asperity2d.surface.PowerSpectrum` on log-log axes (``fit=`` draws a Hurst fit).
 
     Parameters
     ----------
-    result : Result, BeltResult, Comparison, str or os.PathLike
+    result : Result, BeltResult, Comparison, Asperities, PowerSpectrum, str or os.PathLike
         A run or a comparison, or the path of one saved with ``save`` (read with
         :func:`asperity2d.load`).
     path : str or os.PathLike
@@ -275,7 +294,8 @@ def render(result, path: str | os.PathLike, **options) -> Path:
         draw = entry.drawers.get(fmt.renderer)
     if draw is None:
         if kind not in {k for f in FORMATS.values() for k in f.drawers}:
-            raise SceneError(f"`result` must be a Result, a BeltResult or a Comparison, got {type(result).__name__}")
+            raise SceneError(f"`result` must be a Result, a BeltResult, a Comparison, Asperities or a PowerSpectrum, "
+                             f"got {type(result).__name__}")
         raise SceneError(f"`path` must end in one of {', '.join(suffixes(kind))} for a {kind} result, "
                          f"got {str(path)!r}")
     return draw(result, path, **options)

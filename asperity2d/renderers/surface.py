@@ -65,7 +65,7 @@ def plot_asperities(profile: SurfaceProfile, asperities: Asperities, path: str |
     ax.set_ylabel("z (µm)")
     ax.set_title(f"{profile.name or 'profile'}: {int(a_shown.sum())} of {a.count} asperities shown "
                  f"({a.absorbed} summits absorbed, {a.trimmed} triangles trimmed)", fontsize=9)
-    ax.legend(loc="upper right", fontsize=7)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7)  # beside the axes, off the data
     ax.autoscale_view()
     return save(fig, path, dpi)
 

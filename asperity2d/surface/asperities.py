@@ -81,6 +81,9 @@ class Asperities:
     (10, True)
     """
 
+    #: The family :func:`asperity2d.render` draws it as (``.png``, ``.svg``, ``.pdf``).
+    kind = "asperities"
+
     centers: np.ndarray
     heights: np.ndarray
     left_runs: np.ndarray

@@ -142,6 +142,9 @@ class PowerSpectrum:
     ((128,), 'periodogram')
     """
 
+    #: The family :func:`asperity2d.render` draws it as (``.png``, ``.svg``, ``.pdf``).
+    kind = "spectrum"
+
     q: np.ndarray
     psd: np.ndarray
     method: str
