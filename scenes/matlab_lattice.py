@@ -40,10 +40,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from matplotlib.figure import Figure
 
 import asperity2d as a
 from asperity2d import scripting
+from asperity2d.studies.ooten import plot_position_velocity
 from asperity2d.experiments.quasistatic import SEED_DRIVE_VELOCITY
 
 K = 37_200.0  # N/m, Ooten's Table 1 (all springs)
@@ -52,33 +52,7 @@ DRIVE_VELOCITY = 20.0  # m/s = 4000 x Ooten's 5e-3 m/s
 
 
 # %%
-# 1. Ooten's figure 17, drawn with matplotlib
-# -------------------------------------------
-#
-# Position and velocity of the slider against time from the :class:`asperity2d.Result`'s
-# arrays: the velocity spikes are the impacts on the lattice's peaks.
-
-def plot_position_velocity(result, path, *, title: str = "") -> None:
-    """Ooten's figure 17: slider position (µm) and velocity (m/s) against time (µs); the
-    velocity panel shows the collision spikes where the slider hits a lower flank."""
-    fig = Figure(figsize=(7.0, 4.8), layout="constrained")
-    ax_x, ax_v = fig.subplots(2, 1, sharex=True)
-    t = np.asarray(result.t) * 1e6
-    ax_x.plot(t, (np.asarray(result.x) - result.x[0]) * 1e6, lw=1.0, label="slider")
-    if np.isfinite(result.drive_x).any():
-        ax_x.plot(t, (np.asarray(result.drive_x) - result.x[0]) * 1e6, lw=0.8, ls="--", label="drive spring end")
-    ax_x.set_ylabel("position (µm)")
-    ax_x.legend(loc="upper left", fontsize=8)
-    ax_v.plot(t, result.v, lw=0.8, color="C3")
-    ax_v.set_ylabel("velocity (m/s)")
-    ax_v.set_xlabel("time (µs)")
-    if title:
-        ax_x.set_title(title, fontsize=9)
-    fig.savefig(path, dpi=120)
-
-
-# %%
-# 2. The lattice as a scene
+# 1. The lattice as a scene
 # -------------------------
 #
 # :func:`asperity2d.make_scene` with ``lateral_stiffness`` joins the lower peaks to each other
@@ -95,7 +69,7 @@ def build_scene(quick: bool = False, **overrides):
 
 
 # %%
-# 3. Ooten's contact cases, read off the run
+# 2. Ooten's contact cases, read off the run
 # ------------------------------------------
 #
 # ``result.lower_contact`` says, at every recorded step, which lower peak touches the slider;
@@ -138,11 +112,13 @@ def contact_cases(episodes, t_end: float) -> list[str]:
 
 
 # %%
-# 4. Run, save, draw
+# 3. Run, save, draw
 # ------------------
 #
 # :func:`asperity2d.simulate` runs the scene (``record_every=2``), ``result.save`` writes it
-# (read back with :func:`asperity2d.load`), and :func:`asperity2d.render` animates it.
+# (read back with :func:`asperity2d.load`), :func:`asperity2d.render` animates it, and
+# ``studies.ooten.plot_position_velocity`` draws Ooten's figure 17: position and velocity against
+# time, the velocity spikes the impacts on the lattice's peaks.
 
 def main(argv=None) -> int:
     args = scripting.parser(scripting.title(__doc__)).parse_args(argv)

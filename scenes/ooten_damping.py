@@ -164,19 +164,6 @@ def mechanism_line(setup: str, numbers: dict) -> str:
     return f"[{setup}] over the damped slider's path, % of the drive work: " + "; ".join(parts)
 
 
-def plot_positions(results, labels, path) -> None:
-    """Slider travel against time for several runs on one axis (Ooten's figure 10 style):
-    plateaus are where a slider stopped on a flank."""
-    fig = Figure(figsize=(7.0, 3.2), layout="constrained")
-    ax = fig.subplots()
-    for result, label in zip(results, labels):
-        ax.plot(result.t * 1e6, (result.x - result.x[0]) * 1e6, label=label)
-    ax.set_xlabel("time (µs)")
-    ax.set_ylabel("slider travel (µm)")
-    ax.legend(loc="best", fontsize="small")
-    fig.savefig(path, dpi=120)
-
-
 def plot_shares(summary: dict, path) -> None:
     """Stacked bars: where the drive work went over the damped slider's path, per set-up and
     reading (pooled shares, %; "stored" includes the kinetic energy the slider still has)."""
@@ -246,7 +233,7 @@ def main(argv=None) -> int:
     variants = {"damped": {}, "undamped": {"damping_ratio": 0.0},
                 "elastic": {"damping_ratio": 0.0, "restitution": 1.0}}
     runs = {label: a.simulate(a.make_scene(**base, **kw)) for label, kw in variants.items()}
-    plot_positions(list(runs.values()), [f"{k} ({r.status})" for k, r in runs.items()],
+    studies.plot_positions(list(runs.values()), [f"{k} ({r.status})" for k, r in runs.items()],
                    out / "positions_fixed_seed0.png")
     if not args.no_gif:
         a.render(runs["undamped"], out / "undamped_fixed.gif", frames=args.frames or (30 if args.quick else 100))

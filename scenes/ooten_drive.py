@@ -41,8 +41,6 @@ from __future__ import annotations
 
 import math
 
-from matplotlib.figure import Figure
-
 import asperity2d as a
 from asperity2d import scripting
 from asperity2d.experiments import verdicts
@@ -135,22 +133,9 @@ def run_setup(setup: str, size: dict) -> tuple[dict, dict, list[dict]]:
 # 3. The three runs in one picture
 # --------------------------------
 #
-# The slider's travel against time, drawn with matplotlib: one run stops on a flank, one runs
+# The slider's travel against time (``studies.plot_positions``): one run stops on a flank, one runs
 # away, the spring-driven one climbs in steps. :func:`asperity2d.render` draws the spring run's
 # time series.
-
-def plot_positions(results, labels, path) -> None:
-    """Slider travel against time for several runs on one axis (Ooten's figure 10 style):
-    plateaus are where a slider stopped on a flank."""
-    fig = Figure(figsize=(7.0, 3.2), layout="constrained")
-    ax = fig.subplots()
-    for result, label in zip(results, labels):
-        ax.plot(result.t * 1e6, (result.x - result.x[0]) * 1e6, label=label)
-    ax.set_xlabel("time (µs)")
-    ax.set_ylabel("slider travel (µm)")
-    ax.legend(loc="best", fontsize="small")
-    fig.savefig(path, dpi=120)
-
 
 # %%
 # 4. Both set-ups
@@ -171,7 +156,7 @@ def main(argv=None) -> int:
         summary["claims"] += claims
         fc = numbers["critical_force_from_rest_N"]
         spring = numbers["spring"]
-        plot_positions([runs["below"], runs["above"], runs["spring"]],
+        studies.plot_positions([runs["below"], runs["above"], runs["spring"]],
                        [f"constant {FACTORS['below']} x {fc * 1e3:.3g} mN from rest ({runs['below'].status})",
                         f"constant {FACTORS['above']} x {fc * 1e3:.3g} mN from rest ({runs['above'].status})",
                         f"spring drive ({spring['events']['count']} stick-slip events)"],

@@ -62,7 +62,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from matplotlib.figure import Figure
 
 import asperity2d as a
 from asperity2d import stats
@@ -333,21 +332,8 @@ def mechanism_lines(setup: str, mech: dict) -> list[str]:
 # -------------------------------------
 #
 # One constant force, 0.9 x the half triangles' critical force with a run-up, pushes both
-# sliders of one random seed (``studies.pushed``); their travel against time, drawn with
-# matplotlib, shows the half-triangle slider stopping first.
-
-def plot_positions(results, labels, path) -> None:
-    """Slider travel against time for several runs on one axis (Ooten's figure 10 style):
-    plateaus are where a slider stopped on a flank."""
-    fig = Figure(figsize=(7.0, 3.2), layout="constrained")
-    ax = fig.subplots()
-    for result, label in zip(results, labels):
-        ax.plot(result.t * 1e6, (result.x - result.x[0]) * 1e6, label=label)
-    ax.set_xlabel("time (µs)")
-    ax.set_ylabel("slider travel (µm)")
-    ax.legend(loc="best", fontsize="small")
-    fig.savefig(path, dpi=120)
-
+# sliders of one random seed (``studies.pushed``); their travel against time
+# (``studies.plot_positions``) shows the half-triangle slider stopping first.
 
 def figure10(size: dict, seed: int, force_fraction: float, path) -> dict:
     """Figure 10 analogue: one constant force, full vs half triangles, with the builder's run-up
@@ -359,7 +345,7 @@ def figure10(size: dict, seed: int, force_fraction: float, path) -> dict:
     scenes = {"full": a.make_scene(**base), "half": a.make_scene(**base, **HALF)}
     force = force_fraction * a.critical_force(scenes["half"], start="run-up")
     runs = {p: studies.pushed(sc, force, start="run-up", dt=measure_step("critical-run-up", sc)) for p, sc in scenes.items()}
-    plot_positions(list(runs.values()), [f"{p} triangles, {force * 1e3:.3g} mN with a run-up ({r.status})"
+    studies.plot_positions(list(runs.values()), [f"{p} triangles, {force * 1e3:.3g} mN with a run-up ({r.status})"
                                           for p, r in runs.items()], path)
     return {"force_N": force, "seed": seed,
             **{f"travel_{p}_m": float(r.x[-1] - r.x[0]) for p, r in runs.items()},

@@ -49,12 +49,11 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-from matplotlib.figure import Figure
 
 import asperity2d as a
 from asperity2d.experiments import quasistatic as qs
 from asperity2d import scripting
+from asperity2d.studies.ooten import plot_position_velocity
 
 TABLE1 = dict(base=1e-6, mass=2.88e-16, stiffness=37_200.0, flank_angle=45.0)
 FACTOR = 2000.0
@@ -64,34 +63,7 @@ SETUPS = {"fixed": {"track": "fixed", "interference": 0.125e-6, "lower_count": 2
 
 
 # %%
-# 1. Ooten's figure 17, drawn with matplotlib
-# -------------------------------------------
-#
-# Position and velocity of the slider against time: the velocity spikes are the collisions
-# with the lower flanks. A :class:`asperity2d.Result` carries the arrays (``t``, ``x``, ``v``,
-# ``drive_x``).
-
-def plot_position_velocity(result, path, *, title: str = "") -> None:
-    """Ooten's figure 17: slider position (µm) and velocity (m/s) against time (µs); the
-    velocity panel shows the collision spikes where the slider hits a lower flank."""
-    fig = Figure(figsize=(7.0, 4.8), layout="constrained")
-    ax_x, ax_v = fig.subplots(2, 1, sharex=True)
-    t = np.asarray(result.t) * 1e6
-    ax_x.plot(t, (np.asarray(result.x) - result.x[0]) * 1e6, lw=1.0, label="slider")
-    if np.isfinite(result.drive_x).any():
-        ax_x.plot(t, (np.asarray(result.drive_x) - result.x[0]) * 1e6, lw=0.8, ls="--", label="drive spring end")
-    ax_x.set_ylabel("position (µm)")
-    ax_x.legend(loc="upper left", fontsize=8)
-    ax_v.plot(t, result.v, lw=0.8, color="C3")
-    ax_v.set_ylabel("velocity (m/s)")
-    ax_v.set_xlabel("time (µs)")
-    if title:
-        ax_x.set_title(title, fontsize=9)
-    fig.savefig(path, dpi=120)
-
-
-# %%
-# 2. The steel scene
+# 1. The steel scene
 # ------------------
 #
 # :func:`asperity2d.make_scene` with Table 1's values (``TABLE1``), regular spacing and a spring
@@ -119,14 +91,16 @@ def _line(name: str, q: dict, factors) -> str:
 
 
 # %%
-# 3. Is the speed-up harmless? The convergence ladder
+# 2. Is the speed-up harmless? The convergence ladder
 # ---------------------------------------------------
 #
 # :func:`asperity2d.experiments.quasistatic.convergence_ladder` runs the scene at each speed-up
 # of the ladder and compares the stick force, first breakaway, force drop, slip distance, slip
 # duration and energy per cycle with the slowest rung: converged when every quantity is within
 # the tolerance at the production speed-up and its changes shrink down the ladder. The
-# production run is saved (``result.save``), drawn and animated (:func:`asperity2d.render`).
+# production run is saved (``result.save``), drawn and animated (:func:`asperity2d.render`), and
+# its position and velocity drawn as Ooten's figure 17 (``studies.ooten.plot_position_velocity``:
+# the velocity spikes are the collisions with the lower flanks).
 
 def main(argv=None) -> int:
     p = scripting.parser(scripting.title(__doc__))

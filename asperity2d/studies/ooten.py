@@ -318,3 +318,49 @@ def damping_travel_run(*, seed: int = 0, factor: float = 0.9, **params) -> dict:
             out[f"{label}_{k}_J"] = float(books[f"{k}_J"])
             out[f"{label}_same_{k}_J"] = float(same.get(f"{k}_J", math.nan))
     return out
+
+
+def plot_positions(results, labels, path):
+    """Slider travel against time for several runs on one axis (Ooten's figure 10 style): plateaus
+    are where a slider stopped on a flank.
+
+    Parameters
+    ----------
+    results : sequence of asperity2d.Result
+        The runs.
+    labels : sequence of str
+        One legend entry per run.
+    path : str or os.PathLike
+        The image file (``.png``, ``.svg``, ``.pdf``).
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+    """
+    from ..renderers.plots import plot_positions as draw
+
+    return draw(results, labels, path)
+
+
+def plot_position_velocity(result, path, *, title: str = ""):
+    """Ooten's figure 17: slider position (µm) and velocity (m/s) against time (µs); the velocity
+    panel shows the collision spikes where the slider hits a lower flank.
+
+    Parameters
+    ----------
+    result : asperity2d.Result
+        The run.
+    path : str or os.PathLike
+        The image file (``.png``, ``.svg``, ``.pdf``).
+    title : str, default ""
+        The figure's title.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+    """
+    from ..renderers.plots import plot_position_velocity as draw
+
+    return draw(result, path, title=title)
