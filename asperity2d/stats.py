@@ -11,7 +11,11 @@ values actually used.
 * :func:`wilcoxon` -- one sample against a reference value, or two paired
   samples (``wilcoxon`` on the differences);
 * :func:`versus_reference` -- :func:`describe` plus the effect against a
-  deterministic reference and its one-sample Wilcoxon test;
+  deterministic reference, its one-sample Wilcoxon tests (in the claimed direction and
+  the opposite one) and :func:`equivalence`'s numbers;
+* :func:`equivalence` -- what a verdict needs beyond the test: the Hodges-Lehmann
+  ratio's (1 - 2 alpha) interval (the two one-sided tests of an equivalence claim) and
+  the spread of the per-seed relative change (the seeds a question needs);
 * :func:`hodges_lehmann` -- the location estimate that goes with the Wilcoxon
   signed-rank test (median of the Walsh averages) and its distribution-free
   confidence interval (the one that inverts the test); :func:`relative_effect`
@@ -111,23 +115,66 @@ def wilcoxon(a, b=None, *, reference: float | None = None, alternative: str = "t
     return float(stats.wilcoxon(d, alternative=alternative).pvalue)
 
 
-def versus_reference(values, reference: float, *, alternative: str = "less", level: float = 0.95) -> dict:
+def versus_reference(values, reference: float, *, alternative: str = "less", level: float = 0.95,
+                     alpha: float = 0.01) -> dict:
     """:func:`describe` of ``values`` plus their effect against a deterministic ``reference``:
     ``reference``, ``difference`` (mean - reference), ``relative_difference`` (fraction),
     ``below`` / ``above`` (how many values are under / over it), ``effect_size_d``
-    ((mean - reference) / std), ``p_wilcoxon`` (one-sided in ``alternative``) and
-    ``p_wilcoxon_two_sided``."""
+    ((mean - reference) / std), ``p_wilcoxon`` (one-sided in ``alternative``),
+    ``p_wilcoxon_opposite`` (one-sided the other way; NaN for a two-sided ``alternative``),
+    ``p_wilcoxon_two_sided``, ``alternative``, and :func:`equivalence` of the values against
+    the reference at ``alpha`` (``tost_level``, ``ratio_tost_low``/``ratio_tost_high``,
+    ``relative_hl``, ``relative_std``)."""
+    check_choice("alternative", alternative, ALTERNATIVES)
     out = describe(values, level=level)
     a = finite(values)
     same = _same(a, np.full_like(a, float(reference)))
     diff = out["mean"] - reference
+    opposite = {"less": "greater", "greater": "less"}.get(alternative)
     out.update(reference=float(reference), difference=diff,
                relative_difference=diff / reference if reference else math.nan,
                below=int(np.sum((a < reference) & ~same)), above=int(np.sum((a > reference) & ~same)),
                effect_size_d=diff / out["std"] if out["std"] and out["std"] > 0 else math.nan,
                p_wilcoxon=wilcoxon(a, reference=reference, alternative=alternative),
-               p_wilcoxon_two_sided=wilcoxon(a, reference=reference))
+               p_wilcoxon_opposite=(wilcoxon(a, reference=reference, alternative=opposite)
+                                    if opposite else math.nan),
+               p_wilcoxon_two_sided=wilcoxon(a, reference=reference), alternative=alternative)
+    if reference:
+        out.update(equivalence(values, reference, alpha=alpha))
     return out
+
+
+def equivalence(values, reference, *, alpha: float = 0.01) -> dict:
+    """The numbers an equivalence ("no effect") verdict and a seed estimate need.
+
+    From the per-seed relative changes ``values / reference - 1`` (``reference`` a number, or
+    a sequence paired with ``values``, as :func:`relative_effect`):
+
+    * ``tost_alpha`` (= ``alpha``) and ``tost_level``, the coverage the interval reached (its
+      nominal level is ``1 - 2 alpha``; NaN when too few values can reach it);
+    * ``ratio_tost_low`` / ``ratio_tost_high``: the Hodges-Lehmann ratio's distribution-free
+      ``1 - 2 alpha`` interval, exactly the ratios that neither one-sided signed-rank test at
+      ``alpha`` rejects -- so "the interval lies inside [1 - m, 1 + m]" *is* the two one-sided
+      tests (TOST) of equivalence within a margin m, each at ``alpha``;
+    * ``relative_hl``: the Hodges-Lehmann estimate of the relative change (fraction);
+    * ``relative_std``: the sample standard deviation of the per-seed relative changes
+      (ddof = 1; NaN below 2 values), the spread a seed estimate scales with.
+
+    Examples
+    --------
+    >>> from asperity2d import stats
+    >>> e = stats.equivalence([0.998, 1.001, 0.999, 1.002, 1.0, 0.997, 1.003, 0.999], 1.0, alpha=0.01)
+    >>> round(e["ratio_tost_low"], 4), round(e["ratio_tost_high"], 4), round(e["tost_level"], 3)
+    (0.9975, 1.0025, 0.984)
+    """
+    if not 0.0 < alpha < 0.5:
+        raise SceneError(f"`alpha` must be in (0, 0.5), got {alpha!r}")
+    effect = relative_effect(values, reference, level=1.0 - 2.0 * alpha)
+    rel = _relative_changes(values, reference)
+    return {"tost_alpha": float(alpha), "tost_level": effect["level"],
+            "ratio_tost_low": 1.0 + effect["ci_low"], "ratio_tost_high": 1.0 + effect["ci_high"],
+            "relative_hl": effect["estimate"],
+            "relative_std": float(np.std(rel, ddof=1)) if len(rel) > 1 else math.nan}
 
 
 def _signed_rank_cdf(n: int) -> np.ndarray:
@@ -181,12 +228,8 @@ def hodges_lehmann(values, *, level: float = 0.95) -> dict:
     return out
 
 
-def relative_effect(values, reference=None, *, level: float = 0.95) -> dict:
-    """Relative effect with its Hodges-Lehmann interval: of ``values`` against a deterministic
-    ``reference`` (a number: ``values / reference - 1``) or paired with ``reference`` (a
-    sequence, the same seeds: ``values_i / reference_i - 1``). Returns
-    :func:`hodges_lehmann` of those relative differences (``estimate``, ``ci_low``,
-    ``ci_high``, fractions: -0.3 is 30 % lower) and ``ratio`` = 1 + ``estimate``."""
+def _relative_changes(values, reference) -> np.ndarray:
+    """``values / reference - 1`` over the finite pairs (rounding-level differences count as 0)."""
     x = np.asarray(values, dtype=float).ravel()
     if reference is None:
         raise SceneError("`reference` must be a number or a sequence paired with `values`")
@@ -197,7 +240,15 @@ def relative_effect(values, reference=None, *, level: float = 0.95) -> dict:
         if len(y) != len(x):
             raise SceneError(f"`values` and `reference` must pair up, got {len(x)} and {len(y)} values")
     keep = np.isfinite(x) & np.isfinite(y) & (y != 0)
-    rel = np.where(_same(x[keep], y[keep]), 0.0, x[keep] / y[keep] - 1.0)
-    out = hodges_lehmann(rel, level=level)
+    return np.where(_same(x[keep], y[keep]), 0.0, x[keep] / y[keep] - 1.0)
+
+
+def relative_effect(values, reference=None, *, level: float = 0.95) -> dict:
+    """Relative effect with its Hodges-Lehmann interval: of ``values`` against a deterministic
+    ``reference`` (a number: ``values / reference - 1``) or paired with ``reference`` (a
+    sequence, the same seeds: ``values_i / reference_i - 1``). Returns
+    :func:`hodges_lehmann` of those relative differences (``estimate``, ``ci_low``,
+    ``ci_high``, fractions: -0.3 is 30 % lower) and ``ratio`` = 1 + ``estimate``."""
+    out = hodges_lehmann(_relative_changes(values, reference), level=level)
     out["ratio"] = 1.0 + out["estimate"]
     return out
