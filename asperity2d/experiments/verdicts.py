@@ -179,7 +179,7 @@ def seeds_needed(numbers: dict, alpha: float, *, direction: str = "less",
     >>> seeds_needed(numbers, 0.01)   # 0.15 % from the 1 % margin, 1.7 % spread
     728
     >>> seeds_needed({**numbers, "relative_difference": -0.02}, 0.01)
-    44
+    9
     """
     sign = _sign(direction)
     n = numbers.get("n", 0) or 0
