@@ -733,6 +733,9 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
     Result
         The recorded run: time series in SI (``t``, ``x``, ``v``, ``drive_force``, ...),
         ``status`` (``"passed"``, ``"stuck"``, ``"duration"``, ...) and the scene it ran.
+        A run whose slider left the far end of the lower surface ends ``"off-surface"``, its
+        ``message`` saying where: a free slider stops there (it would fall to the guard floor),
+        a fixed-track one coasts on, touching nothing, to the end of the run.
 
     Raises
     ------

@@ -787,16 +787,18 @@ K, V0 = 37.2e3, 5.0
 
 def block_events(mu_static, stiffness_factor, speed_factor, cycles=12):
     """The flat block run for its first breakaway (from F = 0: mu_s N / (k V)) plus ``cycles`` + 1/2
-    closed-form periods (fewer where that would carry it past 0.6 um, on its 1 um flat):
+    closed-form periods (fewer where that would carry it past 0.45 um: its face leaves the lower
+    block's at 0.7 um):
     the scene, its closed-form cycle, the events and the number of slips the closed form makes."""
     scene = a.make_scene(**BLOCK, mu_static=mu_static, drive_stiffness=K * stiffness_factor,
                          drive_velocity=V0 * speed_factor)
     cycle = a.analysis.scene_slip(scene)
     V, k = scene.drive.velocity, scene.drive.stiffness
-    n = max(1, min(cycles, int(0.6e-6 / (V * cycle.period))))
+    n = max(1, min(cycles, int(0.45e-6 / (V * cycle.period))))
     result = a.simulate(scene, mu_static * 3e-3 / (k * V) + (n + 0.5) * cycle.period, record_every=1,
                         progress=False)
     assert result.drive_force[0] == 0.0  # the premise of the first breakaway's time
+    assert result.status == "duration"  # on the lower block all along
     return scene, cycle, stick_slip_events(result), n + 1, result
 
 
