@@ -138,7 +138,8 @@ class Result:
     @property
     def status(self) -> str:
         """Why the run ended: ``"duration"``, a stop condition's name (``"passed"``,
-        ``"stuck"``, ``"travelled"``, ...) or ``"time limit"``."""
+        ``"stuck"``, ``"travelled"``, ...), ``"off-surface"`` (the slider left the far end of
+        the lower surface) or ``"time limit"``."""
         return self.meta.get("status", "")
 
     @property

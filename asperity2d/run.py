@@ -24,6 +24,7 @@ from ._version import __version__
 from .engine import PYMUNK_VERSION, Engine
 from .engine.energy import ContactWork, EnergyMeter
 from .engine.recorder import MAX_OVERLAP, Recorder
+from .engine.run_checks import off_surface_message, surface_end
 from .errors import SceneError, SimulationError
 from .result import Result
 from .scene import ConstantForce, Scene, SpringDrive
@@ -489,6 +490,13 @@ class Run:
             for observe in observers:
                 observe(probe)
         self.status, self.message = "duration", "reached the requested duration"
+        # Past this slider x (internal) no lower face is under the slider: a free slider ends the
+        # run there (it would fall to the guard floor); a fixed-track one coasts on, touching
+        # nothing, and its run keeps its samples but ends "off-surface".
+        if getattr(self, "_surface_end", None) is None:  # once per run (forks share it)
+            self._surface_end = surface_end(e)[0]
+        off_x, rows, row = self._surface_end, e.bodies_internal, e.layout.slider_row
+        free, left = self.scene.slider.track == "free", None
         disable = (None if n_steps > 200_000 else True) if progress is None else not progress
         bar = tqdm(total=n_steps, unit="step", disable=disable, leave=False, mininterval=0.5)
         done, held = 0, rec.size
@@ -511,8 +519,14 @@ class Run:
                         self.status = getattr(hit, "name", type(hit).__name__)
                         self.message = f"stop condition {self.status!r} met at t = {si(probe.t, 's', 4)}"
                         break
+                if left is None and rows().item(row, 0) > off_x:  # after the stops: one that holds wins
+                    left = (rows().item(row, 0), e.time)
+                    if free:
+                        break
         finally:
             bar.close()
+        if left is not None and self.status == "duration":
+            self.status, self.message = "off-surface", off_surface_message(e, *left)
         return self.status
 
     def fork(self) -> "Run":
@@ -719,6 +733,9 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
     Result
         The recorded run: time series in SI (``t``, ``x``, ``v``, ``drive_force``, ...),
         ``status`` (``"passed"``, ``"stuck"``, ``"duration"``, ...) and the scene it ran.
+        A run whose slider left the far end of the lower surface ends ``"off-surface"``, its
+        ``message`` saying where: a free slider stops there (it would fall to the guard floor),
+        a fixed-track one coasts on, touching nothing, to the end of the run.
 
     Raises
     ------

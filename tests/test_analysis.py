@@ -661,7 +661,7 @@ def test_force_measures_name_the_result_they_cannot_use():
             measure(forced)
 
 
-# -- Den Hartog's stick-slip: a flat block on a spring drive, slips far below an asperity base ------
+# -- a flat block's stick-slip on a spring drive (the hold-rule peak), slips far below a base -------
 #: A 3 mN flat block, mu 0.5 / 0.35, on a 37.2 kN/m drive spring at 5 m/s: slips of ~31 nm (0.03 of
 #: a base), which a fixed 0.1-base threshold did not see.
 DEN_HARTOG = dict(profile="flat", height=0.25e-6, lower_count=1, upper_count=1, track="free",
@@ -675,11 +675,13 @@ def den_hartog_run():
 
 
 def test_den_hartog_stick_slip_is_found_with_its_closed_form(den_hartog_run):
-    """Closed form (Den Hartog's spring-driven block, mu_s > mu_k): the stuck contact holds mu_s N
-    until it has slid its slip distance (1 nm, 0.001 base); the spring force keeps rising until the
-    slider catches up with the drive, which happens 0.57 V / omega = 0.8 nm into the slip, so the
-    peak is mu_s N + V sqrt(k m); the slip then swings symmetrically about the kinetic level,
-    a drop of 2 (F_peak - mu_k N). 1e-7 s holds 15 cycles."""
+    """Closed form (the spring-driven block with this model's hold rule, mu_s > mu_k): the stuck
+    contact holds mu_s N until it has slid its slip distance (1 nm, 0.001 base); the spring force
+    keeps rising until the slider catches up with the drive, which happens 0.57 V / omega = 0.8 nm
+    into the slip, so the peak is the hold rule's mu_s N + V sqrt(k m) (not Den Hartog's classical
+    mu_k N + sqrt((dmu N)^2 + k m V^2), which switches at once); the slip then swings about the
+    kinetic level, a drop of 2 (F_peak - mu_k N) less the hold's last 0.2 nm.
+    1e-7 s holds 15 cycles."""
     scene, r = den_hartog_run.scene, den_hartog_run
     N, k, m, V = 3e-3, 37.2e3, scene.slider.mass, 5.0
     peak = 0.5 * N + V * math.sqrt(k * m)
@@ -697,6 +699,11 @@ def test_den_hartog_stick_slip_is_found_with_its_closed_form(den_hartog_run):
     # step: the sampling error V sqrt(k m) (1 - cos(omega dt / 2)) is 1e-7 of it) and 1e-3 (drop,
     # measured -4.8e-4: the first nanometre of each slip still at mu_s)
     assert np.abs(peaks[-8:]).max() < 1e-4 and np.abs(drops[-8:]).max() < 1e-3
+    # The general closed form (spring_block_slip) gives the same peak and the drop less the hold's
+    # last 0.2 nm: the measured -4.8e-4 above is that, so against it the drops hold to 5e-4 of it
+    cycle = a.analysis.scene_slip(scene)  # the general closed form agrees with both limits here
+    assert cycle.release_phase > math.pi / 2 and cycle.peak_force == pytest.approx(peak, rel=1e-12)
+    assert np.abs(np.array([e.force_drop for e in events[-8:-1]]) / cycle.force_drop - 1).max() < 5e-4
 
 
 def test_slips_below_the_threshold_are_counted_in_the_error(den_hartog_run):
@@ -707,3 +714,166 @@ def test_slips_below_the_threshold_are_counted_in_the_error(den_hartog_run):
         breakaway_force(den_hartog_run, min_slip_distance=1e-7)
     with pytest.raises(a.SceneError, match="has 15 stick-to-slip"):
         a.peak_stick_force(den_hartog_run, min_slip_distance=1e-7)
+
+
+# -- the closed form itself, against a direct integration of the same block ---------------------
+def _integrated_cycle(k, m, V, Fs, Fk, d):
+    """One cycle of the spring-driven block integrated numerically (SciPy, rtol 1e-11): from rest
+    at the breakaway (spring force Fs), held at Fs until it has slid ``d``, then at Fk until it is
+    at rest again. Returns the peak and lowest force, the peak speed and the re-stick force."""
+    from scipy.integrate import solve_ivp
+
+    def rhs(friction):
+        return lambda t, s: [s[1], (Fs + k * (V * t - s[0]) - friction) / m]  # x, v; spring from Fs
+
+    omega = math.sqrt(k / m)
+    dense = dict(rtol=1e-11, atol=1e-22, max_step=0.01 / omega, dense_output=True)
+    if d > 0:
+        held = lambda t, s: s[0] - d  # noqa: E731
+        held.terminal = True
+        one = solve_ivp(rhs(Fs), (0, 2 * math.pi / omega), [0.0, 0.0], events=held, **dense)
+        t1, (x1, v1) = one.t[-1], one.y[:, -1]
+    else:
+        one, t1, x1, v1 = None, 0.0, 0.0, 0.0
+    rest = lambda t, s: s[1]  # noqa: E731
+    rest.terminal, rest.direction = True, -1
+    two = solve_ivp(lambda t, s: rhs(Fk)(t + t1, s), (0, 20 / omega), [x1, v1], events=rest, **dense)
+    ts = [(one, np.linspace(0, t1, 4001), 0.0)] if one is not None else []
+    ts.append((two, np.linspace(0, two.t[-1], 40001), t1))
+    force = np.concatenate([Fs + k * (V * (t + t0) - sol.sol(t)[0]) for sol, t, t0 in ts])
+    speed = np.concatenate([sol.sol(t)[1] for sol, t, _ in ts])
+    return force.max(), force.min(), speed.max(), force[-1]
+
+
+@pytest.mark.parametrize("hold", [0.0, 0.2e-9, 1e-9, 3e-9])
+@pytest.mark.parametrize("gap", [0.01, 0.15])
+def test_the_closed_form_cycle_is_the_integrated_one(hold, gap):
+    """The closed form (release phase, amplitude, peak, drop, re-stick) against the same block
+    integrated numerically, across the classical switch (hold 0), a release before the force's
+    peak (0.2 nm: omega d / V = 0.14) and after it (1 and 3 nm): to 1e-6 of the force scale
+    (the integration's sampling of the peaks at 1e-4 of a period costs under 1e-8)."""
+    k, m, V, N = 37.2e3, 2.88e-15, 5.0, 3e-3
+    Fk, Fs = 0.35 * N, (0.35 + gap) * N
+    cycle = a.analysis.spring_block_slip(stiffness=k, mass=m, velocity=V, static_force=Fs, kinetic_force=Fk,
+                                         hold_distance=hold)
+    top, low, fastest, restick = _integrated_cycle(k, m, V, Fs, Fk, hold)
+    scale = Fs - Fk + V * math.sqrt(k * m)
+    assert abs(cycle.peak_force - top) < 1e-6 * scale
+    assert abs(cycle.force_drop - (top - low)) < 1e-6 * scale
+    assert abs(cycle.restick_force - restick) < 1e-6 * scale
+    assert cycle.peak_speed == pytest.approx(fastest, rel=1e-6)
+    if hold == 0.0:  # the classical limit: Den Hartog's instant switch
+        assert cycle.peak_force == pytest.approx(Fk + math.hypot(Fs - Fk, V * math.sqrt(k * m)), rel=1e-12)
+        assert cycle.force_drop == pytest.approx(2 * math.hypot(Fs - Fk, V * math.sqrt(k * m)), rel=1e-12)
+    if math.sqrt(k / m) * hold / V >= math.pi / 2 - 1:  # the hold rule's limit
+        assert cycle.peak_force == pytest.approx(Fs + V * math.sqrt(k * m), rel=1e-12)
+
+
+def test_the_closed_form_refuses_bad_values():
+    good = dict(stiffness=1.0, mass=1.0, velocity=1.0, static_force=2.0, kinetic_force=1.0)
+    for name, bad in (("stiffness", 0.0), ("mass", -1.0), ("velocity", math.nan), ("hold_distance", -1e-9)):
+        with pytest.raises(a.SceneError, match=f"^`{name}` must be a finite number"):
+            a.analysis.spring_block_slip(**{**good, name: bad})
+    with pytest.raises(a.SceneError, match="^`static_force` .* must be >= `kinetic_force`"):
+        a.analysis.spring_block_slip(**{**good, "static_force": 0.5})
+
+
+# -- the slip threshold follows the scene: every slip the closed form makes is found ---------------
+#: The flat block above with its static/kinetic gap, drive stiffness and drive speed varied.
+BLOCK = dict(profile="flat", height=0.25e-6, lower_count=1, upper_count=1, track="free", mu_kinetic=0.35,
+             normal_load=3e-3, drive="spring")
+K, V0 = 37.2e3, 5.0
+
+
+def block_events(mu_static, stiffness_factor, speed_factor, cycles=12):
+    """The flat block run for its first breakaway (from F = 0: mu_s N / (k V)) plus ``cycles`` + 1/2
+    closed-form periods (fewer where that would carry it past 0.45 um: its face leaves the lower
+    block's at 0.7 um):
+    the scene, its closed-form cycle, the events and the number of slips the closed form makes."""
+    scene = a.make_scene(**BLOCK, mu_static=mu_static, drive_stiffness=K * stiffness_factor,
+                         drive_velocity=V0 * speed_factor)
+    cycle = a.analysis.scene_slip(scene)
+    V, k = scene.drive.velocity, scene.drive.stiffness
+    n = max(1, min(cycles, int(0.45e-6 / (V * cycle.period))))
+    result = a.simulate(scene, mu_static * 3e-3 / (k * V) + (n + 0.5) * cycle.period, record_every=1,
+                        progress=False)
+    assert result.drive_force[0] == 0.0  # the premise of the first breakaway's time
+    assert result.status == "duration"  # on the lower block all along
+    return scene, cycle, stick_slip_events(result), n + 1, result
+
+
+def test_the_small_gap_of_the_issue_is_seen_whole():
+    """mu 0.36 / 0.35 (the test block otherwise): every slip peaks at 2.5-2.7 V (closed form 2.58 V),
+    under the old fixed 3 V, so none was found. The threshold from the scene is 2.29 V: all 13
+    are found, their peaks within 0.5 % of the closed form (the start's transient: -0.33 % at
+    most, measured) and within 0.1 % once it has decayed (last 4), their drops within 8 % (a small
+    difference of two forces: 4 %, -2.8 %, ... -6.6 % in the first cycles) and 3 % after."""
+    scene, cycle, events, expected, result = block_events(0.36, 1, 1)
+    V = scene.drive.velocity
+    assert a.analysis.slip_speed_threshold(scene) == pytest.approx(2.288 * V, rel=1e-3)
+    assert cycle.peak_speed == pytest.approx(2.576 * V, rel=1e-3)
+    assert 2.4 * V < result.v.max() < 3 * V  # the premise: the old 3 V saw none of them
+    assert stick_slip_events(result, slip_speed=3 * V) == []
+    assert len(events) == expected == 13
+    peaks = np.array([e.force_peak for e in events]) / cycle.peak_force - 1
+    drops = np.array([e.force_drop for e in events if e.complete]) / cycle.force_drop - 1
+    assert np.abs(peaks).max() < 5e-3 and np.abs(peaks[-4:]).max() < 1e-3
+    assert np.abs(drops).max() < 0.08 and np.abs(drops[-3:]).max() < 0.03
+
+
+#: The grid: static/kinetic gaps 0.36 .. 0.5 over 0.35, drive stiffness and speed x0.2 .. x5.
+GRID = [(mu, kf, vf) for mu in (0.36, 0.4, 0.5) for kf in (0.2, 1.0, 5.0) for vf in (0.2, 1.0, 5.0)]
+#: A corner of each regime that runs in about a second: the release after the force's peak
+#: (hold rule), before it (near the classical switch: x0.2 stiffness at x5 speed), both gaps' ends.
+QUICK = [(0.5, 5.0, 5.0), (0.4, 0.2, 5.0), (0.5, 1.0, 5.0), (0.4, 5.0, 1.0)]
+
+
+def _check_block(mu, kf, vf):
+    """Count, peaks and drops of one grid point against the closed form.
+
+    Where the closed form's peak speed is at least 0.1 V above the threshold, every slip is found
+    (0.1 V: the start's transient lifts the first peaks by up to 0.11 V, measured at 0.36 / 0.35);
+    a slip whose peak is under the threshold's floor (2.25 V) cannot be told by speed from the
+    no-drop swing's transient and is not counted (the docstring of ``slip_speed_threshold`` says
+    so); in between the grid point says nothing. Peaks within 1 % (the start's transient, measured
+    up to 0.87 % over the grid) and 0.3 % on the last three; drops (a difference of two forces)
+    within 7 % and 2.5 % on the last three (measured 6.6 % and 2.1 %)."""
+    scene, cycle, events, expected, _ = block_events(mu, kf, vf)
+    V = scene.drive.velocity
+    threshold = a.analysis.slip_speed_threshold(scene)
+    if cycle.peak_speed < threshold:
+        assert len(events) <= 1, (mu, kf, vf)
+        return "below"
+    if cycle.peak_speed < threshold + 0.1 * V:
+        return "edge"
+    assert len(events) == expected, (mu, kf, vf, len(events), expected)
+    peaks = np.array([e.force_peak for e in events]) / cycle.peak_force - 1
+    drops = np.array([e.force_drop for e in events if e.complete]) / cycle.force_drop - 1
+    assert np.abs(peaks).max() < 1e-2 and np.abs(peaks[-3:]).max() < 3e-3, (mu, kf, vf, peaks)
+    assert np.abs(drops).max() < 7e-2 and np.abs(drops[-3:]).max() < 2.5e-2, (mu, kf, vf, drops)
+    return "found"
+
+
+@pytest.mark.parametrize("mu,kf,vf", QUICK)
+def test_every_slip_the_closed_form_makes_is_found(mu, kf, vf):
+    assert _check_block(mu, kf, vf) == "found"
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("mu,kf,vf", [g for g in GRID if g[1:] != (5.0, 0.2)])
+def test_every_slip_the_closed_form_makes_is_found_over_the_grid(mu, kf, vf):
+    """The whole grid (about 2.5 CPU-minutes), less x5 stiffness at x0.2 speed, where omega d / V =
+    8 > 2 pi: the hold outlasts a swing and the model releases it after several (its count of slip
+    runs on while the swing stays above the contact's stick speed), which the closed form does
+    not describe."""
+    assert _check_block(mu, kf, vf) in ("found", "below", "edge")
+
+
+@pytest.mark.parametrize("kf,vf", [(1.0, 1.0), (0.2, 5.0), (5.0, 5.0)])
+def test_steady_sliding_makes_no_slip(kf, vf):
+    """mu_s = mu_k: no friction drop, the block swings on the drive spring from rest to 2 V (the
+    start's transient: up to 2.18 V, measured): no event, whatever the stiffness and speed."""
+    scene, cycle, events, _, result = block_events(0.35, kf, vf, cycles=6)
+    assert cycle.peak_speed == pytest.approx(2 * scene.drive.velocity, rel=1e-12)
+    assert result.v.max() > 1.9 * scene.drive.velocity  # the premise: it does swing
+    assert events == []

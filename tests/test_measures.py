@@ -72,9 +72,11 @@ def test_every_named_measure_has_a_step_and_a_tolerance():
 def check_deterministic(scene, values: dict) -> None:
     for name, (coarse, fine) in values.items():
         if name == "travel":
-            # a travel that stops within a pitch of the start is a creep, not a distance: 1 % of
-            # the pitch there (measured: the free slider under 0.9 x critical creeps 0.1-0.2 um)
-            tolerance = measures.STEP_TOLERANCE["travel"] * max(abs(fine), scene.lower.spacing.mean_pitch)
+            # The travel is a distribution over seeds (its policy: 5 % of the mean over seeds,
+            # test_travel_policy.py); on these seeds, whose sliders pass or creep, it moves under
+            # 1 % of itself. A travel that stops within a pitch of the start is a creep, not a
+            # distance: 1 % of the pitch there (the free slider under 0.9 x critical creeps 0.1-0.2 um)
+            tolerance = 0.01 * max(abs(fine), scene.lower.spacing.mean_pitch)
             assert abs(fine - coarse) <= tolerance, (name, coarse, fine)
         else:
             assert math.isfinite(fine) and relative(fine, coarse) <= 0.01, (name, coarse, fine)

@@ -181,3 +181,65 @@ def test_a_fork_checks_its_own_run_with_its_parents_limits():
     assert fork.result().checks == rebuilt.result().checks
     assert (parent.crossings, parent.worst_step) == (run._record.validity.crossings,
                                                      run._record.validity.worst_step)
+
+
+# -- the end of the surface: a run that leaves it says so -------------------------------------------
+#: A 3 mN flat block (mu 0.36 / 0.35) on a 37.2 kN/m drive spring at 5 m/s: one lower flat 1 um
+#: wide whose face (between its rounded edges) ends 0.35 um from its centre, as does the block's.
+FLAT_BLOCK = dict(profile="flat", height=0.25e-6, lower_count=1, upper_count=1, track="free",
+                  mu_static=0.36, mu_kinetic=0.35, normal_load=3e-3, drive="spring",
+                  drive_stiffness=37.2e3, drive_velocity=5.0)
+
+
+def test_a_block_that_runs_off_its_flat_ends_the_run_there():
+    """Driven 3e-7 s at 5 m/s the block would travel 1.5 um: once its face has passed the lower
+    face's far end (x = 0.7 um) it slid down their rounded edges and fell to the guard floor, a
+    normal force of 58 x its load, under status "duration". Now the run ends where the faces part,
+    status "off-surface", with a message naming the body, the asperity and the place; the samples
+    before it are those of the same run cut there, and its load never spiked."""
+    scene = a.make_scene(**FLAT_BLOCK)
+    result = a.simulate(scene, 3e-7, record_every=1, progress=False)
+    assert result.status == "off-surface" and result.success
+    assert result.message.startswith("the slider ran off the far end of the lower surface at t = ")
+    assert "lower asperity 0's face (x = 3.5e-07 m)" in result.message and "guard floor" in result.message
+    assert 0.7e-6 < result.x[-1] < 0.7e-6 + 2 * result.meta["dt"] * np.abs(result.v).max()
+    assert np.all(result.x[:-1] <= 0.7e-6)  # it ended at the first sample past the face
+    assert result.normal_force.max() < 1.02 * scene.slider.normal_load
+    shorter = a.simulate(scene, 1e-7, record_every=1, progress=False)  # on the flat all along
+    assert shorter.status == "duration"
+    n = len(shorter.t)
+    for name in ("t", "x", "v", "y", "normal_force", "drive_force"):
+        assert np.array_equal(getattr(result, name)[:n], getattr(shorter, name)), name
+
+
+@pytest.mark.parametrize("kw", [dict(drive_stiffness=0.2 * 37.2e3), dict(normal_load=9e-3)])
+def test_a_softer_spring_or_a_heavier_load_runs_off_the_same_way(kw):
+    """The softer spring (k x0.2) and the heavier load (N x3) of the same block, run long enough to
+    reach the end: the same status, no spike."""
+    scene = a.make_scene(**{**FLAT_BLOCK, "mu_static": 0.5, **kw})
+    result = a.simulate(scene, 3e-7, progress=False)
+    assert result.status == "off-surface"
+    assert result.normal_force.max() < 1.05 * scene.slider.normal_load
+
+
+def test_a_fixed_track_slider_past_the_last_asperity_keeps_its_samples_and_says_where_it_left():
+    """On the fixed track a slider past the end coasts on its track touching nothing: the run keeps
+    every sample (the golden force_random run is this case, bit for bit) but ends "off-surface",
+    not "duration", its message saying when it left."""
+    scene = a.make_scene(drive="force", drive_force=0.02, spacing="random", seed=3, lower_count=8)
+    result = a.simulate(scene, 3000 * scene.shortest_period() / 50)
+    assert result.status == "off-surface"
+    assert "lower asperity 7's face" in result.message and "touched nothing after that" in result.message
+    left = float(result.message.split("at t = ")[1].split(" s")[0])
+    assert 0 < left < result.t[-1]
+    assert np.all(result.contact_count[result.t > left] == 0)
+
+
+def test_passing_is_still_passing_and_a_stop_wins_over_leaving():
+    """With ``duration=None`` the Passed stop (rear tip half a base past the last apex) comes first;
+    a free slider on triangles too. A run that ends before the end keeps "duration"."""
+    assert a.simulate(a.make_scene(**SMALL)).status == "passed"
+    assert a.simulate(a.make_scene(track="free", **SMALL)).status == "passed"
+    assert a.simulate(a.make_scene(**SMALL), 20e-9).status == "duration"
+    block = a.make_scene(**FLAT_BLOCK)
+    assert a.simulate(block, stop=a.Passed()).status == "passed"  # x 0.5 um, before the face ends

@@ -72,6 +72,53 @@ EVENTS = 100_000
 EVENT_MARGIN = 1e-9
 
 
+# -- the end of the surface ------------------------------------------------------------------------
+def surface_end(engine) -> tuple[float, int, float]:
+    """Where the slider leaves the far end of the lower surface (internal units).
+
+    Returns ``(slider_x, lower, edge)``: the slider position past which the rear end of its
+    contact face (a flat block's face, a triangle's tip) is beyond ``edge``, the far end of the
+    face of lower asperity ``lower`` (the one that reaches farthest in +x): from there on no face
+    is under it, and a free slider tips off the edge and falls to the guard floor (a flat block at
+    mu 0.5 / 0.35 under 9 mN: a normal-force spike of 58 x its load). Never before the ``Passed``
+    stop's position (rear tip half a base past the last apex), so a run that stops on passing
+    ends as before.
+    """
+    from ..geometry import outline
+
+    scene, layout, u = engine.scene, engine.layout, engine.units
+
+    def face(surface, upper):  # each asperity's face extent (m) about its tip: the vertices at the tip
+        shapes, kind = surface.shape_set(), surface.profile.kind
+        out = []
+        for poly in shapes.vertices(kind, upper=upper):
+            tip = min(y for _, y in poly) if upper else max(y for _, y in poly)
+            xs = [x for x, y in poly if y == tip]
+            out.append((min(xs), max(xs)))
+        return np.array(out) / u.length
+
+    lower, upper = face(scene.lower, False), face(scene.slider, True)
+    ends = np.asarray(layout.lower_apex_x, dtype=float) + lower[:, 1]
+    i = int(np.argmax(ends))
+    rear = float(np.min(np.asarray(layout.upper_apex, dtype=float) + upper[:, 0]))
+    passed = float(layout.lower_apex_x[-1]) + 0.5 * scene.base / u.length - float(layout.upper_apex[0])
+    return max(float(ends[i]) - rear, passed), i, float(ends[i])
+
+
+def off_surface_message(engine, slider_x: float, time: float) -> str:
+    """The message of a run whose slider left the far end of the lower surface at ``time`` (s),
+    at ``slider_x`` (internal units)."""
+    _, i, edge = surface_end(engine)
+    L = engine.units.length
+    where = (f"the slider ran off the far end of the lower surface at t = {time:.6g} s: at x = {slider_x * L:.6g} m "
+             f"the rear of its face passed the far end of lower asperity {i}'s face (x = {edge * L:.6g} m)")
+    if engine.scene.slider.track == "free":
+        return (f"{where}; a free slider tips off there and falls to the guard floor, so the run ends there "
+                "(a longer surface, `lower_count`, or a shorter `duration` keeps it on)")
+    return (f"{where}; on its track it touched nothing after that (a longer surface, `lower_count`, or a "
+            "shorter `duration` keeps it on)")
+
+
 # -- features and speeds (internal units: length = the lower profile's base) ---------------------
 def _features(scene, units) -> tuple[float, float]:
     """(horizontal, vertical) smallest feature (internal lengths) a slider's step must resolve.
