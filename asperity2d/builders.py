@@ -86,7 +86,9 @@ PARAMETERS = OOTEN_PARAMETERS + (
     _P("law_params", None, "-", "the contact law's parameters as a mapping (SI), for a law whose "
        "parameters have no keyword here (one registered from outside)"),
     # the built-in contact laws' own parameters (asperity2d.contact_laws): given only with their law
-    *(_P(q.name, q.default, q.unit, q.meaning) for e in LAWS.values() if e.model == "asperity"
+    # (None here: a keyword of another law than the chosen one is refused, so none is set unless given)
+    *(_P(q.name, None, q.unit, q.meaning if "default" in q.meaning or q.default is None
+         else f"{q.meaning} (default {q.default:g}{'' if q.unit == '1' else ' ' + q.unit})") for e in LAWS.values() if e.model == "asperity"
       for q in e.law.parameters),
     _P("drive_damping", 0.0, "N s/m", "damper in parallel with the drive spring"),
     _P("drive_preload", 0.0, "N", "the drive spring's force at the start"),
