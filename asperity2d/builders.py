@@ -25,6 +25,7 @@ import numpy as np
 
 from ._inputs import (check_choice, check_finite, check_int, check_nonnegative, check_positive,
                         check_text, is_real, per_item, show)
+from .contact_laws import DEFAULT_CONTACT_LAW, LAWS, contact_law
 from .errors import SceneError
 from .geometry import KINDS, Profile, RandomSpacing, RegularSpacing, half_of
 from .scene import (OOTEN_PARAMETERS, ConstantForce, Contact, LowerSurface, Parameter, Scene, Slider,
@@ -79,6 +80,16 @@ PARAMETERS = OOTEN_PARAMETERS + (
     _P("stick_speed", None, "m/s", "slip speed below which a sliding contact sticks again "
        "(default 1e-4 of base × natural frequency)"),
     _P("restitution", 0.0, "1", "contact elasticity in [0, 1]: 0 inelastic impacts, 1 no impact loss"),
+    _P("contact_law", DEFAULT_CONTACT_LAW, "-", 'the per-contact friction law: "static-kinetic" (the '
+       'hold rule), "velocity-weakening", "viscous", "rate-state" or a registered one; its '
+       "parameters follow"),
+    _P("law_params", None, "-", "the contact law's parameters as a mapping (SI), for a law whose "
+       "parameters have no keyword here (one registered from outside)"),
+    # the built-in contact laws' own parameters (asperity2d.contact_laws): given only with their law
+    # (None here: a keyword of another law than the chosen one is refused, so none is set unless given)
+    *(_P(q.name, None, q.unit, q.meaning if "default" in q.meaning or q.default is None
+         else f"{q.meaning} (default {q.default:g}{'' if q.unit == '1' else ' ' + q.unit})") for e in LAWS.values() if e.model == "asperity"
+      for q in e.law.parameters),
     _P("drive_damping", 0.0, "N s/m", "damper in parallel with the drive spring"),
     _P("drive_preload", 0.0, "N", "the drive spring's force at the start"),
     _P("gravity", 0.0, "m/s²", "gravitational acceleration (negligible at the micrometre scale)"),
@@ -106,6 +117,8 @@ del _P
 #: Every override make_scene accepts, with its default (None: derived, see :data:`PARAMETERS`).
 DEFAULTS = {p.name: p.default for p in PARAMETERS}
 
+#: The built-in contact laws' parameter keywords -> their law.
+_LAW_KEYWORDS = {q.name: k for k, e in LAWS.items() if e.model == "asperity" for q in e.law.parameters}
 SPACINGS = ("regular", "random", "random-upper", "random-lower")
 HALF_SHAPES = ("apex-cut", "full-base")
 #: Pairs that say the same thing two ways: give one or the other.
@@ -120,6 +133,26 @@ _OPTIONAL_POSITIVE = ("height", "lower_pitch", "upper_pitch", "travel_down", "tr
 _OPTIONAL_NONNEGATIVE = ("mu", "mu_kinetic", "slip_distance", "height_std", "lower_height_std",
                          "upper_height_std")
 _PER_ITEM = {"mass": False, "stiffness": False, "damping": True}  # name -> zero allowed
+
+
+def _law_params(law: str, keys: set, overrides: dict) -> dict:
+    """The contact law's parameters from make_scene's keywords and ``law_params``; a built-in
+    law's keyword given with another law is refused, naming both."""
+    params = overrides.get("law_params")
+    if params is None:
+        params = {}
+    elif not hasattr(params, "items"):
+        raise SceneError(f"`law_params` must be a mapping of parameter names to values, got {show(params)}")
+    params = dict(params)
+    for name, value in overrides.items():
+        if name in keys:
+            if name in params:
+                raise SceneError(f"`{name}` given both as a keyword and in `law_params`: give one")
+            params[name] = value
+        elif name in _LAW_KEYWORDS:
+            raise SceneError(f"`{name}` is a parameter of the contact law {_LAW_KEYWORDS[name]!r}, and "
+                             f"`contact_law` is {law!r}: set contact_law={_LAW_KEYWORDS[name]!r} or drop it")
+    return params
 
 
 def _check_arguments(p: dict, given: set, spacing: str) -> None:
@@ -281,7 +314,14 @@ def make_scene(*, spacing: str = "regular", seed: int = 0, profile: str = "full"
     ...
     asperity2d.errors.SceneError: unknown scene parameter `lower_cont` (did you mean `lower_count`?)
     """
-    unknown = sorted(set(overrides) - set(DEFAULTS), key=str)
+    # the chosen contact law's parameters (a law registered from outside included) are keywords
+    law_name = overrides.get("contact_law", DEFAULT_CONTACT_LAW)
+    try:
+        law_keys = {q.name for q in contact_law(law_name).parameters}
+    except (SceneError, TypeError):
+        known = ", ".join(k for k, e in LAWS.items() if e.model == "asperity")
+        raise SceneError(f"`contact_law` must be one of {known}, got {show(law_name)}") from None
+    unknown = sorted(set(overrides) - set(DEFAULTS) - law_keys, key=str)
     if unknown:
         hints = {u: difflib.get_close_matches(str(u), DEFAULTS, n=1) for u in unknown}
         msg = "; ".join(f"`{u}`" + (f" (did you mean `{h[0]}`?)" if h else "") for u, h in hints.items())
@@ -372,7 +412,8 @@ def make_scene(*, spacing: str = "regular", seed: int = 0, profile: str = "full"
         mu_s = p["mu_static"]
         mu_k = kinetic_default(mu_s) if p["mu_kinetic"] is None else p["mu_kinetic"]
     contact = Contact(mu_static=mu_s, mu_kinetic=mu_k, slip_distance=p["slip_distance"],
-                      stick_speed=p["stick_speed"], restitution=p["restitution"])
+                      stick_speed=p["stick_speed"], restitution=p["restitution"], law=law_name,
+                      law_params=_law_params(law_name, law_keys, overrides))
     name = p["name"] or f"{spacing}-{profile}-{drive}-{p['track']}-seed{seed}"
     if not p["name"] and any(r is not None for r in records.values()):
         name = "-".join(f"{k}={label(p[f'{k}_surface'])}" for k, r in records.items() if r is not None) + \

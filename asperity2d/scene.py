@@ -20,7 +20,7 @@ from ._format import si
 from ._inputs import (check_choice, check_finite, check_nonnegative, check_positive, check_text,
                         per_item, show)
 from .errors import SceneError
-from .contact_laws import DEFAULT_CONTACT_LAW, contact_law
+from .contact_laws import DEFAULT_CONTACT_LAW, check_law_params, contact_law
 from .geometry import ExplicitSpacing, Profile, RandomSpacing, RegularSpacing, Spacing
 from .shapes import Shapes, SurfaceGeometry, check_substrate
 
@@ -454,6 +454,13 @@ class Contact:
         Slip speed (m/s) below which a sliding contact sticks again.
     restitution : float, default 0.0
         Normal coefficient of restitution, in [0, 1].
+    law : str, default "static-kinetic"
+        The per-contact friction law, by its name in :data:`asperity2d.contact_laws.LAWS`:
+        ``"static-kinetic"`` (the hold rule), ``"velocity-weakening"``, ``"viscous"``,
+        ``"rate-state"`` or one registered from outside.
+    law_params : mapping or tuple of (str, float) pairs, default ()
+        The law's own parameters in SI (its :attr:`~asperity2d.contact_laws.ContactLaw.parameters`;
+        one not given takes its default), held as ``(name, value)`` pairs in the law's order.
 
     Raises
     ------
@@ -468,7 +475,13 @@ class Contact:
     --------
     >>> from asperity2d import Contact
     >>> Contact(mu_static=0.3)
-    Contact(mu_static=0.3, mu_kinetic=0.2, slip_distance=None, stick_speed=None, restitution=0.0, law='static-kinetic')
+    Contact(mu_static=0.3, mu_kinetic=0.2, slip_distance=None, stick_speed=None, restitution=0.0, law='static-kinetic', law_params=())
+    >>> Contact(law="rate-state", law_params={"d_c": 2e-9, "rs_a": 0.01}).law_params
+    (('rs_a', 0.01), ('d_c', 2e-09))
+    >>> Contact(law="viscous", law_params={"v_s": 1.0})
+    Traceback (most recent call last):
+    ...
+    asperity2d.errors.SceneError: `v_s` is not a parameter of the contact law 'viscous' (its parameters: viscosity)
     >>> Contact(mu_static=0.2, mu_kinetic=0.3)
     Traceback (most recent call last):
     ...
@@ -482,10 +495,13 @@ class Contact:
     restitution: float = 0.0
     #: The per-contact friction law, by its name in ``asperity2d.contact_laws.LAWS``.
     law: str = DEFAULT_CONTACT_LAW
+    #: The law's own parameters (SI), ``(name, value)`` pairs in the law's order.
+    law_params: tuple = ()
 
     def __post_init__(self):
         s = object.__setattr__
         contact_law(self.law)  # a registered asperity-model law (SceneError naming `law` if not)
+        s(self, "law_params", check_law_params(self.law, self.law_params))
         s(self, "mu_static", check_nonnegative("mu_static", self.mu_static))
         if self.mu_kinetic is None:
             s(self, "mu_kinetic", kinetic_default(self.mu_static))
@@ -764,6 +780,10 @@ def _to_plain(obj):
         for f in dataclasses.fields(obj):
             if isinstance(obj, Contact) and f.name == "law" and obj.law == DEFAULT_CONTACT_LAW:
                 continue  # the default law is left out: saved scenes read as they did before it was named
+            if isinstance(obj, Contact) and f.name == "law_params":
+                if obj.law_params:  # a TOML table of the law's parameters (none: left out, as above)
+                    out[f.name] = dict(obj.law_params)
+                continue
             out[f.name] = _to_plain(getattr(obj, f.name))
         return out
     if isinstance(obj, tuple):

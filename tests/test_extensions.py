@@ -212,7 +212,7 @@ class AlwaysKinetic(ContactLaw):
     mu: float
 
     @classmethod
-    def from_contact(cls, contact, stick_speed, slip_distance, dt):
+    def from_contact(cls, contact, *, units, stick_speed, slip_distance, dt):
         return cls(contact.mu_kinetic)
 
     @property
@@ -223,11 +223,11 @@ class AlwaysKinetic(ContactLaw):
     def idle(self) -> float:
         return self.mu
 
-    def coefficient(self, stuck):
-        return self.mu
+    def step(self, state, slip, impulse, new):
+        return self.mu, ()
 
-    def step(self, stuck, slid, slip, new):
-        return False, 0.0
+    def steady(self, v):
+        return self.mu
 
 
 @pytest.fixture

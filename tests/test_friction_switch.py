@@ -49,8 +49,9 @@ def reference_step(law, states: list, slips: dict, _dt=None) -> list:
         if i not in slips:
             out.append(ContactState(False, False, 0.0, law.idle) if s.present else s)
             continue
-        stuck, slid = law.step(s.stuck, s.slid, slips[i], not s.present)
-        out.append(ContactState(True, stuck, slid, law.coefficient(stuck)))
+        new = not s.present
+        mu, (stuck, slid) = law.step(law.initial if new else (s.stuck, s.slid), slips[i], 1.0, new)
+        out.append(ContactState(True, stuck, slid, mu))
     return out
 
 
@@ -62,7 +63,8 @@ def _states(switch) -> list[ContactState]:
 
 def _slips(engine) -> dict[int, float]:
     """Each touching lower asperity's slip speed after the last step, as the loops take it:
-    the largest over the slider's tips touching it, NaN never kept."""
+    the largest over the slider's tips touching it, NaN never kept (its magnitude: the sign does
+    not matter to this law)."""
     rows, layout = engine.bodies_internal(), engine.layout
     svx, svy = rows.item(layout.slider_row, 2), rows.item(layout.slider_row, 3)
     out: dict[int, float] = {}
@@ -89,7 +91,7 @@ def test_each_step_of_the_switch_is_the_reference_laws_to_the_bit(name, loop):
     law = engine.switch.law
     assert law.active and law == StaticKineticSwitch(engine.switch.mu_static, engine.switch.mu_kinetic,
                                                      engine.switch.stick_speed, engine.switch.slip_distance,
-                                                     engine.switch.dt)
+                                                     engine.switch.dt, engine.units.velocity)
     shapes = engine.layout.lower_shapes
     before = _states(engine.switch)
     flips = touching = 0

@@ -39,7 +39,8 @@ def _choices() -> dict:
             "track": ("fixed", "free"), "half_shape": builders.HALF_SHAPES,
             "lower_spacing": surface, "upper_spacing": surface, "lower_profile": KINDS,
             "upper_profile": KINDS, "height_distribution": builders.DISTRIBUTIONS,
-            "surface_unit": tuple(builders.UNITS)}
+            "surface_unit": tuple(builders.UNITS),
+            "contact_law": tuple(k for k, e in builders.LAWS.items() if e.model == "asperity")}
 
 
 def groups() -> list[tuple[str, tuple]]:

@@ -44,9 +44,12 @@ typedef struct {
     int slider_row, lower_row0, n_lower, tracked, fixed_slider;
     double y_track, track_tolerance, max_drift;
     double *lower_x0;
-    /* the stick/slip switch (StickSlip), one entry per lower asperity */
+    /* the contact law (StickSlip.law), its state one entry per lower asperity; law_kind: 0 the
+     * static/kinetic switch, 1 velocity weakening, 2 viscous plus Coulomb (kernel.py's C_LAWS) */
     int switch_active;
     double switch_dt, stick_speed, slip_distance, mu_static, mu_kinetic;
+    int law_kind;
+    double v_s, viscosity;
     uint8_t *stuck, *present;
     double *slid, *mu;
     uintptr_t *shapes;
@@ -108,7 +111,9 @@ static void project(asp_ctx *c)
     }
 }
 
-/* StickSlip.update on the contacts just read. */
+/* StickSlip.update on the contacts just read: each touching lower asperity's slip speed (the
+ * largest over the tips; its sign does not matter to the laws here), then the law. A lost contact
+ * goes back to mu_kinetic, every C law's idle coefficient. */
 static void stick_slip(asp_ctx *c)
 {
     const asp_int_array *ia = (const asp_int_array *)c->arbiter_ints;
@@ -149,21 +154,28 @@ static void stick_slip(asp_ctx *c)
             continue;
         }
         double slip = c->slips[i];
-        if (!c->present[i]) { /* a new contact */
-            c->stuck[i] = slip < v_stick;
-            c->slid[i] = 0.0;
-        } else if (c->stuck[i]) {
-            if (slip > v_stick) {
-                c->slid[i] += slip * c->switch_dt;
-                if (c->slid[i] > c->slip_distance) c->stuck[i] = 0;
-            } else {
+        double mu;
+        if (c->law_kind == 1) { /* VelocityWeakening.step */
+            mu = mu_k + (mu_s - mu_k) * exp(-slip / c->v_s);
+        } else if (c->law_kind == 2) { /* ViscousCoulomb.step */
+            mu = mu_k + c->viscosity * slip;
+        } else { /* StaticKineticSwitch.step */
+            if (!c->present[i]) { /* a new contact */
+                c->stuck[i] = slip < v_stick;
+                c->slid[i] = 0.0;
+            } else if (c->stuck[i]) {
+                if (slip > v_stick) {
+                    c->slid[i] += slip * c->switch_dt;
+                    if (c->slid[i] > c->slip_distance) c->stuck[i] = 0;
+                } else {
+                    c->slid[i] = 0.0;
+                }
+            } else if (slip < v_stick) {
+                c->stuck[i] = 1;
                 c->slid[i] = 0.0;
             }
-        } else if (slip < v_stick) {
-            c->stuck[i] = 1;
-            c->slid[i] = 0.0;
+            mu = c->stuck[i] ? mu_s : mu_k;
         }
-        double mu = c->stuck[i] ? mu_s : mu_k;
         if (c->mu[i] != mu) {
             set_friction((void *)c->shapes[i], mu);
             c->mu[i] = mu;

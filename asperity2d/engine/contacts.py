@@ -1,19 +1,21 @@
-"""Contacts of an asperity scene: one batch read per step, the stick/slip switch, contact forces.
+"""Contacts of an asperity scene: one batch read per step, the contact law, contact forces.
 
 Part of the adapter (:mod:`asperity2d.engine`). :class:`Arbiters` holds one
 ``pymunk.batch`` read of every contact after a step; the stick/slip switch and
 the force read-out both use it, so the space is read once.
 
-Static > kinetic friction: pymunk has one coefficient per contact (the
-product of the two shapes' coefficients; the slider's shapes have 1). After
-every step each lower asperity's coefficient is set from the stick/slip state
-of its contact with the slider, kept per lower asperity. A stuck contact keeps
-``mu_static`` until it has slid ``slip_distance`` without pause (speed above
-``stick_speed`` every step), so a micro-slip of a step or two under a sudden
-load does not make it kinetic; a sliding contact sticks again when its slip
-speed drops below ``stick_speed``. The new coefficient acts from the next
-step, as a ``pre_solve`` callback would; pymunk is touched only for the
-shapes whose coefficient changes.
+Friction per contact: pymunk has one coefficient per contact (the product of
+the two shapes' coefficients; the slider's shapes have 1). After every step
+each lower asperity's coefficient is set by the scene's contact law
+(:mod:`asperity2d.contact_laws`) from what its contact with the slider did in
+the step (signed slip speed, normal impulse) and the law's state for that
+contact, kept per lower asperity. The default law is the static/kinetic switch
+with the hold rule: a stuck contact keeps ``mu_static`` until it has slid
+``slip_distance`` without pause (speed above ``stick_speed`` every step), so a
+micro-slip of a step or two under a sudden load does not make it kinetic; a
+sliding contact sticks again when its slip speed drops below ``stick_speed``.
+The new coefficient acts from the next step, as a ``pre_solve`` callback
+would; pymunk is touched only for the shapes whose coefficient changes.
 """
 
 from __future__ import annotations
@@ -125,16 +127,16 @@ def pairs(contacts: tuple[list[int], list[float]], slider_id: int, index: dict) 
 
 
 class StickSlip:
-    """Per-contact static / kinetic friction (internal units).
+    """Per-contact friction by the scene's contact law (internal units).
 
-    The state of each lower asperity's contact with the slider (stuck or
-    sliding, distance slid since it stuck, current coefficient) is kept per
-    lower asperity; :attr:`stuck`, :attr:`slid` and :attr:`mu` give it as
-    NumPy arrays. Each step updates only the asperities in contact, in plain
-    Python on the shared batch reads: for the handful of contacts a slider
+    The state of each lower asperity's contact with the slider (the law's state tuple,
+    :attr:`~asperity2d.contact_laws.ContactLaw.state_names`, and the current coefficient) is kept
+    per lower asperity; :attr:`state` and :attr:`mu` give it as NumPy arrays (:attr:`stuck` and
+    :attr:`slid` for the static/kinetic switch). Each step updates only the asperities in
+    contact, in plain Python on the shared batch reads: for the handful of contacts a slider
     makes that is cheaper than whole-array NumPy operations (measured:
-    ``benchmarks/bench_core.py``), and pymunk is touched only for the shapes
-    whose coefficient changes.
+    ``benchmarks/bench_core.py``), and pymunk is touched only for the shapes whose coefficient
+    changes.
     """
 
     def __init__(self, scene, units, layout, dt: float):
@@ -143,7 +145,6 @@ class StickSlip:
         self.dt = dt
         n = len(layout.lower_bodies)
         self._set_friction = friction_setter(layout.lower_shapes)
-        self._stuck, self._slid = [False] * n, [0.0] * n
         self._present = {}.keys()  # lower asperities in contact after the last update
         self._kernel = None  # the C step loop holding this state in its arrays (.kernel), if one does
         self._ints, self._touching = None, []  # the last contacts read, and what they touch
@@ -156,21 +157,37 @@ class StickSlip:
             if isinstance(scene.drive, SpringDrive):
                 self.stick_speed = min(self.stick_speed, 0.1 * scene.drive.velocity / units.velocity)
         #: the per-contact law (asperity2d.contact_laws): its step() is the reference the C loop is held to
-        self.law = contact_law(contact.law).from_contact(contact, self.stick_speed, self.slip_distance, dt)
+        self.law = contact_law(contact.law).from_contact(contact, units=units, stick_speed=self.stick_speed,
+                                                         slip_distance=self.slip_distance, dt=dt)
         self.active = self.law.active
+        self._state = [self.law.initial] * n
         self._mu = [self.law.idle] * n
 
     @property
-    def stuck(self) -> np.ndarray:
-        """Whether each lower asperity's contact is stuck (False when not in contact)."""
+    def state(self) -> np.ndarray:
+        """Each lower asperity's law state, one row per asperity, one column per
+        :attr:`~asperity2d.contact_laws.ContactLaw.state_names` (the law's initial state when
+        not in contact)."""
         self._take_back()
-        return np.array(self._stuck)
+        return np.array(self._state, dtype=float).reshape(len(self._state), len(self.law.state_names))
+
+    @property
+    def stuck(self) -> np.ndarray:
+        """Whether each lower asperity's contact is stuck (the static/kinetic switch; False when
+        not in contact, and for a law without a ``stuck`` state)."""
+        self._take_back()
+        if self.law.state_names[:1] != ("stuck",):
+            return np.zeros(len(self._state), dtype=bool)
+        return np.array([s[0] for s in self._state], dtype=bool)
 
     @property
     def slid(self) -> np.ndarray:
-        """Distance each contact has slid since it last stuck (internal length units)."""
+        """Distance each contact has slid since it last stuck (the static/kinetic switch; internal
+        length units; 0 for a law without a ``slid`` state)."""
         self._take_back()
-        return np.array(self._slid)
+        if self.law.state_names[1:2] != ("slid",):
+            return np.zeros(len(self._state))
+        return np.array([s[1] for s in self._state], dtype=float)
 
     @property
     def mu(self) -> np.ndarray:
@@ -184,8 +201,9 @@ class StickSlip:
         if self._kernel is kernel:
             return
         self._take_back()
-        kernel.stuck[:] = self._stuck
-        kernel.slid[:] = self._slid
+        if self.law.kernel == "static-kinetic":  # its (stuck, slid) live in the C loop's arrays
+            kernel.stuck[:] = [s[0] for s in self._state]
+            kernel.slid[:] = [s[1] for s in self._state]
         kernel.mu[:] = self._mu
         kernel.present[:] = 0
         kernel.present[list(self._present)] = 1
@@ -196,8 +214,9 @@ class StickSlip:
         k = self._kernel
         if k is None:
             return
-        self._stuck = [bool(s) for s in k.stuck.tolist()]
-        self._slid, self._mu = k.slid.tolist(), k.mu.tolist()
+        if self.law.kernel == "static-kinetic":
+            self._state = [(bool(s), d) for s, d in zip(k.stuck.tolist(), k.slid.tolist())]
+        self._mu = k.mu.tolist()
         self._present = dict.fromkeys(np.flatnonzero(k.present).tolist()).keys()
         self._kernel = None
 
@@ -207,17 +226,19 @@ class StickSlip:
         out = object.__new__(StickSlip)
         out.__dict__.update(self.__dict__)
         out._set_friction = friction_setter(layout.lower_shapes)
-        out._stuck, out._slid, out._mu = list(self._stuck), list(self._slid), list(self._mu)
+        out._state, out._mu = list(self._state), list(self._mu)
         out._present = dict.fromkeys(self._present).keys()
         out._ints, out._touching = None, []  # the copy's bodies have other ids
         return out
 
     def update(self, contacts: tuple[list[int], list[float]], rows: np.ndarray, layout) -> None:
-        """Set each lower asperity's coefficient from its contact's stick/slip state.
+        """Set each lower asperity's coefficient by the contact law from what its contact did.
 
         ``contacts`` is one read of the contacts (:meth:`.native.Native.read_arbiters`, what
         :class:`Arbiters` holds); ``rows`` are the bodies' ``[x, y, vx, vy]`` after the step
-        (internal units).
+        (internal units). Each touching asperity's signed slip speed (the slider over it along the
+        +x tangent; the largest in magnitude over the tips touching it) and normal impulse (summed
+        over them) go to the law's :meth:`~asperity2d.contact_laws.ContactLaw.step`.
         """
         self._take_back()
         ints, floats = contacts
@@ -239,26 +260,34 @@ class StickSlip:
                     if i >= 0:
                         touching.append((2 * k + 2, i, row_of[i]))
             self._ints, self._touching = ints, touching
+        speeds: dict[int, float] = {}
         slips: dict[int, float] = {}
+        impulses: dict[int, float] = {}
         for j, i, row in self._touching:
-            nx, ny = floats[j], floats[j + 1]
-            slip = abs((svx - item(row, 2)) * ny - (svy - item(row, 3)) * nx)
-            if slip > slips.get(i, -1.0):  # a lower asperity may touch two tips
-                slips[i] = slip
-        stuck, slid, mu_now = self._stuck, self._slid, self._mu
+            jx, jy, nx, ny = floats[j - 2], floats[j - 1], floats[j], floats[j + 1]
+            # the slip along the tangent (abs(ny), ty) that points to +x, ty = -nx if ny >= 0 else nx:
+            # the same magnitude, bit for bit, as abs(dvx ny - dvy nx)
+            slip = (svx - item(row, 2)) * ny - (svy - item(row, 3)) * nx
+            if ny < 0:
+                slip = -slip
+            speed = abs(slip)
+            impulses[i] = impulses.get(i, 0.0) + abs(jx * nx + jy * ny)
+            if speed > speeds.get(i, -1.0):  # a lower asperity may touch two tips; NaN is not kept
+                speeds[i], slips[i] = speed, slip
+        state, mu_now = self._state, self._mu
         law = self.law
-        step, coefficient, idle = law.step, law.coefficient, law.idle
+        step, idle, initial = law.step, law.idle, law.initial
         if present != slips.keys():  # (compared as sets) a contact may have been lost
             for i in present:
                 if i not in slips:  # contact lost
-                    stuck[i], slid[i] = False, 0.0
+                    state[i] = initial
                     if mu_now[i] != idle:
                         self._set_friction(i, idle)
                         mu_now[i] = idle
         for i, slip in slips.items():
             # the law's reference step (asperity2d.contact_laws), which the C loop is held to
-            stuck[i], slid[i] = step(stuck[i], slid[i], slip, i not in present)
-            mu = coefficient(stuck[i])
+            new = i not in present
+            mu, state[i] = step(initial if new else state[i], slip, impulses[i], new)
             if mu_now[i] != mu:
                 self._set_friction(i, mu)
                 mu_now[i] = mu

@@ -30,7 +30,7 @@ from pymunk import batch
 from ..scene import Scene, SpringDrive
 from ..units import Units, check_scales
 from .contacts import ARBITER_FIELDS, Arbiters, StickSlip
-from .kernel import C_LAW, KERNEL, Kernel
+from .kernel import C_LAWS, KERNEL, Kernel
 from .native import Native, stepper
 from .space import build
 from .run_checks import check_scene
@@ -228,7 +228,7 @@ class Engine:
             if not isinstance(rows, slice):  # pymunk keeps bodies in insertion order
                 raise RuntimeError("the lower asperities are not contiguous in the batch rows")
             law = self.switch.law
-            if law.kernel != C_LAW:  # the C loop implements only its own law: this one steps in Python
+            if law.kernel not in C_LAWS:  # the C loop implements only its own laws: this one steps in Python
                 self.loop_reason = f"the contact law {type(law).__name__} has no C implementation"
             elif KERNEL and isinstance(native, Native):
                 self._kernel = Kernel(self, native, TRACK_TOLERANCE)

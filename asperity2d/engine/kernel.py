@@ -46,6 +46,8 @@ typedef struct {
     double *lower_x0;
     int switch_active;
     double switch_dt, stick_speed, slip_distance, mu_static, mu_kinetic;
+    int law_kind;
+    double v_s, viscosity;
     uint8_t *stuck, *present;
     double *slid, *mu;
     uintptr_t *shapes;
@@ -63,9 +65,10 @@ size_t asp_layout(int which);
 ffi = lib = None
 #: Why the engine steps in Python (None: the C loop is used), decided once at import.
 KERNEL_REASON: str | None = None
-#: The contact law the C loop implements (:class:`asperity2d.contact_laws.StaticKineticSwitch`'s
-#: ``kernel``): ``switch_update`` in ``_kernel.c`` is held to its Python reference ``step``.
-C_LAW = "static-kinetic"
+#: The contact laws the C loop implements, by their ``kernel`` name
+#: (:attr:`asperity2d.contact_laws.ContactLaw.kernel`) -> ``law_kind`` in ``_kernel.c``, whose
+#: ``stick_slip`` is held to each one's Python reference ``step``.
+C_LAWS = {"static-kinetic": 0, "velocity-weakening": 1, "viscous": 2}
 #: True when :class:`Kernel` is usable.
 KERNEL = False
 
@@ -118,7 +121,12 @@ class Kernel:
         c.lower_x0 = ffi.cast("double *", self._x0.ctypes.data)
         c.switch_active = bool(switch.active)
         c.switch_dt, c.stick_speed, c.slip_distance = switch.dt, switch.stick_speed, switch.slip_distance
-        c.mu_static, c.mu_kinetic = switch.mu_static, switch.mu_kinetic
+        law = switch.law
+        c.law_kind = C_LAWS[law.kernel]
+        # each C law's parameters, internal units, as its Python reference holds them
+        c.mu_static = getattr(law, "mu_static", law.mu_kinetic)
+        c.mu_kinetic = law.mu_kinetic
+        c.v_s, c.viscosity = getattr(law, "v_s", 1.0), getattr(law, "viscosity", 0.0)
         # the switch's state (handed over from its lists when the C loop first steps)
         self.stuck, self.present = np.zeros(n, np.uint8), np.zeros(n, np.uint8)
         self.slid, self.mu = np.zeros(n), np.zeros(n)
