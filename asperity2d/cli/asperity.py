@@ -208,9 +208,9 @@ def compare(args) -> int:
                    f"`--variants` ({len(variants)}) x `--seeds` ({args.seeds:,})")
         from ..experiments.measures import MEASURES
 
-        if args.measure not in MEASURES:  # the registry, not a list here: a new measure is known at once
-            raise SceneError(f"`--measure` must be one of {', '.join(MEASURES)}, got {args.measure!r}")
-        base.setdefault("drive", MEASURES[args.measure].drive)
+        # the registry, not a list here: a new measure (an installed package's too, or "module:name")
+        # is known at once, and a misspelt one gets the nearest names
+        base.setdefault("drive", MEASURES.lookup(args.measure, "--measure").drive)
         comparison = run_compare(args.measure, variants, range(args.seeds), base=base, progress=not args.json,
                                  workers=args.workers, scheduler=args.scheduler)
     if save:
@@ -250,9 +250,13 @@ def measures(args) -> int:
     """``asperity2d measures``: the named measures, each with its unit, drive, kind and label."""
     from ..experiments.measures import MEASURES
 
+    import sys
+
     entries = [m.to_dict() for m in MEASURES.values()]
     width = max(len(m["name"]) for m in entries)
-    lines = [f"{m['name']:<{width}}  [{m['unit']}]  {m['drive']} drive, {m['kind']}: {m['label']}"
-             for m in entries]
-    _emit(args, {"measures": entries}, lines)
+    lines = [f"{m['name']:<{width}}  [{m['unit']}]  {m['drive']} drive, {m['kind']}, step {m['step']}: "
+             f"{m['label']}" for m in entries]
+    for line in MEASURES.failures.values():  # an installed package whose measure would not load
+        print(f"asperity2d: warning: {line}", file=sys.stderr)
+    _emit(args, {"measures": entries, "failed_entry_points": list(MEASURES.failures.values())}, lines)
     return 0

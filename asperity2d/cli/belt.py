@@ -50,7 +50,10 @@ def run(args) -> int:
             print(f"{name:20s} {presets.describe(name)}")
         return 0
     kwargs = kwargs if kwargs is not None else presets.preset(args.preset)
-    if args.method:
+    from ..belt.solver import METHODS
+
+    if args.method is not None:
+        METHODS.lookup(args.method, "--method")  # the registry's names, "did you mean" included
         kwargs["method"] = args.method
     if args.t_end is not None:
         kwargs["t_end"] = args.t_end

@@ -195,7 +195,10 @@ def _belt_run_options(p, *, chain: bool = True) -> None:
     if chain:  # `belt chain.toml` reaches the run subcommand (Subcommands' default)
         p.add_argument("chain", nargs="?", help="TOML chain file")
     p.add_argument("--list-presets", action="store_true", help="print the preset names and exit")
-    p.add_argument("--method", choices=("exact", "sign"), help="override the solver")
+    # checked against the registry when the chain runs (listing it here would import the solver for
+    # --help): an installed package's method, or "module:name", is accepted as the built-in ones
+    p.add_argument("--method", help="override the solver: exact, sign, a method an installed package adds "
+                                    "(asperity2d.belt.METHODS), or package.module:name")
     p.add_argument("--max-wall-time", type=positive_float, default=None,
                    help="stop a run after this many seconds of wall-clock time (default 30)")
     p.add_argument("-o", "--output", help="plot (.png/.svg/.pdf), animation (.gif/.mp4), player (.html), "
