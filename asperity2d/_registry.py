@@ -50,7 +50,7 @@ asperity2d.errors.SceneError: `colour` 'red' is already registered (pass replace
 >>> colours.lookup("rd")
 Traceback (most recent call last):
 ...
-asperity2d._registry.UnknownName: `colour` must be one of 'red', got 'rd' (did you mean 'red'?)
+asperity2d._registry.UnknownName: `colour` must be one of red, got 'rd' (did you mean 'red'?)
 >>> colours.lookup("string:ascii_lowercase")  # "module:attribute" works wherever a name does
 'abcdefghijklmnopqrstuvwxyz'
 """
@@ -235,7 +235,7 @@ class Registry(MutableMapping):
     def _unknown(self, name, param: str) -> "UnknownName":
         close = self.suggest(name) if isinstance(name, str) and len(name) <= MAX_NAME else []
         hint = f" (did you mean {' or '.join(map(repr, close))}?)" if close else ""
-        return UnknownName(f"`{param}` must be one of {', '.join(map(repr, self)) or 'nothing yet'}, "
+        return UnknownName(f"`{param}` must be one of {', '.join(self) or 'nothing yet'}, "
                            f"got {_show(name)}{hint}")
 
     # -- entry points -----------------------------------------------------------------------------

@@ -114,6 +114,10 @@ class Comparison:
     variants: dict[str, dict] = field(default_factory=dict)
     base: dict = field(default_factory=dict)
     measure: str = "value"
+    #: The measure's label and unit when it was measured (kept in the saved file, so a comparison
+    #: of a measure this session has not registered still reads in its words and unit).
+    saved_label: str | None = field(default=None, compare=False, repr=False)
+    saved_unit: str | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self):
         for name, vals in self.values.items():
@@ -173,13 +177,20 @@ class Comparison:
 
     @property
     def label(self) -> str:
-        """The measure's plain-language label."""
-        return measure_label(self.measure)
+        """The measure's plain-language label (the registered measure's, else the one saved with it)."""
+        entry = self.entry
+        if entry is not None:
+            return entry.label
+        return measure_label(self.measure) if self.saved_label is None else self.saved_label
 
     @property
     def unit(self) -> str:
-        """The measure's SI unit (``""`` for a plain callable, whose unit is unknown)."""
-        return measure_unit(self.measure)
+        """The measure's SI unit (the registered measure's, else the one saved with it; ``""`` for a
+        plain callable, whose unit is unknown)."""
+        entry = self.entry
+        if entry is not None:
+            return entry.unit
+        return "" if self.saved_unit is None else self.saved_unit
 
     @property
     def rule(self) -> VerdictRule:
@@ -235,7 +246,8 @@ class Comparison:
 
     # -- persistence -------------------------------------------------------
     def to_dict(self) -> dict:
-        return {"format": FORMAT, "measure": self.measure, "seeds": list(self.seeds),
+        return {"format": FORMAT, "measure": self.measure, "label": self.label, "unit": self.unit,
+                "seeds": list(self.seeds),
                 "base": self.base, "variants": self.variants,
                 "values": {k: [float(v) for v in vals] for k, vals in self.values.items()}}
 
@@ -262,9 +274,19 @@ class Comparison:
                       for k, vals in data["values"].items()}
             return cls(values=values, seeds=tuple(int(s) for s in data["seeds"]),
                        variants=data.get("variants", {}), base=data.get("base", {}),
-                       measure=data.get("measure", "value"))
+                       measure=data.get("measure", "value"),
+                       saved_label=_text_or_none(data.get("label")), saved_unit=_text_or_none(data.get("unit")))
         except (ValueError, KeyError, TypeError, AttributeError) as exc:
             raise FileError("path", path, "is not a comparison file", str(exc)) from None
+
+
+def _text_or_none(value) -> str | None:
+    """A saved label or unit (a short string), or None when the file has none."""
+    if value is None:
+        return None
+    if not isinstance(value, str) or len(value) > 1000:
+        raise ValueError(f"a measure's label and unit must be short strings, got {type(value).__name__}")
+    return value
 
 
 # -- running it -------------------------------------------------------------------------------------
@@ -328,9 +350,10 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
     cannot reach p < 0.01 (7 seeds can), so the verdict is "not testable", not "holds".
     """
     if isinstance(measure, str):
-        if measure not in MEASURES:
-            raise SceneError(f"`measure` must be one of {', '.join(MEASURES)} or a callable, got {show(measure)}")
-        measure = MEASURES[measure].function
+        entry = MEASURES.lookup(measure, "measure")  # a registered name or "module:name"
+        measure, described = entry.function, {"saved_label": entry.label, "saved_unit": entry.unit}
+    else:
+        described = {}
     if not callable(measure):
         raise SceneError(f"`measure` must be callable, got {show(measure)}")
     if not isinstance(variants, dict) or not variants:
@@ -389,4 +412,4 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
         failed.raise_failure(jobs[failed.index][2])
     values = {name: tuple(results[slots[name, j]] for j in range(len(seeds))) for name in variants}
     return Comparison(values=values, seeds=seeds, variants={k: dict(v or {}) for k, v in variants.items()},
-                      base=base, measure=getattr(measure, "__name__", type(measure).__name__))
+                      base=base, measure=getattr(measure, "__name__", type(measure).__name__), **described)
