@@ -103,12 +103,38 @@ def read_toml(arg: str, path) -> dict:
 
     text = read_text(arg, path)
     try:
-        return tomllib.loads(text)
+        data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise FileError(arg, path, "is not valid TOML", str(exc)) from None
     except RecursionError:  # tomllib parses nested arrays and tables recursively
         raise FileError(arg, path, "is nested too deeply", "arrays or inline tables nested "
                         "thousands deep; no scene or chain needs more than a few levels") from None
+    deep = too_deep(data)
+    if deep is not None:  # dotted keys nest without recursing in the parser, but not in a message
+        raise FileError(arg, path, "is nested too deeply",
+                        f"`{deep}` nests tables more than {MAX_TOML_DEPTH} levels deep; no scene, chain or "
+                        "study needs more than a few") from None
+    return data
+
+
+#: Deepest nesting of tables and arrays a TOML input may have (a scene uses 2 or 3 levels).
+MAX_TOML_DEPTH = 32
+
+
+def too_deep(data) -> str | None:
+    """The first key path (shortened) deeper than :data:`MAX_TOML_DEPTH`, or None; iterative, so
+    a document 10,000 levels deep is walked without recursion."""
+    stack = [(data, ())]
+    while stack:
+        value, where = stack.pop()
+        if len(where) > MAX_TOML_DEPTH:
+            shown = ".".join(map(str, where[:4]))
+            return f"{shown}...({len(where)}+ levels)"
+        if isinstance(value, dict):
+            stack.extend((v, (*where, k)) for k, v in value.items())
+        elif isinstance(value, list):
+            stack.extend((v, (*where, i)) for i, v in enumerate(value))
+    return None
 
 
 def toml_text(tables: dict, *, header: str = "") -> str:

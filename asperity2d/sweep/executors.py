@@ -201,11 +201,31 @@ def unguarded_main_call(frame=None) -> str | None:
 _warned_scripts: set[str] = set()
 
 
+def main_from_stdin() -> bool:
+    """True when the main script was read from standard input (``python - < script.py``): a
+    spawned worker would have to import it again, and there is no file to import."""
+    main = sys.modules.get("__main__")
+    return (main is not None and getattr(main, "__spec__", None) is None
+            and getattr(main, "__file__", None) == "<stdin>")
+
+
 def plain_script_fallback() -> bool:
     """True (and, once per script, a warning saying how to get the workers) if worker processes
     would re-run the main script's unguarded top-level code: the ensemble then runs here."""
     import warnings
 
+    if main_from_stdin():
+        if "<stdin>" not in _warned_scripts:
+            _warned_scripts.add("<stdin>")
+            frame, main = sys._getframe(1), vars(sys.modules["__main__"])
+            while frame is not None and frame.f_globals is not main:
+                frame = frame.f_back
+            warnings.warn_explicit(  # one line, "<stdin>:LINE: RuntimeWarning: ...", at the script's call
+                "asperity2d runs these calls in this process, without worker processes: the main script "
+                "came from standard input, which a worker process cannot import again (save it to a file "
+                "to get the workers)", RuntimeWarning, "<stdin>", frame.f_lineno if frame else 0,
+                module="__main__")
+        return True
     where = unguarded_main_call(sys._getframe(1))
     if where is None:
         return False

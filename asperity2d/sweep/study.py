@@ -43,6 +43,7 @@ from pathlib import Path
 from typing import Any, Iterable, Mapping
 
 from .._inputs import MAX_SEEDS, count_seeds
+from .._io import MAX_TOML_DEPTH, too_deep
 from ..errors import SceneError
 
 _RUN_PATH = re.compile(r"^[A-Za-z_][\w.]*:[A-Za-z_]\w*$")
@@ -353,6 +354,10 @@ def load_study(path: str | os.PathLike) -> Study:
                 data = tomllib.load(fh)
         except (tomllib.TOMLDecodeError, UnicodeDecodeError, RecursionError) as exc:
             raise SceneError(f"`study` file {str(path)!r} is not valid TOML: {exc}") from None
+        deep = too_deep(data)  # dotted keys nest without limit; a message about them must not recurse
+        if deep is not None:
+            raise SceneError(f"`study` file {str(path)!r} is nested too deeply: `{deep}` nests tables more "
+                             f"than {MAX_TOML_DEPTH} levels deep")
         return Study.from_dict(data)
     if suffix == ".py":
         namespace = runpy.run_path(str(path), run_name="__asperity2d_study__")
