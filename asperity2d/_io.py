@@ -102,6 +102,11 @@ def read_toml(arg: str, path) -> dict:
     import tomllib
 
     text = read_text(arg, path)
+    deep = deep_key(text)
+    if deep is not None:  # before parsing: tomllib takes quadratic time over a dotted key's parts
+        raise FileError(arg, path, "is nested too deeply",
+                        f"`{deep}` nests tables more than {MAX_TOML_DEPTH} levels deep; no scene, chain or "
+                        "study needs more than a few")
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -119,6 +124,29 @@ def read_toml(arg: str, path) -> dict:
 
 #: Deepest nesting of tables and arrays a TOML input may have (a scene uses 2 or 3 levels).
 MAX_TOML_DEPTH = 32
+
+
+_PART = r"""(?:[A-Za-z0-9_-]+|"[^"\n]*"|'[^'\n]*')"""
+_DEEP_KEY = None
+
+
+def deep_key(text: str) -> str | None:
+    """The first dotted key or table header of TOML ``text`` with more than
+    :data:`MAX_TOML_DEPTH` parts (shortened), or None: found on the text, in linear time, before
+    a parser spends quadratic time on it."""
+    global _DEEP_KEY
+    import re
+
+    if text.count(".") <= MAX_TOML_DEPTH:
+        return None
+    if _DEEP_KEY is None:
+        _DEEP_KEY = re.compile(rf"^[ \t]*\[{{0,2}}[ \t]*({_PART}(?:[ \t]*\.[ \t]*{_PART}){{{MAX_TOML_DEPTH},}})"
+                               rf"[ \t]*(?:\]{{0,2}}[ \t]*$|=)", re.MULTILINE)
+    match = _DEEP_KEY.search(text)
+    if match is None:
+        return None
+    parts = re.findall(_PART, match.group(1))
+    return f"{'.'.join(parts[:4])}...({len(parts)} levels)"
 
 
 def too_deep(data) -> str | None:
