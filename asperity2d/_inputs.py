@@ -206,9 +206,17 @@ def check_choice(name: str, value, choices: Iterable[str]) -> str:
     return value
 
 
-def check_text(name: str, value) -> str:
+#: Longest free text a parameter holds (a name, a label): a few lines of words, not a file.
+MAX_TEXT = 1000
+
+
+def check_text(name: str, value, *, maximum: int = MAX_TEXT) -> str:
+    """A string of at most ``maximum`` characters (default :data:`MAX_TEXT`): every input is
+    bounded, text as numbers are (a name of 200 MB would be copied into every record)."""
     if not isinstance(value, str):
         raise SceneError(f"`{name}` must be a string, got {show(value)}")
+    if len(value) > maximum:
+        raise SceneError(f"`{name}` must be at most {maximum:,} characters, got {len(value):,}")
     return value
 
 

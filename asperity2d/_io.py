@@ -102,13 +102,67 @@ def read_toml(arg: str, path) -> dict:
     import tomllib
 
     text = read_text(arg, path)
+    deep = deep_key(text)
+    if deep is not None:  # before parsing: tomllib takes quadratic time over a dotted key's parts
+        raise FileError(arg, path, "is nested too deeply",
+                        f"`{deep}` nests tables more than {MAX_TOML_DEPTH} levels deep; no scene, chain or "
+                        "study needs more than a few")
     try:
-        return tomllib.loads(text)
+        data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise FileError(arg, path, "is not valid TOML", str(exc)) from None
     except RecursionError:  # tomllib parses nested arrays and tables recursively
         raise FileError(arg, path, "is nested too deeply", "arrays or inline tables nested "
                         "thousands deep; no scene or chain needs more than a few levels") from None
+    deep = too_deep(data)
+    if deep is not None:  # dotted keys nest without recursing in the parser, but not in a message
+        raise FileError(arg, path, "is nested too deeply",
+                        f"`{deep}` nests tables more than {MAX_TOML_DEPTH} levels deep; no scene, chain or "
+                        "study needs more than a few") from None
+    return data
+
+
+#: Deepest nesting of tables and arrays a TOML input may have (a scene uses 2 or 3 levels).
+MAX_TOML_DEPTH = 32
+
+
+_PART = r"""(?:[A-Za-z0-9_-]+|"[^"\n]*"|'[^'\n]*')"""
+_DEEP_KEY = None
+
+
+def deep_key(text: str) -> str | None:
+    """The first dotted key or table header of TOML ``text`` with more than
+    :data:`MAX_TOML_DEPTH` parts (shortened), or None: found on the text, in linear time, before
+    a parser spends quadratic time on it."""
+    global _DEEP_KEY
+    import re
+
+    if text.count(".") <= MAX_TOML_DEPTH:
+        return None
+    if _DEEP_KEY is None:
+        _DEEP_KEY = re.compile(rf"^[ \t]*\[{{0,2}}[ \t]*({_PART}(?:[ \t]*\.[ \t]*{_PART}){{{MAX_TOML_DEPTH},}})"
+                               rf"[ \t]*(?:\]{{0,2}}[ \t]*$|=)", re.MULTILINE)
+    match = _DEEP_KEY.search(text)
+    if match is None:
+        return None
+    parts = re.findall(_PART, match.group(1))
+    return f"{'.'.join(parts[:4])}...({len(parts)} levels)"
+
+
+def too_deep(data) -> str | None:
+    """The first key path (shortened) deeper than :data:`MAX_TOML_DEPTH`, or None; iterative, so
+    a document 10,000 levels deep is walked without recursion."""
+    stack = [(data, ())]
+    while stack:
+        value, where = stack.pop()
+        if len(where) > MAX_TOML_DEPTH:
+            shown = ".".join(map(str, where[:4]))
+            return f"{shown}...({len(where)}+ levels)"
+        if isinstance(value, dict):
+            stack.extend((v, (*where, k)) for k, v in value.items())
+        elif isinstance(value, list):
+            stack.extend((v, (*where, i)) for i, v in enumerate(value))
+    return None
 
 
 def toml_text(tables: dict, *, header: str = "") -> str:

@@ -30,6 +30,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 from ._inputs import check_finite, show
+from ._registry import Registry
 from .errors import SceneError
 
 
@@ -463,17 +464,15 @@ class LawEntry:
     description: str = ""
 
 
-#: Every friction law: name -> :class:`LawEntry`, for both models.
-LAWS: dict[str, LawEntry] = {}
-#: The asperity model's law when the scene names none.
-DEFAULT_CONTACT_LAW = "static-kinetic"
+#: The methods an asperity-model law must define itself (a class that inherits one of these from
+#: :class:`ContactLaw` unchanged is refused at registration, naming the method).
+REQUIRED_METHODS = ("from_contact", "step", "idle", "steady")
 
 
-def register_law(entry: LawEntry, *, replace: bool = False) -> LawEntry:
-    """Add ``entry`` to :data:`LAWS`; a name already taken raises ``SceneError`` unless ``replace``.
-
-    A contact law's parameter names must not be taken by another contact law (``make_scene``
-    takes them as keywords)."""
+def _check_law(entry) -> LawEntry:
+    """``entry`` checked: a LawEntry of a known model whose class keeps its model's contract; a
+    contact law's parameter names must not be taken by another contact law (``make_scene`` takes
+    them as keywords)."""
     if not isinstance(entry, LawEntry):
         raise SceneError(f"`entry` must be a LawEntry, got {type(entry).__name__}")
     if entry.model not in ("belt", "asperity"):
@@ -483,32 +482,55 @@ def register_law(entry: LawEntry, *, replace: bool = False) -> LawEntry:
             not belt and not issubclass(entry.law, ContactLaw)):
         raise SceneError(f"`law` of {entry.name!r} must be a {'FrictionLaw' if belt else 'ContactLaw'} "
                          f"subclass, got {entry.law!r}")
-    if entry.name in LAWS and not replace:
-        raise SceneError(f"`entry` {entry.name!r} is already registered (pass replace=True)")
     if not belt:
+        missing = [m for m in REQUIRED_METHODS
+                   if getattr(entry.law, m, None) is getattr(ContactLaw, m, None)]
+        if missing:
+            raise SceneError(f"`law` {entry.name!r} ({entry.law.__name__}) does not define "
+                             f"{', '.join(missing)} (the ContactLaw contract)")
         for p in entry.law.parameters:
             owner = next((k for k, e in LAWS.items() if k != entry.name and e.model == "asperity"
                           and any(q.name == p.name for q in e.law.parameters)), None)
             if owner is not None:
                 raise SceneError(f"`parameters` of {entry.name!r}: {p.name!r} is already a parameter of "
                                  f"the contact law {owner!r}")
-    LAWS[entry.name] = entry
     return entry
+
+
+def _adapt_law(obj, name: str) -> LawEntry:
+    """What an entry point or ``"module:Class"`` names, made a LawEntry: an entry as it is; a
+    :class:`ContactLaw` subclass under that name (its docstring's first line describes it)."""
+    if isinstance(obj, type) and issubclass(obj, ContactLaw):
+        return LawEntry(name, "asperity", obj, ((obj.__doc__ or "").strip().splitlines() or [""])[0])
+    return obj
+
+
+#: Every friction law: name -> :class:`LawEntry`, for both models (a
+#: :class:`~asperity2d._registry.Registry`: an installed package adds its own through the entry-point
+#: group ``asperity2d.contact_laws``, and ``"module:Class"`` works wherever a law's name does).
+LAWS: Registry = Registry("contact law", "asperity2d.contact_laws", key=lambda e: e.name, check=_check_law,
+                          adapt=_adapt_law, param="law")
+#: The asperity model's law when the scene names none.
+DEFAULT_CONTACT_LAW = "static-kinetic"
+
+
+def register_law(entry: LawEntry, *, replace: bool = False) -> LawEntry:
+    """Add ``entry`` to :data:`LAWS`; a name already taken raises ``SceneError`` unless ``replace``."""
+    return LAWS.register(entry, replace=replace)
 
 
 def unregister_law(name: str) -> LawEntry:
     """Remove the law ``name`` from :data:`LAWS` and return its entry."""
-    if name not in LAWS:
-        raise SceneError(f"`name` must be one of {', '.join(LAWS)}, got {name!r}")
-    return LAWS.pop(name)
+    return LAWS.unregister(name)
 
 
 def contact_law(name: str) -> type:
-    """The asperity model's contact law class registered as ``name``."""
-    entry = LAWS.get(name)
-    if entry is None or entry.model != "asperity":
+    """The asperity model's contact law class registered as ``name`` (or named
+    ``"module:Class"``)."""
+    entry = LAWS.lookup(name, "law")
+    if entry.model != "asperity":
         known = [k for k, e in LAWS.items() if e.model == "asperity"]
-        raise SceneError(f"`law` must be one of {', '.join(known)}, got {name!r}")
+        raise SceneError(f"`law` must be one of {', '.join(known)}, got {name!r} (a law of the belt chains)")
     return entry.law
 
 

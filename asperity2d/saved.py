@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 from typing import Callable
 
 from ._io import FileError, load_npz
+from ._registry import Registry
 from .errors import SceneError
 
 
@@ -62,21 +63,33 @@ class ResultKind:
     drawers: dict = field(default_factory=dict, compare=False)
 
 
-#: Kind name -> :class:`ResultKind`, in registration order.
-RESULT_KINDS: dict[str, ResultKind] = {}
-
-
-def register(kind: ResultKind) -> ResultKind:
-    """Add ``kind`` to ``RESULT_KINDS`` (its contract: :class:`ResultKind`); return it."""
+def _check_kind(kind) -> ResultKind:
     if not isinstance(kind, ResultKind):
         raise SceneError(f"`kind` must be a ResultKind, got {type(kind).__name__}")
-    for other in RESULT_KINDS.values():
-        if other.name != kind.name and other.tag == kind.tag:
-            raise SceneError(f"`kind.tag` {kind.tag!r} is already the tag of {other.name!r}")
     if "/" not in kind.tag or not kind.tag.rpartition("/")[2].isdigit():
         raise SceneError(f"`kind.tag` must be 'name/version', got {kind.tag!r}")
-    RESULT_KINDS[kind.name] = kind
+    for other in RESULT_KINDS._data.values():  # the entries so far (checking must not load entry points)
+        if other.name != kind.name and other.tag == kind.tag:
+            raise SceneError(f"`kind.tag` {kind.tag!r} is already the tag of {other.name!r}")
     return kind
+
+
+#: Kind name -> :class:`ResultKind`, in registration order. A
+#: :class:`~asperity2d._registry.Registry`: an installed package adds its kinds through the
+#: entry-point group ``asperity2d.result_kinds`` (each entry point names a :class:`ResultKind`).
+RESULT_KINDS: Registry = Registry("result kind", "asperity2d.result_kinds", key=lambda k: k.name,
+                                  check=_check_kind, param="kind")
+
+
+def register(kind: ResultKind, *, replace: bool = False) -> ResultKind:
+    """Add ``kind`` to ``RESULT_KINDS`` (its contract: :class:`ResultKind`); a name already taken
+    raises ``SceneError`` unless ``replace``; return it."""
+    return RESULT_KINDS.register(kind, replace=replace)
+
+
+def unregister(name: str) -> ResultKind:
+    """Remove the kind ``name`` from ``RESULT_KINDS`` and return it."""
+    return RESULT_KINDS.unregister(name)
 
 
 def register_drawers(family: str, drawers: dict) -> None:
@@ -111,26 +124,27 @@ def _builtin() -> None:
 
 _builtin()
 
-_WHAT = "an asperity2d result file (" + ", ".join(RESULT_KINDS) + ")"
+def _what() -> str:
+    return "an asperity2d result file (" + ", ".join(RESULT_KINDS) + ")"
 
 
 def result_kind(path: str | os.PathLike) -> ResultKind:
     """The :class:`ResultKind` of the file saved at ``path`` (only its metadata is read).
 
     A file that is none raises ``FileError`` naming ``path``."""
-    _, meta = load_npz(path, (), kind=_WHAT)
+    _, meta = load_npz(path, (), kind=_what())
     tag = meta.get("format")
     if tag is None:
         # the previous release's files: the kind whose records are all there, the most specific first
         for kind in sorted(RESULT_KINDS.values(), key=lambda k: -len(k.untagged)):
             if kind.untagged and all(record in meta for record in kind.untagged):
                 return kind
-        raise FileError("path", path, f"is not {_WHAT}",
+        raise FileError("path", path, f"is not {_what()}",
                         "it has no format tag and no scene or chain record")
     for kind in RESULT_KINDS.values():
         if kind.tag == tag:
             return kind
-    raise FileError("path", path, f"is not {_WHAT}",
+    raise FileError("path", path, f"is not {_what()}",
                     f"its format is {tag!r}, expected one of {', '.join(repr(k.tag) for k in RESULT_KINDS.values())}")
 
 

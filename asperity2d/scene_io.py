@@ -45,7 +45,7 @@ def read_scene(path, *, arg: str = "scene", overrides: dict | None = None):
     if "duration" in run:
         d = run["duration"]
         if isinstance(d, bool) or not isinstance(d, (int, float)) or not (math.isfinite(d) and d > 0):
-            raise SceneError(f"`duration` in [run] of {str(path)!r} must be a number > 0, got {d!r}")
+            raise SceneError(f"`duration` in [run] of {str(path)!r} must be a number > 0, got {_kind(d)}")
     if whole:
         if overrides:
             raise SceneError(f"`--set` changes make_scene arguments, and {str(path)!r} holds a whole "
@@ -71,8 +71,14 @@ def read_scene(path, *, arg: str = "scene", overrides: dict | None = None):
 
 
 def _kind(value) -> str:
-    return f"{type(value).__name__} {value!r}"[:80]
+    """A value for a message, never failing (a table nested thousands deep has no ``repr``)."""
+    from ._inputs import show
+
+    return f"{type(value).__name__} {show(value)}"[:80]
 
 
 def _kind(value) -> str:
-    return f"{type(value).__name__} {value!r}"[:80]
+    """A value for a message, never failing (a table nested thousands deep has no ``repr``)."""
+    from ._inputs import show
+
+    return f"{type(value).__name__} {show(value)}"[:80]

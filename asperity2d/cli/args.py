@@ -123,6 +123,47 @@ WORKERS_HELP = ("local worker processes: auto (the default: in this process when
                 "too cheap to pay for starting workers, else every core) or N")
 
 
+def check_extra(arg: str, path) -> None:
+    """Refuse, before any work, an output whose writer needs an optional extra that is not
+    installed (``.mp4``: the video extra), naming the option the user typed."""
+    import importlib.util
+    from pathlib import Path
+
+    if path is not None and Path(path).suffix.lower() == ".mp4" and importlib.util.find_spec("imageio_ffmpeg") is None:
+        raise SceneError(f"`{arg}` {str(path)!r}: writing .mp4 needs the optional video extra: "
+                         "pip install \"asperity2d[video]\" (imageio-ffmpeg)")
+
+
+def defines_main(path) -> bool:
+    """Whether the script at ``path`` binds ``main`` at module level (a ``def``, an assignment or
+    an import), read without running it. A script that does not parse, or is not text, counts as
+    defining it: :func:`load_script` then reports its own error."""
+    import ast
+    import importlib.util
+
+    from .._io import read_bytes
+
+    try:
+        tree = ast.parse(importlib.util.decode_source(read_bytes("scene", path)))
+    except (SyntaxError, ValueError, UnicodeDecodeError, LookupError, RecursionError, MemoryError):
+        return True
+
+    def binds(node) -> bool:
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+            return node.name == "main"
+        if isinstance(node, (ast.Import, ast.ImportFrom)):
+            return any((alias.asname or alias.name.partition(".")[0]) == "main" or alias.name == "*"
+                       for alias in node.names)
+        if isinstance(node, (ast.Assign, ast.AnnAssign, ast.AugAssign)):
+            targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+            return any(isinstance(n, ast.Name) and n.id == "main" for t in targets for n in ast.walk(t))
+        if isinstance(node, (ast.If, ast.Try, ast.With)):  # main defined conditionally
+            return any(binds(child) for child in ast.iter_child_nodes(node) if isinstance(child, ast.stmt))
+        return False
+
+    return any(binds(node) for node in tree.body)
+
+
 def load_script(path):
     """Import a scene script as a module (registered in ``sys.modules``, so worker processes
     can pickle its functions). The file must be a readable Python text file; what the

@@ -12,9 +12,10 @@ from __future__ import annotations
 from pathlib import Path
 
 from .. import _io
+from .._inputs import show
 from .._format import lines as text_lines
 from .._format import si
-from .args import PLOT_SUFFIXES, check_runs, fail, load_script
+from .args import PLOT_SUFFIXES, check_extra, check_runs, defines_main, fail, load_script
 from ..errors import SceneError
 # reading a TOML scene is the model's business; the CLI's name for it stays for callers
 from ..scene_io import RUN_KEYS  # noqa: F401
@@ -49,6 +50,7 @@ def run(args) -> int:
     save = None if args.save is None else _io.output_path("--save", args.save, suffixes=(".npz",))
     output = None if args.output is None else _io.output_path("--output", args.output,
                                                               suffixes=_render_suffixes())
+    check_extra("--output", output)
     scene, settings = scene_from_toml(path, overrides=_parse_set(getattr(args, "set", [])))
     if args.duration is not None:
         duration = _checked_duration(scene, args.duration, "--duration")
@@ -82,6 +84,9 @@ def _run_script(path: Path, args) -> int:
     for option, value in (("--save", args.save), ("--duration", args.duration), ("--set", args.set or None)):
         if value is not None:
             raise SceneError(f"`{option}` applies to TOML scenes; a script takes its own arguments")
+    if not defines_main(path):  # refused before its body runs (a plain script would run it all first)
+        raise SceneError(f"`scene` script {str(path)!r} has no main(argv) function "
+                         f"(run a plain script with python {str(path)!r})")
     module = load_script(path)
     if not callable(getattr(module, "main", None)):
         raise SceneError(f"`scene` script {str(path)!r} has no main(argv) function")
@@ -139,6 +144,7 @@ def render(args) -> int:
     from ..renderers import suffixes
 
     output = _io.output_path("--output", args.output, suffixes=_render_suffixes())
+    check_extra("--output", output)
     result = _load_result("result", args.result)
     if output.suffix.lower() not in suffixes(result.kind):
         raise SceneError(f"`--output` must end in one of {', '.join(suffixes(result.kind))} for a "
@@ -172,18 +178,26 @@ def critical(args) -> int:
 
 
 def _parse_set(items: list[str]) -> dict:
-    """``key=value`` pairs (values parsed as TOML scalars) into make_scene arguments."""
+    """``key=value`` pairs (values parsed as TOML scalars) into make_scene arguments; an empty key,
+    or a key given twice, is refused (the last one silently winning would hide a typo)."""
     import tomllib
 
     out = {}
     for item in items:
         key, sep, text = item.partition("=")
         if not sep:
-            raise SceneError(f"`--set` takes key=value, got {item!r}")
+            raise SceneError(f"`--set` takes key=value, got {show(item)}")
+        key = key.strip()
+        if not key:
+            raise SceneError(f"`--set` key is empty in {show(item)}: write key=value, e.g. lower_count=4")
         try:
-            out[key.strip()] = tomllib.loads(f"v = {text}")["v"]
+            value = tomllib.loads(f"v = {text}")["v"]
         except (tomllib.TOMLDecodeError, RecursionError):  # not a TOML value: the text itself
-            out[key.strip()] = text
+            value = text
+        if key in out:
+            raise SceneError(f"`--set {key}` is given twice ({show(out[key], 30)} and {show(value, 30)}): "
+                             "give each key once")
+        out[key] = value
     return out
 
 
@@ -208,9 +222,9 @@ def compare(args) -> int:
                    f"`--variants` ({len(variants)}) x `--seeds` ({args.seeds:,})")
         from ..experiments.measures import MEASURES
 
-        if args.measure not in MEASURES:  # the registry, not a list here: a new measure is known at once
-            raise SceneError(f"`--measure` must be one of {', '.join(MEASURES)}, got {args.measure!r}")
-        base.setdefault("drive", MEASURES[args.measure].drive)
+        # the registry, not a list here: a new measure (an installed package's too, or "module:name")
+        # is known at once, and a misspelt one gets the nearest names
+        base.setdefault("drive", MEASURES.lookup(args.measure, "--measure").drive)
         comparison = run_compare(args.measure, variants, range(args.seeds), base=base, progress=not args.json,
                                  workers=args.workers, scheduler=args.scheduler)
     if save:
@@ -250,9 +264,13 @@ def measures(args) -> int:
     """``asperity2d measures``: the named measures, each with its unit, drive, kind and label."""
     from ..experiments.measures import MEASURES
 
+    import sys
+
     entries = [m.to_dict() for m in MEASURES.values()]
     width = max(len(m["name"]) for m in entries)
-    lines = [f"{m['name']:<{width}}  [{m['unit']}]  {m['drive']} drive, {m['kind']}: {m['label']}"
-             for m in entries]
-    _emit(args, {"measures": entries}, lines)
+    lines = [f"{m['name']:<{width}}  [{m['unit']}]  {m['drive']} drive, {m['kind']}, step {m['step']}: "
+             f"{m['label']}" for m in entries]
+    for line in MEASURES.failures.values():  # an installed package whose measure would not load
+        print(f"asperity2d: warning: {line}", file=sys.stderr)
+    _emit(args, {"measures": entries, "failed_entry_points": list(MEASURES.failures.values())}, lines)
     return 0

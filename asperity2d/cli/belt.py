@@ -19,6 +19,7 @@ from pathlib import Path
 from .. import _io
 from ..belt.chainfile import read_chain
 from ..errors import SceneError
+from .args import check_extra
 
 #: What ``-o`` writes besides what :func:`asperity2d.render` draws of a chain (its suffixes come
 #: from the renderers' table, :func:`outputs`): the result (.npz) and its table (.csv).
@@ -38,6 +39,7 @@ def run(args) -> int:
     if (args.chain is None) == (args.preset is None) and not args.list_presets:
         raise SceneError("give either a `chain` TOML file or `--preset`")
     out = None if args.output is None else _io.output_path("--output", args.output, suffixes=outputs())
+    check_extra("--output", out)
     # the user's file is read (and refused) before the solver and NumPy are imported
     if args.chain is None or args.list_presets:
         kwargs = None
@@ -50,7 +52,10 @@ def run(args) -> int:
             print(f"{name:20s} {presets.describe(name)}")
         return 0
     kwargs = kwargs if kwargs is not None else presets.preset(args.preset)
-    if args.method:
+    from ..belt.solver import METHODS
+
+    if args.method is not None:
+        METHODS.lookup(args.method, "--method")  # the registry's names, "did you mean" included
         kwargs["method"] = args.method
     if args.t_end is not None:
         kwargs["t_end"] = args.t_end

@@ -17,9 +17,11 @@ subcommand runs. Each subcommand's parser names its handler function
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 import warnings
 
+from .._inputs import show
 from ..errors import SceneError, SimulationError
 from ..renderers import FORMATS
 from ..renderers import describe as describe_formats
@@ -195,7 +197,10 @@ def _belt_run_options(p, *, chain: bool = True) -> None:
     if chain:  # `belt chain.toml` reaches the run subcommand (Subcommands' default)
         p.add_argument("chain", nargs="?", help="TOML chain file")
     p.add_argument("--list-presets", action="store_true", help="print the preset names and exit")
-    p.add_argument("--method", choices=("exact", "sign"), help="override the solver")
+    # checked against the registry when the chain runs (listing it here would import the solver for
+    # --help): an installed package's method, or "module:name", is accepted as the built-in ones
+    p.add_argument("--method", help="override the solver: exact, sign, a method an installed package adds "
+                                    "(asperity2d.belt.METHODS), or package.module:name")
     p.add_argument("--max-wall-time", type=positive_float, default=None,
                    help="stop a run after this many seconds of wall-clock time (default 30)")
     p.add_argument("-o", "--output", help="plot (.png/.svg/.pdf), animation (.gif/.mp4), player (.html), "
@@ -249,9 +254,59 @@ def _one_line_warning(message, category, filename, lineno, file=None, line=None)
     print(f"{PROG}: warning: {message}", file=sys.stderr)
 
 
+#: The exit status of a command whose reader went away (``asperity2d validate | head -1``): what a
+#: shell reports for a process ended by SIGPIPE (128 + 13).
+BROKEN_PIPE = 141
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Run the command line on ``argv`` (default ``sys.argv[1:]``); return the exit status."""
+    """Run the command line on ``argv`` (default ``sys.argv[1:]``); return the exit status.
+
+    A reader that closes the pipe early (``| head -1``) ends the command quietly (status 141, as a
+    shell reports SIGPIPE): Python's recipe, the rest of the output pointed at ``/dev/null``."""
+    try:
+        status = _main(argv)
+        sys.stdout.flush()  # here, not at exit, where a closed pipe is an "Exception ignored" message
+        return status
+    except BrokenPipeError:
+        try:
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, sys.stdout.fileno())
+        except (OSError, ValueError, AttributeError):  # a stdout without a descriptor (a test's capture)
+            pass
+        return BROKEN_PIPE
+
+
+#: The options ``asperity2d`` itself takes before a command.
+TOP_OPTIONS = ("-h", "--help", "--version")
+#: Spellings of other tools' options, and what this one calls them.
+_ALIASES = {"-V": "--version", "-v": "--version", "-version": "--version", "-help": "--help"}
+
+
+def _unknown_leading_option(argv: list[str]) -> str | None:
+    """The message for an option before the command that ``asperity2d`` does not take
+    (``asperity2d --verison``), naming it and the nearest one; None if there is none."""
+    import difflib
+
+    for token in argv:
+        if not token.startswith("-") or token == "-":
+            return None  # the command: its own parser judges what follows
+        if token == "--":
+            return None
+        name = token.partition("=")[0]
+        if name in TOP_OPTIONS:
+            continue
+        close = [_ALIASES[name]] if name in _ALIASES else difflib.get_close_matches(name, TOP_OPTIONS, n=1, cutoff=0.75)
+        hint = f" (did you mean {close[0]}?)" if close else " (options of a command go after it)"
+        return f"unrecognized option {show(token, 40)}{hint}"
+    return None
+
+
+def _main(argv: list[str] | None) -> int:
     parser = build_parser()
+    bad = _unknown_leading_option(sys.argv[1:] if argv is None else list(argv))
+    if bad is not None:
+        return fail(bad)
     try:
         args, extra = parser.parse_known_args(argv)
         script = args.command == "run" and (args.scene or "").endswith(".py")

@@ -125,6 +125,10 @@ class Comparison:
     base: dict = field(default_factory=dict)
     measure: str = "value"
     design: dict = field(default_factory=dict)
+    #: The measure's label and unit when it was measured (kept in the saved file, so a comparison
+    #: of a measure this session has not registered still reads in its words and unit).
+    saved_label: str | None = field(default=None, compare=False, repr=False)
+    saved_unit: str | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self):
         for name, vals in self.values.items():
@@ -186,13 +190,20 @@ class Comparison:
 
     @property
     def label(self) -> str:
-        """The measure's plain-language label."""
-        return measure_label(self.measure)
+        """The measure's plain-language label (the registered measure's, else the one saved with it)."""
+        entry = self.entry
+        if entry is not None:
+            return entry.label
+        return measure_label(self.measure) if self.saved_label is None else self.saved_label
 
     @property
     def unit(self) -> str:
-        """The measure's SI unit (``""`` for a plain callable, whose unit is unknown)."""
-        return measure_unit(self.measure)
+        """The measure's SI unit (the registered measure's, else the one saved with it; ``""`` for a
+        plain callable, whose unit is unknown)."""
+        entry = self.entry
+        if entry is not None:
+            return entry.unit
+        return "" if self.saved_unit is None else self.saved_unit
 
     @property
     def rule(self) -> VerdictRule:
@@ -278,7 +289,8 @@ class Comparison:
 
     # -- persistence -------------------------------------------------------
     def to_dict(self) -> dict:
-        return {"format": FORMAT, "measure": self.measure, "seeds": list(self.seeds),
+        return {"format": FORMAT, "measure": self.measure, "label": self.label, "unit": self.unit,
+                "seeds": list(self.seeds),
                 "base": self.base, "variants": self.variants,
                 "values": {k: [float(v) for v in vals] for k, vals in self.values.items()},
                 **({"design": self.design} if self.design else {})}
@@ -306,9 +318,19 @@ class Comparison:
                       for k, vals in data["values"].items()}
             return cls(values=values, seeds=tuple(int(s) for s in data["seeds"]),
                        variants=data.get("variants", {}), base=data.get("base", {}),
-                       measure=data.get("measure", "value"), design=data.get("design") or {})
+                       measure=data.get("measure", "value"), design=data.get("design") or {},
+                       saved_label=_text_or_none(data.get("label")), saved_unit=_text_or_none(data.get("unit")))
         except (ValueError, KeyError, TypeError, AttributeError) as exc:
             raise FileError("path", path, "is not a comparison file", str(exc)) from None
+
+
+def _text_or_none(value) -> str | None:
+    """A saved label or unit (a short string), or None when the file has none."""
+    if value is None:
+        return None
+    if not isinstance(value, str) or len(value) > 1000:
+        raise ValueError(f"a measure's label and unit must be short strings, got {type(value).__name__}")
+    return value
 
 
 # -- running it -------------------------------------------------------------------------------------
@@ -429,9 +451,10 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
     (10, 'holds')
     """
     if isinstance(measure, str):
-        if measure not in MEASURES:
-            raise SceneError(f"`measure` must be one of {', '.join(MEASURES)} or a callable, got {show(measure)}")
-        measure = MEASURES[measure].function
+        entry = MEASURES.lookup(measure, "measure")  # a registered name or "module:name"
+        measure, described = entry.function, {"saved_label": entry.label, "saved_unit": entry.unit}
+    else:
+        described = {}
     if not callable(measure):
         raise SceneError(f"`measure` must be callable, got {show(measure)}")
     if not isinstance(variants, dict) or not variants:
@@ -482,9 +505,9 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
             values = _measure(measure, variants, base, seeds, where, progress=progress, label="compare",
                               unseeded={})
             return Comparison(values={k: tuple(v) for k, v in values.items()}, seeds=seeds, variants=kwargs,
-                              base=base, measure=name)
+                              base=base, measure=name, **described)
         return _in_stages(measure, variants, base, design, reference, where, progress=progress,
-                          kwargs=kwargs, name=name)
+                          kwargs=kwargs, name=name, described=described)
 
 
 class _Plain:
@@ -504,7 +527,7 @@ def _reference(variants: dict, reference: str | None) -> str:
 
 
 def _in_stages(measure, variants: dict, base: dict, design: Design, reference: str, where: dict, *,
-               progress: bool, kwargs: dict, name: str) -> Comparison:
+               progress: bool, kwargs: dict, name: str, described: dict) -> Comparison:
     """``compare(..., seeds="auto")``: stage after stage until every verdict is decided."""
     if len(variants) < 2:
         raise SceneError("`seeds='auto'` needs a variant to judge against `reference`: give two or more")
@@ -529,7 +552,7 @@ def _in_stages(measure, variants: dict, base: dict, design: Design, reference: s
         looks.append({"stage": k + 1, "seeds": list(range(design.stages[k - 1] if k else 0, design.stages[k])),
                       "nominal_alpha": nominal})
         comparison = Comparison(values={v: tuple(x) for v, x in values.items()}, seeds=seeds, variants=kwargs,
-                                base=base, measure=name, design=record)
+                                base=base, measure=name, design=record, **described)
         outcomes = {other: comparison.verdict(other, reference)["verdict"] for other in variants if other != reference}
         looks[-1]["verdicts"] = outcomes
         state["comparison"] = comparison

@@ -45,7 +45,8 @@ from typing import Callable
 import numpy as np
 
 from .. import analysis
-from .._inputs import check_choice, check_int, check_positive
+from .._inputs import check_choice, check_int, check_positive, check_range
+from .._registry import Registry
 from ..critical import DT_FRACTION as CRITICAL_DT_FRACTION, critical_force, settled_run
 from ..errors import SceneError
 from ..run import Run, Stuck, default_dt, default_duration, default_stops
@@ -96,19 +97,25 @@ TRAVEL_DT_FRACTION = dict(CRITICAL_DT_FRACTION)
 #: slider): from its step (dt/4) to dt/8 the per-seed shifts average +1.2 +- 1.9 % (one standard
 #: error; the mean travel moves +0.5 %) while 4 seeds move by more than 1 % (up to 30 %); the full
 #: triangles, which pass, -0.05 +- 0.01 % (docs/data/measures/travel_dt.json).
-STEP_TOLERANCE = {"critical": 0.01, "critical-run-up": 0.01, "quasi-static-breakaway": 0.01,
-                  "first-breakaway": 0.01, "peak-stick": 0.05, "mean-stick": 0.05, "travel": 0.05}
+#: Each built-in entry carries its own (:attr:`Measure.step_tolerance`); this table is read from them.
+STEP_TOLERANCE: dict[str, float] = {}
+
+
+#: The step of a measure that states no step policy (an outside one): the engine's own default
+#: step, ``default_dt`` (T/50 of the shortest natural period, where the runs converged).
+DEFAULT_DT_FRACTION = 1.0
 
 
 def measure_step(name: str, scene: Scene, *, start: str | None = None) -> float:
     """The step (s) the named measure runs ``scene`` at under the step policy (``start`` for the
-    travel: default ``"run-up"``)."""
-    fraction = {"critical": CRITICAL_DT_FRACTION["rest"], "critical-run-up": CRITICAL_DT_FRACTION["run-up"],
-                "quasi-static-breakaway": CRITICAL_DT_FRACTION["rest"], "first-breakaway": STICK_DT_FRACTION,
-                "peak-stick": STICK_DT_FRACTION, "mean-stick": STICK_DT_FRACTION,
-                "travel": TRAVEL_DT_FRACTION[start or "run-up"]}
-    check_choice("name", name, tuple(fraction))
-    return fraction[name] * default_dt(scene)
+    travel: default ``"run-up"``): its entry's :attr:`Measure.dt_fraction` of ``default_dt``
+    (``default_dt`` itself for a measure that states none, :attr:`Measure.step_policy` says so)."""
+    entry = MEASURES.lookup(name, "name")
+    if entry.name == "travel" and start is not None:
+        fraction = TRAVEL_DT_FRACTION[check_choice("start", start, tuple(TRAVEL_DT_FRACTION))]
+    else:
+        fraction = DEFAULT_DT_FRACTION if entry.dt_fraction is None else entry.dt_fraction
+    return fraction * default_dt(scene)
 
 
 def _spring(scene: Scene) -> Scene:
@@ -420,7 +427,11 @@ class Measure:
     5. carry its verdict ``rule`` (:class:`~asperity2d.experiments.verdicts.VerdictRule`:
        alpha, direction, smallest effect), fixed before any number is looked at:
        :meth:`Comparison.verdict <asperity2d.experiments.compare.Comparison.verdict>` judges
-       by it.
+       by it;
+    6. state its step policy: ``dt_fraction``, the fraction of ``default_dt`` its runs use
+       (the step where halving it again moves the measure by less than ``step_tolerance``,
+       relative). A measure that states none runs at ``default_dt`` and says so
+       (:attr:`step_policy`); :func:`measure_step` gives the step of a scene.
 
     Nothing else is needed: ``asperity2d measures`` lists it, ``asperity2d compare --measure
     NAME`` and ``compare("NAME", ...)`` run it, plots and verdicts use its label and unit.
@@ -434,6 +445,8 @@ class Measure:
     kind: str = "number"
     rule: VerdictRule = VerdictRule()
     description: str = ""
+    dt_fraction: float | None = None
+    step_tolerance: float | None = None
 
     def __post_init__(self):
         if not isinstance(self.name, str) or not self.name or self.name.strip() != self.name:
@@ -444,6 +457,21 @@ class Measure:
         check_choice("kind", self.kind, KINDS)
         if not isinstance(self.rule, VerdictRule):
             raise SceneError(f"`rule` of measure {self.name!r} must be a VerdictRule, got {self.rule!r}")
+        if self.dt_fraction is not None:
+            check_range("dt_fraction", self.dt_fraction, 1e-6, 1.0)
+        if self.step_tolerance is not None:
+            check_range("step_tolerance", self.step_tolerance, 0.0, 1.0)
+
+    @property
+    def step_policy(self) -> str:
+        """The step its scenes run at, in words: ``"dt/2"`` (a fraction of ``default_dt``), or
+        ``"default dt (no step policy stated)"`` for a measure that states none."""
+        if self.dt_fraction is None:
+            return "default dt (no step policy stated)"
+        if self.dt_fraction == 1.0:
+            return "dt"
+        inverse = 1.0 / self.dt_fraction
+        return f"dt/{inverse:g}" if inverse == round(inverse) else f"{self.dt_fraction:g} dt"
 
     @property
     def distribution(self) -> bool:
@@ -464,7 +492,8 @@ class Measure:
                 "kind": self.kind, "function": f"{self.function.__module__}.{self.function.__qualname__}",
                 "rule": {"alpha": self.rule.alpha, "direction": self.rule.direction,
                          "min_effect": self.rule.min_effect},
-                "description": self.description}
+                "description": self.description, "dt_fraction": self.dt_fraction,
+                "step": self.step_policy, "step_tolerance": self.step_tolerance}
 
 
 #: What a measure's scenes are driven by: a constant force or a spring.
@@ -472,47 +501,84 @@ DRIVES = ("force", "spring")
 #: A measure's kind: one deterministic number, or the mean of a chaotic distribution.
 KINDS = ("number", "distribution")
 
+def _check_measure(measure) -> "Measure":
+    if not isinstance(measure, Measure):
+        raise SceneError(f"`measure` must be a Measure, got {type(measure).__name__}")
+    return measure
+
+
+def _adapt_measure(obj, name: str) -> "Measure":
+    """What an entry point or ``"module:function"`` names, made a Measure: a Measure as it is; a
+    plain function ``scene -> float`` under that name, labelled by its name, with no unit and no
+    step policy stated (a constant-force drive)."""
+    if isinstance(obj, Measure) or not callable(obj) or isinstance(obj, type):
+        return obj
+    label = getattr(obj, "__name__", name).replace("_", " ")
+    return Measure(name, obj, label, unit="", description=(getattr(obj, "__doc__", None) or "").strip()[:200])
+
+
 #: The registry of named measures: name -> :class:`Measure`. The CLI's ``--measure``,
-#: ``compare(measure="...")``, plots and verdicts read it; :func:`register_measure` adds one.
-MEASURES: dict[str, Measure] = {}
+#: ``compare(measure="...")``, plots and verdicts read it; :func:`register_measure` adds one, and
+#: an installed package adds its own through the entry-point group ``asperity2d.measures``
+#: (a :class:`~asperity2d._registry.Registry`: ``"module:function"`` works wherever a name does).
+MEASURES: Registry = Registry("measure", "asperity2d.measures", key=lambda m: m.name, check=_check_measure,
+                              adapt=_adapt_measure)
 
 
 def register_measure(measure: Measure, *, replace: bool = False) -> Measure:
     """Add ``measure`` to :data:`MEASURES` under its name (see :class:`Measure` for the
-    contract); a name already taken raises ``SceneError`` unless ``replace``. Returns it."""
-    if not isinstance(measure, Measure):
-        raise SceneError(f"`measure` must be a Measure, got {type(measure).__name__}")
-    if measure.name in MEASURES and not replace:
-        raise SceneError(f"`measure` {measure.name!r} is already registered (pass replace=True)")
-    MEASURES[measure.name] = measure
-    return measure
+    contract); a name already taken raises ``SceneError`` unless ``replace``. Returns it.
+
+    Examples
+    --------
+    >>> from asperity2d.experiments.measures import Measure, register_measure, unregister_measure
+    >>> def pitch(scene):
+    ...     return scene.lower.spacing.pitch
+    >>> entry = register_measure(Measure("pitch", pitch, "mean pitch", unit="m"))
+    >>> entry.step_policy
+    'default dt (no step policy stated)'
+    >>> register_measure(entry)
+    Traceback (most recent call last):
+    ...
+    asperity2d.errors.SceneError: `measure` 'pitch' is already registered (pass replace=True)
+    >>> unregister_measure("pitch").name
+    'pitch'
+    """
+    return MEASURES.register(measure, replace=replace)
 
 
 def unregister_measure(name: str) -> Measure:
     """Remove the measure ``name`` from :data:`MEASURES` and return it."""
-    check_choice("name", name, tuple(MEASURES))
-    return MEASURES.pop(name)
+    return MEASURES.unregister(name)
 
 
 for _entry in (
     Measure("critical", critical_force_from_rest, "critical force from rest (step load)",
-            description="constant force that moves the slider across from rest on the surface, a step load"),
+            description="constant force that moves the slider across from rest on the surface, a step load",
+            dt_fraction=CRITICAL_DT_FRACTION["rest"], step_tolerance=0.01),
     Measure("critical-run-up", critical_force_with_run_up, "critical force with a run-up",
-            description="the same with the builder's run-up: a momentum threshold"),
+            description="the same with the builder's run-up: a momentum threshold",
+            dt_fraction=CRITICAL_DT_FRACTION["run-up"], step_tolerance=0.01),
     Measure("quasi-static-breakaway", quasi_static_breakaway_force, "quasi-static breakaway force",
-            description="force at which a slowly ramped force breaks the slider loose"),
+            description="force at which a slowly ramped force breaks the slider loose",
+            dt_fraction=CRITICAL_DT_FRACTION["rest"], step_tolerance=0.01),
     Measure("first-breakaway", first_breakaway_of_pass, "first breakaway force", drive="spring",
-            description="drive force at the first stick-to-slip transition of a spring-driven pass"),
+            description="drive force at the first stick-to-slip transition of a spring-driven pass",
+            dt_fraction=STICK_DT_FRACTION, step_tolerance=0.01),
     Measure("peak-stick", peak_stick_force_of_passes, "peak stick force over a pass", drive="spring",
-            kind="distribution", description="largest stick force of spring-driven passes (ensemble mean)"),
+            kind="distribution", description="largest stick force of spring-driven passes (ensemble mean)",
+            dt_fraction=STICK_DT_FRACTION, step_tolerance=0.05),
     Measure("mean-stick", mean_stick_force_of_passes, "mean stick force over a pass", drive="spring",
-            kind="distribution", description="mean stick force of spring-driven passes (ensemble mean)"),
+            kind="distribution", description="mean stick force of spring-driven passes (ensemble mean)",
+            dt_fraction=STICK_DT_FRACTION, step_tolerance=0.05),
     Measure("travel", travel_distance, "travel under a constant force", unit="m", kind="distribution",
             description="distance travelled under the scene's constant drive force (where a stuck slider "
-                        "stops is chaotic: compared over seeds)"),
+                        "stops is chaotic: compared over seeds)",
+            dt_fraction=TRAVEL_DT_FRACTION["run-up"], step_tolerance=0.05),
 ):
     register_measure(_entry)
 del _entry
+STEP_TOLERANCE.update({name: m.step_tolerance for name, m in MEASURES.items()})
 
 #: Measures whose single value is chaotic (reported as the mean of an ensemble of passes,
 #: compared over seeds as a distribution): the built-in ones (:attr:`Measure.distribution`

@@ -26,6 +26,7 @@ from pathlib import Path
 from types import MappingProxyType
 from typing import Callable
 
+from .._registry import Registry
 from ..errors import SceneError
 
 def _animation(result, path, **options):
@@ -118,26 +119,43 @@ class OutputFormat:
         return tuple(self.drawers)
 
 
-#: The output formats: extension -> :class:`OutputFormat`. :func:`render` chooses by it.
-FORMATS: dict[str, OutputFormat] = {}
+def _check_format(fmt) -> OutputFormat:
+    if not isinstance(fmt, OutputFormat):
+        raise SceneError(f"`fmt` must be an OutputFormat, got {type(fmt).__name__}")
+    return fmt
+
+
+#: The output formats: extension -> :class:`OutputFormat`. :func:`render` chooses by it. A
+#: :class:`~asperity2d._registry.Registry`: an installed package adds its formats through the
+#: entry-point group ``asperity2d.formats`` (each entry point names an :class:`OutputFormat`).
+FORMATS: Registry = Registry("output format", "asperity2d.formats", key=lambda f: f.extension,
+                             check=_check_format, param="fmt", modules=False)
 
 
 def register_format(fmt: OutputFormat, *, replace: bool = False) -> OutputFormat:
     """Add ``fmt`` to :data:`FORMATS` (see :class:`OutputFormat` for the contract); an extension
-    already taken raises ``SceneError`` unless ``replace``. Returns it."""
-    if not isinstance(fmt, OutputFormat):
-        raise SceneError(f"`fmt` must be an OutputFormat, got {type(fmt).__name__}")
-    if fmt.extension in FORMATS and not replace:
-        raise SceneError(f"`fmt` {fmt.extension} is already registered (pass replace=True)")
-    FORMATS[fmt.extension] = fmt
-    return fmt
+    already taken raises ``SceneError`` unless ``replace``. Returns it.
+
+    Examples
+    --------
+    >>> from asperity2d.renderers import OutputFormat, register_format, unregister_format
+    >>> def write_t(result, path, **options):
+    ...     path.write_text("\\n".join(map(repr, result.t)))
+    ...     return path
+    >>> fmt = register_format(OutputFormat(".times", "the sample times", {"belt": write_t}, "table"))
+    >>> register_format(fmt)
+    Traceback (most recent call last):
+    ...
+    asperity2d.errors.SceneError: `fmt` '.times' is already registered (pass replace=True)
+    >>> unregister_format(".times").extension
+    '.times'
+    """
+    return FORMATS.register(fmt, replace=replace)
 
 
 def unregister_format(extension: str) -> OutputFormat:
     """Remove the format of ``extension`` from :data:`FORMATS` and return it."""
-    if extension not in FORMATS:
-        raise SceneError(f"`extension` must be one of {', '.join(FORMATS)}, got {extension!r}")
-    return FORMATS.pop(extension)
+    return FORMATS.unregister(extension)
 
 
 _BOTH = ("asperity", "belt")

@@ -261,8 +261,9 @@ def run_calls(fn: Callable, calls: Sequence[tuple], *, workers: int | str | None
         cores = min(os.cpu_count() or 1, len(jobs))
         if workers is None and cost is None and cores > 1 and cores not in warm_pools():
             # what a call costs is measured: the first runs here, and its time decides the rest
-            from .executors import shared_pool
+            from .executors import prepare_workers, shared_pool
 
+            prepare_workers()  # here, in the main thread, safe from a Ctrl-C (not in the timer's)
             early = threading.Timer(SPECULATE_AFTER, shared_pool, args=(cores,))
             early.daemon = True
             early.start()

@@ -201,11 +201,31 @@ def unguarded_main_call(frame=None) -> str | None:
 _warned_scripts: set[str] = set()
 
 
+def main_from_stdin() -> bool:
+    """True when the main script was read from standard input (``python - < script.py``): a
+    spawned worker would have to import it again, and there is no file to import."""
+    main = sys.modules.get("__main__")
+    return (main is not None and getattr(main, "__spec__", None) is None
+            and getattr(main, "__file__", None) == "<stdin>")
+
+
 def plain_script_fallback() -> bool:
     """True (and, once per script, a warning saying how to get the workers) if worker processes
     would re-run the main script's unguarded top-level code: the ensemble then runs here."""
     import warnings
 
+    if main_from_stdin():
+        if "<stdin>" not in _warned_scripts:
+            _warned_scripts.add("<stdin>")
+            frame, main = sys._getframe(1), vars(sys.modules["__main__"])
+            while frame is not None and frame.f_globals is not main:
+                frame = frame.f_back
+            warnings.warn_explicit(  # one line, "<stdin>:LINE: RuntimeWarning: ...", at the script's call
+                "asperity2d runs these calls in this process, without worker processes: the main script "
+                "came from standard input, which a worker process cannot import again (save it to a file "
+                "to get the workers)", RuntimeWarning, "<stdin>", frame.f_lineno if frame else 0,
+                module="__main__")
+        return True
     where = unguarded_main_call(sys._getframe(1))
     if where is None:
         return False
@@ -228,8 +248,42 @@ _pools: dict[int, cf.ProcessPoolExecutor] = {}
 _pools_lock = threading.Lock()
 
 
+@contextlib.contextmanager
+def _sigint_ignored():
+    """Ignore SIGINT while this (main) thread starts worker processes, which inherit it.
+
+    A terminal's Ctrl-C goes to the whole process group: a worker still starting its interpreter
+    would die of it with a traceback of its own, and its pool would break under the parent's
+    cancelled calls. Only an ignored signal survives the ``exec`` of a spawned worker (a blocked
+    one does not: multiprocessing resets the mask), so the parent ignores SIGINT for the few
+    milliseconds of a spawn; the workers then ignore it for life (their initializer says so again)
+    and the parent alone stops the run and ends them. Outside the main thread nothing changes
+    (Python lets only the main thread set handlers); the workers' initializer still ignores it."""
+    import signal
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    old = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, old)
+
+
+def prepare_workers() -> None:
+    """Start multiprocessing's resource tracker now, from the main thread with SIGINT ignored
+    (:func:`_sigint_ignored`): a pool first made in another thread would start it there,
+    unprotected from a Ctrl-C that arrives while it starts."""
+    from multiprocessing import resource_tracker
+
+    with _sigint_ignored():
+        resource_tracker.ensure_running()
+
+
 def _die_with(parent: int, death_signal: bool) -> None:
-    """Worker initializer: exit as soon as process ``parent`` is gone.
+    """Worker initializer: ignore SIGINT (the parent handles a Ctrl-C: :func:`_sigint_ignored`)
+    and exit as soon as process ``parent`` is gone.
 
     ``death_signal``: ask the kernel for SIGKILL when the parent dies (Linux; the signal follows
     the *thread* that spawned the worker, so the pool asks for it only when it spawns every
@@ -245,6 +299,9 @@ def _die_with(parent: int, death_signal: bool) -> None:
             libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
         except (OSError, AttributeError):  # pragma: no cover - no prctl: the watchdog remains
             pass
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
     if os.getppid() != parent:  # the parent died before the signal was asked for
         os._exit(1)
 
@@ -266,10 +323,11 @@ def shared_pool(workers: int) -> cf.ProcessPoolExecutor:
         # spawn: workers start clean (no inherited threads, RNGs or engine state)
         main = threading.current_thread() is threading.main_thread()
         launch = getattr(cf.ProcessPoolExecutor, "_launch_processes", None)
-        pool = cf.ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("spawn"),
-                                      initializer=_die_with, initargs=(os.getpid(), main and launch is not None))
-        if main and launch is not None:
-            launch(pool)  # every worker now, from this thread (the death signal follows it)
+        with _sigint_ignored():  # the pool may start multiprocessing's resource tracker
+            pool = cf.ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("spawn"),
+                                          initializer=_die_with, initargs=(os.getpid(), main and launch is not None))
+            if main and launch is not None:
+                launch(pool)  # every worker now, from this thread (the death signal follows it)
         _pools[workers] = pool
         return pool
 
@@ -291,6 +349,22 @@ def discard_pool(pool: cf.ProcessPoolExecutor | None = None) -> None:
         chosen = [(0, pool)]
     for _, p in chosen:
         p.shutdown(wait=True, cancel_futures=True)
+
+
+def kill_pool(pool: cf.ProcessPoolExecutor) -> None:
+    """End ``pool`` now, its workers killed mid-call (a Ctrl-C: nobody waits for their results).
+
+    Its calls are left as they are, not cancelled: the pool's manager thread marks them broken
+    when it sees the workers gone, and on Python 3.11 it raises ``InvalidStateError`` in that
+    thread for any call that was cancelled first."""
+    with _pools_lock:
+        for n, p in list(_pools.items()):
+            if p is pool:
+                del _pools[n]
+    for process in list((getattr(pool, "_processes", None) or {}).values()):
+        with contextlib.suppress(Exception):
+            process.kill()
+    pool.shutdown(wait=False, cancel_futures=False)
 
 
 atexit.register(discard_pool)
@@ -357,11 +431,19 @@ class LocalExecutor:
                 nxt = suspects.pop(0) if suspects else next(pending, None)
                 if nxt is None:
                     return
-                in_flight[self._start().submit(fn, *nxt[1])] = nxt
+                pool = self._start()
+                with _sigint_ignored():  # a submit may start a worker
+                    in_flight[pool.submit(fn, *nxt[1])] = nxt
 
         try:
             yield from self._drain(fn, in_flight, fill, suspects, pending)
-        finally:  # stopped early (a failure raised by the caller, Ctrl-C): drop what is queued
+        except KeyboardInterrupt:  # Ctrl-C: end the workers now, mid-call, and let the caller say so
+            if self._pool is not None:
+                kill_pool(self._pool)
+                self._pool = None
+            in_flight.clear()
+            raise
+        finally:  # stopped early (a failure raised by the caller): drop what is queued
             for future in in_flight:
                 future.cancel()
 

@@ -43,6 +43,7 @@ from pathlib import Path
 from typing import Any, Iterable, Mapping
 
 from .._inputs import MAX_SEEDS, count_seeds
+from .._io import MAX_TOML_DEPTH, deep_key, too_deep
 from ..errors import SceneError
 
 _RUN_PATH = re.compile(r"^[A-Za-z_][\w.]*:[A-Za-z_]\w*$")
@@ -349,10 +350,15 @@ def load_study(path: str | os.PathLike) -> Study:
     suffix = path.suffix.lower()
     if suffix == ".toml":
         try:
-            with path.open("rb") as fh:
-                data = tomllib.load(fh)
+            text = path.read_bytes().decode("utf-8")
+            deep = deep_key(text)  # first: tomllib spends quadratic time on a dotted key's parts
+            data = tomllib.loads(text) if deep is None else {}
         except (tomllib.TOMLDecodeError, UnicodeDecodeError, RecursionError) as exc:
             raise SceneError(f"`study` file {str(path)!r} is not valid TOML: {exc}") from None
+        deep = deep or too_deep(data)  # dotted keys nest without limit; a message about them must not recurse
+        if deep is not None:
+            raise SceneError(f"`study` file {str(path)!r} is nested too deeply: `{deep}` nests tables more "
+                             f"than {MAX_TOML_DEPTH} levels deep")
         return Study.from_dict(data)
     if suffix == ".py":
         namespace = runpy.run_path(str(path), run_name="__asperity2d_study__")
