@@ -38,7 +38,7 @@ from ..phases.finder import SWITCH_TOL, find_event
 from ..normal import SEPARATED
 
 #: bounded memory: at most this many cached mode patterns (and at most :data:`~.limits.CACHE_BYTES`)
-CACHE_SIZE = 512
+CACHE_SIZE = limits.CACHE_SIZE
 
 
 def run_contact(spec, options) -> ContactRun:
