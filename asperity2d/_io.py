@@ -345,6 +345,40 @@ _ZIP_SIGNATURES = (b"PK\x03\x04", b"PK\x05\x06")
 MAX_INFLATED_BYTES = 2**30
 
 
+def save_mat(path: str | os.PathLike, arrays: dict) -> Path:
+    """Write ``arrays`` (name -> array or string) to a MATLAB ``.mat`` (v5) file, atomically.
+
+    A boolean array is written as MATLAB ``logical`` (SciPy sets the logical flag on a uint8 matrix),
+    so ``load`` in MATLAB gives ``logical``; :func:`load_mat` gives it back as ``bool``."""
+    from scipy.io import savemat
+
+    return atomic_write(path, lambda fh: savemat(fh, arrays))
+
+
+def load_mat(path: str | os.PathLike, *, kind: str = "a MATLAB .mat file") -> dict:
+    """Read a ``.mat`` file: name -> array, with MATLAB ``logical`` arrays back as ``bool``.
+
+    ``scipy.io.loadmat`` reads a logical matrix as ``uint8`` (it ignores the flag on reading); here
+    the variables ``scipy.io.whosmat`` lists as ``logical`` are converted back (their values are 0
+    and 1). SciPy's own keys (``__header__``, ...) are dropped. A file that cannot be read raises
+    :class:`FileError` naming ``path``."""
+    import numpy as np
+    from scipy.io import loadmat, whosmat
+
+    source = input_path("path", path)
+    try:
+        logical = {name for name, _shape, cls in whosmat(source) if cls == "logical"}
+        data = loadmat(source)
+    except Exception as exc:  # scipy raises ValueError, TypeError, OSError, ... on a damaged file
+        raise FileError("path", source, f"is not {kind}", f"{type(exc).__name__}: {exc}") from None
+    out = {}
+    for name, value in data.items():
+        if name.startswith("__"):
+            continue
+        out[name] = value.astype(bool) if name in logical else value
+    return out
+
+
 def _check_inflated_size(path, kind: str) -> None:
     """Refuse an archive whose zip headers promise more than :data:`MAX_INFLATED_BYTES` (a
     1.5 MB file can hold 1.5 GB of zeros). Reading the headers inflates nothing; a member whose

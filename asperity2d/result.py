@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 from ._format import si
-from ._io import FileError, atomic_write, check_format, load_npz, save_npz
+from ._io import FileError, atomic_write, check_format, load_mat, load_npz, save_mat, save_npz
 from .errors import SceneError
 from .scene import Scene
 
@@ -232,8 +232,9 @@ class Result:
         """Export the slider time series as ``.csv`` or MATLAB ``.mat`` (by extension).
 
         ``.mat`` holds every series of :class:`~asperity2d.Result` (SI; ``load("run.mat")`` in MATLAB gives
-        row vectors ``t``, ``x``, ``drive_force``, ... and the ``lower_*`` matrices) and a
-        ``metadata`` JSON string; ``.csv`` the slider's eleven series, one column each, with a
+        row vectors ``t``, ``x``, ``drive_force``, ... and the ``lower_*`` matrices, ``lower_contact``
+        a ``logical`` matrix) and a ``metadata`` JSON string; :func:`read_mat` reads it back in Python
+        with ``lower_contact`` as ``bool`` (``scipy.io.loadmat`` alone gives ``uint8``); ``.csv`` the slider's eleven series, one column each, with a
         header line.
 
         Parameters
@@ -259,6 +260,8 @@ class Result:
         >>> path = result.export("run.mat")
         >>> scipy.io.loadmat(path)["drive_force"].shape
         (1, 3731)
+        >>> read_mat(path)["lower_contact"].dtype
+        dtype('bool')
         """
         path = Path(path)
         suffix = path.suffix.lower()
@@ -271,16 +274,43 @@ class Result:
 
             return atomic_write(path, write)
         if suffix == ".mat":
-            from scipy.io import savemat
-
             data = {n: np.asarray(getattr(self, n)) for n in SERIES + LOWER_SERIES}
             data["metadata"] = json.dumps(self.meta, sort_keys=True, default=str)
-
-            def write(fh):
-                savemat(fh, data)
-
-            return atomic_write(path, write)
+            return save_mat(path, data)
         raise SceneError(f"`path` must end in .csv or .mat, got {str(path)!r}")
+
+
+def read_mat(path: str | os.PathLike) -> dict:
+    """Read a ``.mat`` file written by :meth:`Result.export` (or a belt result's): name -> array.
+
+    MATLAB ``logical`` arrays (``lower_contact``) come back as ``bool``, where ``scipy.io.loadmat``
+    alone gives ``uint8``; series are (1, T) or (n, T) as MATLAB holds them, ``metadata`` a
+    one-element string array (JSON).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A ``.mat`` file.
+
+    Returns
+    -------
+    dict
+        Variable name -> NumPy array (SciPy's ``__header__`` keys dropped).
+
+    Raises
+    ------
+    FileError
+        A missing or unreadable file, naming ``path``.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> from asperity2d.result import read_mat
+    >>> data = read_mat(a.simulate(a.make_scene(lower_count=4, upper_count=2)).export("run.mat"))
+    >>> data["lower_contact"].dtype, data["lower_contact"].shape
+    (dtype('bool'), (4, 3731))
+    """
+    return load_mat(path)
 
 
 def load(path: str | os.PathLike) -> Result:

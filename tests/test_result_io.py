@@ -55,6 +55,31 @@ def test_csv_and_mat_export(result, tmp_path):
     assert json.loads(str(mat["metadata"][0]))["status"] == result.status
 
 
+def test_mat_export_keeps_booleans_logical_and_reads_them_back_as_bool(tmp_path):
+    """``lower_contact`` is a bool array: in the .mat it must be MATLAB ``logical`` (whosmat reads the
+    class from the file's array flags, as MATLAB does) and ``read_mat`` must give back dtype bool with
+    the same values, where ``scipy.io.loadmat`` alone gives uint8."""
+    from scipy.io import loadmat, whosmat
+
+    from asperity2d._io import FileError
+    from asperity2d.result import read_mat
+
+    result = a.simulate(a.make_scene(lower_count=4, upper_count=2))  # to the end: contacts made and broken
+    assert result.lower_contact.dtype == bool and result.lower_contact.any() and not result.lower_contact.all()
+    path = result.export(tmp_path / "run.mat")
+    classes = {name: cls for name, _shape, cls in whosmat(path)}
+    assert classes["lower_contact"] == "logical" and classes["x"] == "double"
+    assert loadmat(path)["lower_contact"].dtype == np.uint8  # SciPy's reader drops the flag
+    back = read_mat(path)
+    assert back["lower_contact"].dtype == bool
+    np.testing.assert_array_equal(back["lower_contact"], result.lower_contact)
+    np.testing.assert_array_equal(back["x"].ravel(), result.x)
+    assert not any(name.startswith("__") for name in back)
+    (tmp_path / "bad.mat").write_bytes(os.urandom(64))
+    with pytest.raises(FileError, match="`path` is not a MATLAB .mat file"):
+        read_mat(tmp_path / "bad.mat")
+
+
 def test_loading_garbage_is_a_scene_error(tmp_path):
     bad = tmp_path / "bad.npz"
     bad.write_bytes(os.urandom(64))

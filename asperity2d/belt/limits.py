@@ -12,7 +12,8 @@ real, finite, within the magnitude window ``TINY`` .. ``HUGE``). Here:
   sampled values (masses x samples); at most ``MAX_MEMORY`` (4 GiB) of estimated peak memory
   (:func:`memory_estimate`: ~1,000 bytes per mass² and ~200 per mass and sample; a 1,800-mass
   chain with 2,001 samples is about the largest that fits), with each cache of a run held to
-  ``CACHE_BYTES``.
+  ``CACHE_BYTES``;
+* a rigid normal contact's masses differ by at most ``MAX_MASS_RATIO_RIGID`` (1e5).
 """
 
 from __future__ import annotations
@@ -33,9 +34,18 @@ MAX_MASSES = 2000
 MAX_VALUES = 20_000_000
 #: the largest estimated peak memory of one run (bytes, :func:`memory_estimate`), refused up front beyond
 MAX_MEMORY = 4 * 2**30
+#: the largest ratio of masses a *rigid* normal contact is solved for (:func:`contact_masses`). A rigid
+#: contact's phases hold a landed mass at y = 0 and propagate the others in one closed form whose rounding
+#: follows the heaviest mass's scales: measured over 24 rigid chains (restitution 0 and 0.5, with and
+#: without inclined springs, either mass the heavy one), every run at ratios up to 1e5 passed its checks;
+#: at 1e6 a light mass's or heavy mass's landing was missed by 3e-11 to 2e-7 m (refused by the validity
+#: check) or the switching stalled. A compliant contact checks each mass on its own scale and has no limit.
+MAX_MASS_RATIO_RIGID = 1e5
 #: per cache of a run (mode patterns, segments' eigendecompositions): the oldest entries are dropped
 #: beyond this many bytes (recomputed when needed again, to the same bits)
 CACHE_BYTES = 256 * 2**20
+#: and beyond this many entries (the solvers' own ``CACHE_SIZE`` are this one)
+CACHE_SIZE = 512
 
 
 def memory_estimate(n: int, n_values: int, dof: int = 1) -> float:
@@ -45,10 +55,30 @@ def memory_estimate(n: int, n_values: int, dof: int = 1) -> float:
     and their inverse, its mode shapes for positions, velocities and accelerations, its event and
     power rows (complex), the phase's amplitudes and LAPACK's workspace -- plus ~200 bytes per mass
     and sample: the result's eight series, the recorded copies they are joined from and a phase's
-    sampling temporaries (25 doubles); the caches add at most ``CACHE_BYTES`` each. ``dof``: 2 for a
-    chain with a normal degree of freedom (its phase matrices are 4n x 4n: four times the first term).
-    A 2,000-mass chain with 2,001 samples was reported to take 3-5 GB (estimate 4.8 GB)."""
-    return 1000.0 * (dof * n) ** 2 + 200.0 * n * n_values
+    sampling temporaries (25 doubles); plus what the caches hold besides the pattern in use
+    (:func:`cache_estimate`: up to ``CACHE_BYTES`` each). ``dof``: 2 for a chain with a normal degree
+    of freedom (its phase matrices are 4n x 4n: four times the first term). A 2,000-mass chain with
+    2,001 samples was reported to take 3-5 GB (estimate 4.8 GB); a 200-mass chain with mu_s = 0.05
+    peaks at 284 MiB (estimate 375 MiB), 250 MiB of it cached mode patterns."""
+    return 1000.0 * (dof * n) ** 2 + 200.0 * n * n_values + cache_estimate(n, dof)
+
+
+#: bytes per (dof·n)² of one cached entry, measured (``limits.nbytes``) on all-slipping chains of 100 and
+#: 200 masses: a tangential mode pattern 114 (its sparse shapes and event maps), a segment 41, a contact
+#: mode pattern 65; rounded up
+ENTRY_BYTES = {1: (120.0, 45.0), 2: (70.0,)}
+
+
+def cache_estimate(n: int, dof: int = 1) -> float:
+    """Bytes the caches of a run hold besides the entry in use: each holds at most ``CACHE_SIZE``
+    entries and ``CACHE_BYTES`` (the newest always kept), an entry of ``n`` masses taking
+    :data:`ENTRY_BYTES` per (dof·n)². A chain's distinct mode patterns grow with its events: a
+    500-mass chain with mu_s = 0.05 cycles through hundreds of them."""
+    total = 0.0
+    for per in ENTRY_BYTES[dof]:
+        entry = per * (dof * n) ** 2
+        total += max(0.0, min(float(CACHE_BYTES), CACHE_SIZE * entry) - entry)
+    return total
 
 
 def scales(spec) -> None:
@@ -91,9 +121,36 @@ def budget(spec, n_values: int, max_steps: int) -> int:
     return int(math.ceil(steps))
 
 
+def contact_masses(spec) -> None:
+    """Refuse a rigid normal contact whose masses differ by more than :data:`MAX_MASS_RATIO_RIGID`."""
+    if not spec.normal.rigid:
+        return
+    m = spec.chain.m
+    ratio = float(m.max() / m.min())
+    if ratio > MAX_MASS_RATIO_RIGID:
+        raise SceneError(f"`masses` differ by a factor of {ratio:.3g} (from {float(m.min()):g} to "
+                         f"{float(m.max()):g} kg): a rigid normal contact is solved for ratios up to "
+                         f"{MAX_MASS_RATIO_RIGID:g}; bring the masses closer or give the contact a "
+                         "`contact_stiffness` (a compliant contact has no such limit)")
+
+
 def nbytes(entry) -> int:
-    """Bytes of the NumPy arrays an object holds as attributes (a cache entry's size)."""
-    return sum(v.nbytes for v in vars(entry).values() if hasattr(v, "nbytes"))
+    """Bytes of the arrays an object holds as attributes (a cache entry's size): NumPy arrays and
+    SciPy sparse arrays (their data, indices and index pointers; a sparse array has no ``nbytes``, and
+    a mode pattern's shapes and event maps are sparse: uncounted, 512 patterns of a 500-mass chain
+    held ~3.5 GiB under a cache bound of 256 MiB)."""
+    return sum(_array_bytes(v) for v in vars(entry).values())
+
+
+def _array_bytes(value) -> int:
+    if hasattr(value, "nbytes"):
+        return int(value.nbytes)
+    parts = [getattr(value, name, None) for name in ("data", "indices", "indptr", "coords", "offsets")]
+    if hasattr(value, "nnz") and hasattr(value, "shape"):  # a SciPy sparse array (any format)
+        return sum(_array_bytes(part) for part in parts if part is not None and not isinstance(part, memoryview))
+    if isinstance(value, tuple) and all(hasattr(v, "nbytes") for v in value):  # COO's coords
+        return sum(int(v.nbytes) for v in value)
+    return 0
 
 
 def bound_cache(cache: dict, sizes: dict, count: int) -> None:

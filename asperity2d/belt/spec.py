@@ -553,6 +553,29 @@ class ContactSpec:
         return max(self.chain.length_scale, float(np.max(np.abs(self.y0))))
 
     @cached_property
+    def normal_scales(self) -> np.ndarray:
+        """Per mass, the force (N) normalising its own normal-force event function and tolerances: the
+        larger of its load ``abs(W_i)`` and the inclined springs' force at the chain's length scale (what
+        moves its contact force), within [1e-12, 1] of :attr:`normal_scale` -- never looser than the chain's
+        one scale, and the same for a single mass or equal masses.
+
+        Each mass on its own scale: with masses 1e6 and 1 kg, the heavy mass's ~1e7 N would make the
+        light one's tolerance 0.01 N, half its weight, and a contact force that pulls by that much
+        would pass unseen."""
+        kxy = self.normal.coupling()[1]
+        own = np.maximum(np.abs(self.load), abs(kxy) * self.chain.length_scale)
+        return np.clip(own, 1e-12 * self.normal_scale, self.normal_scale)
+
+    @cached_property
+    def gap_scales(self) -> np.ndarray:
+        """Per mass, the length (m) normalising its gap event function: for a compliant contact the
+        penetration that carries its own force scale (:attr:`normal_scales` / k_c, so opening and
+        closing share one tolerance, mass by mass); for a rigid one :attr:`gap_scale`."""
+        if not self.normal.rigid:
+            return self.normal_scales / self.normal.contact_stiffness
+        return np.full(self.n, self.gap_scale)
+
+    @cached_property
     def limit_scale(self) -> np.ndarray:
         """Per mass, the force (N) normalising the stick event functions: ``mu_s·abs(W_i)``, floored."""
         return np.maximum(self.chain.law.static_coefficient * np.abs(self.load),

@@ -12,6 +12,14 @@ aliases), its mean removed, faded in and out over 10 ms (no clicks), and
 RMS (never clipping: the gain is capped at the peak). Written as 16-bit PCM
 with ``scipy.io.wavfile``, atomically.
 
+A sound must last long enough to be heard: a run heard shorter than
+``min_seconds`` (1 s) is **looped back and forth** -- played forwards, then
+backwards, then forwards ... until it lasts ``min_seconds`` -- before the
+fades. Time reversal keeps every frequency and its level, and the signal is
+continuous at each turn (no jump, so no click); the pitch stays where the time
+scale puts it. A 10 s belt run whose dominant 0.7 Hz is heard at 440 Hz lasts
+16 ms once, and is looped 63 times. ``min_seconds=0`` writes the run once.
+
 ``render(result, "run.wav")`` and ``asperity2d render run.npz -o run.wav``
 call :func:`write_wav` with its defaults; the spectrogram goes to
 ``run.spectrogram.png``.
@@ -35,7 +43,9 @@ FADE_S = 0.010  # playback seconds of fade-in and fade-out
 @dataclass(frozen=True)
 class Sound:
     """What was written: ``path``, ``spectrogram`` (or None), ``sample_rate`` (Hz), ``samples``,
-    ``duration`` (playback s), ``time_scale`` (playback frequency / simulated frequency),
+    ``duration`` (playback s, loops included), ``time_scale`` (playback frequency / simulated frequency),
+    ``passes`` (how many times the run is played, alternately forwards and backwards: 1 unless it was
+    shorter than ``min_seconds``),
     ``dominant_hz`` (simulated), ``gain`` (full scale per signal unit), ``level_db`` reached
     (peak or RMS, dBFS), ``signal``."""
 
@@ -45,6 +55,7 @@ class Sound:
     samples: int
     duration: float
     time_scale: float
+    passes: int
     dominant_hz: float
     gain: float
     level_db: float
@@ -57,12 +68,23 @@ class Sound:
 def write_wav(source, path: str | os.PathLike, *, signal: str = "acceleration", mass: int = 0,
               time_scale: float | None = None, target_hz: float = 440.0, sample_rate: int = 44_100,
               level_db: float = -1.0, normalize: str = "peak", spectrogram: bool = True,
-              max_seconds: float = 600.0) -> Sound:
+              max_seconds: float = 600.0, min_seconds: float = 1.0) -> Sound:
     """Write ``signal`` of ``source`` (a Result, a BeltResult, or a ``(t, y)`` pair in SI) to ``path`` (.wav).
 
     See the module docstring. ``mass`` picks the belt mass (0-based).
     ``max_seconds`` bounds the playback length (a SceneError names
-    ``time_scale`` if it would be longer).
+    ``time_scale`` if it would be longer); a run heard shorter than ``min_seconds``
+    (s, default 1) is looped back and forth until it lasts that long.
+
+    Examples
+    --------
+    Ten seconds of a 0.7 Hz ring heard at 440 Hz last 16 ms: looped back and forth to a second.
+
+    >>> import numpy as np
+    >>> t = np.linspace(0.0, 10.0, 2001)
+    >>> snd = write_wav((t, np.sin(2 * np.pi * 0.7 * t)), "ring.wav", spectrogram=False)
+    >>> snd.passes > 1, snd.duration >= 1.0
+    (True, True)
     """
     from scipy import signal as sps
     from scipy.io import wavfile
@@ -104,6 +126,8 @@ def write_wav(source, path: str | os.PathLike, *, signal: str = "acceleration", 
     if not np.isfinite(time_scale) or time_scale <= 0:
         raise SceneError(f"`time_scale` must be > 0, got {time_scale!r}")
     duration = (tu[-1] - tu[0]) / time_scale
+    if not (np.isfinite(min_seconds) and 0 <= min_seconds <= max_seconds):
+        raise SceneError(f"`min_seconds` must be within [0, max_seconds = {max_seconds:g}] s, got {min_seconds!r}")
     if duration > max_seconds:
         raise SceneError(f"`time_scale` {time_scale:.6g} makes {duration:.4g} s of sound (more than "
                          f"max_seconds = {max_seconds:g}); raise it or shorten the run")
@@ -116,6 +140,12 @@ def write_wav(source, path: str | os.PathLike, *, signal: str = "acceleration", 
         sos = sps.butter(8, cutoff, fs=src_rate, output="sos")
         yu = sps.sosfiltfilt(sos, yu)
     audio = np.interp(tu[0] + np.arange(count) * (time_scale / sample_rate), tu, yu)  # playback -> simulated t
+    passes = 1
+    if count < min_seconds * sample_rate:
+        # back and forth: each turn repeats its end sample once, so the signal never jumps
+        passes = int(np.ceil(min_seconds * sample_rate / count))
+        audio = np.concatenate([audio if k % 2 == 0 else audio[::-1] for k in range(passes)])
+        count = audio.size
     audio -= audio.mean()
     fade = min(int(FADE_S * sample_rate), count // 4)
     if fade > 0:
@@ -143,8 +173,8 @@ def write_wav(source, path: str | os.PathLike, *, signal: str = "acceleration", 
         top = 12 * dominant if dominant > 0 else None  # the first dozen harmonics
         picture = plot_spectrogram(tu, yu, path.with_name(path.stem + ".spectrogram.png"),
                                    time_scale=time_scale, f_max=top, title=f"{name}: heard x{time_scale:.4g}")
-    return Sound(path, picture, int(sample_rate), int(count), float(duration), float(time_scale),
-                 float(dominant), float(gain), float(20 * np.log10(reached)), name)
+    return Sound(path, picture, int(sample_rate), int(count), float(passes * duration), float(time_scale),
+                 passes, float(dominant), float(gain), float(20 * np.log10(reached)), name)
 
 
 def plot_spectrogram(t, y, path: str | os.PathLike, *, time_scale: float = 1.0, f_max: float | None = None,

@@ -29,7 +29,7 @@ from ..spec import link_force
 
 #: bounded memory on long chains: at most this many cached segments and mode patterns (and at most
 #: :data:`~.limits.CACHE_BYTES` of each)
-CACHE_SIZE = 512
+CACHE_SIZE = limits.CACHE_SIZE
 
 
 def run_closed_form(spec, options) -> RawRun:

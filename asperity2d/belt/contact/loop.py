@@ -38,11 +38,12 @@ from ..phases.finder import SWITCH_TOL, find_event
 from ..normal import SEPARATED
 
 #: bounded memory: at most this many cached mode patterns (and at most :data:`~.limits.CACHE_BYTES`)
-CACHE_SIZE = 512
+CACHE_SIZE = limits.CACHE_SIZE
 
 
 def run_contact(spec, options) -> ContactRun:
     """Run a :class:`~.normal.ContactSpec` from t = 0 to ``t_end`` with :class:`~.backend.RunOptions`."""
+    limits.contact_masses(spec)  # up front: a ratio the rigid contact cannot resolve is refused, not tried
     n = spec.n
     chain = spec.chain
     templates: dict = {}
@@ -178,7 +179,8 @@ def check_modes(template, Z, times):
     The validity check of every contact run, as the asperity model's tunnelling check: each mode's
     event function (:mod:`.contact.phase`: the gap of a separated mass, the normal force of one in
     contact, the relative velocity of a slipping one, the static margin of a stuck one) must not be
-    below zero by more than :data:`VIOLATION` (twice the touch band). Beyond it a switch was missed
+    below zero by more than :data:`VIOLATION` (twice the touch band), each mass's on its own scale
+    (:attr:`~.normal.ContactSpec.normal_scales`, ``gap_scales``). Beyond it a switch was missed
     -- a separated mass inside a rigid belt (or inside a compliant one, whose contact spring never
     took up the load), a contact that pulls, a slip the wrong way, a static force beyond its
     limit -- and the run is wrong whatever its energy books say: it fails, naming the mass and the
@@ -193,7 +195,7 @@ def check_modes(template, Z, times):
     spec, i, role, t = template.spec, int(template.owner[r]), template.role[r], float(times[col])
     n, D = spec.n, 2 * spec.n
     what = {GAP: f"is {-Z[n + i, col]:.3g} m inside the belt while separated (a landing was missed)",
-            NORMAL: f"is held by a contact force of {float(G[r, col]) * spec.normal_scale:.3g} N that pulls "
+            NORMAL: f"is held by a contact force of {float(G[r, col]) * spec.normal_scales[i]:.3g} N that pulls "
                     "(a lift-off was missed)",
             SLIP: f"slips against its friction at {abs(Z[D + i, col] - template.V):.3g} m/s from the belt speed "
                   "(a stick or reversal was missed)",

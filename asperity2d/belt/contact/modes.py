@@ -68,8 +68,9 @@ def resolve_contact(spec, Z, previous, touched=(), contradicted=()):
     V = float(spec.chain.v_belt)
     mu_s, mu_k = law.static_coefficient, law.kinetic_coefficient
     Ks, Cs = spec.stiffness_matrix, spec.damping_matrix
-    tol_y, tol_v, tol_n = (SWITCH_TOL * spec.gap_scale, SWITCH_TOL * spec.velocity_scale,
-                           SWITCH_TOL * spec.normal_scale)
+    # per mass (its own gap and force scales), as the phases' event functions
+    tols_y, tol_v, tols_n = (SWITCH_TOL * spec.gap_scales, SWITCH_TOL * spec.velocity_scale,
+                             SWITCH_TOL * spec.normal_scales)
     touched, contradicted = set(touched), set(contradicted)
     events, work = [], np.zeros(3)
     was = previous != SEPARATED
@@ -81,6 +82,7 @@ def resolve_contact(spec, Z, previous, touched=(), contradicted=()):
         return spec.load[i] + Ks[n + i] @ q + Cs[n + i] @ qd, Ks[n + i] @ qd
 
     for i in range(n):
+        tol_y, tol_n = tols_y[i], tols_n[i]
         if (GAP, i) in touched and not was[i] or (NORMAL, i) in touched and was[i]:
             continue  # a graze: the state holds (reported below)
         if nc.rigid:

@@ -24,8 +24,8 @@ defective, by its Taylor grid.
 Event functions (positive while the mode holds, zero at a switch; :mod:`.phases.finder`
 locates them) per mass:
 
-* separated:          y_i / gap_scale                              ("gap": closing)
-* in contact:         N_i / normal_scale                           ("normal": opening)
+* separated:          y_i / gap_scales[i]                          ("gap": closing)
+* in contact:         N_i / normal_scales[i]                       ("normal": opening)
 * slipping, s = ±1:   s·(v_i - V) / v_scale                        ("slip")
 * stuck, kappa = ±1:  (mu_s·N_i - kappa·F_i) / (mu_s·W_i)          ("stick")
 
@@ -126,11 +126,11 @@ class ContactTemplate:
         for i in range(n):
             if self.modes[i] == SEPARATED:
                 r = np.zeros(2 * D)
-                r[n + i] = 1.0 / spec.gap_scale
+                r[n + i] = 1.0 / spec.gap_scales[i]  # each mass on its own scale
                 rows.append(r), offs.append(0.0), role.append(GAP), owner.append(i), kappa.append(0)
                 continue
-            rows.append(self.N_map[i] / spec.normal_scale)
-            offs.append(self.N_offset[i] / spec.normal_scale)
+            rows.append(self.N_map[i] / spec.normal_scales[i])
+            offs.append(self.N_offset[i] / spec.normal_scales[i])
             role.append(NORMAL), owner.append(i), kappa.append(0)
             if not frictional[i]:
                 continue
