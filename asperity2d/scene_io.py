@@ -7,7 +7,8 @@ Two layouts, one reader (:func:`read_scene`):
   :meth:`Scene.to_toml <asperity2d.scene.Scene.to_toml>` -- every number exact, so
   running the file reproduces the scene's run bit for bit.
 
-Either may hold a ``[run]`` table (``duration`` in s). The command line only calls this.
+Either may hold a ``[run]`` table (``duration`` in s, and the stop conditions of
+:data:`RUN_KEYS`). The command line only calls this.
 """
 
 from __future__ import annotations
@@ -18,8 +19,10 @@ from pathlib import Path
 from . import _io
 from .errors import SceneError
 
-#: Keys of a TOML scene's ``[run]`` table.
-RUN_KEYS = ("duration",)
+#: Keys of a TOML scene's ``[run]`` table: ``duration`` (s) and the stop conditions of
+#: :data:`asperity2d.run.STOP_SETTINGS` (``stop_pitches``, ``stop_force``, ``stop_first_slip``,
+#: ``stop_stuck``; :func:`asperity2d.run.stops_from_settings` turns them into ``simulate``'s ``stop``).
+RUN_KEYS = ("duration", "stop_pitches", "stop_force", "stop_first_slip", "stop_stuck")
 
 
 def read_scene(path, *, arg: str = "scene", overrides: dict | None = None):
@@ -46,6 +49,15 @@ def read_scene(path, *, arg: str = "scene", overrides: dict | None = None):
         d = run["duration"]
         if isinstance(d, bool) or not isinstance(d, (int, float)) or not (math.isfinite(d) and d > 0):
             raise SceneError(f"`duration` in [run] of {str(path)!r} must be a number > 0, got {_kind(d)}")
+    for key in ("stop_pitches", "stop_force"):
+        v = run.get(key)
+        if v is not None and (isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v)
+                              or (key == "stop_pitches" and v <= 0)):
+            raise SceneError(f"`{key}` in [run] of {str(path)!r} must be a finite number"
+                             f"{' > 0' if key == 'stop_pitches' else ''}, got {_kind(v)}")
+    for key in ("stop_first_slip", "stop_stuck"):
+        if key in run and not isinstance(run[key], bool):
+            raise SceneError(f"`{key}` in [run] of {str(path)!r} must be true or false, got {_kind(run[key])}")
     if whole:
         if overrides:
             raise SceneError(f"`--set` changes make_scene arguments, and {str(path)!r} holds a whole "

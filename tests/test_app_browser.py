@@ -238,7 +238,9 @@ def test_the_widget_module_renders_in_chromium(server, browser, tmp_path):
     from asperity2d.builders import KEYWORDS, PARAMETERS
 
     controls = browser.execute_script("return document.querySelectorAll('#w .aw-control').length")
-    assert controls == len(KEYWORDS + PARAMETERS) + 1  # every parameter, and the run's duration
+    from asperity2d.app.controls import RUN_CONTROLS
+
+    assert controls == len(KEYWORDS + PARAMETERS) + len(RUN_CONTROLS)  # every parameter, and the run's settings
     shot(browser, "widget.png")
     assert console_errors(browser) == []
     widget.close()

@@ -20,10 +20,26 @@ import tomllib
 
 from ..errors import SceneError
 
-#: The run settings beside the scene (a TOML scene's ``[run]`` table).
+#: The run settings beside the scene (a TOML scene's ``[run]`` table): the duration and the
+#: "stop when" conditions (:data:`asperity2d.run.STOP_SETTINGS`).
 RUN_CONTROLS = ({"name": "duration", "default": None, "unit": "s", "kind": "number",
                  "meaning": "simulated time after settling (default: until the slider has passed the "
-                            "lower surface, or a time limit)"},)
+                            "lower surface, or a time limit)"},
+                {"name": "stop_pitches", "default": None, "unit": "1", "kind": "number",
+                 "meaning": "stop when the slider has moved this many pitches"},
+                {"name": "stop_force", "default": None, "unit": "N", "kind": "number",
+                 "meaning": "stop when the drive force crosses this value"},
+                {"name": "stop_first_slip", "default": "false", "unit": "-", "kind": "flag",
+                 "meaning": "stop at the first slip"},
+                {"name": "stop_stuck", "default": "false", "unit": "-", "kind": "flag",
+                 "meaning": "stop when the slider stops"})
+#: Run settings that are numbers, and those that are flags.
+RUN_NUMBERS, RUN_FLAGS = ("duration", "stop_pitches", "stop_force"), ("stop_first_slip", "stop_stuck")
+#: The edits made on the stage that make_scene has no keyword for: the lower asperities' x
+#: positions (m), written into the scene as ``ExplicitSpacing`` (see :func:`build`).
+EDITS = {"lower_positions": {"name": "lower_positions", "unit": "m",
+                             "meaning": "x of each lower asperity (m), set by dragging it on the stage"}}
+_NONFINITE = re.compile(r"[+-]?(nan|inf|infinity)", re.IGNORECASE)
 #: Longest text a control takes (a path, a list of per-asperity values).
 MAX_TEXT = 20_000
 
@@ -93,7 +109,7 @@ def schema() -> dict:
 
 
 def names() -> set[str]:
-    return {r.name for _, records in groups() for r in records}
+    return {r.name for _, records in groups() for r in records} | set(EDITS)
 
 
 def _record(name: str):
@@ -129,16 +145,35 @@ def parse(values) -> tuple[dict, dict, dict]:
         text = text.strip()
         if not text:
             continue
-        if name == "duration":
+        if name in RUN_NUMBERS:
             try:
                 d = float(text)
             except ValueError:
-                errors[name] = f"`duration` must be a number of seconds > 0, got {text[:40]!r}"
+                errors[name] = f"`{name}` must be a number, got {text[:40]!r}"
                 continue
-            if not (math.isfinite(d) and d > 0):
-                errors[name] = f"`duration` must be a finite number of seconds > 0, got {text[:40]!r}"
+            if name == "stop_force":
+                if not math.isfinite(d):
+                    errors[name] = f"`stop_force` must be a finite number of N, got {text[:40]!r}"
+                    continue
+            elif not (math.isfinite(d) and d > 0):
+                errors[name] = f"`{name}` must be a finite number > 0, got {text[:40]!r}"
                 continue
-            run["duration"] = d
+            run[name] = d
+            continue
+        if name in RUN_FLAGS:
+            if text.lower() not in ("true", "false"):
+                errors[name] = f"`{name}` must be true or false, got {text[:40]!r}"
+                continue
+            if text.lower() == "true":
+                run[name] = True
+            continue
+        if name in EDITS:
+            value = scalar(text)
+            if not isinstance(value, list) or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                                                      for v in value):
+                errors[name] = f"`{name}` must be a list of numbers (m), got {text[:40]!r}"
+                continue
+            params[name] = [float(v) for v in value]
             continue
         if name not in known:
             errors[name] = f"`{name}` is not a make_scene parameter"
@@ -146,6 +181,8 @@ def parse(values) -> tuple[dict, dict, dict]:
         record = _record(name)
         if isinstance(record.default, str) and not isinstance(record.default, bool):
             params[name] = text  # a choice or a text: the words themselves
+        elif _NONFINITE.fullmatch(text):  # "nan", "NaN", "-Inf": one reading, one message
+            params[name] = float(text)
         else:
             params[name] = scalar(text)
     return params, run, errors
@@ -163,31 +200,64 @@ def scalar(text: str):
 _NAMED = re.compile(r"`([A-Za-z_][A-Za-z0-9_]*)`")
 
 
-def blame(message: str, given) -> str:
-    """The parameter a SceneError message names first among ``given`` ("" if none)."""
-    for name in _NAMED.findall(message):
+def blame(message: str, given, changed: str | None = None) -> str:
+    """The control a refusal belongs to: ``changed`` (the one the user just typed in, when it is
+    among ``given``: the change made the scene invalid, whatever parameter the message names),
+    else the parameter the message names first among ``given``, else the first it names at
+    all ("" if none)."""
+    if changed and changed in given:
+        return changed
+    named = ["lower_positions" if n == "positions" else n for n in _NAMED.findall(message)]
+    for name in named:
         if name in given:
             return name
-    for name in _NAMED.findall(message):
+    for name in named:
         if name in names():
             return name
     return ""
 
 
-def build(params: dict):
+def build(params: dict, changed: str | None = None):
     """``(scene, None)`` or ``(None, {name: one-line message})``: the scene of ``params``, as the
-    validation layer judges it."""
-    from ..builders import make_scene
+    validation layer judges it. ``lower_positions`` (not a make_scene keyword) moves the lower
+    asperities: the scene's lower spacing becomes ``ExplicitSpacing`` of those x (m), one per
+    asperity. ``changed``: the control the user typed in, which a refusal marks."""
+    import dataclasses
 
+    from ..builders import make_scene
+    from ..geometry import ExplicitSpacing
+
+    params = dict(params)
+    positions = params.pop("lower_positions", None)
     try:
         scene = make_scene(**params)
+        if positions is not None:
+            if len(positions) != scene.lower.count:
+                raise SceneError(f"`lower_positions` must hold one x per lower asperity ({scene.lower.count}), "
+                                 f"got {len(positions)}")
+            lower = dataclasses.replace(scene.lower, spacing=ExplicitSpacing(
+                positions=tuple(positions), mean_pitch=scene.lower.spacing.mean_pitch))
+            lower.tips()  # overlapping bases are refused here, naming `positions`
+            scene = scene.replace(lower=lower)
     except SceneError as exc:
         text = str(exc).splitlines()[0] if str(exc) else "refused"
-        return None, {blame(text, params): text}
+        return None, {blame(text, {**params, **({} if positions is None else {"lower_positions": 1})}, changed): text}
     except (TypeError, ValueError, OverflowError, MemoryError, RecursionError) as exc:  # not expected: say so
         text = f"refused: {type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}"[:300]
-        return None, {"": text}
+        return None, {changed or "": text}
     return scene, None
+
+
+def check_run(scene, run: dict) -> None:
+    """Refuse (SceneError) a run of ``scene`` with ``run`` settings that ``simulate`` would
+    refuse -- the step budget, the stop conditions -- before anything is built or sent: the
+    same checks, in the same order, as :func:`asperity2d.simulate` makes first."""
+    from ..run import MAX_STEPS, check_budget, default_dt, default_duration, settle_cap, stops_from_settings
+
+    duration = run.get("duration")
+    check_budget(scene, default_dt(scene), MAX_STEPS, settle=settle_cap(scene) if scene.slider.track == "free" else 0.0,
+                 duration=default_duration(scene) if duration is None else duration)
+    stops_from_settings(scene, run)
 
 
 def toml_value(value) -> str:
@@ -210,9 +280,25 @@ def toml_value(value) -> str:
 
 def to_toml(params: dict, run: dict | None = None) -> str:
     """The scene file ``asperity2d run`` reproduces: ``[scene]`` with ``params``, ``[run]`` with
-    the run settings. Checked to read back equal."""
+    the run settings; with asperities moved on the stage (``lower_positions``), the whole scene
+    as :meth:`Scene.to_toml <asperity2d.scene.Scene.to_toml>` writes it (every number exact).
+    Checked to read back equal."""
     from .._version import __version__
 
+    if "lower_positions" in params:
+        from .._io import toml_text
+        from ..scene import TOML_FORMAT, _drop_none, spec_from_toml
+
+        scene, errors = build(params)
+        if errors:
+            raise SceneError(next(iter(errors.values())))
+        tables = {"format": TOML_FORMAT, **({"run": dict(run)} if run else {}), "spec": _drop_none(scene.to_dict())}
+        text = toml_text(tables, header=f"asperity2d {__version__} scene, edited on the workbench: "
+                                        "`asperity2d run THIS.toml` reproduces its run")
+        back = tomllib.loads(text)
+        if spec_from_toml(back, "scene.toml") != scene or back.get("run", {}) != (run or {}):
+            raise SceneError("the scene does not survive a round trip through TOML")
+        return text
     lines = [f"# asperity2d {__version__} scene: `asperity2d run THIS.toml` reproduces the workbench's run",
              "[scene]"]
     lines += [f"{k} = {toml_value(v)}" for k, v in params.items()]
@@ -226,12 +312,25 @@ def to_toml(params: dict, run: dict | None = None) -> str:
 
 
 def to_python(params: dict, run: dict | None = None) -> str:
-    """The ``make_scene(...)`` call of ``params`` (and the ``simulate`` call of the run)."""
+    """The ``make_scene(...)`` call of ``params`` (the moved asperities as an ``ExplicitSpacing``
+    of the lower surface), and the ``simulate`` call of the run with its stop conditions."""
+    params = dict(params)
+    positions = params.pop("lower_positions", None)
     args = ", ".join(f"{k}={v!r}" for k, v in params.items())
-    duration = (run or {}).get("duration")
-    return ("from asperity2d import make_scene, simulate\n\n"
-            f"scene = make_scene({args})\n"
-            f"result = simulate(scene{'' if duration is None else f', {duration!r}'})\n")
+    run = dict(run or {})
+    duration = run.pop("duration", None)
+    imports = "from asperity2d import make_scene, simulate\n"
+    body = f"scene = make_scene({args})\n"
+    if positions is not None:
+        imports = "import dataclasses\n\n" + imports + "from asperity2d.geometry import ExplicitSpacing\n"
+        body += ("scene = scene.replace(lower=dataclasses.replace(scene.lower, spacing=ExplicitSpacing(\n"
+                 f"    positions={tuple(positions)!r},\n    mean_pitch=scene.lower.spacing.mean_pitch)))\n")
+    stop = ""
+    if run:
+        imports += "from asperity2d.run import stops_from_settings\n"
+        stop = f", stop=stops_from_settings(scene, {run!r})"
+    return (imports + "\n" + body +
+            f"result = simulate(scene{'' if duration is None else f', {duration!r}'}{stop})\n")
 
 
 def texts(params: dict, run: dict | None = None) -> dict:

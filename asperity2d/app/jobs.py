@@ -137,9 +137,12 @@ def measure_info(name: str) -> dict:
 
 def measure_scene(name: str, params: dict):
     """The scene a measure runs on: ``params`` under the measure's drive."""
-    from ..builders import make_scene
+    from .controls import build
 
-    return make_scene(**{**params, "drive": measure_info(name)["drive"]})
+    scene, errors = build({**params, "drive": measure_info(name)["drive"]})
+    if errors:
+        raise SceneError(next(iter(errors.values())))
+    return scene
 
 
 def _measure_main() -> None:
@@ -214,15 +217,18 @@ def verdict(comparison, name: str, reference: str, measure: str) -> dict:
 
     record = comparison.verdict(name, reference, subject=name)
     numbers = record["numbers"]
+    p = numbers["p_wilcoxon"]
     return {"variant": name, "reference": reference, "ratio": numbers["ratio_hl"],
-            "ratio_ci": [numbers["ratio_ci_low"], numbers["ratio_ci_high"]], "p_wilcoxon": numbers["p_wilcoxon"],
+            "ratio_ci": [numbers["ratio_ci_low"], numbers["ratio_ci_high"]], "p_wilcoxon": p,
+            # the p the verdict line prints, formatted once here (Python rounds half to even, the
+            # page's toPrecision half up: 0.0625 would read 0.062 in one line and 0.063 in the next)
+            "p_text": f"{p:.2g}" if p is not None and math.isfinite(p) else "\u2013",
             "verdict": record["verdict"], "line": verdict_line(record), "n": numbers.get("n")}
 
 
 def ensemble(request: dict, job: Job, emit, *, workers: int | None = None) -> None:
     """Measure every variant on every seed with the ensemble engine (every core), emitting each
     value as it arrives and the running statistics over the seeds every variant has finished."""
-    from ..builders import make_scene
     from ..experiments.compare import Comparison, _evaluate
     from ..sweep.engine import run_calls
 
@@ -231,9 +237,9 @@ def ensemble(request: dict, job: Job, emit, *, workers: int | None = None) -> No
     variants, seeds, base = request["variants"], request["seeds"], request["base"]
     base = {**base, "drive": info["drive"]}
     jobs, where = [], []
-    for vname, kw in variants.items():
-        for seed in seeds:
-            scene = make_scene(**{**base, **kw, "seed": seed})
+    for seed in seeds:  # variants interleaved per seed: the verdict fills in from the second seed
+        for vname, kw in variants.items():
+            scene = measure_scene(name, {**base, **kw, "seed": seed})
             jobs.append((info["fn"], scene, f"variant {vname!r} with seed {seed}"))
             where.append((vname, seed))
     job.check()

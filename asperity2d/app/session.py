@@ -31,6 +31,8 @@ import base64
 import json
 import logging
 import math
+import os
+import threading
 import time
 
 from ..errors import SceneError
@@ -94,12 +96,18 @@ class Session:
         self.emit({"type": "error", "lane": lane, "job": job.id, "message": error_text(exc)})
 
     def close(self) -> None:
-        """Stop every job of this page (the tab was closed)."""
+        """Stop every job of this page (the tab was closed), and the ensemble's worker processes
+        when no other page's ensemble uses them."""
         if self.closed:
             return
         self.closed = True
         for lane in self.lanes.values():
             lane.close(timeout=0)
+        with _ENSEMBLES_LOCK:
+            used = _ENSEMBLES.pop(self, None)
+            others = set().union(*_ENSEMBLES.values()) if _ENSEMBLES else set()
+        for workers in (used or set()) - others:
+            stop_workers(workers)
 
     def handle(self, message) -> None:
         """Act on one message from the page (text or a decoded object); never raises."""
@@ -132,22 +140,32 @@ class Session:
         self.emit({"type": "values", "values": self.values})
         self._on_set({"values": self.values})
 
-    def _scene_of(self, values):
+    def _scene_of(self, values, changed=None):
         params, run, errors = controls.parse(values)
         if errors:
             return None, params, run, errors
-        scene, errors = controls.build(params)
-        return scene, params, run, errors
+        scene, errors = controls.build(params, changed)
+        if errors:
+            return None, params, run, errors
+        try:  # what simulate would refuse (the step budget, a stop), refused before any run starts
+            controls.check_run(scene, run)
+        except SceneError as exc:
+            text = str(exc).splitlines()[0]
+            return None, params, run, {controls.blame(text, {**params, **run}, changed): text}
+        return scene, params, run, None
 
     def _on_set(self, message) -> None:
         values = message.get("values", {})
-        scene, params, run, errors = self._scene_of(values)
+        changed = message.get("changed")
+        changed = changed if isinstance(changed, str) and isinstance(values, dict) and changed in values else None
+        scene, params, run, errors = self._scene_of(values, changed)
         if errors:  # nothing runs; the run on screen stays
             self.emit({"type": "invalid", "errors": errors})
             return
         self.values, self.params, self.run_settings = dict(values), params, run
-        self.emit({"type": "valid", "python": controls.to_python(params, run), "values": self.values})
-        self.lanes["run"].submit((scene, run.get("duration")))
+        self.emit({"type": "valid", "python": controls.to_python(params, run), "values": self.values,
+                   "bodies": bodies(scene)})
+        self.lanes["run"].submit((scene, run))
 
     def _on_cancel(self, message) -> None:
         lane = message.get("lane", "run")
@@ -222,14 +240,15 @@ class Session:
             raise SceneError("`what` must be toml, python or npz")
 
     # -- the jobs ------------------------------------------------------------------------------
-    def _stream(self, scene, duration, job, kinds: tuple[str, str, str], extra: dict) -> object:
+    def _stream(self, scene, duration, job, kinds: tuple[str, str, str], extra: dict, stop=()) -> object:
         """Run ``scene`` in pieces, sending its samples as they come (``kinds``: the start, chunk
-        and end message types); return the Result. Stops at the first check after a cancel."""
+        and end message types); return the Result. Stops at the first check after a cancel.
+        ``stop``: the run's stop conditions (``simulate``'s ``stop``)."""
         from ..renderers.player import chunk_payload, final_payload, scene_payload
         from ..run import Simulation, default_duration
 
         start, chunk, end = kinds
-        sim = Simulation(scene, duration, every=EVERY, progress=False)
+        sim = Simulation(scene, duration, every=EVERY, progress=False, stop=list(stop))
         # the time axes while it streams: the last run's length (a change rarely moves it much)
         expected = duration or (float(self.result.t[-1]) if self.result is not None and len(self.result.t) > 1
                                 else None) or _expected_duration(scene, default_duration)
@@ -260,10 +279,13 @@ class Session:
         return result
 
     def _run(self, job) -> None:
-        scene, duration = job.request
+        from ..run import stops_from_settings
+
+        scene, run = job.request
         try:
-            self._stream(scene, duration, job, ("run-start", "run-chunk", "run-end"), {})
-        except SceneError as exc:  # e.g. a duration over the step budget: the control's message
+            self._stream(scene, run.get("duration"), job, ("run-start", "run-chunk", "run-end"), {},
+                         stop=stops_from_settings(scene, run))
+        except SceneError as exc:  # not expected (check_run refused these before): the control's message
             text = str(exc).splitlines()[0]
             self.emit({"type": "invalid", "errors": {controls.blame(text, {"duration": 1, **self.params}): text}})
 
@@ -283,7 +305,39 @@ class Session:
                    "unit": info["unit"], "value": value, "kind": info["kind"], "drive": info["drive"]})
 
     def _ensemble(self, job) -> None:
-        ensemble(job.request, job, self.emit, workers=self.workers)
+        n = self.workers or os.cpu_count() or 1
+        with _ENSEMBLES_LOCK:
+            if self.closed:
+                return
+            _ENSEMBLES.setdefault(self, set()).add(n)
+        ensemble(job.request, job, self.emit, workers=n)
+
+
+#: The pages whose ensembles started worker processes, and how many each (the pool's size).
+_ENSEMBLES: dict = {}
+_ENSEMBLES_LOCK = threading.Lock()
+
+
+def stop_workers(workers: int) -> None:
+    """Shut down the warm pool of ``workers`` processes the ensemble engine keeps (its queued calls
+    cancelled; a call in flight finishes first), in the background: closing a tab must not wait."""
+    from ..sweep.executors import _pools, _pools_lock, discard_pool
+
+    with _pools_lock:
+        pool = _pools.get(workers)
+    if pool is not None:
+        threading.Thread(target=discard_pool, args=(pool,), name="asperity2d-stop-workers", daemon=True).start()
+
+
+def bodies(scene) -> dict:
+    """What the stage's selection panel shows of each body (SI): every lower asperity's x, height,
+    stiffness, damping and mass, and the slider's mass, track and load."""
+    lower, slider = scene.lower, scene.slider
+    return {"lower": {"x": [float(v) for v in lower.tips()], "height": [float(v) for v in lower.heights()],
+                      "stiffness": list(lower.stiffness), "damping": list(lower.damping), "mass": list(lower.mass),
+                      "pitch": float(lower.spacing.mean_pitch), "base": float(lower.profile.base)},
+            "slider": {"mass": float(slider.mass), "track": slider.track, "normal_load": float(slider.normal_load),
+                       "count": int(slider.count)}}
 
 
 def _expected_duration(scene, default_duration) -> float:

@@ -58,9 +58,9 @@ def run(args) -> int:
         duration = _checked_duration(scene, float(settings["duration"]), "duration")
     else:
         duration = None
-    from ..run import simulate
+    from ..run import simulate, stops_from_settings
 
-    result = simulate(scene, duration)
+    result = simulate(scene, duration, stop=stops_from_settings(scene, settings))
     written = []
     if save:
         with _io.argument("--save"), _io.writing("--save", save):

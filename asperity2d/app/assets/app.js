@@ -24,6 +24,16 @@ function si(value, unit, digits) {  // the rule of asperity2d._format.si
   return text + sep + (PREFIX[e] || "") + base;
 }
 
+/* a TOML list of numbers, each written so it reads back as the same double (shortest round trip) */
+function tomlList(values) { return "[" + values.map((v) => { const t = String(v); return /[.eEn]/.test(t) ? t : t + ".0"; }).join(", ") + "]"; }
+const KEPT_COLOURS = ["#e07b00", "#8e44ad", "#2a9d8f", "#c2185b", "#6d4c41"];
+/* the units menu: automatic SI prefixes, or one fixed prefix per quantity (an exponent of 10) */
+const UNIT_CHOICES = { m: [["auto", null], ["nm", -9], ["\u00b5m", -6], ["mm", -3], ["m", 0]],
+                       N: [["auto", null], ["\u00b5N", -6], ["mN", -3], ["N", 0]],
+                       s: [["auto", null], ["ns", -9], ["\u00b5s", -6], ["ms", -3], ["s", 0]],
+                       "m/s": [["auto", null], ["mm/s", -3], ["m/s", 0]] };
+const UNITS_KEY = "asperity2d.workbench.units";
+
 function fix(v) { return v === null || v === undefined || !isFinite(v) ? "\u2013" : v.toFixed(3); }
 
 function h(tag, attrs, ...children) {
@@ -81,6 +91,7 @@ function render({ model, el }) {
     variants: { job: null, names: [], done: 0, players: {} },
     ensemble: { job: null, values: {}, stats: null, done: false, variants: [], seeds: [], unit: "N", label: "" },
     messages: [], lastError: null, exports: [], connected: true, changedAt: null,
+    bodies: null, selected: null, kept: [], difference: null, units: {}, drawer: false,
   };
   let player = null, follow = true;
   const players = {};  // compare players by variant name
@@ -89,12 +100,18 @@ function render({ model, el }) {
   el.classList.add("aw");
   const status = h("span", { class: "aw-status", text: "connecting\u2026" });
   const bar = h("div", { class: "aw-bar" }, h("div", { class: "aw-bar-fill" }));
-  const cancelRun = h("button", { class: "aw-btn", title: "stop the run being computed", onclick: () => model.send({ type: "cancel", lane: "run" }) }, "Stop");
-  const saveToml = h("button", { class: "aw-btn", title: "the scene as a TOML file: `asperity2d run scene.toml` reproduces this run", onclick: () => model.send({ type: "export", what: "toml" }) }, "Save TOML");
+  const cancelRun = h("button", { class: "aw-btn", "data-act": "stop", title: "stop the run being computed", onclick: () => model.send({ type: "cancel", lane: "run" }) }, "Stop");
+  const runBtn = h("button", { class: "aw-btn", "data-act": "run", title: "run the scene again from its start (a change runs by itself)", onclick: () => rerun() }, "\u25B6 Run");
+  const resetBtn = h("button", { class: "aw-btn", "data-act": "reset", title: "back to the model's start (the first sample)", onclick: () => { if (player) player.api.seek(player.api.t0); } }, "\u23EE Reset");
+  const stepBtn = h("button", { class: "aw-btn", "data-act": "step", title: "one sample forward", onclick: () => { if (player) player.api.step(1); } }, "Step \u25B8");
+  const keepBtn = h("button", { class: "aw-btn", "data-act": "keep", title: "keep this run: the next runs are drawn over it, in another colour", onclick: () => keepRun() }, "Keep run");
+  const drawerBtn = h("button", { class: "aw-btn aw-drawer-btn", "data-act": "drawer", title: "show or hide the controls", "aria-expanded": "false", onclick: () => toggleDrawer() }, "\u2630 Controls");
+  const unitsBox = h("details", { class: "aw-units" }, h("summary", { class: "aw-btn", title: "units of the axes and read-outs" }, "Units"));
+  const saveToml = h("button", { class: "aw-btn", "data-act": "save-toml", title: "the scene as a TOML file: `asperity2d run scene.toml` reproduces this run", onclick: () => model.send({ type: "export", what: "toml" }) }, "Save TOML");
   const copyPy = h("button", { class: "aw-btn", title: "copy the make_scene(...) call", onclick: () => copyPython() }, "Copy as Python");
-  const saveNpz = h("button", { class: "aw-btn", title: "the finished run as a .npz result (asperity2d.load)", onclick: () => model.send({ type: "export", what: "npz" }) }, "Save run .npz");
-  const header = h("div", { class: "aw-header" }, h("span", { class: "aw-brand" }, "asperity2d workbench"),
-                   status, bar, cancelRun, h("span", { class: "aw-sep" }), saveToml, copyPy, saveNpz);
+  const saveNpz = h("button", { class: "aw-btn", "data-act": "save-npz", title: "the finished run as a .npz result (asperity2d.load)", onclick: () => model.send({ type: "export", what: "npz" }) }, "Save run .npz");
+  const header = h("div", { class: "aw-header" }, drawerBtn, h("span", { class: "aw-brand" }, "asperity2d"),
+                   runBtn, cancelRun, resetBtn, stepBtn, keepBtn, bar, status, unitsBox, saveToml, copyPy, saveNpz);
   const sidebar = h("div", { class: "aw-side" });
   const formError = h("div", { class: "aw-form-error", role: "alert" });
   const tabs = h("div", { class: "aw-tabs", role: "tablist" });
@@ -108,8 +125,16 @@ function render({ model, el }) {
     main.append(panes[id]);
   }
   const playerHost = h("div", { class: "aw-player" });
-  panes.run.append(playerHost, h("details", { class: "aw-py" }, h("summary", {}, "make_scene call"), note));
-  el.append(header, h("div", { class: "aw-body" }, h("div", { class: "aw-side-wrap" }, formError, sidebar), main));
+  const inspector = h("div", { class: "aw-inspector", "data-panel": "selection" },
+                      h("span", { class: "aw-help" }, "Click a lower asperity or the slider to select it; drag a lower asperity along the surface to move it."));
+  const keptBox = h("div", { class: "aw-kept", hidden: true });
+  panes.run.append(inspector, keptBox, playerHost, h("details", { class: "aw-py" }, h("summary", {}, "make_scene call"), note));
+  const sideWrap = h("div", { class: "aw-side-wrap" }, formError, sidebar);
+  el.append(header, h("div", { class: "aw-body" }, sideWrap, main));
+  function toggleDrawer(open) {
+    S.drawer = open === undefined ? !S.drawer : open;
+    el.classList.toggle("aw-drawer-open", S.drawer); drawerBtn.setAttribute("aria-expanded", String(S.drawer));
+  }
   function showTab(id) {
     for (const b of tabs.children) b.classList.toggle("aw-active", b.dataset.tab === id);
     for (const [k, p] of Object.entries(panes)) p.hidden = k !== id;
@@ -154,8 +179,9 @@ function render({ model, el }) {
   function change(name, text) {
     if (text.trim()) S.values[name] = text; else delete S.values[name];
     S.changedAt = performance.now();
-    model.send({ type: "set", values: S.values });
+    model.send({ type: "set", values: S.values, changed: name });
   }
+  function rerun() { S.changedAt = performance.now(); model.send({ type: "set", values: S.values }); }
   function setValues(values) {
     S.values = { ...values };
     for (const [name, input] of Object.entries(inputs)) input.value = S.values[name] || "";
@@ -163,7 +189,17 @@ function render({ model, el }) {
   function showErrors(errors) {
     S.errors = errors || {};
     for (const [name, e] of Object.entries(errorEls)) { e.textContent = S.errors[name] || ""; inputs[name].classList.toggle("aw-bad", !!S.errors[name]); }
-    formError.textContent = S.errors[""] || "";
+    const other = Object.keys(S.errors).filter((k) => k && !errorEls[k]);  // a stage edit (lower_positions)
+    formError.textContent = [S.errors[""] || ""].concat(other.map((k) => S.errors[k])).filter(Boolean).join("; ");
+    for (const e of inspector.querySelectorAll("[data-edit-error]")) e.textContent = "";
+    for (const [k, v] of Object.entries(S.errors)) {
+      const e = inspector.querySelector(`[data-edit-error="${CSS.escape(k)}"]`);
+      if (e) e.textContent = v;
+      const f = inspector.querySelector(`[data-field="${CSS.escape(k)}"]`);
+      if (f) f.classList.add("aw-bad");
+    }
+    if (S.errors.lower_positions || Object.keys(S.errors).length) { if (player && player.clearPreview) player.clearPreview(); }
+    if (Object.keys(S.errors).some((k) => k && errorEls[k])) toggleDrawer(true);  // at 375 px the marked control must show
   }
   async function copyPython() {
     try { await navigator.clipboard.writeText(S.python); flash("make_scene call copied"); }
@@ -188,6 +224,8 @@ function render({ model, el }) {
     bar.firstChild.style.width = `${Math.round(100 * (r.finished ? 1 : duration))}%`;
     cancelRun.disabled = !r.running;
     saveNpz.disabled = !r.finished;
+    keepBtn.disabled = !r.finished;
+    resetBtn.disabled = stepBtn.disabled = !player;
   }
   function newPlayer(host, payload, options) {
     return window.AsperityPlayer.create(host, payload, options);
@@ -198,9 +236,14 @@ function render({ model, el }) {
       playerHost.replaceChildren();
       const host = h("div", { class: "ap" });
       playerHost.append(host);
-      player = newPlayer(host, m.player, { keys: true, duration: m.player.duration });
+      player = newPlayer(host, m.player, { keys: true, duration: m.player.duration, edit: true, runLabel: "this run" });
       follow = true;
       player.onCursor(() => { follow = false; });
+      player.setOverlays(S.kept);
+      if (S.difference !== null) player.setDifference(S.difference);
+      player.onSelect((sel) => select(sel));
+      player.onEdit((edit) => moveLower(edit.index, edit.dx));
+      if (S.selected && player.api.select) player.api.select(S.selected);
       Object.assign(S.run, { job: m.job, running: true, chunks: 0, samples: 0, t: 0, started: performance.now(),
                               firstChunkMs: null, endMs: null, finished: false, summary: null, chunkLog: [],
                               duration: m.player.duration });
@@ -222,15 +265,133 @@ function render({ model, el }) {
     setStatus();
   }
 
+  // ---- the selection: a body's own panel, its values written into the scene's fields ----------
+  const LOWER_FIELDS = [["stiffness", "stiffness", "N/m"], ["damping", "damping", "N s/m"], ["mass", "mass", "kg"]];
+  function perAsperity(field, j, text) {  // one asperity's value changed: the whole per-asperity list, as a parameter
+    const list = S.bodies.lower[field].slice();
+    const v = Number(text.trim());
+    if (!text.trim() || !isFinite(v)) { showErrors({ [field]: `\`${field}\` of asperity ${j + 1} must be a finite number, got ${JSON.stringify(text.slice(0, 40))}` }); S.valid = false; setStatus(); return; }
+    list[j] = v;
+    if (field === "damping") delete S.values.damping_ratio;  // per-track dampers replace the ratio
+    setControl(field, tomlList(list));
+  }
+  function setControl(name, text) { if (inputs[name]) inputs[name].value = text; change(name, text); }
+  function moveLower(j, dx) {
+    if (!S.bodies) return;
+    const xs = S.bodies.lower.x.slice();
+    xs[j] = xs[j] + dx;
+    S.selected = { kind: "lower", index: j };
+    setControl("lower_positions", tomlList(xs));
+  }
+  function select(sel) { S.selected = sel; showSelection(); }
+  function showSelection() {
+    const sel = S.selected, B = S.bodies;
+    if (!sel || !B) return;
+    const rows = [];
+    const field = (name, value, unit, onset, readOnly) => {
+      const input = h("input", { type: "text", "data-field": name, "aria-label": name, value: String(value), spellcheck: "false", readonly: !!readOnly });
+      if (!readOnly) {
+        input.addEventListener("change", () => onset(input.value));
+        input.addEventListener("keydown", (e) => { if (e.key === "Enter") input.blur(); });
+      }
+      rows.push(h("label", { class: "aw-control" }, h("span", { class: "aw-name" }, name), input, h("span", { class: "aw-unit" }, unit)),
+                h("div", { class: "aw-error", "data-edit-error": name }));
+    };
+    if (sel.kind === "lower") {
+      const j = sel.index, L = B.lower;
+      if (j >= L.x.length) return;
+      field("position", L.x[j], "m", (t) => { const v = Number(t); if (isFinite(v) && t.trim()) moveLower(j, v - L.x[j]); else showErrors({ lower_positions: `the position of asperity ${j + 1} must be a finite number of m, got ${JSON.stringify(t.slice(0, 40))}` }); });
+      field("height", L.height[j], "m", null, true);
+      for (const [name, key, unit] of LOWER_FIELDS) field(key, L[key][j], unit, (t) => perAsperity(key, j, t));
+      inspector.replaceChildren(h("div", { class: "aw-inspector-title" }, `lower asperity ${j + 1} of ${L.x.length}`,
+        h("button", { class: "aw-btn", "data-act": "unmove", title: "every lower asperity back on its spacing", onclick: () => setControl("lower_positions", "") }, "undo moves")), ...rows,
+        h("div", { class: "aw-help" }, "Edits go into the scene's per-asperity fields (lists); the height follows the surface's shape."));
+    } else {
+      field("slider_mass", B.slider.mass, "kg", (t) => setControl("slider_mass", t));
+      field("normal_load", B.slider.normal_load, "N", (t) => setControl("normal_load", t));
+      field("track", B.slider.track, "", (t) => setControl("track", t));
+      inspector.replaceChildren(h("div", { class: "aw-inspector-title" }, `slider (${B.slider.count} tips)`), ...rows,
+        h("div", { class: "aw-help" }, "The slider starts left of the surface (fixed track) or over its first valley (free)."));
+    }
+    if (player && player.api.select) player.api.select(sel);
+    showErrors(S.errors);
+  }
+
+  // ---- kept runs: drawn over the next ones, a difference channel, CSV of all ---------------------
+  function describeChanges(from, to) {  // the parameters where two runs' texts differ
+    const names = [...new Set([...Object.keys(from), ...Object.keys(to)])].sort();
+    const out = names.filter((k) => (from[k] || "") !== (to[k] || "")).map((k) => `${k} ${from[k] === undefined ? "(default)" : from[k].length > 24 ? "(edited)" : from[k]}`);
+    return out.length ? out.join(", ") : "same parameters";
+  }
+  function keepRun() {
+    if (!player || !S.run.finished) return;
+    const snap = player.snapshot(), k = S.kept.length;
+    S.kept.push({ label: `kept ${k + 1}`, colour: KEPT_COLOURS[k % KEPT_COLOURS.length], T: snap.T, S: snap.S,
+                  values: { ...S.values }, samples: snap.samples });
+    player.setOverlays(S.kept);
+    showKept(); flash(`run kept as "kept ${k + 1}": the next runs are drawn over it`);
+  }
+  function showKept() {
+    keptBox.hidden = !S.kept.length;
+    const meterSel = h("select", { "aria-label": "meter to export", "data-act": "csv-meter" }, [0, 1, 2, 3].map((k) => h("option", { value: String(k), text: `meter ${k + 1}` })));
+    keptBox.replaceChildren(h("div", { class: "aw-kept-head" }, h("b", {}, "kept runs"), " (drawn under this run, in their colours)",
+      h("span", { class: "aw-sep" }),
+      h("label", {}, h("input", { type: "radio", name: "aw-diff", checked: S.difference === null, onchange: () => setDifference(null) }), " runs"),
+      meterSel,
+      h("button", { class: "aw-btn", "data-act": "csv-all", title: "this meter's samples of this run and of every kept run, one CSV", onclick: () => {
+        if (!player) return;
+        const k = parseInt(meterSel.value, 10), text = player.api.exportMeter(k, "csv-all");
+        S.exports.push({ what: "csv-all", filename: `meter-${k + 1}-runs.csv`, text, size: text.length });
+        download(`meter-${k + 1}-runs.csv`, new Blob([text], { type: "text/csv" }));
+      } }, "CSV of all runs"),
+      h("button", { class: "aw-btn", "data-act": "forget", onclick: () => { S.kept = []; setDifference(null); if (player) player.setOverlays([]); showKept(); } }, "forget all")),
+      ...S.kept.map((r, k) => h("div", { class: "aw-kept-row", "data-kept": String(k) },
+        h("span", { class: "aw-swatch", style: `background:${r.colour}` }), h("b", {}, r.label), `: ${describeChanges(r.values, S.values)} \u2014 ${r.samples} samples `,
+        h("label", { title: "the meters show this run minus the kept one" }, h("input", { type: "radio", name: "aw-diff", "data-diff": String(k), checked: S.difference === k, onchange: () => setDifference(k) }), " this \u2212 kept"))));
+  }
+  function setDifference(k) { S.difference = k; if (player) player.setDifference(k); }
+
+  // ---- units menu ------------------------------------------------------------------------------
+  function loadUnits() { try { return JSON.parse(localStorage.getItem(UNITS_KEY) || "{}") || {}; } catch (e) { return {}; } }
+  function applyUnits(units) {
+    S.units = units;
+    try { localStorage.setItem(UNITS_KEY, JSON.stringify(units)); } catch (e) { /* no storage: this page only */ }
+    if (window.AsperityPlayer && window.AsperityPlayer.setUnits) window.AsperityPlayer.setUnits(units);
+  }
+  {
+    const saved = loadUnits();
+    const box = h("div", { class: "aw-units-menu" });
+    for (const [unit, choices] of Object.entries(UNIT_CHOICES)) {
+      const sel = h("select", { "aria-label": `unit of ${unit}`, "data-unit": unit }, choices.map(([label, e]) => h("option", { value: e === null ? "" : String(e), text: label })));
+      sel.value = saved[unit] === undefined || saved[unit] === null ? "" : String(saved[unit]);
+      sel.addEventListener("change", () => { const u = { ...S.units }; if (sel.value === "") delete u[unit]; else u[unit] = parseInt(sel.value, 10); applyUnits(u); });
+      box.append(h("label", {}, h("span", {}, { m: "length", N: "force", s: "time", "m/s": "speed" }[unit]), sel));
+    }
+    unitsBox.append(box);
+    applyUnits(saved);
+  }
+
   // ---- measures ----------------------------------------------------------------------------
-  const measureRows = {};
+  const measureRows = {}, measuredWith = {};
+  function sortedValues() { return Object.keys(S.values).sort().map((k) => [k, S.values[k]]); }
+  function markStale() {  // a measured value belongs to the scene it was measured on
+    const now = JSON.stringify(sortedValues());
+    for (const [name, M] of Object.entries(S.measures)) {
+      if (M.running || M.value === null || M.value === undefined) continue;
+      M.stale = measuredWith[name] !== now;
+      const row = measureRows[name];
+      row.value.classList.toggle("aw-stale", M.stale);
+      row.value.textContent = si(M.value, M.unit, 4) + (M.stale ? " (an earlier scene: measure again)" : "");
+      row.value.title = M.stale ? "measured on the scene before the last change" : "";
+    }
+  }
   function buildMeasures(list) {
     S.measureList = list;
     panes.measure.replaceChildren(h("p", { class: "aw-help" }, "Each measure runs on the scene as the controls set it, under the drive it needs, in its own process; Cancel stops it at once."));
     const table = h("table", { class: "aw-table aw-measures" }, h("tr", {}, h("th", {}, "measure"), h("th", {}, "drive"), h("th", {}, "value"), h("th", {}, "")));
     for (const m of list) {
       const value = h("span", { class: "aw-value", "data-measure": m.name, text: "\u2013" });
-      const go = h("button", { class: "aw-btn", "data-measure": m.name, onclick: () => model.send({ type: "measure", name: m.name }) }, "Measure");
+      const go = h("button", { class: "aw-btn", "data-measure": m.name, onclick: () => { measuredWith[m.name] = JSON.stringify(sortedValues()); model.send({ type: "measure", name: m.name }); } }, "Measure");
       const stop = h("button", { class: "aw-btn", hidden: true, onclick: () => model.send({ type: "cancel", lane: "measure" }) }, "Cancel");
       const prog = h("div", { class: "aw-bar aw-small", hidden: true }, h("div", { class: "aw-bar-fill" }));
       measureRows[m.name] = { value, go, stop, prog };
@@ -250,8 +411,9 @@ function render({ model, el }) {
       if (S.measures[m.name]) S.measures[m.name].elapsed = m.elapsed;
       row.value.textContent = `measuring\u2026 ${m.elapsed.toFixed(1)} s`;
     } else if (m.type === "measure-result") {
-      S.measures[m.name] = { running: false, value: m.value, unit: m.unit, label: m.label };
+      S.measures[m.name] = { running: false, value: m.value, unit: m.unit, label: m.label, stale: false };
       row.value.textContent = si(m.value, m.unit, 4);
+      markStale();
       row.stop.hidden = true; row.prog.hidden = true;
     }
   }
@@ -326,7 +488,7 @@ function render({ model, el }) {
       ens.stats.replaceChildren(h("div", {}, `${E.label} \u2014 ${m.seeds_done} of ${E.seeds.length} seeds done`),
         ...Object.entries(m.summary).map(([v, s]) => h("div", {}, `${v}: mean ${si(s.mean, E.unit, 4)}, 95 % CI [${si(s.ci_low, E.unit, 3)}, ${si(s.ci_high, E.unit, 3)}]`)),
         ...m.versus.map((c) => h("div", { class: "aw-verdict", "data-verdict": c.verdict },
-          `${c.variant} / ${c.reference}: ratio \u00d7${fix(c.ratio)}, 95 % interval ${c.ratio_ci[0] === null ? "not yet (too few seeds)" : `[${fix(c.ratio_ci[0])}, ${fix(c.ratio_ci[1])}]`}, Wilcoxon p = ${c.p_wilcoxon === null ? "\u2013" : c.p_wilcoxon.toPrecision(2)}, ${c.n} seeds`,
+          `${c.variant} / ${c.reference}: ratio \u00d7${fix(c.ratio)}, 95 % interval ${c.ratio_ci[0] === null ? "not yet (too few seeds)" : `[${fix(c.ratio_ci[0])}, ${fix(c.ratio_ci[1])}]`}, Wilcoxon p = ${c.p_text}, ${c.n} seeds`,
           h("br"), c.line)));
     } else if (m.type === "ensemble-end") {
       E.done = true; ens.progress.classList.remove("aw-busy"); ens.progress.firstChild.style.width = "100%";
@@ -346,11 +508,14 @@ function render({ model, el }) {
       case "values": setValues(m.values); break;
       case "invalid": S.valid = false; showErrors(m.errors); break;
       case "valid":
-        S.valid = true; S.python = m.python; note.textContent = m.python; showErrors({});
+        S.valid = true; S.python = m.python; note.textContent = m.python;
         if (m.values) {  // the scene now running (a change from elsewhere shows in the controls too)
           S.values = { ...m.values };
           for (const [name, input] of Object.entries(inputs)) if (input !== document.activeElement) input.value = S.values[name] || "";
         }
+        if (m.bodies) S.bodies = m.bodies;
+        for (const f of inspector.querySelectorAll(".aw-bad")) f.classList.remove("aw-bad");
+        showErrors({}); showSelection(); markStale(); if (S.kept.length) showKept();
         break;
       case "export": {
         S.exports.push({ what: m.what, filename: m.filename, text: m.text, size: m.text ? m.text.length : m.base64.length });

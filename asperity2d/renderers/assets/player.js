@@ -50,6 +50,10 @@
     const sep = unit ? " " : "";
     if (value === null || value === undefined || !isFinite(value)) return "\u2013" + sep + unit;
     if (value === 0) return "0" + sep + unit;
+    if (fixedExponent(unit) !== null) { // the units menu's choice: always this prefix
+      const f = value / Math.pow(10, fixedExponent(unit));
+      return f.toPrecision(digits).replace(/(\.\d*?[1-9])0+$|\.0+$/, "$1").replace(/e\+?/, "e") + sep + PREFIX[fixedExponent(unit)] + unit;
+    }
     let base = unit, shift = 0;
     if (unit === "kg") { base = "g"; shift = 3; }
     const scaled = value * Math.pow(10, shift);
@@ -80,7 +84,11 @@
     }
     return out;
   }
+  // fixed prefixes per unit (the units menu: {"m": -6, "N": -3, "s": -6, "m/s": 0}); absent: automatic
+  const UNITS = {};
+  function fixedExponent(unit) { const e = UNITS[unit]; return e === undefined || e === null ? null : e; }
   function prefixed(scale, unit) {
+    if (fixedExponent(unit) !== null) return [Math.pow(10, fixedExponent(unit)), PREFIX[fixedExponent(unit)] + unit];
     let base = unit, shift = 0;
     if (unit === "kg") { base = "g"; shift = 3; }
     if (unit === "J" || unit === "m/s" || unit === "N/m") { base = unit; }
@@ -235,7 +243,8 @@
         if (e.shape.length === 2) {
           const rows = e.shape[0];
           const split = []; for (let j = 0; j < rows; j++) split.push(v.subarray(j * k, (j + 1) * k));
-          if (!S[name]) S[name] = split.map((r) => new r.constructor(N).fill(r.constructor === Int8Array ? 0 : NaN));
+          // earlier chunks without it: lower_dx is sent only once some peak has moved in x, so it was 0 (not unknown)
+          if (!S[name]) S[name] = split.map((r) => new r.constructor(N).fill(r.constructor === Int8Array || name === "lower_dx" ? 0 : NaN));
           S[name] = S[name].map((r, j) => concat(r, split[j]));
         } else {
           if (!S[name]) S[name] = new v.constructor(N).fill(v.constructor === Int8Array ? 0 : NaN);
@@ -362,7 +371,7 @@
       meters: $(".ap-meters"), events: $(".ap-events"), eventsCount: $(".ap-events-count"), legend: $(".ap-legend"),
       tip: $(".ap-tip"), foot: $(".ap-foot"), ruler: $('[data-act="ruler"]'),
     };
-    const state = { index: 0, playing: false, speed: 1, zoom: 1, panX: 0, panY: 0, view: null,
+    const state = { selected: null, preview: null, index: 0, playing: false, speed: 1, zoom: 1, panX: 0, panY: 0, view: null,
                     camera: D.kind === "asperity" ? G.camera : "whole",
                     exaggeration: D.kind === "asperity" ? G.exaggeration : 1, arrows: true, ruler: false,
                     measure: null };
@@ -558,19 +567,27 @@
         line.forEach((p, k) => { const q = toPx(cam, p[0], p[1]); if (k) ctx.lineTo(q[0], q[1]); else ctx.moveTo(q[0], q[1]); });
         ctx.stroke();
       }
-      const lower = [];
+      const lower = [], lowerBox = [];
       const n = G.n_lower;
       for (let j = 0; j < n; j++) {
         const dx = S.lower_dx ? S.lower_dx[j][i] : 0;
         const dy = S.lower_dy[j][i];
-        const cx = G.lower_x[j] + dx;
+        const cx = G.lower_x[j] + dx + (state.preview && state.preview.index === j ? state.preview.dx : 0);
         const touching = !!S.lower_contact[j][i];
         lower.push({ x: cx, y: dy + G.summits[j], dy: dy, contact: touching });
         if (cx < viewLo - G.base || cx > viewHi + G.base) continue;
         const footPx = toPx(cam, cx, dy + G.levels[j]);
         ctx.strokeStyle = C.track; ctx.lineWidth = 1;
         zigzag(ctx, footPx[0], g, footPx[0], footPx[1], 4, Math.max(2, Math.min(0.12 * G.base * cam.scale * cam.zoom, 5)));
-        poly(ctx, G.lower_polys[j].map((p) => toPx(cam, cx + p[0], dy + p[1])), touching ? C.touching : C.lower, C.outline);
+        const outline = G.lower_polys[j].map((p) => toPx(cam, cx + p[0], dy + p[1]));
+        poly(ctx, outline, touching ? C.touching : C.lower, C.outline);
+        lowerBox[j] = [Math.min(...outline.map((q) => q[0])), Math.min(...outline.map((q) => q[1])),
+                       Math.max(...outline.map((q) => q[0])), Math.max(...outline.map((q) => q[1]))];
+        if (state.selected && state.selected.kind === "lower" && state.selected.index === j) {
+          ctx.save(); ctx.strokeStyle = C.ruler; ctx.lineWidth = 3; ctx.setLineDash([5, 3]);
+          ctx.beginPath(); outline.forEach((q, k) => (k ? ctx.lineTo(q[0], q[1]) : ctx.moveTo(q[0], q[1]))); ctx.closePath(); ctx.stroke();
+          ctx.restore();
+        }
       }
       for (let j = 0; j < G.upper_x.length; j++)
         poly(ctx, G.upper_polys[j].map((p) => toPx(cam, x + G.upper_x[j] + p[0], y + p[1])),
@@ -579,7 +596,12 @@
       ctx.fillStyle = slipping ? C.sliderSlip : C.sliderStick;
       ctx.fillRect(b0[0], b0[1] - bar, b1[0] - b0[0], bar);
       ctx.strokeStyle = C.outline; ctx.lineWidth = 1; ctx.strokeRect(b0[0], b0[1] - bar, b1[0] - b0[0], bar);
-      drawn = { slider_bar: [b0[0], b0[1] - bar, b1[0], b0[1]], lower_px: [] };
+      drawn = { slider_bar: [b0[0], b0[1] - bar, b1[0], b0[1]], lower_px: [], lower_box: lowerBox,
+                slider_box: [b0[0], b0[1] - bar, b1[0], b0[1]] };
+      if (state.selected && state.selected.kind === "slider") {
+        ctx.strokeStyle = C.ruler; ctx.lineWidth = 3; ctx.setLineDash([5, 3]);
+        ctx.strokeRect(b0[0] - 2, b0[1] - bar - 2, b1[0] - b0[0] + 4, bar + 4); ctx.setLineDash([]);
+      }
       if (G.has_drive && isFinite(S.drive_x[i])) {
         const end = toPx(cam, S.drive_x[i] + G.front + G.pitch, 0)[0], sy = b0[1] - 0.5 * bar;
         ctx.strokeStyle = C.spring; ctx.lineWidth = 2;
@@ -621,9 +643,14 @@
       ctx.fillText(si(len, "m", 1) + vert, 16 + len * scalePx, H - 11);
       if (state.arrows && forceScale > 0) {
         const k = G.arrow_px / forceScale, f = niceLength(30 / k);
-        arrow(ctx, W - 10 - f * k, H - 11, W - 10, H - 11, C.arrow, 2);
+        const label = "contact force on the slider " + si(f, "N", 1);
+        // a narrow stage (a notebook cell): the force key goes a row up rather than over the scale bar
+        const scaleEnd = 16 + len * scalePx + ctx.measureText(si(len, "m", 1) + vert).width + 12;
+        const row = W - 16 - f * k - ctx.measureText(label).width < scaleEnd ? H - 33 : H - 11;
+        if (row !== H - 11) { ctx.fillStyle = "rgba(255,255,255,0.85)"; ctx.fillRect(0, H - 44, W, 22); }
+        arrow(ctx, W - 10 - f * k, row, W - 10, row, C.arrow, 2);
         ctx.fillStyle = C.arrow; ctx.textAlign = "right";
-        ctx.fillText("contact force on the slider " + si(f, "N", 1), W - 16 - f * k, H - 11);
+        ctx.fillText(label, W - 16 - f * k, row);
         ctx.textAlign = "left";
       }
       return { slider: { x: x, y: y }, drive_end: G.has_drive ? S.drive_x[i] : null, lower: lower,
@@ -738,11 +765,49 @@
       m.spec = spec; m.select.value = spec.id; m.zoomY = null; m.cache = null; m.autoLimits = null;
       m.canvas.setAttribute("aria-label", spec.title); m.select.title = spec.note || "channel";
     }
-    function meterTraces(m) { return m.spec.traces.map((tr) => ({ ...tr, values: traceValues(tr) })); }
+    // ---- kept runs drawn over this one (overlays) and the difference channel -----------------
+    let overlays = [], difference = null, overlayVersion = 0;
+    function rawValues(store, tr) { // a series of a kept run's store (derived channels are not kept)
+      if (tr.derived) return null;
+      const v = store[tr.series];
+      if (!v) return null;
+      return Array.isArray(v) ? (tr.row !== undefined && tr.row !== null ? v[tr.row] : null) : v;
+    }
+    function interp(Tk, Vk, t) { // Vk at t, linear between Tk's samples (NaN outside)
+      const n = Tk.length;
+      if (!n || t < Tk[0] || t > Tk[n - 1]) return NaN;
+      let lo = 0, hi = n - 1;
+      while (hi - lo > 1) { const mid = (lo + hi) >> 1; if (Tk[mid] <= t) lo = mid; else hi = mid; }
+      if (Tk[hi] === Tk[lo]) return Vk[lo];
+      const f = (t - Tk[lo]) / (Tk[hi] - Tk[lo]);
+      return Vk[lo] + f * (Vk[hi] - Vk[lo]);
+    }
+    function overlayTraces(m) {
+      if (difference !== null) return [];
+      const out = [];
+      for (const ov of overlays) for (const tr of m.spec.traces) {
+        const v = rawValues(ov.S, tr);
+        if (v) out.push({ label: ov.label + (m.spec.traces.length > 1 ? " " + tr.label : ""), colour: ov.colour, T: ov.T, values: v });
+      }
+      return out;
+    }
+    function meterTraces(m) {
+      const traces = m.spec.traces.map((tr) => ({ ...tr, values: traceValues(tr) }));
+      if (difference === null || !overlays[difference]) return traces;
+      const ov = overlays[difference];
+      return traces.map((tr) => {
+        const kept = rawValues(ov.S, tr), out = new Float64Array(N).fill(NaN);
+        if (kept) for (let i = 0; i < N; i++) out[i] = tr.values[i] - interp(ov.T, kept, T[i]);
+        return { ...tr, label: tr.label + " \u2212 " + ov.label, values: out };
+      });
+    }
     function meterLimits(m, traces) {
       if (m.zoomY) return m.zoomY;
-      if (m.spec.limits && finished) return m.spec.limits;
-      if (!m.autoLimits || m.autoN !== N) { m.autoLimits = robustLimits(traces.map((t) => t.values), m.spec.include_zero !== false); m.autoN = N; }
+      if (m.spec.limits && finished && !overlays.length) return m.spec.limits;
+      if (!m.autoLimits || m.autoN !== N || m.autoV !== overlayVersion) {
+        m.autoLimits = robustLimits(traces.map((t) => t.values).concat(overlayTraces(m).map((t) => t.values)), m.spec.include_zero !== false);
+        m.autoN = N; m.autoV = overlayVersion;
+      }
       return m.autoLimits;
     }
     function timeView() {
@@ -768,7 +833,7 @@
       const [factor, unitLabel] = prefixed(Math.max(Math.abs(lim[0]), Math.abs(lim[1])), m.spec.unit);
       const [tfactor, tunit] = prefixed(Math.max(Math.abs(view[0]), Math.abs(view[1])), "s");
       m.legend = legendLayout(ctx, m, W);
-      const p = meterPlot(W, H, m, m.legend); m.plot = p; m.limits = lim; m.unitLabel = unitLabel;
+      const p = meterPlot(W, H, m, m.legend); m.plot = p; m.limits = lim; m.unitLabel = unitLabel; m.factor = factor;
       ctx.fillStyle = "#fafafc"; ctx.fillRect(0, 0, W, H);
       ctx.fillStyle = "#fff"; ctx.fillRect(p.x0, p.y0, p.x1 - p.x0, p.y1 - p.y0);
       ctx.fillStyle = C.band;
@@ -797,6 +862,18 @@
       m.clipped = 0;
       const marks = [];
       ctx.save(); ctx.beginPath(); ctx.rect(p.x0, p.y0, p.x1 - p.x0, p.y1 - p.y0); ctx.clip();
+      for (const ov of overlayTraces(m)) { // kept runs under this one, each in its colour
+        ctx.strokeStyle = ov.colour; ctx.lineWidth = 1.4; ctx.setLineDash([]); ctx.beginPath();
+        let on = false;
+        const stride = Math.max(1, Math.floor(ov.T.length / 6000));
+        for (let i = 0; i < ov.T.length; i += stride) {
+          const v = ov.values[i];
+          if (!isFinite(v) || ov.T[i] < view[0] - (view[1] - view[0]) || ov.T[i] > view[1] + (view[1] - view[0])) { on = false; continue; }
+          const x = meterX(p, ov.T[i], view), y = Math.max(p.y0 - 1e4, Math.min(p.y1 + 1e4, meterY(p, lim, v)));
+          if (on) ctx.lineTo(x, y); else { ctx.moveTo(x, y); on = true; }
+        }
+        ctx.stroke();
+      }
       for (const tr of traces) {
         ctx.strokeStyle = tr.colour; ctx.lineWidth = 1.2; ctx.setLineDash(tr.dashed ? [4, 4] : []);
         ctx.beginPath();
@@ -837,10 +914,11 @@
       ctx.fillStyle = "#000"; ctx.font = "bold 12px system-ui, sans-serif"; ctx.textAlign = "left"; ctx.textBaseline = "top";
       const title = m.spec.title + " (" + unitLabel + ")";
       ctx.fillText(title, 6, 5);
-      if (m.clipped) {
-        const w = ctx.measureText(title).width;
-        ctx.font = "11px system-ui, sans-serif"; ctx.fillStyle = "#a01010";
-        ctx.fillText("\u25B2\u25BC " + m.clipped + " off the axis", 14 + w, 6);
+      if (m.clipped) { // inside the plot's top-left corner: the title row keeps the read-out
+        const note = "\u25B2\u25BC " + m.clipped + " off the axis";
+        ctx.font = "11px system-ui, sans-serif";
+        ctx.fillStyle = "rgba(255,255,255,0.85)"; ctx.fillRect(p.x0 + 1, p.y0 + 1, ctx.measureText(note).width + 8, 14);
+        ctx.fillStyle = "#a01010"; ctx.fillText(note, p.x0 + 5, p.y0 + 2);
       }
       m.traces = traces;
     }
@@ -872,7 +950,7 @@
             ctx.closePath(); ctx.fill(); ctx.stroke();
           } else { ctx.beginPath(); ctx.arc(x, meterY(p, lim, v), 3.5, 0, 2 * Math.PI); ctx.fill(); ctx.stroke(); }
         }
-        const text = (many ? tr.label + " " : "") + (off > 0 ? "\u25B2 " : off < 0 ? "\u25BC " : "") + si(v, m.spec.unit) +
+        const text = (many ? tr.label + " " : "") + (off > 0 ? "\u25B2 " : off < 0 ? "\u25BC " : "") + axisText(m, v) +
           (off && !many ? " (off the axis)" : "");
         ctx.fillStyle = tr.colour;
         if (many) {
@@ -900,10 +978,15 @@
       }
       return Math.round(x);
     }
+    function axisText(m, v) { // a read-out in its axis' unit (the axis says km/s: so does the read-out)
+      if (!isFinite(v) || !m.factor) return si(v, m.spec.unit);
+      const x = v / m.factor, digits = Math.abs(x) >= 1000 ? 4 : 3;
+      return (x === 0 ? "0" : x.toPrecision(digits).replace(/(\.\d*?[1-9])0+$|\.0+$/, "$1")) + " " + m.unitLabel;
+    }
     function drawMeter(m, hoverT) {
       const [ctx, W, H] = fitCanvas(m.canvas);
       const dpr = window.devicePixelRatio || 1;
-      const key = W + "x" + H + "@" + dpr + ":" + timeView().join(",") + ":" + N + ":" + (m.zoomY || "") + ":" + m.spec.id;
+      const key = W + "x" + H + "@" + dpr + ":" + timeView().join(",") + ":" + N + ":" + (m.zoomY || "") + ":" + m.spec.id + ":" + overlayVersion;
       if (!m.cache || m.cacheKey !== key) {
         const off = document.createElement("canvas");
         off.width = Math.round(W * dpr); off.height = Math.round(H * dpr);
@@ -931,6 +1014,16 @@
         for (const tr of traces) row.push(csvNumber(tr.values[i]));
         lines.push(row.join(","));
       }
+      return lines.join("\n") + "\n";
+    }
+    function meterCsvAll(m) { // this run and every kept run: one row per sample, the run named in the first column
+      const traces = m.spec.traces.map((tr) => ({ ...tr, values: traceValues(tr) }));
+      const head = ["run", "t (s)"].concat(traces.map((tr) => '"' + (traces.length > 1 || tr.label !== m.spec.title ? m.spec.title + ": " + tr.label : tr.label).replace(/"/g, "'") + " (" + m.spec.unit + ')"'));
+      const lines = [head.join(",")];
+      const runs = [{ label: options.runLabel || "this run", T: T, values: traces.map((tr) => tr.values) }]
+        .concat(overlays.map((ov) => ({ label: ov.label, T: ov.T, values: traces.map((tr) => rawValues(ov.S, tr)) })));
+      for (const r of runs) for (let i = 0; i < r.T.length; i++)
+        lines.push(['"' + String(r.label).replace(/"/g, "'") + '"', csvNumber(r.T[i])].concat(r.values.map((v) => (v ? csvNumber(v[i]) : ""))).join(","));
       return lines.join("\n") + "\n";
     }
     const viewListeners = [];
@@ -1101,20 +1194,56 @@
       state.zoom = z; requestRender();
     }, { passive: false });
     let drag = null;
+    const selectListeners = [], editListeners = [];
+    function emitSelect(sel) { for (const cb of selectListeners.slice()) { try { cb(sel); } catch (err) { setTimeout(() => { throw err; }); } } }
+    function emitEdit(edit) { for (const cb of editListeners.slice()) { try { cb(edit); } catch (err) { setTimeout(() => { throw err; }); } } }
+    function pick(px, py) { // the body under the pointer: a lower asperity, the slider, or null
+      const hits = drawn.lower_box || [];
+      for (let j = 0; j < hits.length; j++) {
+        const b = hits[j];
+        if (b && px >= b[0] - 3 && px <= b[2] + 3 && py >= b[1] - 3 && py <= b[3] + 3) return { kind: "lower", index: j };
+      }
+      const sb = drawn.slider_box;
+      if (sb && px >= sb[0] - 3 && px <= sb[2] + 3 && py >= sb[1] - 3 && py <= sb[3] + 3) return { kind: "slider", index: null };
+      return null;
+    }
     function scenePoint(ev) { const r = ui.scene.getBoundingClientRect(); return [ev.clientX - r.left, ev.clientY - r.top]; }
     function setMeasure(a, b) {
       const dx = b[0] - a[0], dy = b[1] - a[1];
       state.measure = { a, b, dx, dy, distance: Math.hypot(dx, dy), pitches: D.kind === "asperity" ? Math.abs(dx) / G.pitch : null };
     }
     listen(ui.scene, "pointerdown", (ev) => {
+      const hit = options.edit && D.kind === "asperity" && !state.ruler && N ? pick(...scenePoint(ev)) : null;
+      if (hit) { // select it; a lower asperity also drags along the surface
+        drag = { edit: hit, x: ev.clientX, moved: false };
+        try { ui.scene.setPointerCapture(ev.pointerId); } catch (err) { /* synthetic events */ }
+        return;
+      }
       if (state.ruler && D.kind === "asperity" && sceneState.camera) {
         const p = scenePoint(ev), w = toWorld(sceneState.camera, p[0], p[1]);
         drag = { ruler: true, a: w }; setMeasure(w, w);
       } else { drag = { x: ev.clientX, y: ev.clientY, panX: state.panX, panY: state.panY }; ui.scene.classList.add("dragging"); }
       try { ui.scene.setPointerCapture(ev.pointerId); } catch (err) { /* synthetic events */ }
     });
-    listen(ui.scene, "pointerup", () => { drag = null; ui.scene.classList.remove("dragging"); });
+    listen(ui.scene, "pointerup", (ev) => {
+      const d = drag; drag = null; ui.scene.classList.remove("dragging");
+      if (!d || !d.edit) return;
+      state.selected = d.edit; render(); emitSelect({ ...d.edit });
+      if (d.moved && d.edit.kind === "lower" && sceneState.camera) {
+        const c = sceneState.camera;
+        emitEdit({ kind: "lower", index: d.edit.index, dx: (ev.clientX - d.x) / (c.scale * c.zoom) });
+      }
+    });
     listen(ui.scene, "pointermove", (ev) => {
+      if (drag && drag.edit) {
+        if (Math.abs(ev.clientX - drag.x) > 3) drag.moved = true;
+        if (drag.moved && drag.edit.kind === "lower" && sceneState.camera) {
+          const c = sceneState.camera;
+          state.preview = { index: drag.edit.index, dx: (ev.clientX - drag.x) / (c.scale * c.zoom) };
+          requestRender();
+        }
+        return;
+      }
       if (drag && drag.ruler) { const p = scenePoint(ev); setMeasure(drag.a, toWorld(sceneState.camera, p[0], p[1])); requestRender(); return; }
       if (drag) { state.panX = drag.panX + ev.clientX - drag.x; state.panY = drag.panY + ev.clientY - drag.y; requestRender(); return; }
       if (D.kind !== "asperity" || !N || !sceneState.camera) return;
@@ -1231,8 +1360,10 @@
     listen(window, "resize", requestRender);
     const io = typeof IntersectionObserver !== "undefined" ? new IntersectionObserver(() => requestRender()) : null;
     if (io) io.observe(root);
+    const redrawAll = () => { for (const m of meters) m.cache = null; requestRender(); };
+    created.add(redrawAll);
     function destroy() {
-      destroyed = true; state.playing = false;
+      destroyed = true; state.playing = false; created.delete(redrawAll);
       if (rafId !== null) cancelAnimationFrame(rafId);
       if (ro) ro.disconnect(); if (io) io.disconnect();
       for (const c of cleanups.splice(0)) c();
@@ -1258,11 +1389,20 @@
       si: si,
       channels: () => channels.map((c) => ({ id: c.id, title: c.title, unit: c.unit, group: c.group || "run" })),
       meters: () => meters.map((m) => ({ channel: m.spec.id, title: m.spec.title, unit: m.spec.unit, limits: m.limits,
-                                         plot: m.plot, clipped: m.clipped, labels: m.spec.traces.map((tr) => tr.label) })),
+                                         plot: m.plot, clipped: m.clipped, labels: m.spec.traces.map((tr) => tr.label),
+                                         axis_unit: m.unitLabel, readouts: (m.traces || []).map((tr) => axisText(m, tr.values[state.index])) })),
       setChannel: (k, id) => { setChannel(meters[k], id); render(); return meters[k].spec.id; },
       zoomMeter: (k, ta, tb, lo, hi) => { zoomMeter(meters[k], ta, tb, lo, hi); render(); },
       resetZoom: (k) => { resetZoom(k === undefined ? null : meters[k]); render(); },
-      exportMeter: (k, kind) => (kind === "svg" ? meterSvg(meters[k]) : meterCsv(meters[k])),
+      exportMeter: (k, kind) => (kind === "svg" ? meterSvg(meters[k]) : kind === "csv-all" ? meterCsvAll(meters[k]) : meterCsv(meters[k])),
+      overlays: () => overlays.map((ov) => ({ label: ov.label, colour: ov.colour, samples: ov.T.length })),
+      difference: () => difference,
+      selected: () => (state.selected ? { ...state.selected } : null),
+      select: (sel) => { state.selected = sel; render(); },
+      pick: (px, py) => pick(px, py),
+      dragLower: (j, dxPx) => { // as a person drags lower asperity j by dxPx pixels (tests)
+        const c = sceneState.camera; if (!c) return null;
+        const dx = dxPx / (c.scale * c.zoom); emitEdit({ kind: "lower", index: j, dx: dx }); return dx; },
       exportFrame: () => frameSvg(),
       events: () => eventList().map((e) => ({ t: e.t, end: e.end, label: e.label, lands: eventTime(e) })),
       jumpToEvent: (k) => { const e = eventList()[k]; pause(); userSeek(eventTime(e)); return T[state.index]; },
@@ -1271,6 +1411,14 @@
     };
     return {
       api, append, finish, destroy,
+      /* the kept runs: [{label, colour, T, S}] (a snapshot()'s arrays), drawn on every meter under this run */
+      setOverlays(list) { overlays = (list || []).slice(); if (difference !== null && !overlays[difference]) difference = null; overlayVersion++; for (const m of meters) m.cache = null; requestRender(); },
+      /* the meters show this run minus kept run k (interpolated at this run's samples); null: the runs themselves */
+      setDifference(k) { difference = k === null || k === undefined || !overlays[k] ? null : k; overlayVersion++; for (const m of meters) { m.cache = null; m.zoomY = null; } requestRender(); },
+      snapshot() { return { T: T, S: S, samples: N }; },
+      onSelect(cb) { selectListeners.push(cb); },
+      onEdit(cb) { editListeners.push(cb); },
+      clearPreview() { state.preview = null; requestRender(); },
       onCursor(cb) { cursorListeners.push(cb); return () => { const k = cursorListeners.indexOf(cb); if (k >= 0) cursorListeners.splice(k, 1); }; },
       setCursor(t) { if (!destroyed && N) { state.playing = false; seek(t); } },
       onView(cb) { viewListeners.push(cb); return () => { const k = viewListeners.indexOf(cb); if (k >= 0) viewListeners.splice(k, 1); }; },
@@ -1279,7 +1427,15 @@
     };
   }
 
-  window.AsperityPlayer = { create: create, version: 2 };
+  /* the units menu: setUnits({"m": -6, "N": -3, "s": -6, "m/s": 0}) fixes each unit's prefix (an
+     exponent of 10); a unit left out or null is automatic. Every player of the page redraws. */
+  const created = new Set();
+  function setUnits(map) {
+    for (const k of Object.keys(UNITS)) delete UNITS[k];
+    for (const [k, v] of Object.entries(map || {})) if (v !== null && v !== undefined && PREFIX[String(v)] !== undefined) UNITS[k] = v;
+    for (const redraw of created) redraw();
+  }
+  window.AsperityPlayer = { create: create, version: 3, setUnits: setUnits, units: () => ({ ...UNITS }), _created: created };
   // the offline page: boot from the embedded JSON
   const data = document.getElementById("asperity-data"), host = document.getElementById("asperity-player");
   if (data && host) {
