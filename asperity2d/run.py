@@ -950,8 +950,12 @@ def simulate_many(scenes: Iterable[Scene], duration: float | None = None, *, dt:
     results = ENGINES[engine].run(scenes, dts, durations, record_every=record_every, iterations=iterations,
                                   passed=passed)
     out = []
-    for result in results:
-        if isinstance(result, Result) and passed[len(out)] and result.meta["status"] == "duration":
-            result.meta.update(status="time limit", message="reached the time limit before any stop condition")
-        out.append(result)
+    for scene, record, stopped in zip(scenes, results, passed):
+        if isinstance(record, Exception):
+            out.append(record)
+            continue
+        arrays, meta = record
+        if stopped and meta["status"] == "duration":
+            meta.update(status="time limit", message="reached the time limit before any stop condition")
+        out.append(Result(**arrays, scene=scene, meta=meta))
     return out

@@ -58,7 +58,7 @@ def run(args) -> int:
         duration = None
     from ..run import simulate
 
-    result = simulate(scene, duration)
+    result = simulate(scene, duration, engine=getattr(args, "engine", "pymunk"))
     written = []
     if save:
         with _io.argument("--save"), _io.writing("--save", save):
@@ -212,7 +212,8 @@ def compare(args) -> int:
             raise SceneError(f"`--measure` must be one of {', '.join(MEASURES)}, got {args.measure!r}")
         base.setdefault("drive", MEASURES[args.measure].drive)
         comparison = run_compare(args.measure, variants, range(args.seeds), base=base, progress=not args.json,
-                                 workers=args.workers, scheduler=args.scheduler)
+                                 workers=args.workers, scheduler=args.scheduler,
+                                 engine=getattr(args, "engine", "pymunk"))
     if save:
         with _io.argument("--save"), _io.writing("--save", save):
             comparison.save(save)

@@ -260,10 +260,9 @@ class Batch:
                k.PAIRS: f"a slider tip touched more than {k.PAIRS_PER_TIP} lower asperities at once"}[code]
         return SimulationError(f"scene {b} ({self.scenes[b].name}) stopped at t = {t:.4g} s: {why}")
 
-    def result(self, b: int, *, status: str, meta: dict):
-        """Scene ``b``'s record as a :class:`~asperity2d.Result` (SI; no lower-asperity samples)."""
-        from ..result import Result
-
+    def result(self, b: int, *, status: str, meta: dict) -> tuple[dict, dict]:
+        """Scene ``b``'s record: the arrays of a :class:`~asperity2d.Result` (SI; no
+        lower-asperity samples) and its meta."""
         u, scene = self.units[b], self.scenes[b]
         m = int(self.rec_at[b])
         rec = np.concatenate([self._initial[b][:, None], self.rec[b, :, :m]], axis=1)
@@ -282,7 +281,7 @@ class Batch:
                 "iterations": int(self.iterations[b]), "steps": int(self.nstep[b]), "settle_time": 0.0,
                 "units": u.to_dict(), "asperity2d_version": __version__, "numpy_version": np.__version__,
                 "record_lower": False, **meta}
-        return Result(**arrays, scene=scene, meta=meta)
+        return arrays, meta
 
 
 def _rear(batch: Batch, b: int) -> float:
@@ -311,7 +310,8 @@ def _hull(points) -> tuple[np.ndarray, np.ndarray]:
 
 
 def run(scenes, dts, durations, *, record_every: int = 10, iterations: int = 20, passed=None):
-    """Run each scene for its duration (s) from rest: a list of Result or SimulationError, in order.
+    """Run each scene for its duration (s) from rest: per scene, in order, its record
+    ``(arrays, meta)`` (:meth:`Batch.result`) or the SimulationError that stopped it.
 
     ``passed[b]``: stop scene ``b`` when its slider has passed the surface (the default stop).
     """

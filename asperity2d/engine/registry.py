@@ -9,8 +9,9 @@ default is always ``"pymunk"``. The contract:
 1. **In:** validated :class:`~asperity2d.scene.Scene` objects and the run options the run loop
    resolved (per scene its step ``dt`` (s) and duration (s), ``record_every``, ``iterations``,
    and whether the default stop -- the slider has passed the surface -- ends it).
-2. **Out:** per scene, a :class:`~asperity2d.Result` of the kind the reference makes (the
-   slider's SI columns; ``meta["engine"]`` names the engine that made it), or the
+2. **Out:** per scene, the record of a :class:`~asperity2d.Result` of the kind the reference
+   makes, ``(arrays, meta)`` (the slider's SI columns; ``meta["engine"]`` names the engine that
+   made it; :func:`asperity2d.run.simulate_many` makes the Result), or the
    :class:`~asperity2d.errors.SimulationError` that stopped that scene alone: a scene that
    diverges never stops the others of its batch.
 3. **Must check** before anything runs what the reference checks (the scales, a step longer
@@ -54,7 +55,7 @@ class EngineEntry:
     """One asperity engine (the module's contract): ``unavailable()`` says why it cannot run
     here (None: it can), ``refusal(scene, settle)`` names a scene option it does not implement
     (None: it runs the scene), ``run(scenes, dts, durations, record_every=, iterations=,
-    passed=)`` returns one Result or SimulationError per scene (None for the reference, whose
+    passed=)`` returns one record ``(arrays, meta)`` or SimulationError per scene (None for the reference, whose
     run loop is :class:`asperity2d.Run`)."""
 
     name: str

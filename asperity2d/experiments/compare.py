@@ -44,7 +44,7 @@ from ..scene import Scene
 from ..sweep.engine import is_auto, run_calls
 from ..sweep.executors import check_executor_args, make_executor
 from ..sweep.progress import Progress
-from .measures import MEASURES, Measure, find_measure, measure_label, measure_unit  # noqa: F401
+from .measures import BATCHED, MEASURES, Measure, find_measure, measure_label, measure_unit  # noqa: F401
 from .verdicts import VerdictRule, verdict_line
 from .verdicts import claim as claims_record
 
@@ -79,6 +79,8 @@ class Comparison:
         The arguments shared by every variant.
     measure : str, default "value"
         The measure's name.
+    engine : str, default "pymunk"
+        The engine that ran the scenes (:data:`asperity2d.engine.ENGINES`).
 
     Raises
     ------
@@ -114,6 +116,7 @@ class Comparison:
     variants: dict[str, dict] = field(default_factory=dict)
     base: dict = field(default_factory=dict)
     measure: str = "value"
+    engine: str = "pymunk"
 
     def __post_init__(self):
         for name, vals in self.values.items():
@@ -237,7 +240,8 @@ class Comparison:
     def to_dict(self) -> dict:
         return {"format": FORMAT, "measure": self.measure, "seeds": list(self.seeds),
                 "base": self.base, "variants": self.variants,
-                "values": {k: [float(v) for v in vals] for k, vals in self.values.items()}}
+                "values": {k: [float(v) for v in vals] for k, vals in self.values.items()},
+                "engine": self.engine}
 
     def save(self, path: str | os.PathLike) -> Path:
         """Write the comparison as strict JSON (NaN as null, ``write_json``),
@@ -262,7 +266,7 @@ class Comparison:
                       for k, vals in data["values"].items()}
             return cls(values=values, seeds=tuple(int(s) for s in data["seeds"]),
                        variants=data.get("variants", {}), base=data.get("base", {}),
-                       measure=data.get("measure", "value"))
+                       measure=data.get("measure", "value"), engine=data.get("engine", "pymunk"))
         except (ValueError, KeyError, TypeError, AttributeError) as exc:
             raise FileError("path", path, "is not a comparison file", str(exc)) from None
 
@@ -270,7 +274,7 @@ class Comparison:
 # -- running it -------------------------------------------------------------------------------------
 def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[int], *,
             base: dict | None = None, progress: bool = True, workers: int | str | None = None,
-            scheduler: str | None = None) -> Comparison:
+            scheduler: str | None = None, engine: str = "pymunk") -> Comparison:
     """Measure every variant on every seed.
 
     Parameters
@@ -294,6 +298,11 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
         small comparison, every core for a large one; always this process for a
         measure that cannot be pickled), or a Dask ``scheduler`` address (``"local"``
         starts one). The values do not depend on them.
+    engine : str, default "pymunk"
+        The engine that runs the scenes (:data:`asperity2d.engine.ENGINES`). ``"batched"``
+        (the ``[batch]`` extra) runs every scene of the comparison in one batch, in this
+        process, for the measures it implements (``"peak-stick"``, ``"mean-stick"``); the
+        comparison records the engine.
 
     Returns
     -------
@@ -327,6 +336,14 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
     All three seeds are below, yet p = 1/2**3: with 3 seeds a one-sided signed-rank test
     cannot reach p < 0.01 (7 seeds can), so the verdict is "not testable", not "holds".
     """
+    from ..engine.registry import check_engine
+
+    engine = check_engine(engine)
+    if engine != "pymunk" and not (isinstance(measure, str) and measure in BATCHED):
+        raise SceneError(f"`measure` {show(measure if isinstance(measure, str) else getattr(measure, '__name__', measure))} "
+                         f"is not available on engine={engine!r} (it runs {', '.join(map(repr, BATCHED))}); "
+                         "engine=\"pymunk\" runs it")
+    batched = BATCHED[measure] if engine != "pymunk" else None
     if isinstance(measure, str):
         if measure not in MEASURES:
             raise SceneError(f"`measure` must be one of {', '.join(MEASURES)} or a callable, got {show(measure)}")
@@ -367,6 +384,11 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
                 continue
             slots[name, j] = len(jobs)
             jobs.append((measure, scene, f"variant {name!r} with seed {seed}"))
+    if batched is not None:  # every scene in one batch, in this process
+        results = batched([scene for _, scene, _ in jobs], engine)
+        values = {name: tuple(results[slots[name, j]] for j in range(len(seeds))) for name in variants}
+        return Comparison(values=values, seeds=seeds, variants={k: dict(v or {}) for k, v in variants.items()},
+                          base=base, measure=getattr(measure, "__name__", type(measure).__name__), engine=engine)
     results: list = [None] * len(jobs)
     failed = None  # the first failing run in (variant, seed) order, whichever finished first
     # a cluster at an address is reached before the progress bar is drawn: one that cannot be
