@@ -35,6 +35,7 @@ from dataclasses import dataclass
 
 from ._inputs import check_choice, check_int, check_positive, check_tolerance
 from .errors import SceneError
+from .engine.registry import check_engine
 from .scene import ConstantForce, Scene
 from .run import MAX_STEPS, Run, default_dt, default_duration, default_stops
 
@@ -380,7 +381,8 @@ def critical_force_bracket(scene: Scene, *, start: str = "rest", rel_tol: float 
 
 
 def critical_force(scene: Scene, *, start: str = "rest", rel_tol: float = REL_TOL, max_runs: int = 80,
-                   dt: float | None = None, iterations: int = 20, max_steps: int | None = None) -> float:
+                   dt: float | None = None, iterations: int = 20, max_steps: int | None = None,
+                   engine: str = "pymunk") -> float:
     """The smallest constant drive force (N) with which the slider passes the whole lower surface.
 
     ``start="rest"`` (default): the slider at rest on the surface, every tip
@@ -412,6 +414,10 @@ def critical_force(scene: Scene, *, start: str = "rest", rel_tol: float = REL_TO
         pymunk solver iterations.
     max_steps : int, optional
         Step budget of each run.
+    engine : str, default "pymunk"
+        The engine (:data:`asperity2d.engine.ENGINES`). The search settles the slider against the
+        flanks (from rest) and forks settled runs, which only ``"pymunk"`` does: another engine is
+        refused in one line.
 
     Returns
     -------
@@ -445,6 +451,9 @@ def critical_force(scene: Scene, *, start: str = "rest", rel_tol: float = REL_TO
     >>> f"{a.critical_force(scene, start='entry') * 1e3:.3g} mN"
     '3.83 mN'
     """
+    if check_engine(engine) != "pymunk":
+        raise SceneError(f"critical_force is not available on engine={engine!r} (its runs settle against the "
+                         "flanks and fork a settled run); engine=\"pymunk\" runs it")
     bracket = critical_force_bracket(scene, start=start, rel_tol=rel_tol, max_runs=max_runs, dt=dt,
                                      iterations=iterations, max_steps=max_steps)
     if bracket.band is not None:

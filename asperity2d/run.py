@@ -22,6 +22,7 @@ from ._format import si
 from ._inputs import check_finite, check_int, check_positive
 from ._version import __version__
 from .engine import PYMUNK_VERSION, Engine
+from .engine.registry import DEFAULT as DEFAULT_ENGINE, ENGINES, check_engine, refuse
 from .engine.energy import ContactWork, EnergyMeter
 from .engine.recorder import MAX_OVERLAP, Recorder
 from .engine.run_checks import off_surface_message, surface_end
@@ -426,6 +427,26 @@ def check_budget(scene: Scene, dt: float, max_steps: int, *, done: int = 0, sett
         f"dt = {dt:.3g} s (set by {_fastest_source(scene)}){size}; {fix}, or raise `max_steps`")
 
 
+def resolve_dt(scene: Scene, dt: float | None, unsafe_dt: bool) -> float:
+    """The step (s) a run of ``scene`` uses: ``dt``, checked (a ``SceneError`` for one coarser than
+    T/20 or than half the drive damper's time, unless ``unsafe_dt``), or the default."""
+    period = scene.shortest_period()
+    if dt is None:
+        return default_dt(scene)
+    dt = check_positive("dt", dt)
+    if dt > COARSEST_DT_FRACTION * period and not unsafe_dt:
+        raise SceneError(
+            f"`dt` = {dt:.3g} s is coarser than T/20 = {COARSEST_DT_FRACTION * period:.3g} s "
+            f"(T = {period:.3g} s, the shortest natural period): coarser steps do not converge "
+            "and T/6 blows up; use dt <= T/20 (default T/50) or pass unsafe_dt=True")
+    if dt > COARSEST_DAMPER_DT_FRACTION * _damper_time(scene) and not unsafe_dt:
+        raise SceneError(
+            f"`dt` = {dt:.3g} s is coarser than half the drive damper's time M/c = "
+            f"{_damper_time(scene):.3g} s (`slider_mass` / `drive_damping`): it is applied "
+            "explicitly and would be unstable; use a smaller dt or pass unsafe_dt=True")
+    return dt
+
+
 class Run:
     """One asperity scene being simulated: settle, advance, change the drive, record.
 
@@ -483,21 +504,7 @@ class Run:
                  engaged: bool = False, record_lower: bool = True, record_to=None):
         if not isinstance(scene, Scene):
             raise SceneError(f"`scene` must be a Scene (see make_scene), got {type(scene).__name__}")
-        period = scene.shortest_period()
-        if dt is None:
-            dt = default_dt(scene)
-        else:
-            dt = check_positive("dt", dt)
-            if dt > COARSEST_DT_FRACTION * period and not unsafe_dt:
-                raise SceneError(
-                    f"`dt` = {dt:.3g} s is coarser than T/20 = {COARSEST_DT_FRACTION * period:.3g} s "
-                    f"(T = {period:.3g} s, the shortest natural period): coarser steps do not converge "
-                    "and T/6 blows up; use dt <= T/20 (default T/50) or pass unsafe_dt=True")
-            if dt > COARSEST_DAMPER_DT_FRACTION * _damper_time(scene) and not unsafe_dt:
-                raise SceneError(
-                    f"`dt` = {dt:.3g} s is coarser than half the drive damper's time M/c = "
-                    f"{_damper_time(scene):.3g} s (`slider_mass` / `drive_damping`): it is applied "
-                    "explicitly and would be unstable; use a smaller dt or pass unsafe_dt=True")
+        dt = resolve_dt(scene, dt, unsafe_dt)
         self.record_every = check_int("record_every", record_every, minimum=1)
         self.iterations = check_int("iterations", iterations, minimum=1, maximum=10_000)
         self.max_steps = check_int("max_steps", max_steps, minimum=1, maximum=None)
@@ -734,7 +741,7 @@ class Run:
             "steps": e.step_count, "max_overlap_fraction": self.max_overlap,
             "max_track_drift_fraction": self.max_drift,
             "max_solver_drift_fraction": e.max_solver_drift,  # removed by projection each step
-            "units": e.units.to_dict(), "asperity2d_version": __version__,
+            "units": e.units.to_dict(), "asperity2d_version": __version__, "engine": "pymunk",
             "pymunk_version": PYMUNK_VERSION, "numpy_version": np.__version__,
             "record_lower": self.record_lower, **self.extra_meta,
         }
@@ -813,7 +820,8 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
              settle: bool | None = None, iterations: int = 20, unsafe_dt: bool = False,
              progress: bool | None = None, energy: bool = False, max_steps: int = MAX_STEPS,
              observers: Iterable[Callable] = (), contact_work: bool = False,
-             record_lower: bool = True, record_to: str | os.PathLike | None = None) -> Result:
+             record_lower: bool = True, record_to: str | os.PathLike | None = None,
+             engine: str = DEFAULT_ENGINE) -> Result:
     """Run ``scene`` with a fixed step and return its :class:`~asperity2d.Result`.
 
     Parameters
@@ -873,6 +881,12 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
         the files lazily (memory maps), as ``asperity2d.load(record_to)`` does later. A run
         that is killed leaves the samples written so far, loaded with status
         ``"interrupted"``; one that raises leaves them too, its message saying why.
+    engine : str, default "pymunk"
+        The engine that steps it (:data:`asperity2d.engine.ENGINES`): ``"pymunk"``, the
+        reference, runs every option; ``"batched"`` (the ``[batch]`` extra) runs the model's
+        common case in a compiled loop, without the energy books, observers, custom stops,
+        streaming, settling or the lower asperities' records (each refused in one line).
+        ``result.meta["engine"]`` names it.
 
     Returns
     -------
@@ -925,6 +939,19 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
     ...
     asperity2d.errors.SceneError: `scene` must be a Scene (see make_scene), got str
     """
+    if check_engine(engine) != DEFAULT_ENGINE:
+        refused = [name for name, value, default in (
+            ("stop", stop, None), ("energy", energy, False), ("contact_work", contact_work, False),
+            ("record_to", record_to, None)) if value is not default and value != default]
+        if tuple(observers):
+            refused.append("observers")
+        if refused:
+            raise SceneError(f"`{refused[0]}` is not available on engine={engine!r}; engine=\"pymunk\" runs it")
+        out = simulate_many([scene], duration, dt=dt, record_every=record_every, settle=settle,
+                            iterations=iterations, unsafe_dt=unsafe_dt, max_steps=max_steps, engine=engine)[0]
+        if isinstance(out, Exception):
+            raise out
+        return out
     gen = _simulation(scene, duration, dt=dt, record_every=record_every, stop=stop, settle=settle,
                       iterations=iterations, unsafe_dt=unsafe_dt, progress=progress, energy=energy,
                       max_steps=max_steps, observers=observers, contact_work=contact_work,
@@ -1030,3 +1057,68 @@ def _simulation(scene: Scene, duration: float | None = None, *, dt: float | None
     if books is not None:
         run.extra_meta["contact_work"] = books.report()
     return run.result()
+
+
+def simulate_many(scenes: Iterable[Scene], duration: float | None = None, *, dt: float | None = None,
+                  record_every: int = 10, settle: bool | None = None, iterations: int = 20,
+                  unsafe_dt: bool = False, max_steps: int = MAX_STEPS, engine: str = "batched") -> list:
+    """Run many scenes with one engine; one :class:`~asperity2d.Result` per scene, in order.
+
+    The arguments are :func:`simulate`'s, for every scene (``dt``: one step for all, or None
+    for each scene's default). On ``engine="batched"`` the scenes step together in one compiled
+    loop; a scene that diverges stops alone: its entry is then its own
+    :class:`~asperity2d.errors.SimulationError` (returned, not raised) and the others finish.
+    On ``engine="pymunk"`` the scenes run one after the other (an error is returned likewise).
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> from asperity2d.run import simulate_many
+    >>> scenes = [a.make_scene(lower_count=4, upper_count=2, spacing="random", seed=s) for s in (1, 2)]
+    >>> [r.meta["engine"] for r in simulate_many(scenes, 50e-9, engine="pymunk")]
+    ['pymunk', 'pymunk']
+    """
+    engine = check_engine(engine)
+    scenes = list(scenes)
+    for scene in scenes:
+        if not isinstance(scene, Scene):
+            raise SceneError(f"`scenes` must hold Scene objects (see make_scene), got {type(scene).__name__}")
+    if not scenes:
+        raise SceneError("`scenes` is empty: give at least one scene")
+    if engine == DEFAULT_ENGINE:
+        out = []
+        for scene in scenes:
+            try:
+                out.append(simulate(scene, duration, dt=dt, record_every=record_every, settle=settle,
+                                    iterations=iterations, unsafe_dt=unsafe_dt, max_steps=max_steps,
+                                    progress=False))
+            except SimulationError as exc:
+                out.append(exc)
+        return out
+    record_every = check_int("record_every", record_every, minimum=1)
+    iterations = check_int("iterations", iterations, minimum=1, maximum=10_000)
+    max_steps = check_int("max_steps", max_steps, minimum=1, maximum=None)
+    dts, durations, passed = [], [], []
+    for scene in scenes:
+        if duration is None and isinstance(scene.drive, ConstantForce) and scene.drive.force != 0:
+            raise SceneError(f"`duration` = None with a constant force (the Stuck stop) is not available on "
+                             f"engine={engine!r}: give a duration, or engine=\"pymunk\" runs it")
+        refuse(engine, scene, settle=scene.slider.track == "free" if settle is None else bool(settle))
+        step = resolve_dt(scene, dt, unsafe_dt)
+        span = default_duration(scene) if duration is None else check_positive("duration", check_finite("duration", duration))
+        check_budget(scene, step, max_steps, duration=span)
+        dts.append(step)
+        durations.append(span)
+        passed.append(duration is None)
+    results = ENGINES[engine].run(scenes, dts, durations, record_every=record_every, iterations=iterations,
+                                  passed=passed)
+    out = []
+    for scene, record, stopped in zip(scenes, results, passed):
+        if isinstance(record, Exception):
+            out.append(record)
+            continue
+        arrays, meta = record
+        if stopped and meta["status"] == "duration":
+            meta.update(status="time limit", message="reached the time limit before any stop condition")
+        out.append(Result(**arrays, scene=scene, meta=meta))
+    return out

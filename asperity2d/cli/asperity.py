@@ -60,7 +60,7 @@ def run(args) -> int:
         duration = None
     from ..run import simulate, stops_from_settings
 
-    result = simulate(scene, duration, stop=stops_from_settings(scene, settings))
+    result = simulate(scene, duration, stop=stops_from_settings(scene, settings), engine=getattr(args, "engine", "pymunk"))
     written = []
     if save:
         with _io.argument("--save"), _io.writing("--save", save):
@@ -226,7 +226,8 @@ def compare(args) -> int:
         # is known at once, and a misspelt one gets the nearest names
         base.setdefault("drive", MEASURES.lookup(args.measure, "--measure").drive)
         comparison = run_compare(args.measure, variants, range(args.seeds), base=base, progress=not args.json,
-                                 workers=args.workers, scheduler=args.scheduler)
+                                 workers=args.workers, scheduler=args.scheduler,
+                                 engine=getattr(args, "engine", "pymunk"))
     if save:
         with _io.argument("--save"), _io.writing("--save", save):
             comparison.save(save)

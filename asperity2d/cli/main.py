@@ -75,6 +75,7 @@ def build_parser() -> Parser:
     p.add_argument("--duration", type=positive_float, help="simulated time in s (TOML scenes)")
     p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                    help="override a make_scene argument of a TOML scene (repeatable; values read as TOML)")
+    _engine_flag(p)
     _json_flag(p)
     p.set_defaults(handler=asperity.run, print_run_help=p.print_help)
 
@@ -123,6 +124,7 @@ def build_parser() -> Parser:
     p.add_argument("--load", help="re-use a saved comparison instead of running")
     p.add_argument("-o", "--output", help="comparison plot (.png, .svg, .pdf)")
     _max_runs(p)
+    _engine_flag(p)
     _json_flag(p)
     p.set_defaults(handler=asperity.compare)
 
@@ -152,6 +154,16 @@ def _belt_common() -> Parser:
     common.add_argument("--t-end", type=positive_float, help="override the duration (s)")
     _json_flag(common)
     return common
+
+
+#: The asperity engines (asperity2d.engine.ENGINES; named here so that --help imports no engine).
+ENGINE_NAMES = ("pymunk", "batched")
+
+
+def _engine_flag(p) -> None:
+    p.add_argument("--engine", choices=ENGINE_NAMES, default="pymunk",
+                   help="the engine that steps the scenes: pymunk (the reference, default) or batched "
+                        "(many scenes in one compiled loop; pip install \"asperity2d[batch]\")")
 
 
 def _add_belt(subparsers) -> None:

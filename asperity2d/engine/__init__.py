@@ -1,4 +1,4 @@
-"""The pymunk adapter: the only place that imports pymunk.
+"""The asperity engines: the pymunk adapter (the only place that imports pymunk) and the batched engine.
 
 * :mod:`.core` — :class:`Engine`: an asperity scene stepped with a fixed dt
   (drive, load, track projection, settling), composed of
@@ -13,10 +13,15 @@
 * :mod:`.run_checks` — what no run may show (a step longer than the contact it must resolve,
   a slider below the floor, a tip through an untouched asperity): checked before a scene is
   built and at every sample, beside the divergence guard;
+* :mod:`.registry` — the engines (:data:`ENGINES`: ``"pymunk"``, the reference, and
+  ``"batched"``) and the contract each keeps;
+* :mod:`.batched` and :mod:`.batched_kernel` — the batched engine: many scenes of the model's
+  common case stepped in lockstep in one compiled loop (Numba, the ``[batch]`` extra), no pymunk;
 * :mod:`.energy` — per-step energy accounting (:class:`~.energy.EnergyMeter`)
   and the contacts' work (:class:`~.energy.ContactWork`).
 """
 
 from .core import PYMUNK_VERSION, Engine
+from .registry import ENGINES, check_engine
 
-__all__ = ["Engine", "PYMUNK_VERSION"]
+__all__ = ["Engine", "ENGINES", "PYMUNK_VERSION", "check_engine"]

@@ -48,7 +48,7 @@ from ..scene import Scene
 from ..sweep.engine import is_auto, run_calls
 from ..sweep.executors import check_executor_args, make_executor
 from ..sweep.progress import Progress
-from .measures import MEASURES, Measure, find_measure, measure_label, measure_unit  # noqa: F401
+from .measures import BATCHED, MEASURES, Measure, find_measure, measure_label, measure_unit  # noqa: F401
 from .sequential import MAX_SEEDS, SPENDING, STAGE_SEEDS, Design, plan, run_in_stages
 from .verdicts import DECIDED, UNDECIDED, VerdictRule, verdict_line
 from .verdicts import claim as claims_record
@@ -89,6 +89,8 @@ class Comparison:
         (``stages`` planned, ``alpha``, ``spending``, ``reference``) and ``looks``, one entry per
         stage run: its number, the seeds it took and each variant's verdict after it. Empty for a
         comparison of fixed seeds.
+    engine : str, default "pymunk"
+        The engine that ran the scenes (:data:`asperity2d.engine.ENGINES`).
 
     Raises
     ------
@@ -129,6 +131,7 @@ class Comparison:
     #: of a measure this session has not registered still reads in its words and unit).
     saved_label: str | None = field(default=None, compare=False, repr=False)
     saved_unit: str | None = field(default=None, compare=False, repr=False)
+    engine: str = "pymunk"
 
     def __post_init__(self):
         for name, vals in self.values.items():
@@ -293,7 +296,7 @@ class Comparison:
                 "seeds": list(self.seeds),
                 "base": self.base, "variants": self.variants,
                 "values": {k: [float(v) for v in vals] for k, vals in self.values.items()},
-                **({"design": self.design} if self.design else {})}
+                "engine": self.engine, **({"design": self.design} if self.design else {})}
 
     def save(self, path: str | os.PathLike) -> Path:
         """Write the comparison as strict JSON (NaN as null, ``write_json``),
@@ -319,7 +322,8 @@ class Comparison:
             return cls(values=values, seeds=tuple(int(s) for s in data["seeds"]),
                        variants=data.get("variants", {}), base=data.get("base", {}),
                        measure=data.get("measure", "value"), design=data.get("design") or {},
-                       saved_label=_text_or_none(data.get("label")), saved_unit=_text_or_none(data.get("unit")))
+                       saved_label=_text_or_none(data.get("label")), saved_unit=_text_or_none(data.get("unit")),
+                       engine=data.get("engine", "pymunk"))
         except (ValueError, KeyError, TypeError, AttributeError) as exc:
             raise FileError("path", path, "is not a comparison file", str(exc)) from None
 
@@ -335,9 +339,12 @@ def _text_or_none(value) -> str | None:
 
 # -- running it -------------------------------------------------------------------------------------
 def _measure(measure: Callable, variants: dict, base: dict, seeds: tuple, where: dict, *, progress: bool,
-             label: str, unseeded: dict) -> dict[str, list]:
+             label: str, unseeded: dict, batched: Callable | None = None,
+             engine: str = "pymunk") -> dict[str, list]:
     """Measure every variant on ``seeds``: name -> values. A variant whose scene does not
-    depend on the seed is measured once (``unseeded`` holds its value from an earlier stage)."""
+    depend on the seed is measured once (``unseeded`` holds its value from an earlier stage).
+    ``batched``: the measure's batched form (:data:`~asperity2d.experiments.measures.BATCHED`),
+    run on every scene at once in this process on ``engine``."""
     # Build every scene first: bad arguments fail here, before any run starts.
     jobs, slots = [], {}
     for name, kw in variants.items():
@@ -349,6 +356,10 @@ def _measure(measure: Callable, variants: dict, base: dict, seeds: tuple, where:
                 continue
             slots[name, j] = len(jobs)
             jobs.append((measure, scene, f"variant {name!r} with seed {seed}"))
+    if batched is not None:  # every scene in one batch, in this process
+        results = list(batched([scene for _, scene, _ in jobs], engine)) if jobs else []
+        return {name: [unseeded[name] if slots[name, j] is None else results[slots[name, j]]
+                       for j in range(len(seeds))] for name in variants}
     results: list = [None] * len(jobs)
     failed = None  # the first failing run in (variant, seed) order, whichever finished first
     with Progress(total=len(jobs), enabled=progress, label=label) as bar:
@@ -369,7 +380,7 @@ def _measure(measure: Callable, variants: dict, base: dict, seeds: tuple, where:
 def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[int] | str, *,
             base: dict | None = None, progress: bool = True, workers: int | str | None = None,
             scheduler: str | None = None, max_seeds: int | None = None, reference: str | None = None,
-            spending: str = "pocock", stage_seeds: int = STAGE_SEEDS) -> Comparison:
+            spending: str = "pocock", stage_seeds: int = STAGE_SEEDS, engine: str = "pymunk") -> Comparison:
     """Measure every variant on every seed, or on seeds added in stages until decided.
 
     Parameters
@@ -410,6 +421,11 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
     stage_seeds : int
         Seeds per stage of ``seeds="auto"`` (default 10: the fewest with which the exact
         signed-rank test can reach the first look's level at alpha 0.01).
+    engine : str, default "pymunk"
+        The engine that runs the scenes (:data:`asperity2d.engine.ENGINES`). ``"batched"``
+        (the ``[batch]`` extra) runs every scene of the comparison in one batch, in this
+        process, for the measures it implements (``"peak-stick"``, ``"mean-stick"``); the
+        comparison records the engine.
 
     Returns
     -------
@@ -450,6 +466,14 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
     >>> len(c.seeds), c.verdict("random", "regular")["verdict"]
     (10, 'holds')
     """
+    from ..engine.registry import check_engine
+
+    engine = check_engine(engine)
+    if engine != "pymunk" and not (isinstance(measure, str) and measure in BATCHED):
+        raise SceneError(f"`measure` {show(measure if isinstance(measure, str) else getattr(measure, '__name__', measure))} "
+                         f"is not available on engine={engine!r} (it runs {', '.join(map(repr, BATCHED))}); "
+                         "engine=\"pymunk\" runs it")
+    batched = BATCHED[measure] if engine != "pymunk" else None
     if isinstance(measure, str):
         entry = MEASURES.lookup(measure, "measure")  # a registered name or "module:name"
         measure, described = entry.function, {"saved_label": entry.label, "saved_unit": entry.unit}
@@ -503,11 +527,11 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
             stack.callback(cluster.close)
         if not auto:
             values = _measure(measure, variants, base, seeds, where, progress=progress, label="compare",
-                              unseeded={})
+                              unseeded={}, batched=batched, engine=engine)
             return Comparison(values={k: tuple(v) for k, v in values.items()}, seeds=seeds, variants=kwargs,
-                              base=base, measure=name, **described)
+                              base=base, measure=name, engine=engine, **described)
         return _in_stages(measure, variants, base, design, reference, where, progress=progress,
-                          kwargs=kwargs, name=name, described=described)
+                          kwargs=kwargs, name=name, described=described, batched=batched, engine=engine)
 
 
 class _Plain:
@@ -527,7 +551,8 @@ def _reference(variants: dict, reference: str | None) -> str:
 
 
 def _in_stages(measure, variants: dict, base: dict, design: Design, reference: str, where: dict, *,
-               progress: bool, kwargs: dict, name: str, described: dict) -> Comparison:
+               progress: bool, kwargs: dict, name: str, described: dict, batched: Callable | None,
+               engine: str) -> Comparison:
     """``compare(..., seeds="auto")``: stage after stage until every verdict is decided."""
     if len(variants) < 2:
         raise SceneError("`seeds='auto'` needs a variant to judge against `reference`: give two or more")
@@ -539,7 +564,8 @@ def _in_stages(measure, variants: dict, base: dict, design: Design, reference: s
     def measure_stage(k: int, first: int, last: int) -> None:
         stage_seeds = tuple(range(first, last))
         got = _measure(measure, variants, base, stage_seeds, where, progress=progress,
-                       label=f"compare, stage {k + 1}: seeds {first + 1}-{last}", unseeded=unseeded)
+                       label=f"compare, stage {k + 1}: seeds {first + 1}-{last}", unseeded=unseeded,
+                       batched=batched, engine=engine)
         for variant, vals in got.items():
             if k == 0 and len(set(vals)) == 1 and _unseeded(variants[variant], base, stage_seeds):
                 unseeded[variant] = vals[0]
@@ -552,7 +578,7 @@ def _in_stages(measure, variants: dict, base: dict, design: Design, reference: s
         looks.append({"stage": k + 1, "seeds": list(range(design.stages[k - 1] if k else 0, design.stages[k])),
                       "nominal_alpha": nominal})
         comparison = Comparison(values={v: tuple(x) for v, x in values.items()}, seeds=seeds, variants=kwargs,
-                                base=base, measure=name, design=record, **described)
+                                base=base, measure=name, design=record, engine=engine, **described)
         outcomes = {other: comparison.verdict(other, reference)["verdict"] for other in variants if other != reference}
         looks[-1]["verdicts"] = outcomes
         state["comparison"] = comparison

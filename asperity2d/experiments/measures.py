@@ -168,31 +168,68 @@ def pass_speeds(velocity: float, passes: int) -> tuple[float, ...]:
     return tuple(velocity * (1.0 + PERTURBATION_STEP * (j - middle)) for j in range(passes))
 
 
-def stick_forces(scene: Scene, *, passes: int = PASSES, dt: float | None = None) -> StickForces:
+def stick_forces(scene: Scene, *, passes: int = PASSES, dt: float | None = None,
+                 engine: str = "pymunk") -> StickForces:
     """Run ``passes`` spring-driven passes of ``scene`` (its drive made a spring if it was a
     constant force) whose drive speeds differ by 2e-4 of V each, and collect their stick forces.
 
     ``dt`` (s) is the step of every pass (default: the step policy's,
-    :data:`STICK_DT_FRACTION` of ``default_dt``).
+    :data:`STICK_DT_FRACTION` of ``default_dt``). ``engine``: the engine that runs the passes
+    (:data:`asperity2d.engine.ENGINES`; ``"batched"`` runs them all in one batch).
     """
-    from ..run import simulate
+    return stick_forces_of([scene], passes=passes, dt=dt, engine=engine)[0]
 
-    scene = _spring(scene)
-    dt = STICK_DT_FRACTION * default_dt(scene) if dt is None else dt
-    out = {"first_breakaway": [], "peak": [], "mean": [], "events": []}
-    speeds = pass_speeds(scene.drive.velocity, passes)
-    used_dt = math.nan
-    for speed in speeds:
-        one = scene.replace(drive=dataclasses.replace(scene.drive, velocity=speed))
-        result = simulate(one, dt=dt, progress=False)
-        used_dt = result.meta["dt"]
-        events = analysis.stick_slip_events(result)
-        forces = [e.force_peak for e in events]
-        out["first_breakaway"].append(forces[0] if forces else math.nan)
-        out["peak"].append(max(forces) if forces else math.nan)
-        out["mean"].append(float(np.mean(forces)) if forces else math.nan)
-        out["events"].append(len(events))
-    return StickForces(speeds=speeds, dt=used_dt, **{k: tuple(v) for k, v in out.items()})
+
+def stick_forces_of(scenes, *, passes: int = PASSES, dt: float | None = None,
+                    engine: str = "pymunk") -> list[StickForces]:
+    """:func:`stick_forces` of every scene of ``scenes``, in order; on ``engine="batched"`` every
+    pass of every scene runs in one batch. A pass that diverged raises its own error (naming the
+    scene), after every other pass has run."""
+    from ..run import simulate_many
+
+    scenes = [_spring(scene) for scene in scenes]
+    runs, where = [], []
+    for k, scene in enumerate(scenes):
+        step = STICK_DT_FRACTION * default_dt(scene) if dt is None else dt
+        for speed in pass_speeds(scene.drive.velocity, passes):
+            runs.append((scene.replace(drive=dataclasses.replace(scene.drive, velocity=speed)), step))
+            where.append(k)
+    steps = sorted({step for _, step in runs})
+    results: list = [None] * len(runs)
+    for step in steps:  # one call per step (every scene shares one when dt is given)
+        chosen = [j for j, (_, st) in enumerate(runs) if st == step]
+        for j, result in zip(chosen, simulate_many([runs[j][0] for j in chosen], dt=step, engine=engine)):
+            results[j] = result
+    for result in results:
+        if isinstance(result, Exception):
+            raise result
+    out = []
+    for k, scene in enumerate(scenes):
+        mine = [results[j] for j in range(len(runs)) if where[j] == k]
+        forces = {"first_breakaway": [], "peak": [], "mean": [], "events": []}
+        for result in mine:
+            events = [e.force_peak for e in analysis.stick_slip_events(result)]
+            forces["first_breakaway"].append(events[0] if events else math.nan)
+            forces["peak"].append(max(events) if events else math.nan)
+            forces["mean"].append(float(np.mean(events)) if events else math.nan)
+            forces["events"].append(len(events))
+        out.append(StickForces(speeds=pass_speeds(scene.drive.velocity, passes),
+                               dt=mine[-1].meta["dt"] if mine else math.nan,
+                               **{name: tuple(v) for name, v in forces.items()}))
+    return out
+
+
+#: The named measures a batch of scenes can run on an engine other than pymunk (``compare(...,
+#: engine="batched")``): name -> ``f(scenes, engine) -> list of float``.
+def _peak_of(scenes, engine: str) -> list[float]:
+    return [f.average("peak") for f in stick_forces_of(scenes, engine=engine)]
+
+
+def _mean_of(scenes, engine: str) -> list[float]:
+    return [f.average("mean") for f in stick_forces_of(scenes, engine=engine)]
+
+
+BATCHED = {"peak-stick": _peak_of, "mean-stick": _mean_of}
 
 
 # -- the quasi-static breakaway -------------------------------------------------------------------

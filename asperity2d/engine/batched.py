@@ -1,0 +1,336 @@
+"""The batched asperity engine: many scenes stepped in lockstep in one compiled loop.
+
+Part of :mod:`asperity2d.engine` (the entry ``"batched"`` of :data:`asperity2d.engine.ENGINES`).
+The model is the pymunk adapter's, rebuilt for this model alone: lower asperities are
+translating bodies on vertical spring-damper tracks (groove joints with their travel limits),
+the slider a translating body on a horizontal track or free under its normal load, driven by a
+spring or a constant force; contacts are Chipmunk's (velocity-level sequential impulses with
+warm starting, the same slop, position bias and iteration count) and the static/kinetic switch
+with its hold rule follows every step, as in :mod:`.core`. The step itself is in
+:mod:`.batched_kernel` (Numba, the optional ``[batch]`` extra).
+
+What it covers, and refuses (one :class:`~asperity2d.errors.SceneError` line naming the option
+and saying ``engine="pymunk"`` runs it): triangular asperities only (every outline three
+vertices: the full profile), no lattice links, no substrate, the ``static-kinetic`` contact law,
+and no settling (a free slider runs with ``settle=False``). The floor is not modelled: a slider
+tip that goes below it stops that scene with a :class:`~asperity2d.errors.SimulationError`.
+
+A batch is refused up front when its arrays would pass :data:`MAX_BATCH_BYTES`; a scene that
+diverges stops alone with its own ``SimulationError`` while its neighbours finish.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import math
+
+import numpy as np
+
+from .._version import __version__
+from ..errors import SceneError, SimulationError
+from ..units import Units, check_scales
+from .run_checks import check_scene
+from .space import COLLISION_SLOP, CORRECTION_PER_STEP, per_step_bias
+
+#: How to get the compiled loop.
+INSTALL = 'pip install "asperity2d[batch]"'
+#: Largest batch (bytes of state, geometry and record) accepted in one call.
+MAX_BATCH_BYTES = 2 << 30
+#: Samples kept per scene and call (x, v, y, vy, forces): the record of one run.
+ENGINE = "batched"
+
+
+def unavailable() -> str | None:
+    """Why the batched engine cannot run here (None: it can)."""
+    if importlib.util.find_spec("numba") is None:
+        return f'engine="batched" needs Numba, which is not installed: {INSTALL}'
+    return None
+
+
+def _outline_triangles(outlines, what: str) -> None:
+    for outline in outlines:
+        if len(outline) != 3:
+            raise SceneError(f"`{what}` has an asperity of {len(outline)} vertices; engine=\"batched\" "
+                             "runs triangular asperities only (profile 'full'); engine=\"pymunk\" runs it")
+
+
+def refusal(scene, *, settle: bool = False) -> str | None:
+    """The scene option the batched engine does not implement (one line), or None."""
+    lower, contact = scene.lower, scene.contact
+    tail = '; engine="pymunk" runs it'
+    if lower.is_lattice:
+        return "`lateral_stiffness` (lattice links between lower asperities) is not implemented on engine=\"batched\"" + tail
+    if lower.substrate:
+        return "`substrate` (a profile's rigid valleys) is not implemented on engine=\"batched\"" + tail
+    if lower.profile.kind != "full" or scene.slider.profile.kind != "full":
+        kind = lower.profile.kind if lower.profile.kind != "full" else scene.slider.profile.kind
+        return f"`profile` = {kind!r} is not implemented on engine=\"batched\" (full triangles only)" + tail
+    if lower.shapes is not None or getattr(scene.slider, "shapes", None) is not None:
+        return "`shapes` (measured or per-asperity profiles) are not implemented on engine=\"batched\"" + tail
+    if contact.law != "static-kinetic":
+        return f"`law` = {contact.law!r} is not implemented on engine=\"batched\" (static-kinetic only)" + tail
+    if settle:
+        return "`settle` (settling before the run) is not implemented on engine=\"batched\"" + tail
+    return None
+
+
+def _kernel():
+    why = unavailable()
+    if why is not None:
+        raise SceneError(why)
+    from . import batched_kernel
+
+    return batched_kernel
+
+
+class Batch:
+    """``scenes`` built into arrays (internal units) for the compiled loop, all at rest at t = 0.
+
+    ``dts`` (s), one per scene; ``iterations`` as pymunk's solver iterations; ``samples``: how
+    many samples each scene's record holds; ``record_every``: steps between samples.
+    """
+
+    def __init__(self, scenes, dts, *, iterations: int = 20, record_every: int = 10, samples: int = 1):
+        kernel = _kernel()
+        self.kernel = kernel
+        self.scenes = list(scenes)
+        B = len(self.scenes)
+        if B == 0:
+            raise SceneError("`scenes` is empty: give at least one scene")
+        for scene in self.scenes:
+            why = refusal(scene)
+            if why is not None:
+                raise SceneError(why)
+        N = max(s.lower.count for s in self.scenes)
+        U = max(s.slider.count for s in self.scenes)
+        need = self.nbytes_for(B, N, U, samples)
+        if need > MAX_BATCH_BYTES:
+            raise SceneError(
+                f"a batch of {B} scenes ({N} lower and {U} upper asperities, {samples} samples each) needs "
+                f"{need / 2**30:.1f} GiB, more than the {MAX_BATCH_BYTES / 2**30:.0f} GiB one batch may take: "
+                "run it in smaller batches (fewer scenes or samples)")
+        self.units = []
+        self.record_every, self.samples = record_every, samples
+        f8 = lambda *shape: np.zeros(shape)  # noqa: E731
+        self.lp, self.lv, self.lvb, self.gj = f8(B, N, 2), f8(B, N, 2), f8(B, N, 2), f8(B, N, 2)
+        self.sp, self.sv, self.svb, self.sgj = f8(B, 2), f8(B, 2), f8(B, 2), f8(B, 2)
+        self.c_n = np.zeros((B, U, N), np.int64)
+        self.c_key = np.zeros((B, U, N, 2), np.int64)
+        self.c_jn, self.c_jt = f8(B, U, N, 2), f8(B, U, N, 2)
+        self.stuck, self.present = np.zeros((B, N), np.bool_), np.zeros((B, N), np.bool_)
+        self.slid, self.mu = f8(B, N), f8(B, N)
+        self.nstep = np.zeros(B, np.int64)
+        self.fail, self.fail_step = np.zeros(B, np.int64), np.zeros(B, np.int64)
+        self.lx0, self.lverts, self.lnorms = f8(B, N), f8(B, N, 3, 2), f8(B, N, 3, 2)
+        self.lm_inv, self.lk, self.lc = np.ones((B, N)), f8(B, N), f8(B, N)
+        self.ldown, self.lup = f8(B, N), f8(B, N)
+        self.n_lower, self.n_upper = np.zeros(B, np.int64), np.zeros(B, np.int64)
+        self.uverts, self.unorms = f8(B, U, 3, 2), f8(B, U, 3, 2)
+        self.s_m_inv = f8(B)
+        self.fixed = np.zeros(B, np.bool_)
+        self.track_y, self.g_x, self.g_y = f8(B), f8(B), f8(B)
+        self.spring = np.zeros(B, np.bool_)
+        self.dk, self.dc, self.dv, self.dorigin, self.dforce, self.load = f8(B), f8(B), f8(B), f8(B), f8(B), f8(B)
+        self.dt, self.iterations = f8(B), np.full(B, iterations, np.int64)
+        self.bias_coef, self.joint_bias_coef, self.restitution = f8(B), f8(B), f8(B)
+        self.mu_s, self.mu_k, self.v_stick, self.slip_dist = f8(B), f8(B), f8(B), f8(B)
+        self.switch_on = np.zeros(B, np.bool_)
+        self.floor_y, self.stop_x = f8(B), np.full(B, np.inf)
+        self.first = np.ones(B, np.bool_)
+        self.rec = np.zeros((B, kernel.N_REC, samples))
+        self.rec_at = np.zeros(B, np.int64)
+        for b, (scene, dt) in enumerate(zip(self.scenes, dts)):
+            self._load(b, scene, float(dt))
+        self._initial = self._sample0()
+
+    @staticmethod
+    def nbytes_for(B: int, N: int, U: int, samples: int) -> int:
+        """Bytes of a batch's arrays: state and geometry per scene, and its record."""
+        per_lower = 8 * (4 * 2 + 3 + 2 * 3 * 2 + 6) + 2
+        per_pair = 8 * 1 + 8 * 2 * 3
+        per_scene = N * per_lower + U * N * per_pair + U * 8 * 12 + 8 * 40 + 8 * 9 * samples
+        return B * per_scene
+
+    def _load(self, b: int, scene, dt: float) -> None:
+        u = Units.for_scene(scene)
+        check_scales(scene, u)
+        check_scene(scene, dt, u)
+        self.units.append(u)
+        lower, slider, contact, drive = scene.lower, scene.slider, scene.contact, scene.drive
+        n, m = lower.count, slider.count
+        self.n_lower[b], self.n_upper[b] = n, m
+        x0 = lower.tips() / u.length
+        self.lx0[b, :n] = x0
+        self.lp[b, :n, 0] = x0
+        for i, outline in enumerate(lower.outlines()):
+            self.lverts[b, i], self.lnorms[b, i] = _hull([(vx / u.length, vy / u.length) for vx, vy in outline])
+        self.lm_inv[b, :n] = 1.0 / (np.asarray(lower.mass, float) / u.mass)
+        self.lk[b, :n] = np.asarray(lower.stiffness, float) / u.stiffness
+        self.lc[b, :n] = np.asarray(lower.damping, float) / u.damping
+        self.ldown[b, :n] = lower.travel_down / u.length
+        self.lup[b, :n] = lower.travel_up / u.length
+        apex = slider.tips() / u.length
+        for j, (c, outline) in enumerate(zip(apex, slider.outlines())):
+            self.uverts[b, j], self.unorms[b, j] = _hull([(c + x / u.length, y / u.length) for x, y in outline])
+        self.s_m_inv[b] = 1.0 / (slider.mass / u.mass)
+        # where the slider starts: as space.build places a fixed-track slider (not engaged) or a
+        # free one (over the first valley, just clear of the tips)
+        h_up = slider.depth / u.length
+        height = lower.top / u.length
+        left = float(np.ravel(lower.runs()[0])[0]) / u.length
+        if slider.track == "fixed":
+            right = float(np.ravel(slider.runs()[1])[-1]) / u.length
+            sx = x0[0] - left - right - apex[-1] - 0.1
+            sy = height - slider.interference / u.length + h_up
+            self.fixed[b] = True
+        else:
+            x_tip = 0.5 * (x0[0] + x0[1]) if n > 1 else x0[0] - 0.5 * left
+            sx = x_tip - apex[0]
+            sy = height + h_up + 1e-3
+        self.sp[b] = sx, sy
+        self.track_y[b] = sy
+        self.g_y[b] = -scene.gravity / u.acceleration
+        if drive.__class__.__name__ == "SpringDrive":
+            self.spring[b] = True
+            self.dk[b], self.dc[b] = drive.stiffness / u.stiffness, drive.damping / u.damping
+            self.dv[b] = drive.velocity / u.velocity
+            self.dorigin[b] = sx + drive.preload / u.force / self.dk[b]
+        else:
+            self.dforce[b] = drive.force / u.force
+        self.load[b] = slider.normal_load / u.force if slider.track == "free" else 0.0
+        h = dt / u.time
+        self.dt[b] = h
+        bias = per_step_bias(CORRECTION_PER_STEP, h)
+        self.bias_coef[b] = 1.0 - math.pow(bias, h)
+        self.joint_bias_coef[b] = 1.0 - math.pow(bias, h)
+        self.restitution[b] = contact.restitution * 1.0
+        self.mu_s[b], self.mu_k[b] = contact.mu_static, contact.mu_kinetic
+        self.mu[b, :n] = contact.mu_kinetic
+        self.slip_dist[b] = (1e-3 * u.length if contact.slip_distance is None else contact.slip_distance) / u.length
+        if contact.stick_speed is not None:
+            self.v_stick[b] = contact.stick_speed / u.velocity
+        else:
+            v = 1e-4
+            if self.spring[b]:
+                v = min(v, 0.1 * drive.velocity / u.velocity)
+            self.v_stick[b] = v
+        self.switch_on[b] = contact.mu_static != contact.mu_kinetic
+        self.floor_y[b] = scene.floor / u.length
+
+    def _sample0(self) -> np.ndarray:
+        out = np.zeros((len(self.scenes), self.kernel.N_REC))
+        out[:, 0], out[:, 2] = self.sp[:, 0], self.sp[:, 1]
+        out[:, 4] = np.where(self.spring, self.dk * (self.dorigin - self.sp[:, 0]) + self.dc * self.dv, self.dforce)
+        return out
+
+    def set_stop(self, b: int, passed: bool) -> None:
+        """Stop scene ``b`` when the slider's rear tip has passed the last lower tip by half a
+        base (``passed``, the :class:`asperity2d.Passed` condition), or never."""
+        scene, u = self.scenes[b], self.units[b]
+        if passed:
+            last = scene.lower.tips()[-1] / u.length
+            base = scene.lower.profile.base / u.length
+            self.stop_x[b] = last + 0.5 * base - _rear(self, b)
+        else:
+            self.stop_x[b] = math.inf
+
+    def advance(self, steps) -> None:
+        """Advance scene ``b`` by ``steps[b]`` steps (all scenes in one compiled call)."""
+        k = self.kernel
+        k.advance(np.asarray(steps, np.int64), self.record_every, self.rec_at, self.rec, self.lp, self.lv,
+                  self.lvb, self.gj, self.sp, self.sv, self.svb, self.sgj, self.c_n, self.c_key, self.c_jn,
+                  self.c_jt, self.stuck, self.slid, self.mu, self.present, self.nstep, self.fail,
+                  self.fail_step, self.lx0, self.lverts, self.lnorms, self.lm_inv, self.lk, self.lc,
+                  self.ldown, self.lup, self.n_lower, self.uverts, self.unorms, self.n_upper, self.s_m_inv,
+                  self.fixed, self.track_y, self.g_x, self.g_y, self.spring, self.dk, self.dc, self.dv,
+                  self.dorigin, self.dforce, self.load, self.dt, self.iterations, COLLISION_SLOP,
+                  self.bias_coef, self.joint_bias_coef, self.restitution, self.mu_s, self.mu_k,
+                  self.v_stick, self.slip_dist, self.switch_on, self.floor_y, self.stop_x, self.first)
+
+    def error(self, b: int) -> SimulationError | None:
+        """Scene ``b``'s own failure (None if it ran)."""
+        code = int(self.fail[b])
+        if code == 0:
+            return None
+        k = self.kernel
+        t = self.fail_step[b] * self.dt[b] * self.units[b].time
+        why = {k.NONFINITE: "its state became non-finite", k.OVERLAP: "a contact overlapped more than half a base",
+               k.FLOOR: "a slider tip reached the floor, which engine=\"batched\" does not model "
+                        "(engine=\"pymunk\" runs it)",
+               k.PAIRS: f"a slider tip touched more than {k.PAIRS_PER_TIP} lower asperities at once"}[code]
+        return SimulationError(f"scene {b} ({self.scenes[b].name}) stopped at t = {t:.4g} s: {why}")
+
+    def result(self, b: int, *, status: str, meta: dict) -> tuple[dict, dict]:
+        """Scene ``b``'s record: the arrays of a :class:`~asperity2d.Result` (SI; no
+        lower-asperity samples) and its meta."""
+        u, scene = self.units[b], self.scenes[b]
+        m = int(self.rec_at[b])
+        rec = np.concatenate([self._initial[b][:, None], self.rec[b, :, :m]], axis=1)
+        steps = np.arange(m + 1) * self.record_every
+        t = steps * self.dt[b] * u.time
+        drive_x = (self.dorigin[b] + self.dv[b] * steps * self.dt[b]) * u.length if self.spring[b] \
+            else np.full(m + 1, math.nan)
+        n = scene.lower.count
+        arrays = dict(t=t, x=rec[0] * u.length, v=rec[1] * u.velocity, y=rec[2] * u.length,
+                      vy=rec[3] * u.velocity, drive_x=drive_x, drive_force=rec[4] * u.force,
+                      normal_force=rec[6] * u.force, friction_force=-rec[5] * u.force,
+                      tangential_force=rec[7] * u.force, contact_count=rec[8].copy(),
+                      lower_dx=np.empty((n, 0)), lower_dy=np.empty((n, 0)),
+                      lower_contact=np.empty((n, 0), dtype=bool))
+        meta = {"engine": ENGINE, "dt": float(self.dt[b] * u.time), "record_every": self.record_every,
+                "iterations": int(self.iterations[b]), "steps": int(self.nstep[b]), "settle_time": 0.0,
+                "units": u.to_dict(), "asperity2d_version": __version__, "numpy_version": np.__version__,
+                "record_lower": False, **meta}
+        return arrays, meta
+
+
+def _rear(batch: Batch, b: int) -> float:
+    """x of the slider's rear apex relative to the slider's position (internal units)."""
+    return float(batch.scenes[b].slider.tips()[0] / batch.units[b].length)
+
+
+def _hull(points) -> tuple[np.ndarray, np.ndarray]:
+    """A triangle's vertices in Chipmunk's hull order (counter-clockwise from the lowest x, then
+    y) and each vertex's plane normal (of the edge that ends at it, outward, unit)."""
+    pts = [tuple(map(float, p)) for p in points]
+    area = sum(pts[i][0] * pts[(i + 1) % 3][1] - pts[(i + 1) % 3][0] * pts[i][1] for i in range(3))
+    if area < 0:
+        pts = pts[::-1]
+    start = min(range(3), key=lambda i: pts[i])
+    pts = pts[start:] + pts[:start]
+    v = np.array(pts)
+    n = np.empty((3, 2))
+    for i in range(3):
+        ax, ay = v[i - 1]
+        bx, by = v[i]
+        dx, dy = bx - ax, by - ay  # cpvnormalize(cpvrperp(b - a)): rperp(d) = (d.y, -d.x)
+        length = math.sqrt(dy * dy + dx * dx)
+        n[i] = dy * (1.0 / length), -dx * (1.0 / length)
+    return v, n
+
+
+def run(scenes, dts, durations, *, record_every: int = 10, iterations: int = 20, passed=None):
+    """Run each scene for its duration (s) from rest: per scene, in order, its record
+    ``(arrays, meta)`` (:meth:`Batch.result`) or the SimulationError that stopped it.
+
+    ``passed[b]``: stop scene ``b`` when its slider has passed the surface (the default stop).
+    """
+    scenes = list(scenes)
+    dts = [float(d) for d in dts]
+    steps = [max(0, int(math.ceil(d / dt - 1e-9))) for d, dt in zip(durations, dts)]
+    samples = max(1, max(steps) // record_every)
+    batch = Batch(scenes, dts, iterations=iterations, record_every=record_every, samples=samples)
+    for b in range(len(scenes)):
+        batch.set_stop(b, bool(passed[b]) if passed is not None else False)
+    batch.advance(steps)
+    out = []
+    for b in range(len(scenes)):
+        err = batch.error(b)
+        if err is not None:
+            out.append(err)
+            continue
+        done = int(batch.nstep[b])
+        status = "passed" if done < steps[b] else "duration"
+        message = "the slider passed the lower surface" if status == "passed" else "ran its duration"
+        out.append(batch.result(b, status=status, meta={"status": status, "message": message}))
+    return out

@@ -1,0 +1,510 @@
+"""The batched engine's compiled step loop (Numba): many asperity scenes advanced in lockstep.
+
+Part of :mod:`asperity2d.engine` (imported only by :mod:`.batched`, only where Numba is
+installed). One call advances every scene of a batch by its own number of steps with no Python
+in between; scenes are independent (``prange`` over scenes, no quantity shared between them),
+so a scene's numbers do not depend on what else is in the batch.
+
+Each step is Chipmunk's ``cpSpaceStep`` for this model, operation for operation where the model
+allows (Chipmunk 7 as bundled with pymunk 7: ``cpSpaceStep.c``, ``cpArbiter.c``,
+``cpCollision.c``, ``cpDampedSpring.c``, ``cpGrooveJoint.c``), then the adapter's track
+projection and stick/slip switch (:mod:`.core`, :mod:`.contacts`):
+
+1. the slider's force (the drive spring at the position the step will end at, or the constant
+   force; the normal load on a free slider);
+2. positions: ``p += (v + v_bias) dt``, ``v_bias = 0``;
+3. contacts: every slider triangle against every lower triangle whose bounding boxes overlap;
+   the normal and depth by the separating-axis test (for two overlapping convex polygons the
+   same minimum-penetration axis GJK/EPA converges to), the contact points by Chipmunk's
+   ``SupportEdgeForPoly`` / ``ContactPoints`` clipping (at most two per pair), warm-started from
+   the previous step's impulses of the same vertex pair (contacts persist one step, as
+   ``collision_persistence = 1`` makes them);
+4. pre-step: contact masses, the position bias ``-bias min(0, d + slop) / dt``, the bounce;
+   each track spring's force as an impulse and its exact damping coefficient
+   ``1 - exp(-c dt / m)``; each groove's anchor, clamp and bias;
+5. velocities: ``v = v + (g + f / m) dt``;
+6. cached impulses (contacts, grooves), then ``iterations`` sweeps of sequential impulses over
+   the contacts, then the springs' damping and the grooves;
+7. the projection back onto the tracks when a body drifted more than ``1e-9`` bases, and the
+   static/kinetic switch with its hold rule (:class:`asperity2d.contact_laws.StaticKineticSwitch`).
+
+Everything is in the engine's internal units (:mod:`asperity2d.units`).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit, prange
+
+#: Contact points per pair (Chipmunk's CP_MAX_CONTACTS_PER_ARBITER).
+MAX_CONTACTS = 2
+#: Pairs in contact per scene and step the scratch arrays hold (a slider triangle touches at
+#: most its two neighbouring lower flanks, and the lower triangle under it near an apex).
+PAIRS_PER_TIP = 4
+#: Failure codes (per scene): 0 ok; the others name why a scene stopped.
+OK, NONFINITE, OVERLAP, FLOOR, PAIRS = 0, 1, 2, 3, 4
+#: Recorded columns per sample (the Result's slider columns but t and drive_x, which the
+#: Python side makes from the step count).
+N_REC = 9  # x, vx, y, vy, drive force, fx, fy, f_tangential, contact count
+#: The divergence guard's deepest overlap (bases), as the pymunk path's (recorder.MAX_OVERLAP).
+MAX_OVERLAP = 0.5
+
+DBL_MAX = 1.7976931348623157e308
+
+
+@njit(inline="always")
+def _clamp01(t):
+    return 0.0 if t < 0.0 else (1.0 if t > 1.0 else t)
+
+
+@njit(cache=True)
+def _support_edge(vx, vy, nxs, nys, px, py, n_x, n_y):
+    """Chipmunk's SupportEdgeForPoly for a triangle translated by (px, py): the edge's two
+    vertex indices (a, b) and their world coordinates."""
+    best, i1 = -np.inf, 0
+    for i in range(3):
+        d = (vx[i] + px) * n_x + (vy[i] + py) * n_y
+        if d > best:
+            best, i1 = d, i
+    i0 = (i1 - 1 + 3) % 3
+    i2 = (i1 + 1) % 3
+    if n_x * nxs[i1] + n_y * nys[i1] > n_x * nxs[i2] + n_y * nys[i2]:
+        return i0, i1
+    return i1, i2
+
+
+@njit(cache=True)
+def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, sgj,
+                c_n, c_key, c_jn, c_jt, stuck, slid, mu, present, nstep, fail, fail_step,
+                lx0, lverts, lnorms, lm_inv, lk, lc, ldown, lup, n_lower,
+                uverts, unorms, n_upper, s_m_inv, fixed, track_y, g_x, g_y,
+                spring, dk, dc, dv, dorigin, dforce, load,
+                dt, iterations, slop, bias_coef, joint_bias_coef, restitution,
+                mu_s, mu_k, v_stick, slip_dist, switch_on, floor_y, stop_x, first):
+    """Advance scene ``b`` by ``steps[b]`` steps (see the module docstring)."""
+    N = n_lower[b]
+    U = n_upper[b]
+    max_pairs = PAIRS_PER_TIP * U
+    # this step's pairs: tip j, lower i, normal, count, per contact r1 (from the slider),
+    # r2 (from the lower body), key, jn, jt, jbias, masses, bias, bounce
+    a_j = np.empty(max_pairs, np.int64)
+    a_i = np.empty(max_pairs, np.int64)
+    a_nx = np.empty(max_pairs)
+    a_ny = np.empty(max_pairs)
+    a_cnt = np.empty(max_pairs, np.int64)
+    a_first = np.empty(max_pairs, np.bool_)
+    a_u = np.empty(max_pairs)
+    r1x = np.empty((max_pairs, 2))
+    r1y = np.empty((max_pairs, 2))
+    r2x = np.empty((max_pairs, 2))
+    r2y = np.empty((max_pairs, 2))
+    key = np.empty((max_pairs, 2), np.int64)
+    jn = np.empty((max_pairs, 2))
+    jt = np.empty((max_pairs, 2))
+    jb = np.empty((max_pairs, 2))
+    nmass = np.empty((max_pairs, 2))
+    tmass = np.empty((max_pairs, 2))
+    cbias = np.empty((max_pairs, 2))
+    bounce = np.empty((max_pairs, 2))
+    # per lower body: spring direction, mass, damping coefficient, target; groove state
+    sn_x = np.empty(N)
+    sn_y = np.empty(N)
+    s_vcoef = np.empty(N)
+    s_target = np.empty(N)
+    s_jacc = np.empty(N)
+    g_clamp = np.empty(N)
+    g_bx = np.empty(N)
+    g_by = np.empty(N)
+    slips = np.empty(N)
+    seen = np.zeros(N, np.bool_)
+    wvx = np.empty(3)
+    wvy = np.empty(3)
+    uvx = np.empty(3)
+    uvy = np.empty(3)
+    sm_inv = s_m_inv[b]
+    h = dt[b]
+    for _ in range(steps[b]):
+        if fail[b] != OK:
+            break
+        k = nstep[b]
+        # 1. the slider's force
+        x, vx = sp[b, 0], sv[b, 0]
+        if spring[b]:
+            x_d = dorigin[b] + dv[b] * (k + 1) * h
+            fx = dk[b] * (x_d - (x + vx * h)) + dc[b] * (dv[b] - vx)
+        else:
+            fx = dforce[b]
+        fy = -load[b]
+        # 2. positions
+        sp[b, 0] = sp[b, 0] + (sv[b, 0] + svb[b, 0]) * h
+        sp[b, 1] = sp[b, 1] + (sv[b, 1] + svb[b, 1]) * h
+        svb[b, 0] = 0.0
+        svb[b, 1] = 0.0
+        for i in range(N):
+            lp[b, i, 0] = lp[b, i, 0] + (lv[b, i, 0] + lvb[b, i, 0]) * h
+            lp[b, i, 1] = lp[b, i, 1] + (lv[b, i, 1] + lvb[b, i, 1]) * h
+            lvb[b, i, 0] = 0.0
+            lvb[b, i, 1] = 0.0
+        spx, spy = sp[b, 0], sp[b, 1]
+        # 3. contacts
+        na = 0
+        for j in range(U):
+            ul, ur, ub, ut = np.inf, -np.inf, np.inf, -np.inf
+            for q in range(3):
+                uvx[q] = uverts[b, j, q, 0] + spx
+                uvy[q] = uverts[b, j, q, 1] + spy
+                ul, ur = min(ul, uvx[q]), max(ur, uvx[q])
+                ub, ut = min(ub, uvy[q]), max(ut, uvy[q])
+            if ub < floor_y[b]:
+                fail[b] = FLOOR
+            for i in range(N):
+                lpx, lpy = lp[b, i, 0], lp[b, i, 1]
+                ll, lr, lb, lt = np.inf, -np.inf, np.inf, -np.inf
+                for q in range(3):
+                    wvx[q] = lverts[b, i, q, 0] + lpx
+                    wvy[q] = lverts[b, i, q, 1] + lpy
+                    ll, lr = min(ll, wvx[q]), max(lr, wvx[q])
+                    lb, lt = min(lb, wvy[q]), max(lt, wvy[q])
+                if not (ul <= lr and ll <= ur and ub <= lt and lb <= ut):
+                    c_n[b, j, i] = 0
+                    continue
+                # minimum penetration over the Minkowski difference's edge normals m
+                # (B's outward normals and A's negated): h(m) = max_B m.b - min_A m.a
+                best, mx, my = np.inf, 0.0, 0.0
+                for side in range(2):
+                    for e in range(3):
+                        if side == 0:
+                            ex, ey = lnorms[b, i, e, 0], lnorms[b, i, e, 1]
+                        else:
+                            ex, ey = -unorms[b, j, e, 0], -unorms[b, j, e, 1]
+                        hb, ha = -np.inf, np.inf
+                        for q in range(3):
+                            hb = max(hb, wvx[q] * ex + wvy[q] * ey)
+                            ha = min(ha, uvx[q] * ex + uvy[q] * ey)
+                        depth = hb - ha
+                        if depth < best:
+                            best, mx, my = depth, ex, ey
+                if best < 0.0:  # separated (d > 0)
+                    c_n[b, j, i] = 0
+                    continue
+                n_x, n_y = -mx, -my  # from the slider (a) to the lower body (b)
+                # ContactPoints(SupportEdgeForPoly(a, n), SupportEdgeForPoly(b, -n))
+                a0, a1 = _support_edge(uverts[b, j, :, 0], uverts[b, j, :, 1], unorms[b, j, :, 0],
+                                       unorms[b, j, :, 1], spx, spy, n_x, n_y)
+                b0, b1 = _support_edge(lverts[b, i, :, 0], lverts[b, i, :, 1], lnorms[b, i, :, 0],
+                                       lnorms[b, i, :, 1], lpx, lpy, -n_x, -n_y)
+                e1ax, e1ay, e1bx, e1by = uvx[a0], uvy[a0], uvx[a1], uvy[a1]
+                e2ax, e2ay, e2bx, e2by = wvx[b0], wvy[b0], wvx[b1], wvy[b1]
+                d_e1_a = e1ax * n_y - e1ay * n_x
+                d_e1_b = e1bx * n_y - e1by * n_x
+                d_e2_a = e2ax * n_y - e2ay * n_x
+                d_e2_b = e2bx * n_y - e2by * n_x
+                e1_denom = min(1.0 / (d_e1_b - d_e1_a), DBL_MAX)
+                e2_denom = min(1.0 / (d_e2_b - d_e2_a), DBL_MAX)
+                if na >= max_pairs:
+                    fail[b] = PAIRS
+                    break
+                cnt = 0
+                for which in range(2):
+                    if which == 0:
+                        t1 = _clamp01((d_e2_b - d_e1_a) * e1_denom)
+                        t2 = _clamp01((d_e1_a - d_e2_a) * e2_denom)
+                        kk = a0 * 3 + b1
+                    else:
+                        t1 = _clamp01((d_e2_a - d_e1_a) * e1_denom)
+                        t2 = _clamp01((d_e1_b - d_e2_a) * e2_denom)
+                        kk = a1 * 3 + b0
+                    p1x = e1ax * (1.0 - t1) + e1bx * t1
+                    p1y = e1ay * (1.0 - t1) + e1by * t1
+                    p2x = e2ax * (1.0 - t2) + e2bx * t2
+                    p2y = e2ay * (1.0 - t2) + e2by * t2
+                    if (p2x - p1x) * n_x + (p2y - p1y) * n_y <= 0.0:
+                        r1x[na, cnt], r1y[na, cnt] = p1x - spx, p1y - spy
+                        r2x[na, cnt], r2y[na, cnt] = p2x - lpx, p2y - lpy
+                        key[na, cnt] = kk
+                        jn[na, cnt] = 0.0
+                        jt[na, cnt] = 0.0
+                        # warm start: the previous step's impulses of the same vertex pair
+                        for o in range(c_n[b, j, i]):
+                            if c_key[b, j, i, o] == kk:
+                                jn[na, cnt] = c_jn[b, j, i, o]
+                                jt[na, cnt] = c_jt[b, j, i, o]
+                        cnt += 1
+                if cnt == 0:
+                    c_n[b, j, i] = 0
+                    continue
+                a_first[na] = c_n[b, j, i] == 0
+                a_j[na], a_i[na], a_nx[na], a_ny[na], a_cnt[na] = j, i, n_x, n_y, cnt
+                a_u[na] = mu[b, i]
+                na += 1
+            if fail[b] != OK:
+                break
+        if fail[b] != OK:
+            fail_step[b] = k + 1
+            break
+        # 4. pre-step: contacts
+        for a in range(na):
+            i = a_i[a]
+            n_x, n_y = a_nx[a], a_ny[a]
+            m_sum = sm_inv + lm_inv[b, i]
+            bdx, bdy = lp[b, i, 0] - spx, lp[b, i, 1] - spy
+            vrx, vry = lv[b, i, 0] - sv[b, 0], lv[b, i, 1] - sv[b, 1]
+            for c in range(a_cnt[a]):
+                nmass[a, c] = 1.0 / m_sum
+                tmass[a, c] = 1.0 / m_sum
+                dist = ((r2x[a, c] - r1x[a, c]) + bdx) * n_x + ((r2y[a, c] - r1y[a, c]) + bdy) * n_y
+                if dist < -MAX_OVERLAP:  # the divergence guard's deepest overlap
+                    fail[b] = OVERLAP
+                cbias[a, c] = -bias_coef[b] * min(0.0, dist + slop) / h
+                jb[a, c] = 0.0
+                bounce[a, c] = (vrx * n_x + vry * n_y) * restitution[b]
+        if fail[b] != OK:
+            fail_step[b] = k + 1
+            break
+        # pre-step: per lower body its spring (the impulse of its force), then its groove
+        for i in range(N):
+            m_inv = lm_inv[b, i]
+            dx, dy = lp[b, i, 0] - lx0[b, i], lp[b, i, 1] - (-100.0)
+            dist = math.sqrt(dx * dx + dy * dy)
+            inv = 1.0 / dist
+            sn_x[i], sn_y[i] = dx * inv, dy * inv
+            s_target[i] = 0.0
+            s_vcoef[i] = 1.0 - math.exp(-lc[b, i] * h * m_inv)
+            j_spring = (100.0 - dist) * lk[b, i] * h
+            s_jacc[i] = j_spring
+            lv[b, i, 0] = lv[b, i, 0] + sn_x[i] * j_spring * m_inv
+            lv[b, i, 1] = lv[b, i, 1] + sn_y[i] * j_spring * m_inv
+            # groove along y at x0 from -down to up; n = (-1, 0), td = y
+            td = lp[b, i, 1]
+            if td <= -ldown[b, i]:
+                g_clamp[i] = 1.0
+                ay = -ldown[b, i]
+            elif td >= lup[b, i]:
+                g_clamp[i] = -1.0
+                ay = lup[b, i]
+            else:
+                g_clamp[i] = 0.0
+                ay = td
+            g_bx[i] = -(lp[b, i, 0] - lx0[b, i]) * joint_bias_coef[b] / h
+            g_by[i] = -(lp[b, i, 1] - ay) * joint_bias_coef[b] / h
+        if fixed[b]:  # the slider's groove along x at the track's height; n = (0, 1)
+            sgb_y = -(sp[b, 1] - track_y[b]) * joint_bias_coef[b] / h
+        # 5. velocities
+        sv[b, 0] = sv[b, 0] + (g_x[b] + fx * sm_inv) * h
+        sv[b, 1] = sv[b, 1] + (g_y[b] + fy * sm_inv) * h
+        for i in range(N):
+            lv[b, i, 0] = lv[b, i, 0] + g_x[b] * h
+            lv[b, i, 1] = lv[b, i, 1] + g_y[b] * h
+        # 6. cached impulses (dt / previous dt: 0 on a space's first step, else 1)
+        coef = 0.0 if first[b] else 1.0
+        for a in range(na):
+            if a_first[a]:
+                continue
+            i = a_i[a]
+            n_x, n_y = a_nx[a], a_ny[a]
+            for c in range(a_cnt[a]):
+                jx = (n_x * jn[a, c] - n_y * jt[a, c]) * coef
+                jy = (n_x * jt[a, c] + n_y * jn[a, c]) * coef
+                sv[b, 0] -= jx * sm_inv
+                sv[b, 1] -= jy * sm_inv
+                lv[b, i, 0] += jx * lm_inv[b, i]
+                lv[b, i, 1] += jy * lm_inv[b, i]
+        for i in range(N):
+            lv[b, i, 0] += gj[b, i, 0] * coef * lm_inv[b, i]
+            lv[b, i, 1] += gj[b, i, 1] * coef * lm_inv[b, i]
+        if fixed[b]:
+            sv[b, 0] += sgj[b, 0] * coef * sm_inv
+            sv[b, 1] += sgj[b, 1] * coef * sm_inv
+        first[b] = False
+        for _it in range(iterations[b]):
+            for a in range(na):
+                i = a_i[a]
+                n_x, n_y = a_nx[a], a_ny[a]
+                u = a_u[a]
+                mi = lm_inv[b, i]
+                for c in range(a_cnt[a]):
+                    vrx = lv[b, i, 0] - sv[b, 0]
+                    vry = lv[b, i, 1] - sv[b, 1]
+                    vbn = (lvb[b, i, 0] - svb[b, 0]) * n_x + (lvb[b, i, 1] - svb[b, 1]) * n_y
+                    vrn = vrx * n_x + vry * n_y
+                    vrt = vrx * (-n_y) + vry * n_x
+                    jbn = (cbias[a, c] - vbn) * nmass[a, c]
+                    jb_old = jb[a, c]
+                    jb[a, c] = max(jb_old + jbn, 0.0)
+                    jn_new = -(bounce[a, c] + vrn) * nmass[a, c]
+                    jn_old = jn[a, c]
+                    jn[a, c] = max(jn_old + jn_new, 0.0)
+                    jt_max = u * jn[a, c]
+                    jt_new = -vrt * tmass[a, c]
+                    jt_old = jt[a, c]
+                    jt[a, c] = min(max(jt_old + jt_new, -jt_max), jt_max)
+                    dbn = jb[a, c] - jb_old
+                    svb[b, 0] -= n_x * dbn * sm_inv
+                    svb[b, 1] -= n_y * dbn * sm_inv
+                    lvb[b, i, 0] += n_x * dbn * mi
+                    lvb[b, i, 1] += n_y * dbn * mi
+                    djn, djt = jn[a, c] - jn_old, jt[a, c] - jt_old
+                    jx = n_x * djn - n_y * djt
+                    jy = n_x * djt + n_y * djn
+                    sv[b, 0] -= jx * sm_inv
+                    sv[b, 1] -= jy * sm_inv
+                    lv[b, i, 0] += jx * mi
+                    lv[b, i, 1] += jy * mi
+            for i in range(N):
+                mi = lm_inv[b, i]
+                # the spring's damping: exact decay of the velocity along it
+                vrn = lv[b, i, 0] * sn_x[i] + lv[b, i, 1] * sn_y[i]
+                v_damp = (s_target[i] - vrn) * s_vcoef[i]
+                s_target[i] = vrn + v_damp
+                j_damp = v_damp * (1.0 / mi)
+                s_jacc[i] += j_damp
+                lv[b, i, 0] += sn_x[i] * j_damp * mi
+                lv[b, i, 1] += sn_y[i] * j_damp * mi
+                # the groove (its mass tensor is m I for a body that cannot rotate)
+                kinv = mi / (mi * mi)
+                jx = kinv * (g_bx[i] - lv[b, i, 0])
+                jy = kinv * (g_by[i] - lv[b, i, 1])
+                ox, oy = gj[b, i, 0], gj[b, i, 1]
+                sx, sy = ox + jx, oy + jy
+                if not (g_clamp[i] * sy > 0.0):  # cross(j, n) = j.y for n = (-1, 0)
+                    sy = 0.0  # projected onto n: (sx, 0)
+                gj[b, i, 0], gj[b, i, 1] = sx, sy
+                lv[b, i, 0] += (sx - ox) * mi
+                lv[b, i, 1] += (sy - oy) * mi
+            if fixed[b]:
+                kinv = sm_inv / (sm_inv * sm_inv)
+                jx = kinv * (0.0 - sv[b, 0])
+                jy = kinv * (sgb_y - sv[b, 1])
+                ox, oy = sgj[b, 0], sgj[b, 1]
+                sx, sy = 0.0, oy + jy  # never at the track's ends: projected onto n = (0, 1)
+                sgj[b, 0], sgj[b, 1] = sx, sy
+                sv[b, 0] += (sx - ox) * sm_inv
+                sv[b, 1] += (sy - oy) * sm_inv
+        # remember this step's contacts for the next step's warm start
+        for j in range(U):
+            for i in range(N):
+                c_n[b, j, i] = 0
+        for a in range(na):
+            j, i = a_j[a], a_i[a]
+            c_n[b, j, i] = a_cnt[a]
+            for c in range(a_cnt[a]):
+                c_key[b, j, i, c] = key[a, c]
+                c_jn[b, j, i, c] = jn[a, c]
+                c_jt[b, j, i, c] = jt[a, c]
+        nstep[b] = k + 1
+        # 7. projection back onto the tracks
+        drift = 0.0
+        for i in range(N):
+            drift = max(drift, abs(lp[b, i, 0] - lx0[b, i]))
+        if fixed[b]:
+            drift = max(drift, abs(sp[b, 1] - track_y[b]))
+        if drift > 1e-9:
+            for i in range(N):
+                lp[b, i, 0] = lx0[b, i]
+                lv[b, i, 0] = 0.0
+            if fixed[b]:
+                sp[b, 1] = track_y[b]
+                sv[b, 1] = 0.0
+        # the static/kinetic switch: per lower asperity the largest slip over its contacts
+        if switch_on[b]:
+            for i in range(N):
+                slips[i] = -1.0
+                seen[i] = False
+            for a in range(na):
+                i = a_i[a]
+                n_x, n_y = a_nx[a], a_ny[a]
+                s = abs((sv[b, 0] - lv[b, i, 0]) * n_y - (sv[b, 1] - lv[b, i, 1]) * n_x)
+                if s > slips[i]:
+                    slips[i] = s
+                seen[i] = True
+            for i in range(N):
+                if not seen[i]:
+                    if present[b, i]:
+                        stuck[b, i], slid[b, i], mu[b, i] = False, 0.0, mu_k[b]
+                    present[b, i] = False
+                    continue
+                s = slips[i]
+                if not present[b, i]:
+                    st, sd = s < v_stick[b], 0.0
+                elif stuck[b, i]:
+                    if s > v_stick[b]:
+                        sd = slid[b, i] + s * h
+                        st = not (sd > slip_dist[b])
+                    else:
+                        st, sd = True, 0.0
+                elif s < v_stick[b]:
+                    st, sd = True, 0.0
+                else:
+                    st, sd = False, slid[b, i]
+                stuck[b, i], slid[b, i] = st, sd
+                mu[b, i] = mu_s[b] if st else mu_k[b]
+                present[b, i] = True
+        # divergence guard and the record
+        if not (math.isfinite(sp[b, 0]) and math.isfinite(sp[b, 1]) and math.isfinite(sv[b, 0])
+                and math.isfinite(sv[b, 1])):
+            fail[b] = NONFINITE
+            fail_step[b] = k + 1
+            break
+        if (k + 1) % rec_every == 0 and rec_at[b] < rec.shape[2]:
+            _record(b, rec, rec_at, sp, sv, na, a_nx, a_ny, a_cnt, jn, jt, h, spring, dk, dc, dv,
+                    dorigin, dforce, k + 1)
+            if sp[b, 0] > stop_x[b]:  # a stop is checked at the samples, as the run loop's
+                break
+
+
+@njit(cache=True)
+def _record(b, rec, rec_at, sp, sv, na, a_nx, a_ny, a_cnt, jn, jt, h, spring, dk, dc, dv, dorigin,
+            dforce, step):
+    """One sample of scene ``b``: the slider's state, the drive force, the contact forces."""
+    x, vx = sp[b, 0], sv[b, 0]
+    if spring[b]:
+        f_drive = dk[b] * ((dorigin[b] + dv[b] * step * h) - x) + dc[b] * (dv[b] - vx)
+    else:
+        f_drive = dforce[b]
+    fx = fy = ft = 0.0
+    deepest = 0.0
+    count = 0
+    for a in range(na):
+        n_x, n_y = a_nx[a], a_ny[a]
+        for c in range(a_cnt[a]):
+            # the impulse on the slider (body a of the pair): -(n jn + perp(n) jt)
+            jx = -(n_x * jn[a, c] - n_y * jt[a, c])
+            jy = -(n_x * jt[a, c] + n_y * jn[a, c])
+            fx += jx
+            fy += jy
+            jnn = jx * n_x + jy * n_y
+            ty = -n_x if n_y >= 0 else n_x
+            ft += (jx - jnn * n_x) * abs(n_y) + (jy - jnn * n_y) * ty
+        count += 1
+    r = rec_at[b]
+    rec[b, 0, r] = x
+    rec[b, 1, r] = vx
+    rec[b, 2, r] = sp[b, 1]
+    rec[b, 3, r] = sv[b, 1]
+    rec[b, 4, r] = f_drive
+    rec[b, 5, r] = fx / h
+    rec[b, 6, r] = fy / h
+    rec[b, 7, r] = -ft / h
+    rec[b, 8, r] = count
+    rec_at[b] = r + 1
+
+
+@njit(parallel=True, cache=True)
+def advance(steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, sgj,
+            c_n, c_key, c_jn, c_jt, stuck, slid, mu, present, nstep, fail, fail_step,
+            lx0, lverts, lnorms, lm_inv, lk, lc, ldown, lup, n_lower,
+            uverts, unorms, n_upper, s_m_inv, fixed, track_y, g_x, g_y,
+            spring, dk, dc, dv, dorigin, dforce, load,
+            dt, iterations, slop, bias_coef, joint_bias_coef, restitution,
+            mu_s, mu_k, v_stick, slip_dist, switch_on, floor_y, stop_x, first):
+    """Advance every scene ``b`` of the batch by ``steps[b]`` steps, in parallel over scenes."""
+    for b in prange(steps.shape[0]):
+        _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, sgj,
+                    c_n, c_key, c_jn, c_jt, stuck, slid, mu, present, nstep, fail, fail_step,
+                    lx0, lverts, lnorms, lm_inv, lk, lc, ldown, lup, n_lower,
+                    uverts, unorms, n_upper, s_m_inv, fixed, track_y, g_x, g_y,
+                    spring, dk, dc, dv, dorigin, dforce, load,
+                    dt, iterations, slop, bias_coef, joint_bias_coef, restitution,
+                    mu_s, mu_k, v_stick, slip_dist, switch_on, floor_y, stop_x, first)

@@ -1,0 +1,100 @@
+"""The asperity engines: the contract every engine keeps, and the table of them (:data:`ENGINES`).
+
+Part of :mod:`asperity2d.engine`. An engine steps asperity scenes; it is an :class:`EngineEntry`
+listed under its name in :data:`ENGINES`, as the belt lists its back ends in
+``asperity2d.belt.METHODS``. :func:`asperity2d.simulate`, the named stick-force measures,
+:func:`asperity2d.compare` and the command line (``--engine``) take an engine by name; the
+default is always ``"pymunk"``. The contract:
+
+1. **In:** validated :class:`~asperity2d.scene.Scene` objects and the run options the run loop
+   resolved (per scene its step ``dt`` (s) and duration (s), ``record_every``, ``iterations``,
+   and whether the default stop -- the slider has passed the surface -- ends it).
+2. **Out:** per scene, the record of a :class:`~asperity2d.Result` of the kind the reference
+   makes, ``(arrays, meta)`` (the slider's SI columns; ``meta["engine"]`` names the engine that
+   made it; :func:`asperity2d.run.simulate_many` makes the Result), or the
+   :class:`~asperity2d.errors.SimulationError` that stopped that scene alone: a scene that
+   diverges never stops the others of its batch.
+3. **Must check** before anything runs what the reference checks (the scales, a step longer
+   than the contact it must resolve, a load the springs cannot carry: the same messages), and
+   that the batch fits in memory (refused up front, naming the batch size).
+4. **May refuse** a scene option it does not implement, in one
+   :class:`~asperity2d.errors.SceneError` line naming the option and saying ``engine="pymunk"``
+   runs it (:attr:`EngineEntry.refusal`, asked before anything runs); and, when its optional
+   dependency is missing, one line saying how to install it (:attr:`EngineEntry.unavailable`).
+5. Same scenes and options, same numbers, bit for bit; a scene's result does not depend on
+   what else is in its batch. An engine never prints and never writes files.
+
+``"pymunk"`` is the reference: every scene option, settling, the energy books, the lower
+asperities' records, pictures and the workbench; its runs are :class:`asperity2d.Run`.
+``"batched"`` (:mod:`.batched`) steps many scenes of the model's common case at once.
+
+Examples
+--------
+>>> from asperity2d.engine import ENGINES
+>>> list(ENGINES)
+['pymunk', 'batched']
+>>> ENGINES["pymunk"].unavailable() is None  # the reference is always there
+True
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+from .._inputs import check_choice
+from ..errors import SceneError
+from . import batched
+
+#: The engine every run uses unless told otherwise.
+DEFAULT = "pymunk"
+
+
+@dataclass(frozen=True)
+class EngineEntry:
+    """One asperity engine (the module's contract): ``unavailable()`` says why it cannot run
+    here (None: it can), ``refusal(scene, settle)`` names a scene option it does not implement
+    (None: it runs the scene), ``run(scenes, dts, durations, record_every=, iterations=,
+    passed=)`` returns one record ``(arrays, meta)`` or SimulationError per scene (None for the reference, whose
+    run loop is :class:`asperity2d.Run`)."""
+
+    name: str
+    description: str
+    unavailable: Callable[[], str | None]
+    refusal: Callable[..., str | None]
+    run: Callable | None = None
+
+
+def _always() -> None:
+    return None
+
+
+def _everything(scene, *, settle: bool = False) -> None:
+    return None
+
+
+#: Name -> engine, the reference first.
+ENGINES: dict[str, EngineEntry] = {
+    "pymunk": EngineEntry("pymunk", "pymunk (Chipmunk 2D), one scene at a time: the reference; every "
+                          "scene option", _always, _everything),
+    "batched": EngineEntry("batched", "the model's own compiled loop (Numba), many scenes in lockstep: "
+                           "full triangles on spring tracks, no lattice or substrate", batched.unavailable,
+                           batched.refusal, batched.run),
+}
+
+
+def check_engine(engine) -> str:
+    """``engine`` as a known, usable name; a ``SceneError`` line otherwise (an unknown name, or
+    an engine whose optional dependency is missing, saying how to install it)."""
+    name = check_choice("engine", engine, tuple(ENGINES))
+    why = ENGINES[name].unavailable()
+    if why is not None:
+        raise SceneError(why)
+    return name
+
+
+def refuse(engine: str, scene, *, settle: bool = False) -> None:
+    """Raise the ``SceneError`` line of a scene option ``engine`` does not implement, if any."""
+    why = ENGINES[engine].refusal(scene, settle=settle)
+    if why is not None:
+        raise SceneError(why)
