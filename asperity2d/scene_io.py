@@ -89,8 +89,3 @@ def _kind(value) -> str:
     return f"{type(value).__name__} {show(value)}"[:80]
 
 
-def _kind(value) -> str:
-    """A value for a message, never failing (a table nested thousands deep has no ``repr``)."""
-    from ._inputs import show
-
-    return f"{type(value).__name__} {show(value)}"[:80]
