@@ -87,5 +87,3 @@ def _kind(value) -> str:
     from ._inputs import show
 
     return f"{type(value).__name__} {show(value)}"[:80]
-
-
