@@ -100,12 +100,15 @@ def parser(description: str) -> argparse.ArgumentParser:
     return p
 
 
-def study_args(description: str, argv, *, default_seeds: int, minimum_seeds: int = 2,
-               quick_seeds: int = 2):
+def study_args(description: str, argv, *, default_seeds: int | str, minimum_seeds: int = 2,
+               quick_seeds: int = 2, auto: bool = False, default_max_seeds: int = 40):
     """Parse a seed study's arguments: the common ones plus ``--seeds`` and ``--workers``.
 
     ``args.seeds`` is resolved (``default_seeds``, or ``quick_seeds`` with ``--quick``);
-    fewer than ``minimum_seeds`` is a usage error (one line, exit status 2).
+    fewer than ``minimum_seeds`` is a usage error (one line, exit status 2). A study that
+    passes ``auto=True`` also takes ``--seeds auto`` (``args.seeds == "auto"``: seeds added in
+    stages until its verdicts are decided, ``compare(..., seeds="auto")``) with the budget
+    ``--max-seeds`` (``args.max_seeds``, default ``default_max_seeds``).
 
     Examples
     --------
@@ -115,14 +118,34 @@ def study_args(description: str, argv, *, default_seeds: int, minimum_seeds: int
     (2, None)
     >>> scripting.study_args("My study", ["--seeds", "12", "--workers", "1"], default_seeds=8).seeds
     12
+    >>> args = scripting.study_args("My study", ["--seeds", "auto", "--max-seeds", "30"], default_seeds=8, auto=True)
+    >>> args.seeds, args.max_seeds
+    ('auto', 30)
     """
     p = parser(description)
-    p.add_argument("--seeds", type=int, default=None,
-                   help=f"seeds per random variant (default {default_seeds}, quick {quick_seeds})")
+
+    def seeds_arg(text: str):
+        if auto and text == "auto":
+            return text
+        try:
+            return int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"must be an integer{' or auto' if auto else ''}, got {text!r}") from None
+
+    p.add_argument("--seeds", type=seeds_arg, default=None,
+                   help=f"seeds per random variant{', or auto (added in stages until decided)' if auto else ''} "
+                        f"(default {default_seeds}, quick {quick_seeds})")
+    if auto:
+        p.add_argument("--max-seeds", type=int, default=default_max_seeds,
+                       help=f"the seed budget of --seeds auto (default {default_max_seeds})")
     add_workers(p)
     args = p.parse_args(argv)
     args.seeds = args.seeds or (quick_seeds if args.quick else default_seeds)
-    if args.seeds < minimum_seeds:
+    if args.seeds == "auto":
+        if args.max_seeds < max(minimum_seeds, 2):
+            p.error(f"`max-seeds` must be >= {max(minimum_seeds, 2)}, got {args.max_seeds}")
+    elif args.seeds < minimum_seeds:
         p.error(f"`seeds` must be >= {minimum_seeds}, got {args.seeds}")
     return args
 
