@@ -131,7 +131,7 @@ class Batch:
         self.track_y, self.g_x, self.g_y = f8(B), f8(B), f8(B)
         self.spring = np.zeros(B, np.bool_)
         self.dk, self.dc, self.dv, self.dorigin, self.dforce, self.load = f8(B), f8(B), f8(B), f8(B), f8(B), f8(B)
-        self.dt, self.iterations = f8(B), np.full(B, iterations, np.int64)
+        self.dt, self.dt_s, self.iterations = f8(B), f8(B), np.full(B, iterations, np.int64)
         self.bias_coef, self.joint_bias_coef, self.restitution = f8(B), f8(B), f8(B)
         self.mu_s, self.mu_k, self.v_stick, self.slip_dist = f8(B), f8(B), f8(B), f8(B)
         self.switch_on = np.zeros(B, np.bool_)
@@ -200,6 +200,7 @@ class Batch:
         self.load[b] = slider.normal_load / u.force if slider.track == "free" else 0.0
         h = dt / u.time
         self.dt[b] = h
+        self.dt_s[b] = dt
         bias = per_step_bias(CORRECTION_PER_STEP, h)
         self.bias_coef[b] = 1.0 - math.pow(bias, h)
         self.joint_bias_coef[b] = 1.0 - math.pow(bias, h)
@@ -253,7 +254,7 @@ class Batch:
         if code == 0:
             return None
         k = self.kernel
-        t = self.fail_step[b] * self.dt[b] * self.units[b].time
+        t = self.fail_step[b] * self.dt_s[b]
         why = {k.NONFINITE: "its state became non-finite", k.OVERLAP: "a contact overlapped more than half a base",
                k.FLOOR: "a slider tip reached the floor, which engine=\"batched\" does not model "
                         "(engine=\"pymunk\" runs it)",
@@ -267,7 +268,7 @@ class Batch:
         m = int(self.rec_at[b])
         rec = np.concatenate([self._initial[b][:, None], self.rec[b, :, :m]], axis=1)
         steps = np.arange(m + 1) * self.record_every
-        t = steps * self.dt[b] * u.time
+        t = steps * self.dt_s[b]  # as the recorder: step count x dt (s)
         drive_x = (self.dorigin[b] + self.dv[b] * steps * self.dt[b]) * u.length if self.spring[b] \
             else np.full(m + 1, math.nan)
         n = scene.lower.count
@@ -277,7 +278,7 @@ class Batch:
                       tangential_force=rec[7] * u.force, contact_count=rec[8].copy(),
                       lower_dx=np.empty((n, 0)), lower_dy=np.empty((n, 0)),
                       lower_contact=np.empty((n, 0), dtype=bool))
-        meta = {"engine": ENGINE, "dt": float(self.dt[b] * u.time), "record_every": self.record_every,
+        meta = {"engine": ENGINE, "dt": float(self.dt_s[b]), "record_every": self.record_every,
                 "iterations": int(self.iterations[b]), "steps": int(self.nstep[b]), "settle_time": 0.0,
                 "units": u.to_dict(), "asperity2d_version": __version__, "numpy_version": np.__version__,
                 "record_lower": False, **meta}

@@ -13,7 +13,9 @@ projection and stick/slip switch (:mod:`.core`, :mod:`.contacts`):
 1. the slider's force (the drive spring at the position the step will end at, or the constant
    force; the normal load on a free slider);
 2. positions: ``p += (v + v_bias) dt``, ``v_bias = 0``;
-3. contacts: every slider triangle against every lower triangle whose bounding boxes overlap;
+3. contacts: every slider triangle (the last first, the order pymunk's broad phase reports
+   them in, which decides the sequential solver's sweep) against every lower triangle whose
+   bounding boxes overlap;
    the normal and depth by the separating-axis test (for two overlapping convex polygons the
    same minimum-penetration axis GJK/EPA converges to), the contact points by Chipmunk's
    ``SupportEdgeForPoly`` / ``ContactPoints`` clipping (at most two per pair), warm-started from
@@ -150,7 +152,11 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
         spx, spy = sp[b, 0], sp[b, 1]
         # 3. contacts
         na = 0
-        for j in range(U):
+        # Chipmunk's broad phase reports the pairs of the slider's triangles last-added first
+        # (measured: this order reproduces pymunk to 1e-16 through two tips meeting their flanks
+        # in the same step; the x order left 2.7e-6 of the slider's speed, the residual of 20
+        # Gauss-Seidel sweeps that have not converged at a hard impact)
+        for j in range(U - 1, -1, -1):
             ul, ur, ub, ut = np.inf, -np.inf, np.inf, -np.inf
             for q in range(3):
                 uvx[q] = uverts[b, j, q, 0] + spx
