@@ -720,7 +720,7 @@ def rate_state_critical_stiffness() -> Check:
 def velocity_weakening_critical_damping() -> Check:
     """A spring-block with the velocity-weakening law, its damper 0.9 and 1.1 times -N μ'(V)."""
     from .builders import make_scene
-    from .friction import Stribeck
+    from .friction.laws import Stribeck
 
     N, V, v_s = LAW_BLOCK["normal_load"], 3.0, LAW_CASES["velocity-weakening"]["v_s"]
     # the belt chains' own criterion: steady sliding is unstable where c + N μ'(V) < 0

@@ -11,7 +11,7 @@ from asperity2d import builders, scene
 
 #: The units a record may carry: SI units (and the degree for angles), "1" for a pure number,
 #: "-" for a choice, text, flag or file.
-UNITS = {"m", "kg", "N", "N/m", "N s/m", "m/s", "m/s²", "°", "Pa", "kg/m³", "1", "-"}
+UNITS = {"m", "kg", "N", "N/m", "N s/m", "s/m", "m/s", "m/s²", "°", "Pa", "kg/m³", "1", "-"}
 
 
 def test_every_default_has_a_unit_and_a_meaning():
