@@ -260,3 +260,213 @@ def test_a_contact_law_added_through_the_registry_runs_in_the_python_loop(toy_la
     np.testing.assert_array_equal(ours.friction_force, theirs.friction_force)
     with pytest.raises(a.SceneError, match="`law`"):
         dataclasses.replace(scene.contact, law="nope")
+
+
+# -- an outside package, installed: its entry points reach the command line ----------------------
+#: A package as a contributor writes it: a pyproject.toml naming one entry of each group, and the
+#: modules. Each module imports only what its entry needs (a format's module stays light: the
+#: command line's help lists the formats).
+TOY_PYPROJECT = '''
+[project]
+name = "toyext"
+version = "0.1"
+
+[project.entry-points."asperity2d.measures"]
+toy-lower-count = "toyext.measures:LOWER_COUNT"
+broken = "toyext.missing:NOTHING"
+
+[project.entry-points."asperity2d.contact_laws"]
+toy-kinetic = "toyext.laws:AlwaysKinetic"
+
+[project.entry-points."asperity2d.formats"]
+times = "toyext.formats:TIMES"
+
+[project.entry-points."asperity2d.belt_methods"]
+toy-frozen = "toyext.backends:Frozen"
+'''
+
+TOY_MODULES = {
+    "measures.py": '''
+from asperity2d.experiments.measures import Measure
+
+
+def lower_count(scene) -> float:
+    """The number of lower asperities (geometry only: no run)."""
+    return float(scene.lower.spacing.count)
+
+
+LOWER_COUNT = Measure("toy-lower-count", lower_count, "number of lower asperities", unit="")
+''',
+    "laws.py": '''
+from dataclasses import dataclass
+
+from asperity2d.contact_laws import ContactLaw
+
+
+@dataclass(frozen=True)
+class AlwaysKinetic(ContactLaw):
+    """Coulomb friction at mu_kinetic whatever the contact does."""
+
+    mu: float
+
+    @classmethod
+    def from_contact(cls, contact, stick_speed, slip_distance, dt):
+        return cls(contact.mu_kinetic)
+
+    @property
+    def active(self):
+        return False
+
+    @property
+    def idle(self):
+        return self.mu
+
+    def coefficient(self, stuck):
+        return self.mu
+
+    def step(self, stuck, slid, slip, new):
+        return False, 0.0
+''',
+    "formats.py": '''
+from asperity2d.renderers import OutputFormat
+
+
+def write_times(result, path, **options):
+    path.write_text("".join(f"{float(t)!r}\\n" for t in result.t))
+    return path
+
+
+TIMES = OutputFormat(".times", "the sample times, one a line", {"belt": write_times}, "table")
+''',
+    "backends.py": '''
+import numpy as np
+
+from asperity2d.belt.backend import RawRun
+from asperity2d.belt.spec import ChainSpec
+
+
+class Frozen:
+    """One mass stuck to the belt, held by a spring to the wall (solve_ivp-style: a class)."""
+
+    name = "one mass stuck to the belt"
+    settings = ()
+
+    def accepts(self, spec):
+        return isinstance(spec, ChainSpec) and len(spec.masses) == 1
+
+    def run(self, spec, options):
+        t = np.asarray(options.samples, dtype=float)
+        k, v, x0 = float(spec.springs[0]), float(spec.v_belt), float(spec.x0[0])
+        x = (x0 + v * t)[None, :]
+        work = np.zeros((3, t.size))
+        work[0] = k * v * (x0 * t + 0.5 * v * t * t)
+        return RawRun(t=t, x=x, v=np.full((1, t.size), v), state=np.zeros((1, t.size)), friction_force=k * x,
+                      work=work, events=[], stick_intervals=[[(float(t[0]), float(t[-1]))]], meta={})
+''',
+}
+
+
+def _install_toy_package(root) -> dict:
+    """The toy package installed on a path of its own, as pip lays it out (the modules beside a
+    ``.dist-info`` whose ``entry_points.txt`` is the pyproject's entry points); returns the
+    environment of a process that sees it. Nothing enters the test's own environment."""
+    import configparser
+    import os
+    import tomllib
+
+    source, site = root / "toyext-src", root / "site"
+    source.mkdir()
+    (source / "pyproject.toml").write_text(TOY_PYPROJECT)
+    package = site / "toyext"
+    package.mkdir(parents=True)
+    (package / "__init__.py").write_text("")
+    for name, text in TOY_MODULES.items():
+        (package / name).write_text(text)
+    project = tomllib.loads(TOY_PYPROJECT)["project"]
+    info = site / f"{project['name']}-{project['version']}.dist-info"
+    info.mkdir()
+    (info / "METADATA").write_text(f"Metadata-Version: 2.1\nName: {project['name']}\nVersion: {project['version']}\n")
+    points = configparser.ConfigParser(delimiters=("=",))
+    points.optionxform = str  # entry-point names keep their case
+    for group, entries in project["entry-points"].items():
+        points[group] = entries
+    with (info / "entry_points.txt").open("w") as fh:
+        points.write(fh)
+    return {**os.environ, "PYTHONPATH": str(site)}
+
+
+def test_an_installed_package_reaches_the_command_line_through_its_entry_points(tmp_path):
+    import ast
+    import subprocess
+    import sys
+
+    env = _install_toy_package(tmp_path)
+
+    def cli(*args, check=True):
+        proc = subprocess.run([sys.executable, "-m", "asperity2d", *args], capture_output=True, text=True,
+                              env=env, cwd=tmp_path, timeout=300)
+        assert not check or proc.returncode == 0, proc.stderr[-3000:]
+        return proc
+
+    # its measure: listed (with the step it runs at, none stated), compared by name and as module:name
+    proc = cli("measures", "--json")
+    listed = {m["name"]: m for m in json.loads(proc.stdout)["measures"]}
+    assert listed["toy-lower-count"]["step"] == "default dt (no step policy stated)"
+    assert {"critical", "peak-stick"} <= set(listed)
+    # the broken entry point is one line naming the package and the entry, and the rest still work
+    assert proc.stderr.strip().splitlines() == [
+        "asperity2d: warning: entry point 'broken' of package 'toyext' (group asperity2d.measures) cannot be "
+        "loaded (ModuleNotFoundError: No module named 'toyext.missing')"]
+    proc = cli("compare", "--measure", "broken", "--seeds", "1", check=False)
+    assert proc.returncode == 2 and len(proc.stderr.strip().splitlines()) == 1
+    assert "entry point 'broken' of package 'toyext'" in proc.stderr
+    for name in ("toy-lower-count", "toyext.measures:LOWER_COUNT"):
+        out = json.loads(cli("compare", "--measure", name, "--seeds", "2", "--workers", "1", "--json",
+                             "--set", "lower_count=5", "--set", "upper_count=2").stdout)
+        assert out["variants"]["regular"]["mean"] == 5.0 and out["variants"]["random"]["mean"] == 5.0
+
+    # its contact law, named in a TOML scene run by `asperity2d run`: the run is the Coulomb run at
+    # mu_kinetic to the bit (what the law says), not the built-in static/kinetic switch's
+    script = ("import dataclasses, asperity2d as a\n"
+              "from asperity2d.run import default_duration\n"
+              "s = a.make_scene(lower_count=6, upper_count=2, mu_static=0.3, mu_kinetic=0.2)\n"
+              "s.replace(contact=dataclasses.replace(s.contact, law='toy-kinetic')).to_toml('toy.toml')\n"
+              "s.replace(contact=dataclasses.replace(s.contact, mu_static=0.2)).to_toml('coulomb.toml')\n"
+              "s.to_toml('switch.toml')\n"
+              "print(0.2 * default_duration(s))\n")
+    made = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, env=env, cwd=tmp_path,
+                          timeout=300)
+    assert made.returncode == 0, made.stderr[-3000:]
+    assert 'law = "toy-kinetic"' in (tmp_path / "toy.toml").read_text()
+    duration = made.stdout.strip()
+    for name in ("toy", "coulomb", "switch"):
+        cli("run", f"{name}.toml", "--duration", duration, "--save", f"{name}.npz", "--json")
+    toy, coulomb, switch = (np.load(tmp_path / f"{name}.npz") for name in ("toy", "coulomb", "switch"))
+    assert np.count_nonzero(toy["friction_force"]) > 100  # it rubbed
+    np.testing.assert_array_equal(toy["x"], coulomb["x"])
+    np.testing.assert_array_equal(toy["friction_force"], coulomb["friction_force"])
+    assert not np.array_equal(toy["friction_force"], switch["friction_force"])
+
+    # its back end (a class) by name through `belt --method`, and its format through render() and -o
+    (tmp_path / "chain.toml").write_text("masses = [1.0]\nsprings = [2.0, 0.0]\ndampers = [0.0, 0.0]\n"
+                                         "mu_s = 0.5\nmu_k = 0.3\nv_belt = 0.2\nx0 = [0.1]\nv0 = [0.2]\n"
+                                         "t_end = 1.0\nn_samples = 21\n")
+    for method in ("toy-frozen", "toyext.backends:Frozen"):
+        out = json.loads(cli("belt", "chain.toml", "--method", method, "--json", "-o", "run.times").stdout)
+        assert out["method"] == method and out["final_x"] == [0.1 + 0.2 * 1.0]
+        assert [float(t) for t in (tmp_path / "run.times").read_text().split()] == list(np.linspace(0, 1, 21))
+    proc = cli("belt", "chain.toml", "--method", "toy-frozn", check=False)
+    assert proc.returncode == 2 and "(did you mean 'toy-frozen'?)" in proc.stderr
+    render = ("import asperity2d as a\n"
+              "r = a.belt.simulate_chain([1.0], [2.0, 0.0], [0.0, 0.0], mu_s=0.5, v_belt=0.2, x0=[0.0], v0=[0.2],"
+              " t_end=0.5, n_samples=6)\n"
+              "print(a.render(r, 'chain.TIMES').read_text().split())\n")
+    proc = subprocess.run([sys.executable, "-c", render], capture_output=True, text=True, env=env, cwd=tmp_path,
+                          timeout=300)
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    # the file holds the run's sample times: six uniform samples over 0.5 s (to rounding of linspace)
+    np.testing.assert_allclose([float(t) for t in ast.literal_eval(proc.stdout)], np.linspace(0.0, 0.5, 6), rtol=0, atol=1e-15)
+    assert ".times: the sample times, one a line" in " ".join(cli("render", "--help").stdout.split())
+
+    # and none of it is in this process: the test's environment is untouched
+    assert "toy-lower-count" not in MEASURES and ".times" not in FORMATS

@@ -64,6 +64,21 @@ class Subcommands(argparse._SubParsersAction):
             vars(namespace).setdefault(argparse._UNRECOGNIZED_ARGS_ATTR, []).extend(extras)
 
 
+class LazyHelp(str):
+    """A help text written when the help is printed, not when the parser is built: a registry it
+    lists (the output formats) loads its installed packages' entry points only for ``--help``,
+    not for every command. argparse fills a help text in with ``%``; this one computes itself
+    there (the placeholder is what it is as a plain string)."""
+
+    def __new__(cls, make):
+        self = super().__new__(cls, "(listed in --help)")
+        self.make = make
+        return self
+
+    def __mod__(self, params):
+        return self.make().replace("%", "%%") % params
+
+
 def check_runs(runs: int, max_runs: int | None, why: str) -> None:
     """Refuse a command that would start more than ``--max-runs`` runs (see
     :func:`asperity2d._inputs.check_runs`)."""

@@ -25,6 +25,7 @@ from .._inputs import show
 from ..errors import SceneError, SimulationError
 from ..renderers import FORMATS
 from ..renderers import describe as describe_formats
+from .args import LazyHelp
 from . import asperity, basins, belt, explore, sweep
 from .args import MAX_RUNS, PLOT_SUFFIXES, PROG, WORKERS_HELP, Parser, Subcommands, fail, positive_float, tolerance
 from .args import port as port_arg
@@ -70,7 +71,7 @@ def build_parser() -> Parser:
     p.add_argument("scene", nargs="?",
                    help="scene script (.py; other arguments go to its main()) or .toml")
     p.add_argument("-o", "--output",
-                   help=f"render to this file ({', '.join(FORMATS)}); a script's output directory")
+                   help=LazyHelp(lambda: f"render to this file ({', '.join(FORMATS)}); a script's output directory"))
     p.add_argument("--save", help="save the Result (.npz) (TOML scenes)")
     p.add_argument("--duration", type=positive_float, help="simulated time in s (TOML scenes)")
     p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
@@ -100,7 +101,7 @@ def build_parser() -> Parser:
     p = sub.add_parser("render", help="render a saved result; the extension picks the renderer")
     p.add_argument("result", help="a result saved with --save / Result.save / BeltResult.save (.npz)")
     p.add_argument("-o", "--output", required=True,
-                   help=f"the extension picks the format: {describe_formats()}")
+                   help=LazyHelp(lambda: f"the extension picks the format: {describe_formats()}"))
     _json_flag(p)
     p.set_defaults(handler=asperity.render)
 
