@@ -127,15 +127,64 @@ def _check_workers(workers: int | None) -> int:
     return workers
 
 
-def _check_main_importable() -> None:
-    """Spawned workers re-import the main script; fail clearly when they cannot."""
+def _missing_main_file() -> str | None:
+    """The path a main module gives as its ``__file__`` when no file is there (a notebook downloaded
+    away from its script, whose first cell set ``__file__`` beside it), else None."""
     main = sys.modules.get("__main__")
     path = getattr(main, "__file__", None)
     if getattr(main, "__spec__", None) is None and path and not os.path.isfile(path):
+        return str(path)
+    return None
+
+
+def _from_main(value, depth: int = 2) -> str | None:
+    """The name of a function or class defined in ``__main__`` found in ``value`` (a call's function
+    or argument, looked into through dicts, lists and tuples ``depth`` levels deep), else None."""
+    if getattr(value, "__module__", None) == "__main__" and callable(value):
+        return getattr(value, "__qualname__", repr(value))
+    if depth and isinstance(value, Mapping):
+        value = list(value.values())
+    if depth and isinstance(value, (list, tuple)):
+        for item in value:
+            found = _from_main(item, depth - 1)
+            if found:
+                return found
+    return None
+
+
+def _check_main_importable(fn=None, jobs=()) -> bool:
+    """Spawned workers re-import the main script; fail clearly when they must and cannot.
+
+    A main module whose ``__file__`` is not on disk (a notebook kernel) is no obstacle when
+    nothing the workers run lives in ``__main__`` -- the package's measures and run functions are
+    imported by name: then the workers are started without it, and this returns True. A function
+    defined in the notebook itself cannot reach them: that is the one-line error."""
+    path = _missing_main_file()
+    if path is None:
+        return False
+    found = _from_main(fn) or next((name for args in jobs[:1] for name in [_from_main(list(args))] if name), None)
+    if found:
         raise SceneError(
-            f"`workers` > 1 needs a main script that worker processes can import, got {path!r} "
-            "(run from a file with an `if __name__ == '__main__':` guard, or use workers=1)"
+            f"`workers` > 1 needs a main script that worker processes can import, got {path!r}, "
+            f"which is not on disk, and `{found}` is defined there (define it in a module the workers "
+            "can import, run from a file with an `if __name__ == '__main__':` guard, or use workers=1)"
         )
+    return True
+
+
+@contextlib.contextmanager
+def _main_file_hidden(hide: bool):
+    """While the pool spawns workers, hide a ``__file__`` of ``__main__`` that is not on disk:
+    a spawned worker would try to run that file first, and die."""
+    main = sys.modules.get("__main__")
+    if not hide or main is None or "__file__" not in vars(main):
+        yield
+        return
+    path = vars(main).pop("__file__")
+    try:
+        yield
+    finally:
+        vars(main).setdefault("__file__", path)
 
 
 # -- plain scripts ---------------------------------------------------------------------------
@@ -416,7 +465,7 @@ class LocalExecutor:
             for index, args in enumerate(jobs):
                 yield index, fn(*args)
             return
-        _check_main_importable()
+        hide = _check_main_importable(fn, jobs)
         # keep a bounded window in flight so huge studies do not queue everything at once
         window = 2 * self.workers
         pending = iter(enumerate(jobs))
@@ -436,7 +485,8 @@ class LocalExecutor:
                     in_flight[pool.submit(fn, *nxt[1])] = nxt
 
         try:
-            yield from self._drain(fn, in_flight, fill, suspects, pending)
+            with _main_file_hidden(hide):
+                yield from self._drain(fn, in_flight, fill, suspects, pending)
         except KeyboardInterrupt:  # Ctrl-C: end the workers now, mid-call, and let the caller say so
             if self._pool is not None:
                 kill_pool(self._pool)
