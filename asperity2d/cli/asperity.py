@@ -204,15 +204,20 @@ def compare(args) -> int:
             if key in base:
                 raise SceneError(f"`--set {key}=...` cannot be used with compare: each variant of "
                                  f"`--variants` sets `spacing`, and `--seeds` the seeds")
-        check_runs(len(variants) * args.seeds, args.max_runs,
-                   f"`--variants` ({len(variants)}) x `--seeds` ({args.seeds:,})")
+        auto = args.seeds == "auto"
+        if args.max_seeds is not None and not auto:
+            raise SceneError("`--max-seeds` is the budget of `--seeds auto`; give it with --seeds auto")
+        budget = (args.max_seeds or 40) if auto else args.seeds
+        check_runs(len(variants) * budget, args.max_runs,
+                   f"`--variants` ({len(variants)}) x `--{'max-' * auto}seeds` ({budget:,})")
         from ..experiments.measures import MEASURES
 
         if args.measure not in MEASURES:  # the registry, not a list here: a new measure is known at once
             raise SceneError(f"`--measure` must be one of {', '.join(MEASURES)}, got {args.measure!r}")
         base.setdefault("drive", MEASURES[args.measure].drive)
-        comparison = run_compare(args.measure, variants, range(args.seeds), base=base, progress=not args.json,
-                                 workers=args.workers, scheduler=args.scheduler)
+        comparison = run_compare(args.measure, variants, "auto" if auto else range(args.seeds), base=base,
+                                 progress=not args.json, workers=args.workers, scheduler=args.scheduler,
+                                 max_seeds=args.max_seeds if auto else None)
     if save:
         with _io.argument("--save"), _io.writing("--save", save):
             comparison.save(save)
