@@ -1,11 +1,13 @@
 """Comparisons over seeds: statistics against hand-computed numbers, scipy, persistence."""
 
 import math
+from statistics import NormalDist
 
 import pytest
 
 import asperity2d as a
 from asperity2d.experiments.compare import Comparison, compare
+from asperity2d.experiments.verdicts import verdict_line
 
 
 def last_lower_centre(scene):
@@ -177,10 +179,27 @@ def test_a_comparison_says_its_unit_and_its_verdict_in_words():
     record = c.verdict("random", "regular")
     assert record["verdict"] == "holds" and record["claim"] == "random lowers the travel under a constant force"
     assert record["numbers"]["p_wilcoxon"] == pytest.approx(2.0 ** -10)
-    # a change under 1 % is no effect however small p is
+    # a change under 1 %, however small p is, is no effect -- when the ratio's 98 % interval
+    # (1 - 2 alpha) shows it: every seed at x0.995 puts the interval at [0.995, 0.995]
     small = Comparison(values={"regular": (1.0,) * 10, "random": (0.995,) * 10}, seeds=tuple(range(10)),
                        measure="critical")
-    assert small.verdict("random", "regular")["verdict"] == "does not hold"
+    record = small.verdict("random", "regular")
+    assert record["verdict"] == "no effect"
+    assert verdict_line(record).endswith(": no effect (within +-1 %: x0.9950 [0.9950, 0.9950] 98 % interval, 10 seeds)")
+    # the same mean change with a 2 % spread is not shown to be under 1 %: undecided, with the
+    # seeds that would decide it (normal approximation: (z s / (m - |e|))**2 * pi / 3)
+    spread = tuple(0.995 + 0.02 * x for x in (-1.5, -1, -0.6, -0.3, -0.1, 0.1, 0.3, 0.6, 1, 1.5))
+    wide = Comparison(values={"regular": (1.0,) * 10, "random": spread}, seeds=tuple(range(10)), measure="critical")
+    record = wide.verdict("random", "regular")
+    e, s = record["numbers"]["relative_hl"], record["numbers"]["relative_std"]
+    expected = math.ceil((NormalDist().inv_cdf(0.99) * s / (0.01 - abs(e))) ** 2 * math.pi / 3)
+    assert record["verdict"] == "undecided" and record["numbers"]["seeds_needed"] == expected
+    assert f"about {expected} seeds would decide it at this spread" in verdict_line(record)
+    # "does not hold" only where the change is shown the other way: every seed 20 % above
+    above = Comparison(values={"regular": (1.0,) * 10, "random": tuple(1.2 + 0.001 * k for k in range(10))},
+                       seeds=tuple(range(10)), measure="critical")
+    record = above.verdict("random", "regular")
+    assert record["verdict"] == "does not hold" and "it goes the other way" in verdict_line(record)
     # 5 seeds cannot reach p < 0.01 one-sided (2**-5 = 0.03)
     few = Comparison(values={"regular": (1.0,) * 5, "random": (0.5,) * 5}, seeds=tuple(range(5)), measure="critical")
     assert few.verdict("random", "regular")["verdict"] == "not testable with so few seeds"

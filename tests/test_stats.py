@@ -68,14 +68,51 @@ def test_versus_reference_effect_numbers():
 
 def test_a_change_below_the_models_resolution_is_no_effect():
     # 10 seeds every one 0.02 % above the reference: p = 2^-10, but the model resolves forces to
-    # ~0.5 %, so "holds" would be a verdict of rounding-level physics; 2 % above holds
-    from asperity2d.studies.claims import FAILS, HOLDS, judge
+    # ~0.5 %, so "holds" would be a verdict of rounding-level physics: its 98 % ratio interval
+    # lies inside [0.99, 1.01], which is "no effect"; 2 % above holds; 2 % below is shown the
+    # other way ("does not hold")
+    from asperity2d.studies.claims import FAILS, HOLDS, NO_EFFECT, judge
 
     tiny = a.stats.versus_reference([1.0002 + 1e-6 * i for i in range(10)], 1.0, alternative="greater")
     clear = a.stats.versus_reference([1.02 + 1e-6 * i for i in range(10)], 1.0, alternative="greater")
+    other = a.stats.versus_reference([0.98 + 1e-6 * i for i in range(10)], 1.0, alternative="greater")
     assert tiny["p_wilcoxon"] < 0.01 and clear["p_wilcoxon"] < 0.01
-    assert judge(tiny, 0.01, direction="greater") == FAILS
+    assert 0.99 < tiny["ratio_tost_low"] <= tiny["ratio_tost_high"] < 1.01
+    assert judge(tiny, 0.01, direction="greater") == NO_EFFECT
     assert judge(clear, 0.01, direction="greater") == HOLDS
+    assert other["p_wilcoxon_opposite"] == pytest.approx(2.0 ** -10)
+    assert judge(other, 0.01, direction="greater") == FAILS
+
+
+def test_no_effect_needs_the_interval_inside_the_margin_not_a_small_mean():
+    """The issue's free-slider line: -0.8 % on 8 seeds with x0.992 [0.973, 1.01] is no proof of
+    "no effect under 1 %" (its interval holds a 2.7 % drop): undecided, with a seed estimate."""
+    from asperity2d.studies.claims import UNDECIDED, judge, seeds_needed
+
+    values = [0.975, 1.012, 0.985, 0.996, 1.004, 0.978, 0.99, 0.994]
+    numbers = a.stats.versus_reference(values, 1.0)
+    assert abs(numbers["relative_difference"]) < 0.01 and numbers["ratio_tost_low"] < 0.99
+    assert judge(numbers, 0.01) == UNDECIDED
+    n = seeds_needed(numbers, 0.01)
+    assert n is not None and n > 8
+    # an effect that sits at the margin has no finite seed count
+    assert seeds_needed({**numbers, "relative_difference": -0.00999, "relative_hl": -0.00999}, 0.01) is None
+
+
+def test_equivalence_is_the_two_one_sided_tests():
+    """The 1 - 2 alpha Hodges-Lehmann interval inverts the signed-rank test: its ends are where
+    the one-sided tests of values / (1 + end) - 1 at alpha change their answer."""
+    rng = np.random.default_rng(5)
+    values = 1.0 + 0.01 * rng.standard_normal(12)
+    e = stats.equivalence(values, 1.0, alpha=0.05)
+    low, high = e["ratio_tost_low"] - 1.0, e["ratio_tost_high"] - 1.0
+    rel = values - 1.0
+    eps = 1e-9
+    assert stats.wilcoxon(rel - (low - eps), reference=0.0, alternative="greater") <= 0.05
+    assert stats.wilcoxon(rel - (low + eps), reference=0.0, alternative="greater") > 0.05
+    assert stats.wilcoxon(rel - (high + eps), reference=0.0, alternative="less") <= 0.05
+    assert stats.wilcoxon(rel - (high - eps), reference=0.0, alternative="less") > 0.05
+    assert e["tost_level"] >= 0.9 and e["relative_std"] == pytest.approx(np.std(rel, ddof=1))
 
 
 # -- what the mutation run found unpinned ---------------------------------------------------------

@@ -120,6 +120,16 @@ def positive_int(text: str) -> int:
     return _checked(lambda name, value: check_int(name, value, minimum=1, maximum=None), int, text)
 
 
+def seeds_or_auto(text: str) -> int | str:
+    """An argparse type: a seed count >= 1, or ``auto`` (seeds added in stages until decided)."""
+    if text == "auto":
+        return text
+    try:
+        return positive_int(text)
+    except argparse.ArgumentTypeError as exc:
+        raise argparse.ArgumentTypeError(f"{exc} (or auto)") from None
+
+
 def port(text: str) -> int:
     """An argparse type: a TCP port, 0 (a free one) to 65535."""
     return _checked(lambda name, value: check_int(name, value, minimum=0, maximum=65535), int, text)

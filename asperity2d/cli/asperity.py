@@ -218,15 +218,20 @@ def compare(args) -> int:
             if key in base:
                 raise SceneError(f"`--set {key}=...` cannot be used with compare: each variant of "
                                  f"`--variants` sets `spacing`, and `--seeds` the seeds")
-        check_runs(len(variants) * args.seeds, args.max_runs,
-                   f"`--variants` ({len(variants)}) x `--seeds` ({args.seeds:,})")
+        auto = args.seeds == "auto"
+        if args.max_seeds is not None and not auto:
+            raise SceneError("`--max-seeds` is the budget of `--seeds auto`; give it with --seeds auto")
+        budget = (args.max_seeds or 40) if auto else args.seeds
+        check_runs(len(variants) * budget, args.max_runs,
+                   f"`--variants` ({len(variants)}) x `--{'max-' * auto}seeds` ({budget:,})")
         from ..experiments.measures import MEASURES
 
         # the registry, not a list here: a new measure (an installed package's too, or "module:name")
         # is known at once, and a misspelt one gets the nearest names
         base.setdefault("drive", MEASURES.lookup(args.measure, "--measure").drive)
-        comparison = run_compare(args.measure, variants, range(args.seeds), base=base, progress=not args.json,
-                                 workers=args.workers, scheduler=args.scheduler,
+        comparison = run_compare(args.measure, variants, "auto" if auto else range(args.seeds), base=base,
+                                 progress=not args.json, workers=args.workers, scheduler=args.scheduler,
+                                 max_seeds=args.max_seeds if auto else None,
                                  engine=getattr(args, "engine", "pymunk"))
     if save:
         with _io.argument("--save"), _io.writing("--save", save):

@@ -29,7 +29,7 @@ from .args import LazyHelp
 from . import asperity, basins, belt, explore, sweep
 from .args import MAX_RUNS, PLOT_SUFFIXES, PROG, WORKERS_HELP, Parser, Subcommands, fail, positive_float, tolerance
 from .args import port as port_arg
-from .args import positive_int
+from .args import positive_int, seeds_or_auto
 from .args import workers as workers_arg
 
 __all__ = ["main", "build_parser", "Parser", "PROG", "PLOT_SUFFIXES", "fail", "positive_float",
@@ -116,7 +116,12 @@ def build_parser() -> Parser:
                    help="a named measure (default critical, the constant force that moves the slider "
                         "across from rest); `asperity2d measures` lists them with their units")
     p.add_argument("--variants", default="regular,random", help="comma-separated spacings")
-    p.add_argument("--seeds", type=positive_int, default=20)
+    p.add_argument("--seeds", type=seeds_or_auto, default=20,
+                   help="seeds per variant (default 20), or auto: added in stages of 10 until every "
+                        "verdict against the regular spacing is decided (a sequential design that keeps "
+                        "the false-positive rate at the measure's alpha)")
+    p.add_argument("--max-seeds", type=positive_int, default=None,
+                   help="the seed budget of --seeds auto (default 40)")
     p.add_argument("--workers", type=workers_arg, default=None, help=WORKERS_HELP)
     p.add_argument("--scheduler", help="a Dask scheduler address, or 'local' to start one")
     p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",

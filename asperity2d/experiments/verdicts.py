@@ -274,7 +274,7 @@ def _percent(m: float) -> str:
 def outcome_text(verdict: str, numbers: dict, *, alpha: float | None = None,
                  min_effect: float | None = None, direction: str | None = None) -> str:
     """The verdict and its evidence in words a newcomer reads, e.g. ``"no effect (within +-1 %:
-    x0.998 [0.994, 1.003] 98 % interval, 24 seeds)"`` or ``"undecided (-0.8 %, x0.992 [0.973,
+    x0.9980 [0.9940, 1.0030] 98 % interval, 24 seeds)"`` or ``"undecided (-0.8 %, x0.992 [0.973,
     1.01], 5/8 seeds below, Wilcoxon p = 0.15; about 40 seeds would decide it at this spread)"``.
     ``alpha``, ``min_effect`` and ``direction`` default to the numbers' own (``tost_alpha``,
     ``margin``, ``alternative``) and then to 0.01, :data:`MIN_EFFECT` and "less"."""
@@ -287,12 +287,12 @@ def outcome_text(verdict: str, numbers: dict, *, alpha: float | None = None,
     if verdict == NO_EFFECT:
         low, high, level = tost_interval(numbers, alpha)
         ratio = numbers.get("ratio_hl")
-        centre = f"x{_ratio(ratio)} " if _finite(ratio) else ""
+        centre = f"x{ratio:.4f} " if _finite(ratio) else ""
         seeds = f", {numbers['n']} seeds" if "n" in numbers else ""
         staged = numbers.get("stages")
         if isinstance(staged, list) and len(staged) > 1:
             seeds += f" in {len(staged)} stages"
-        return (f"{NO_EFFECT} (within +-{_percent(margin)}: {centre}[{_ratio(low)}, {_ratio(high)}] "
+        return (f"{NO_EFFECT} (within +-{_percent(margin)}: {centre}[{low:.4f}, {high:.4f}] "
                 f"{100 * level:.0f} % interval{seeds})")
     if verdict == UNDECIDED:
         n_more = numbers.get("seeds_needed", "?")

@@ -20,8 +20,9 @@ from .._format import split_unit, value
 
 # The verdicts (the rule, the words, the one-line form) live with the experiments that judge them;
 # re-exported here, where every study's claims are written.
-from ..experiments.verdicts import (FAILS, HOLDS, MIN_EFFECT, UNTESTABLE, VerdictRule,  # noqa: F401
-                                    claim, effect, judge, verdict_line)
+from ..experiments.verdicts import (DECIDED, FAILS, HOLDS, MIN_EFFECT, NO_EFFECT, OUTCOMES,  # noqa: F401
+                                    UNDECIDED, UNTESTABLE, VerdictRule, claim, effect, judge,
+                                    outcome_text, rejudge, seeds_needed, verdict_line)
 
 
 def _value_text(x, unit: str | None, key: str) -> str:

@@ -216,14 +216,20 @@ SETUPS = {"fixed": "Ooten's fixed track", "free": "free slider"}
 
 
 def claim_rows(claims: list[dict], *, setup: str | None = None, setups: bool = True) -> list[list[str]]:
-    from asperity2d.studies.claims import numbers_text
+    from asperity2d.studies.claims import numbers_text, rejudge, seeds_needed
 
     rows = []
     for record in claims:
         if setup and record.get("setup") not in (setup, None):
             continue
-        verdict = record["verdict"]
+        verdict = rejudge(record)  # today's rule: "no effect" or "undecided" where it is not shown the other way
         shown = f"**{verdict}**" if verdict == "holds" else verdict
+        numbers = record.get("numbers") or {}
+        if verdict == "undecided" and isinstance(numbers, dict):
+            more = numbers.get("seeds_needed") or seeds_needed(
+                numbers, numbers.get("tost_alpha", 0.01), direction=numbers.get("alternative") or
+                ("greater" if "(higher)" in record.get("test", "") else "less"), min_effect=numbers.get("margin", 0.01))
+            shown += f" (about {more} seeds would decide it)" if more else " (at the margin)"
         row = [cell(record["claim"])]
         if setups:
             row.append(cell(SETUPS.get(record.get("setup"), record.get("setup") or "—")))
@@ -232,7 +238,9 @@ def claim_rows(claims: list[dict], *, setup: str | None = None, setups: bool = T
 
 
 #: the words every test of a claim repeats, said once above the tables instead of on every row
-_BOILERPLATE = (("; holds if p < 0.01 and the change is at least 1 %", ""),
+_BOILERPLATE = (("; holds if p < 0.01 and the change is at least 1 %; no effect if the 98 % interval of the "
+                 "ratio lies within +-1 %; does not hold if shown the other way", ""),
+                ("; holds if p < 0.01 and the change is at least 1 %", ""),
                 ("one-sample Wilcoxon signed-rank against the reference value", "Wilcoxon against the regular value"),
                 ("Wilcoxon signed-rank", "Wilcoxon"), (" (same seeds)", ""))
 
@@ -253,6 +261,8 @@ class ClaimsSummary(Directive):
     has_content = True
 
     def run(self):
+        from asperity2d.studies.claims import rejudge
+
         rows = []
         setups_seen = []
         parsed = []
@@ -269,7 +279,7 @@ class ClaimsSummary(Directive):
                 if setup not in setups_seen:
                     setups_seen.append(setup)
                 held, total = counts.get(setup, (0, 0))
-                counts[setup] = (held + (record["verdict"] == "holds"), total + 1)
+                counts[setup] = (held + (rejudge(record) == "holds"), total + 1)
             parsed.append((title, anchor, counts))
         for title, anchor, counts in parsed:
             row = [f"`{title} <{anchor}>`__"]
