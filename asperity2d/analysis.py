@@ -165,8 +165,11 @@ def spring_block_slip(*, stiffness: float, mass: float, velocity: float, static_
       m) + A``.
 
     In between (0 < theta < pi/2) the peak is ``F_k + A``. The block's peak speed is ``V + A /
-    sqrt(k m)``; it sticks again at ``F_k - sqrt(A**2 - k m V**2)``. When omega d / V >= 2 pi the
-    hold outlasts a whole swing: the block swings from rest to 2 V and back at F_s, with no
+    sqrt(k m)`` (or the hold's own 2 V when it lasts past theta = pi and that is more); it sticks
+    again at ``F_k - sqrt(A**2 - k m V**2)``, and if A is under V sqrt(k m) (a release late in a
+    swing with a small gap) it never comes back to rest but slides on about V (``restick_force``
+    and ``stick_duration`` NaN, the slip endless). When omega d / V >= 2 pi the hold outlasts a
+    whole swing: the block swings from rest to 2 V and back at F_s, with no
     friction drop (``released`` False). The model itself counts the hold's slip on until the slip
     speed falls under the contact's ``stick_speed``, which a swing that only touches rest may not
     do, so there it can release after several swings: the closed form does not describe that case.
@@ -231,12 +234,17 @@ def spring_block_slip(*, stiffness: float, mass: float, velocity: float, static_
     amplitude = math.hypot(excess, impedance * lag)
     held_peak = Fs + swing if theta >= math.pi / 2 else -math.inf  # reached while still held
     peak = max(held_peak, Fk + amplitude)
-    rest = math.sqrt(max(amplitude ** 2 - swing ** 2, 0.0))
-    restick = Fk - rest
+    # a hold that outlasts half a swing (theta > pi) has already carried the block at 2 V
+    fastest = max(V + amplitude / impedance, 2.0 * V if theta > math.pi else 0.0)
+    if amplitude < swing:  # released late in a swing with a small gap: it never comes back to rest
+        return SpringBlockSlip(peak_force=peak, force_drop=peak - (Fk - amplitude), restick_force=math.nan,
+                               peak_speed=fastest, stick_duration=math.nan, slip_duration=math.inf,
+                               release_phase=theta, released=True)
+    restick = Fk - math.sqrt(amplitude ** 2 - swing ** 2)
     start = math.atan2(impedance * lag, excess)  # phase of (force, speed) at the release
-    end = math.pi + math.asin(min(swing / amplitude, 1.0))  # back at rest, force falling
+    end = math.pi + math.asin(swing / amplitude)  # back at rest, force falling
     return SpringBlockSlip(peak_force=peak, force_drop=peak - (Fk - amplitude), restick_force=restick,
-                           peak_speed=V + amplitude / impedance, stick_duration=(Fs - restick) / (k * V),
+                           peak_speed=fastest, stick_duration=(Fs - restick) / (k * V),
                            slip_duration=(theta + end - start) / omega, release_phase=theta, released=True)
 
 

@@ -745,13 +745,15 @@ def _integrated_cycle(k, m, V, Fs, Fk, d):
     return force.max(), force.min(), speed.max(), force[-1]
 
 
-@pytest.mark.parametrize("hold", [0.0, 0.2e-9, 1e-9, 3e-9])
+@pytest.mark.parametrize("hold", [0.0, 0.2e-9, 1e-9, 3e-9, 5e-9])
 @pytest.mark.parametrize("gap", [0.01, 0.15])
 def test_the_closed_form_cycle_is_the_integrated_one(hold, gap):
     """The closed form (release phase, amplitude, peak, drop, re-stick) against the same block
     integrated numerically, across the classical switch (hold 0), a release before the force's
-    peak (0.2 nm: omega d / V = 0.14) and after it (1 and 3 nm): to 1e-6 of the force scale
-    (the integration's sampling of the peaks at 1e-4 of a period costs under 1e-8)."""
+    peak (0.2 nm: omega d / V = 0.14), after it (1 and 3 nm) and after half a swing (5 nm: omega
+    d / V = 3.6, theta = 3.37 > pi, the hold has carried the block at 2 V already): to 1e-6 of
+    the force scale (the integration's sampling of the peaks at 1e-4 of a period costs under
+    1e-8)."""
     k, m, V, N = 37.2e3, 2.88e-15, 5.0, 3e-3
     Fk, Fs = 0.35 * N, (0.35 + gap) * N
     cycle = a.analysis.spring_block_slip(stiffness=k, mass=m, velocity=V, static_force=Fs, kinetic_force=Fk,
@@ -767,6 +769,28 @@ def test_the_closed_form_cycle_is_the_integrated_one(hold, gap):
         assert cycle.force_drop == pytest.approx(2 * math.hypot(Fs - Fk, V * math.sqrt(k * m)), rel=1e-12)
     if math.sqrt(k / m) * hold / V >= math.pi / 2 - 1:  # the hold rule's limit
         assert cycle.peak_force == pytest.approx(Fs + V * math.sqrt(k * m), rel=1e-12)
+
+
+def test_a_late_release_with_a_small_gap_never_sticks_again():
+    """An 8 nm hold (theta = 4.75: released near the end of a swing, the block almost at rest) with
+    a 0.01 gap leaves an amplitude under V sqrt(k m): the block slides on about V and never comes
+    back to rest. The closed form says so (no re-stick, an endless slip) and the integration
+    agrees (its speed stays above 0.5 V for 20 periods after the release)."""
+    k, m, V, N = 37.2e3, 2.88e-15, 5.0, 3e-3
+    cycle = a.analysis.spring_block_slip(stiffness=k, mass=m, velocity=V, static_force=0.36 * N,
+                                         kinetic_force=0.35 * N, hold_distance=8e-9)
+    assert cycle.released and cycle.release_phase > math.pi
+    assert math.isnan(cycle.restick_force) and math.isnan(cycle.stick_duration) and cycle.slip_duration == math.inf
+    assert cycle.peak_speed == 2 * V  # the hold's own swing
+    from scipy.integrate import solve_ivp
+
+    omega, theta = math.sqrt(k / m), cycle.release_phase
+    x1, v1 = V * (theta - math.sin(theta)) / omega, V * (1 - math.cos(theta))
+    Fs, Fk = 0.36 * N, 0.35 * N
+    t1 = theta / omega
+    after = solve_ivp(lambda t, s: [s[1], (Fs + k * (V * (t + t1) - s[0]) - Fk) / m], (0, 40 * math.pi / omega),
+                      [x1, v1], rtol=1e-10, atol=1e-22, max_step=0.01 / omega)
+    assert after.y[1].min() > 0.5 * V
 
 
 def test_the_closed_form_refuses_bad_values():
@@ -835,9 +859,12 @@ def _check_block(mu, kf, vf):
     (0.1 V: the start's transient lifts the first peaks by up to 0.11 V, measured at 0.36 / 0.35);
     a slip whose peak is under the threshold's floor (2.25 V) cannot be told by speed from the
     no-drop swing's transient and is not counted (the docstring of ``slip_speed_threshold`` says
-    so); in between the grid point says nothing. Peaks within 1 % (the start's transient, measured
-    up to 0.87 % over the grid) and 0.3 % on the last three; drops (a difference of two forces)
-    within 7 % and 2.5 % on the last three (measured 6.6 % and 2.1 %)."""
+    so); in between the grid point says nothing. Every peak within 1 %: the start's transient and
+    the step, which releases the hold at the first step past its 1 nm (omega dt = 2 pi / 50 of
+    release phase, up to 0.7 % of the peak where the release comes before the force's top;
+    measured up to 0.87 % over the grid); their mean within 0.3 % (measured up to 0.26 %).
+    Drops, a difference of two forces, each within 7 % (measured up to 6.6 %, the first cycles of
+    0.36 / 0.35) and on average within 2 % (measured 1.6 %)."""
     scene, cycle, events, expected, _ = block_events(mu, kf, vf)
     V = scene.drive.velocity
     threshold = a.analysis.slip_speed_threshold(scene)
@@ -849,8 +876,8 @@ def _check_block(mu, kf, vf):
     assert len(events) == expected, (mu, kf, vf, len(events), expected)
     peaks = np.array([e.force_peak for e in events]) / cycle.peak_force - 1
     drops = np.array([e.force_drop for e in events if e.complete]) / cycle.force_drop - 1
-    assert np.abs(peaks).max() < 1e-2 and np.abs(peaks[-3:]).max() < 3e-3, (mu, kf, vf, peaks)
-    assert np.abs(drops).max() < 7e-2 and np.abs(drops[-3:]).max() < 2.5e-2, (mu, kf, vf, drops)
+    assert np.abs(peaks).max() < 1e-2 and abs(peaks.mean()) < 3e-3, (mu, kf, vf, peaks)
+    assert np.abs(drops).max() < 7e-2 and abs(drops.mean()) < 2e-2, (mu, kf, vf, drops)
     return "found"
 
 
