@@ -12,8 +12,8 @@ Check an installation from the command line::
     asperity2d validate          # the table; exit status 1 if a check fails
 
 The asperity checks run small pymunk scenes (under a second each); the belt
-checks run the exact event-driven solver. The whole set takes about 15 s of
-CPU.
+checks run the exact event-driven solver; the contact-law checks run the flat block
+(2 to 6 s each). The whole set takes about 45 s of CPU.
 
 References for the closed forms:
 
@@ -42,7 +42,15 @@ References for the closed forms:
   R. Allgaier, L. Gaul, *A minimal model for studying properties of the
   mode-coupling type instability in friction induced oscillations*, Mech.
   Res. Commun. 29, 2002): its flutter onset μ_crit and growth rates from
-  the characteristic polynomial (:mod:`asperity2d.belt.contact.minimal`).
+  the characteristic polynomial (:mod:`asperity2d.belt.contact.minimal`);
+* the asperity contact laws (:mod:`asperity2d.contact_laws`) on the flat block: each law's
+  steady curve μ_ss(v) in steady sliding; rate-and-state friction's direct effect a ln(v2/v1)
+  and steady change (a - b) ln(v2/v1) (J. H. Dieterich, *Modeling of rock friction 1*, J.
+  Geophys. Res. 84, 1979; A. Ruina, *Slip instability and state variable friction laws*, J.
+  Geophys. Res. 88, 1983), and its spring-block's critical stiffness
+  k_c = N (b - a) / D_c (1 + m V² / (N a D_c)) (J. R. Rice & A. Ruina, *Stability of steady
+  frictional slipping*, J. Appl. Mech. 50, 1983); velocity weakening's critical damper
+  c = -N μ'(V), the belt chains' criterion.
 """
 
 from __future__ import annotations

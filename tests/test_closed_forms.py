@@ -3,7 +3,7 @@ section 6 and the minimal model's closed forms.
 
 Each check carries its own tolerance and says why it is that size (asperity2d/validation.py); the
 documentation's validation page tabulates the same records, so what the page shows is what
-this test accepts. About 12 s of CPU for all of them.
+this test accepts. About 45 s of CPU for all of them (the contact laws' flat-block checks 30 s of it).
 """
 
 import json

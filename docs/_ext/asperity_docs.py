@@ -742,6 +742,8 @@ API = (
     ("asperity2d.belt", "asperity2d.belt", "masses on a moving belt: the exact event-driven solver"),
     ("asperity2d.belt.presets", "asperity2d.belt.presets", "the multi-DOF belt thesis' chains by name"),
     ("asperity2d.friction", "asperity2d.friction", "friction laws for the belt chains"),
+    ("asperity2d.contact_laws", "asperity2d.contact_laws",
+     "the asperity contacts' friction laws (static/kinetic, velocity weakening, viscous, rate-and-state)"),
     ("asperity2d.surface", "asperity2d.surface", "rough surfaces: profiles, statistics, asperities"),
     ("asperity2d.dynamics", "asperity2d.dynamics", "spectra, sections, cycles, Floquet, Lyapunov, basins"),
     ("asperity2d.experiments", "asperity2d.experiments", "measures and comparisons, tribometer, quasi-static runs"),

@@ -35,9 +35,11 @@ SECTIONS = (
     ("ooten", "Ooten's thesis",
      "The senior thesis of E. Ooten, *Precision Motion Control at Low Velocities in the Presence "
      "of Friction* (Texas A&M University, 1997-98): each of its comparisons, then what lies beyond it "
-     "(steel micro-asperities, the MATLAB lattice, a virtual tribometer and the friction law it finds).",
+     "(steel micro-asperities, the MATLAB lattice, a virtual tribometer and the friction law it finds, "
+     "the spacing verdict under other contact laws).",
      ("ooten_spacing", "ooten_profiles", "ooten_damping", "ooten_drive", "ooten_stickslip",
-      "micro_spacing", "steel_table1", "matlab_lattice", "tribometer", "stick_slip_law")),
+      "micro_spacing", "steel_table1", "matlab_lattice", "tribometer", "stick_slip_law",
+      "contact_laws_spacing")),
     ("belt", "The belt thesis",
      "*Vibration Analysis of Multi Degree of Freedom Self-excited Systems*: masses on a moving belt, "
      "solved exactly event by event; its two- and three-mass chains, its parameter tables, and "
