@@ -465,7 +465,8 @@ def test_an_installed_package_reaches_the_command_line_through_its_entry_points(
                           timeout=300)
     assert proc.returncode == 0, proc.stderr[-3000:]
     # the file holds the run's sample times: six uniform samples over 0.5 s (to rounding of linspace)
-    np.testing.assert_allclose([float(t) for t in ast.literal_eval(proc.stdout)], np.linspace(0.0, 0.5, 6), rtol=0, atol=1e-15)
+    written = [float(t) for t in ast.literal_eval(proc.stdout)]
+    np.testing.assert_allclose(written, np.linspace(0.0, 0.5, 6), rtol=0, atol=1e-15)
     assert ".times: the sample times, one a line" in " ".join(cli("render", "--help").stdout.split())
 
     # and none of it is in this process: the test's environment is untouched

@@ -195,7 +195,7 @@ def _parse_set(items: list[str]) -> dict:
         except (tomllib.TOMLDecodeError, RecursionError):  # not a TOML value: the text itself
             value = text
         if key in out:
-            raise SceneError(f"`--set {key}` is given twice ({show(out[key], 30)} and {show(value, 30)}): "
+            raise SceneError(f"`--set {key[:60]}` is given twice ({show(out[key], 30)} and {show(value, 30)}): "
                              "give each key once")
         out[key] = value
     return out

@@ -312,9 +312,11 @@ def _unknown_leading_option(argv: list[str]) -> str | None:
         if token == "--":
             return None
         name = token.partition("=")[0]
-        if name in TOP_OPTIONS:
-            continue
-        close = [_ALIASES[name]] if name in _ALIASES else difflib.get_close_matches(name, TOP_OPTIONS, n=1, cutoff=0.75)
+        if name in TOP_OPTIONS or (name.startswith("--") and len(name) > 2
+                                   and sum(o.startswith(name) for o in TOP_OPTIONS) == 1):
+            continue  # an option, or argparse's unambiguous abbreviation of one (--vers)
+        close = ([_ALIASES[name]] if name in _ALIASES
+                 else difflib.get_close_matches(name, TOP_OPTIONS, n=1, cutoff=0.75))
         hint = f" (did you mean {close[0]}?)" if close else " (options of a command go after it)"
         return f"unrecognized option {show(token, 40)}{hint}"
     return None

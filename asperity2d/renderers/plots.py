@@ -52,9 +52,16 @@ def save(fig, path: str | os.PathLike, dpi: int, *, bbox_inches: str | None = No
     if fmt not in FORMATS:
         raise SceneError(f"`path` must end in one of {', '.join(FORMATS)}, got {str(path)!r}")
 
+    import matplotlib
+
+    # the same figure, the same bytes (the output-format contract): no creation date in a PDF or
+    # SVG, and SVG element ids from a fixed salt instead of a random one
+    metadata = {".pdf": {"CreationDate": None}, ".svg": {"Date": None}}.get(fmt)
+
     def write(fh):
         buf = io.BytesIO()
-        fig.savefig(buf, format=fmt[1:], dpi=dpi, bbox_inches=bbox_inches)
+        with matplotlib.rc_context({"svg.hashsalt": "asperity2d"}):
+            fig.savefig(buf, format=fmt[1:], dpi=dpi, bbox_inches=bbox_inches, metadata=metadata)
         fh.write(buf.getvalue())
 
     return atomic_write(path, write)
