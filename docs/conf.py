@@ -40,6 +40,7 @@ extensions = [
     "sphinx.ext.autosummary",
     "sphinx.ext.intersphinx",
     "sphinx.ext.mathjax",
+    "sphinx.ext.viewcode",  # a [source] link beside every documented name, to its highlighted module
     "sphinx-mathjax-offline",  # MathJax served from the site's _static/, not a CDN
     "numpydoc",
     "myst_parser",
