@@ -27,7 +27,7 @@ _LAZY = {
     "CriticalForce": "critical", "critical_force": "critical", "critical_force_bracket": "critical",
     "Event": "analysis", "breakaway_force": "analysis", "event_statistics": "analysis",
     "friction_traces": "analysis", "stick_slip_events": "analysis", "peak_stick_force": "analysis",
-    "mean_stick_force": "analysis",
+    "mean_stick_force": "analysis", "events_table": "analysis",
     "Comparison": "experiments.compare", "compare": "experiments.compare",
     "render": "renderers",
     "explore": "app",
@@ -46,5 +46,5 @@ __all__ = [
     "SpringDrive", "make_scene", "Result", "load", "simulate", "Run", "Passed", "Stuck", "Travelled",
     "CriticalForce", "critical_force", "critical_force_bracket", "Event", "breakaway_force",
     "peak_stick_force", "mean_stick_force", "event_statistics", "friction_traces", "stick_slip_events",
-    "Comparison", "compare", "render", "explore",
+    "events_table", "Comparison", "compare", "render", "explore",
 ]

@@ -49,6 +49,22 @@ def si(value: float, unit: str = "", digits: int = 3, *, trim: bool = False) -> 
     ``trim=True`` drops trailing zeros (``si(1e-6, "m", trim=True) == "1 µm"``).
     Non-finite values print as ``nan`` / ``inf`` with the unit.
 
+    Parameters
+    ----------
+    value : float
+        The value, in ``unit`` (SI, unprefixed).
+    unit : str
+        The unit's symbol (``"N"``, ``"m/s"``); "" for a plain number.
+    digits : int
+        Significant digits.
+    trim : bool
+        Drop trailing zeros.
+
+    Returns
+    -------
+    str
+        The value with its prefixed unit.
+
     Examples
     --------
     >>> from asperity2d.scripting import si

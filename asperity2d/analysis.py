@@ -361,6 +361,58 @@ class Event:
     complete: bool = True
 
 
+#: the columns of :func:`events_table`, in order: :class:`Event`'s fields
+EVENT_COLUMNS = ("t_stick", "t_slip", "t_end", "force_peak", "force_drop", "slip_distance", "stick_duration",
+                 "complete")
+
+
+def events_table(events, path=None) -> dict:
+    """Events as a table: column name -> array, one row per event; written as CSV to ``path`` if given.
+
+    No pandas needed; with pandas, ``pandas.DataFrame(events_table(events))`` is the data frame.
+
+    Parameters
+    ----------
+    events : sequence of Event
+        Events of a run (:func:`stick_slip_events`).
+    path : str or os.PathLike, optional
+        A ``.csv`` file to write (atomically): a header line of :data:`EVENT_COLUMNS`, SI units,
+        ``complete`` as 1 or 0.
+
+    Returns
+    -------
+    dict
+        :data:`EVENT_COLUMNS` -> NumPy array (float64; ``complete`` bool), each with one entry per event.
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> events = a.stick_slip_events(a.simulate(a.make_scene(lower_count=4, upper_count=2)))
+    >>> table = a.events_table(events, "events.csv")
+    >>> [f"{f * 1e3:.3g} mN" for f in table["force_drop"]], table["complete"].tolist()
+    (['9.21 mN', '11.7 mN'], [True, False])
+    >>> open("events.csv").readline().strip()
+    't_stick,t_slip,t_end,force_peak,force_drop,slip_distance,stick_duration,complete'
+    """
+    from ._io import atomic_write
+
+    rows = list(events)
+    if not all(isinstance(e, Event) for e in rows):
+        raise SceneError("`events` must be a sequence of Event (stick_slip_events(result))")
+    table = {name: np.array([getattr(e, name) for e in rows], dtype=bool if name == "complete" else float)
+             for name in EVENT_COLUMNS}
+    if path is not None:
+        if not str(path).lower().endswith(".csv"):
+            raise SceneError(f"`path` must end in .csv, got {str(path)!r}")
+        columns = np.column_stack([table[n].astype(float) for n in EVENT_COLUMNS]) if rows else np.zeros((0, 8))
+
+        def write(fh):
+            np.savetxt(fh, columns, delimiter=",", header=",".join(EVENT_COLUMNS), comments="", fmt="%.17g")
+
+        atomic_write(path, write)
+    return table
+
+
 def _asperity_run(result) -> None:
     """Raise SceneError unless ``result`` is an asperity run (a Result, or a record read lazily)."""
     if getattr(result, "kind", "asperity") != "asperity" or getattr(result, "scene", None) is None:

@@ -43,6 +43,16 @@ def title(doc: str | None) -> str:
     so the first line that is not blank and not an underline; "" when the docstring is empty
     (the gallery runs scripts with ``__doc__`` cleared).
 
+    Parameters
+    ----------
+    doc : str or None
+        The script's docstring (``__doc__``).
+
+    Returns
+    -------
+    str
+        Its title line, or "".
+
     Examples
     --------
     >>> from asperity2d import scripting
@@ -63,6 +73,11 @@ def run(main) -> None:
     normally rather than raising ``SystemExit(0)``, so a host that runs the script in its own
     process -- the documentation's gallery -- carries on after it.
 
+    Parameters
+    ----------
+    main : callable
+        The script's ``main()``, returning its exit status.
+
     Examples
     --------
     >>> from asperity2d import scripting
@@ -81,6 +96,16 @@ def parser(description: str) -> argparse.ArgumentParser:
 
     Add your own with ``p.add_argument``; ``p.error(message)`` reports a bad value as one line on
     stderr and exit status 2.
+
+    Parameters
+    ----------
+    description : str
+        The script's one-line description (``--help``), e.g. :func:`title` of its docstring.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        The parser, with the common arguments.
 
     Examples
     --------
@@ -104,11 +129,29 @@ def study_args(description: str, argv, *, default_seeds: int | str, minimum_seed
                quick_seeds: int = 2, auto: bool = False, default_max_seeds: int = 40):
     """Parse a seed study's arguments: the common ones plus ``--seeds`` and ``--workers``.
 
-    ``args.seeds`` is resolved (``default_seeds``, or ``quick_seeds`` with ``--quick``);
-    fewer than ``minimum_seeds`` is a usage error (one line, exit status 2). A study that
-    passes ``auto=True`` also takes ``--seeds auto`` (``args.seeds == "auto"``: seeds added in
-    stages until its verdicts are decided, ``compare(..., seeds="auto")``) with the budget
-    ``--max-seeds`` (``args.max_seeds``, default ``default_max_seeds``).
+    Parameters
+    ----------
+    description : str
+        The script's one-line description (``--help``).
+    argv : list of str or None
+        The arguments (None: the command line's).
+    default_seeds : int or "auto"
+        Seeds without ``--seeds`` or ``--quick``.
+    minimum_seeds : int
+        Fewest seeds accepted: fewer is a usage error (one line, exit status 2).
+    quick_seeds : int
+        Seeds with ``--quick``.
+    auto : bool
+        Also take ``--seeds auto`` (``args.seeds == "auto"``: seeds added in stages until the
+        study's verdicts are decided, ``compare(..., seeds="auto")``) with the budget
+        ``--max-seeds`` (``args.max_seeds``).
+    default_max_seeds : int
+        The budget of ``--seeds auto`` without ``--max-seeds``.
+
+    Returns
+    -------
+    argparse.Namespace
+        The arguments, ``args.seeds`` resolved and ``args.workers`` None (auto) or N >= 1.
 
     Examples
     --------
@@ -154,6 +197,11 @@ def add_workers(p) -> None:
     """Add ``--workers auto|N`` to parser ``p`` (``args.workers``: None for auto, decided by cost,
     or N >= 1).
 
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The script's parser (:func:`parser`).
+
     Examples
     --------
     >>> from asperity2d import scripting
@@ -168,8 +216,18 @@ def add_workers(p) -> None:
 def out_dir(args, script_file: str) -> Path:
     """The output directory for a script (created); ``SceneError`` naming ``-o`` if it cannot be.
 
-    ``-o DIR`` if given, else ``renders/<script name>`` beside the script's folder (or under
-    ``$ASPERITY2D_RENDERS``).
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed arguments (:func:`parser`): ``-o DIR`` if given is the directory.
+    script_file : str
+        The script's path (``__file__``): without ``-o``, the directory is ``renders/<script
+        name>`` beside the script's folder (or under ``$ASPERITY2D_RENDERS``).
+
+    Returns
+    -------
+    pathlib.Path
+        The directory, created.
 
     Examples
     --------
@@ -193,7 +251,23 @@ def finish(args, summary: dict, directory: Path, lines: list[str]) -> int:
     """Write ``summary.json`` atomically and print the summary (JSON or text).
 
     Strict JSON: undefined statistics (NaN, infinities) are
-    ``null``, NumPy values plain. Returns 0, the script's exit status.
+    ``null``, NumPy values plain.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed arguments: ``--json`` prints the summary as JSON instead of ``lines``.
+    summary : dict
+        What the script found, written to ``directory / "summary.json"``.
+    directory : pathlib.Path
+        The output directory (:func:`out_dir`).
+    lines : list of str
+        The summary in words, printed followed by ``outputs in DIRECTORY``.
+
+    Returns
+    -------
+    int
+        0, the script's exit status.
 
     Examples
     --------

@@ -40,6 +40,7 @@ extensions = [
     "sphinx.ext.autosummary",
     "sphinx.ext.intersphinx",
     "sphinx.ext.mathjax",
+    "sphinx.ext.viewcode",  # a [source] link beside every documented name, to its highlighted module
     "sphinx-mathjax-offline",  # MathJax served from the site's _static/, not a CDN
     "numpydoc",
     "myst_parser",
@@ -128,3 +129,28 @@ html_show_sourcelink = False
 html_sidebars = {page: [] for page in ("index", "getting_started", "findings", "validation", "benchmarks", "faq",
                                        "coming_from", "glossary", "changelog", "parameters", "layout")}
 html_last_updated_fmt = None
+
+
+# -- Generated tables ------------------------------------------------------------------------------
+def write_events_table(app=None) -> Path:
+    """The stick-slip events of the getting-started page's scene (8 lower asperities, 3 tips), as the
+    CSV its table shows: made from ``asperity2d.analysis.events_table`` at every build (a few
+    seconds), so the table is what the code finds now, in display units."""
+    import asperity2d as a
+    from asperity2d.analysis import events_table
+
+    table = events_table(a.stick_slip_events(a.simulate(a.make_scene(lower_count=8, upper_count=3),
+                                                        progress=False)))
+    path = DOCS / "_build" / "generated" / "events_table.csv"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    rows = ["t_stick (ns),t_slip (ns),force_peak (mN),force_drop (mN),slip_distance (µm),complete"]
+    for k in range(len(table["t_slip"])):
+        rows.append(f"{table['t_stick'][k] * 1e9:.1f},{table['t_slip'][k] * 1e9:.1f},"
+                    f"{table['force_peak'][k] * 1e3:.2f},{table['force_drop'][k] * 1e3:.2f},"
+                    f"{table['slip_distance'][k] * 1e6:.2f},{'yes' if table['complete'][k] else 'no'}")
+    path.write_text("\n".join(rows) + "\n", encoding="utf-8")
+    return path
+
+
+def setup(app):
+    app.connect("builder-inited", write_events_table)

@@ -38,9 +38,25 @@ _TYPES = {"method": (str,), "integrator": (str,), "n_samples": (int,), "rtol": (
 def read_chain(path) -> dict:
     """Keyword arguments for ``simulate_chain`` from the TOML chain file ``path``.
 
-    An unknown key, a missing one, a setting of the wrong type or a bad ``[friction]`` /
-    ``[normal]`` table raises one ``SceneError`` naming the key and the file; a file that
-    cannot be read or parsed one ``FileError``.
+    Parameters
+    ----------
+    path : str or os.PathLike
+        A TOML chain file: ``simulate_chain``'s arguments as keys, with optional ``[friction]``
+        and ``[normal]`` tables.
+
+    Returns
+    -------
+    dict
+        Keyword arguments for :func:`asperity2d.belt.simulate_chain` (``normal`` a
+        :class:`NormalContact`, ``friction`` a friction law, when the file has those tables).
+
+    Raises
+    ------
+    SceneError
+        An unknown key, a missing one, a setting of the wrong type or a bad ``[friction]`` /
+        ``[normal]`` table, naming the key and the file.
+    FileError
+        A file that cannot be read or parsed.
 
     Examples
     --------

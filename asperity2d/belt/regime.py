@@ -192,9 +192,27 @@ CONTACT_REGIMES = ("steady sliding", "quasi-harmonic", "flutter", "stick-slip", 
 def classify_contact(result, *, stick_fraction: float = 1e-3, osc_tol: float = 1e-3, grow_tol: float = 0.05) -> str:
     """The regime (one of ``CONTACT_REGIMES``) of a contact-chain run over its second half.
 
-    ``result`` is a :class:`ContactResult`; ``stick_fraction`` and ``osc_tol`` as in
-    :func:`classify`, ``grow_tol`` the relative growth of the oscillation over the window above
-    which it is growing (flutter). See Also :func:`classify`.
+    Parameters
+    ----------
+    result : ContactResult
+        A run of a chain with a normal contact (``simulate_chain(..., normal=...)``).
+    stick_fraction : float
+        Fraction of the window a mass must stick for to count as sticking, as in :func:`classify`.
+    osc_tol : float
+        Velocity swing, as a fraction of the belt speed, below which sliding is steady, as in
+        :func:`classify`.
+    grow_tol : float
+        Relative growth of the oscillation over the window above which it is growing (flutter),
+        and relative decay beyond which it is dying out.
+
+    Returns
+    -------
+    str
+        One of ``CONTACT_REGIMES`` (rules below).
+
+    See Also
+    --------
+    classify : the regime of a chain without a normal contact.
 
     Examples
     --------

@@ -44,6 +44,16 @@ def classify_asperity(result, *, rtol: float = 0.05, max_multiplicity: int = 12)
     over the mean pitch of the lower surface; ``amplitude`` is half the
     peak-to-peak drive force in the window (N).
 
+    Parameters
+    ----------
+    result : Result
+        A spring-driven asperity run (``drive="spring"``).
+    rtol : float
+        Relative tolerance within which the section points must repeat (of the mean interval
+        between slips and of the drive force's peak-to-peak).
+    max_multiplicity : int
+        Most slips per period of a repeating cycle.
+
     Returns
     -------
     dict
@@ -108,12 +118,29 @@ def asperity_basins(scene: dict, preloads, *, seeds=(0,), duration: float | None
                     progress: bool = True) -> BasinMap:
     """Classes of spring-driven runs of ``make_scene(**scene)`` over ``preloads`` (N) and spacing ``seeds``.
 
-    ``scene`` must not set ``drive_preload`` or ``seed`` (they are the axes)
-    and must use ``drive="spring"``; ``duration`` (s) as in ``simulate``
-    (None: until the slider has crossed the surface). The map's x axis is
-    ``drive_preload``, its y axis ``seed``; ``store`` / ``workers`` /
-    ``scheduler`` as in the belt chains' basin maps (``asperity2d belt basins``): a resumable
-    store, worker processes, a Dask scheduler.
+    The map's x axis is ``drive_preload``, its y axis ``seed``.
+
+    Parameters
+    ----------
+    scene : dict
+        ``make_scene`` arguments; must not set ``drive_preload`` or ``seed`` (they are the axes)
+        and must use ``drive="spring"``.
+    preloads : sequence of float
+        Drive preloads (N), the map's x axis.
+    seeds : sequence of int
+        Spacing seeds, the map's y axis.
+    duration : float, optional
+        Run length (s) as in ``simulate`` (None: until the slider has crossed the surface).
+    rtol : float
+        Relative tolerance of a repeating cycle, as in :func:`classify_asperity`.
+    store : str or os.PathLike, optional
+        A resumable store, as in the belt chains' basin maps (``asperity2d belt basins``).
+    workers : int, optional
+        Worker processes (None: decided from the cost of a run).
+    scheduler : str, optional
+        A Dask scheduler address.
+    progress : bool
+        Show a progress bar.
 
     Returns
     -------

@@ -74,10 +74,23 @@ def detect_period(points, times=None, *, scale=None, rtol: float = 1e-4, max_mul
                   min_repeats: int = 3) -> tuple:
     """``(n, period, k_start, mismatch)`` of a sequence of section points, or ``(0, nan, -1, best)``.
 
-    ``points`` (K, d) or (K,); ``times`` (K,) the section times (default: the
-    index, so the period of a sequence is counted in steps); ``scale`` (d,)
-    the size each coordinate's differences are measured against (default:
-    its largest magnitude over the points). See the module docstring.
+    See the module docstring.
+
+    Parameters
+    ----------
+    points : array_like, (K, d) or (K,)
+        The section points in order.
+    times : array_like, (K,), optional
+        The section times (s; default: the index, so the period of a sequence is counted in steps).
+    scale : array_like, (d,), optional
+        The size each coordinate's differences are measured against (default: its largest
+        magnitude over the points).
+    rtol : float
+        Relative mismatch within which a point repeats (of ``scale``).
+    max_multiplicity : int
+        Most points per period.
+    min_repeats : int
+        How many times the cycle must repeat.
 
     Returns
     -------

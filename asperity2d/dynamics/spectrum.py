@@ -107,12 +107,26 @@ def spectrum(t, y, *, method: str = "welch", segment: float | None = None, dt: f
              detrend: str = "linear", n_harmonics: int = 8, n_peaks: int = 6) -> Spectrum:
     """Power spectrum of ``y(t)`` (SI): see the module docstring.
 
-    ``segment`` (s) is Welch's segment length (default: a quarter of the run,
-    giving 7 half-overlapping averages, but at least 16 samples); the bin width is 1/segment.
-    ``dt`` (s) is the resampling step (default: the median sample spacing).
-    ``detrend`` ("linear", "constant" or "none") is applied per segment; the
-    linear default keeps a drifting position (an asperity slider's x) from
-    flooding the low bins.
+    Parameters
+    ----------
+    t : array_like
+        Sample times (s), increasing; resampled to a uniform step.
+    y : array_like
+        The signal at ``t`` (any SI unit; the power is in its unit squared per Hz).
+    method : str
+        ``"welch"`` (averaged segments) or ``"periodogram"`` (one segment: the whole run).
+    segment : float, optional
+        Welch's segment length (s; default: a quarter of the run, giving 7 half-overlapping
+        averages, but at least 16 samples); the bin width is 1/segment.
+    dt : float, optional
+        The resampling step (s; default: the median sample spacing).
+    detrend : str
+        ``"linear"``, ``"constant"`` or ``"none"``, applied per segment; the linear default keeps a
+        drifting position (an asperity slider's x) from flooding the low bins.
+    n_harmonics : int
+        Harmonics of the dominant frequency measured (for the distortion ``thd``).
+    n_peaks : int
+        Largest peaks listed.
 
     Returns
     -------

@@ -97,7 +97,33 @@ class OutputFormat:
     4. be deterministic: the same result and options give the same file (the golden and
        picture tests rely on it).
 
-    ``renderer`` names the family (``"plot"``, ``"animation"``...) for the text.
+    Parameters
+    ----------
+    extension : str
+        The file extension, lower case with its dot (``".csv"``).
+    description : str
+        What the file holds, in a few words.
+    drawers : mapping of str to callable
+        Result kind (``"asperity"``, ``"belt"``, ...) -> ``draw(result, path, **options)``.
+    renderer : str
+        The family (``"plot"``, ``"animation"``...) for the text.
+
+    Raises
+    ------
+    SceneError
+        An extension that is not lower case with its dot, or drawers that are not kind -> function.
+
+    Examples
+    --------
+    >>> from asperity2d.renderers import OutputFormat
+    >>> def write_txt(result, path, **options):
+    ...     return path
+    >>> fmt = OutputFormat(".txt", "the time series as text", {"belt": write_txt}, "table")
+    >>> fmt.kinds
+    ('belt',)
+    >>> OutputFormat("TXT", "text", {"belt": write_txt})
+    Traceback (most recent call last):
+    asperity2d.errors.SceneError: `extension` must be a lower-case extension with its dot ('.csv'), got 'TXT'
     """
 
     extension: str
@@ -133,8 +159,28 @@ FORMATS: Registry = Registry("output format", "asperity2d.formats", key=lambda f
 
 
 def register_format(fmt: OutputFormat, *, replace: bool = False) -> OutputFormat:
-    """Add ``fmt`` to :data:`FORMATS` (see :class:`OutputFormat` for the contract); an extension
-    already taken raises ``SceneError`` unless ``replace``. Returns it.
+    """Add ``fmt`` to :data:`FORMATS` (see :class:`OutputFormat` for the contract).
+
+    Parameters
+    ----------
+    fmt : OutputFormat
+        The format to add.
+    replace : bool
+        Replace a format already registered for the same extension.
+
+    Returns
+    -------
+    OutputFormat
+        ``fmt``.
+
+    Raises
+    ------
+    SceneError
+        ``fmt`` is not an OutputFormat, or its extension is taken and ``replace`` is false.
+
+    See Also
+    --------
+    unregister_format : removes it again.
 
     Examples
     --------
@@ -154,7 +200,23 @@ def register_format(fmt: OutputFormat, *, replace: bool = False) -> OutputFormat
 
 
 def unregister_format(extension: str) -> OutputFormat:
-    """Remove the format of ``extension`` from :data:`FORMATS` and return it."""
+    """Remove the format of ``extension`` from :data:`FORMATS` and return it.
+
+    Parameters
+    ----------
+    extension : str
+        A registered extension, with its dot (``".txt"``).
+
+    Returns
+    -------
+    OutputFormat
+        The format removed.
+
+    Raises
+    ------
+    SceneError
+        No format is registered for ``extension`` (the message names the nearest ones).
+    """
     return FORMATS.unregister(extension)
 
 
@@ -215,7 +277,16 @@ def register_kind_drawers() -> None:
     """Give each registered result kind (``asperity2d.saved.RESULT_KINDS``) the drawers of its
     family read from :data:`FORMATS`: one registry says how a kind is drawn, and a kind registered
     from outside may bring drawers of its own. Imports the result kinds (NumPy), so it runs on
-    first use, not on import (``asperity2d --help`` stays light)."""
+    first use, not on import (``asperity2d --help`` stays light).
+
+    Examples
+    --------
+    >>> from asperity2d.renderers import register_kind_drawers
+    >>> from asperity2d.saved import RESULT_KINDS
+    >>> register_kind_drawers()
+    >>> sorted(RESULT_KINDS["belt"].drawers)
+    ['animation', 'player', 'plot', 'sound']
+    """
     from ..saved import register_drawers
 
     for family in {kind for fmt in FORMATS.values() for kind in fmt.drawers}:
@@ -224,12 +295,43 @@ def register_kind_drawers() -> None:
 
 
 def suffixes(kind: str) -> tuple[str, ...]:
-    """The output extensions a result of ``kind`` (``"asperity"``, ``"belt"``) renders to."""
+    """The output extensions a result of ``kind`` renders to.
+
+    Parameters
+    ----------
+    kind : str
+        A result kind: ``"asperity"``, ``"belt"``, ``"comparison"``, ...
+
+    Returns
+    -------
+    tuple of str
+        The extensions, in :data:`FORMATS`' order (empty for a kind no format draws).
+
+    Examples
+    --------
+    >>> from asperity2d.renderers import suffixes
+    >>> suffixes("belt")
+    ('.gif', '.mp4', '.html', '.png', '.svg', '.pdf', '.wav')
+    >>> suffixes("comparison")
+    ('.png', '.svg', '.pdf')
+    """
     return tuple(ext for ext, fmt in FORMATS.items() if kind in fmt.drawers)
 
 
 def describe() -> str:
-    """The formats in words, for a help text: ``".gif" (animation with meters), ...``."""
+    """The formats in words, for a help text: ``".gif: animation with meters; ..."``.
+
+    Returns
+    -------
+    str
+        Each description once, after the extensions that share it.
+
+    Examples
+    --------
+    >>> from asperity2d.renderers import describe
+    >>> describe().split("; ")[0]
+    '.gif: animation with meters'
+    """
     groups: dict[str, list[str]] = {}
     for ext, fmt in FORMATS.items():
         groups.setdefault(fmt.description, []).append(ext)

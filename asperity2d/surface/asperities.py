@@ -260,6 +260,8 @@ def find_asperities(profile: SurfaceProfile, *, min_prominence: float, min_width
 
     Parameters
     ----------
+    profile : SurfaceProfile
+        The surface, heights in m (read, generated or measured).
     min_prominence : float
         Smallest summit prominence kept (m); set it above the noise of a
         measured trace.

@@ -183,6 +183,10 @@ def self_affine_profile(*, n: int, length: float, rms_height: float, hurst: floa
 
     Parameters
     ----------
+    n : int
+        Number of points (the profile is periodic: point ``n`` would be point 0 again).
+    length : float
+        Length of the profile (m); the spacing is ``length / n``.
     rms_height : float
         Root-mean-square height (m); the result has exactly this rms.
     hurst : float
@@ -193,8 +197,12 @@ def self_affine_profile(*, n: int, length: float, rms_height: float, hurst: floa
         wavenumber pi / spacing. Outside the band C = 0, except that
         ``rolloff=True`` keeps C = C(q_min) below q_min (a roll-off plateau,
         as measured on many real surfaces).
+    rolloff : bool
+        Keep the power of ``q_min`` below it (see ``q_min``) instead of none.
     seed : int
         Seed of ``numpy.random.default_rng``.
+    name : str
+        A name the profile carries (shown in plots and records).
 
     Returns
     -------

@@ -211,13 +211,25 @@ def run_calls(fn: Callable, calls: Sequence[tuple], *, workers: int | str | None
     """``fn(*args)`` for every ``args`` in ``calls``; yield an :class:`Outcome` per call as it
     completes (the module docstring's failure contract).
 
-    ``workers`` local processes (1: in this process; None or ``"auto"``, the default: decided
-    by :func:`decide_workers` from ``cost``, the wall time (s) of one call if the caller knows
-    it, else from the first call, run here), or a Dask ``scheduler`` address (``"local"``
-    starts a ``LocalCluster`` of ``workers`` processes, every core when auto; a running cluster
-    has its own), or an open ``executor`` (kept open). ``fn`` must be a module-level function
-    to run in worker processes. ``report``, if given, receives ``"executor"``: where the calls
-    ran, in words.
+    Parameters
+    ----------
+    fn : callable
+        The function to call; a module-level function to run in worker processes.
+    calls : sequence of tuple
+        The positional arguments of each call.
+    workers : int or "auto", optional
+        Local processes (1: in this process; None or ``"auto"``, the default: decided by
+        :func:`decide_workers` from ``cost``, else from the first call, run here). With
+        ``scheduler="local"``, the ``LocalCluster``'s processes (every core when auto).
+    scheduler : str, optional
+        A Dask scheduler address, or ``"local"`` to start a ``LocalCluster`` (a running cluster
+        has its own workers).
+    executor : optional
+        An open executor to run on (kept open); excludes ``workers`` and ``scheduler``.
+    cost : float, optional
+        The wall time of one call (s), if the caller knows it.
+    report : dict, optional
+        Receives ``"executor"``: where the calls ran, in words.
 
     Returns
     -------

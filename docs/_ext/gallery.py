@@ -63,8 +63,9 @@ SCENES = DOCS.parent / "scenes"
 #: line (a kernel's own ``-f`` would be refused) and find their data beside ``__file__``;
 #: ``SCRIPT`` becomes the script's name (:func:`notebook_first_cells`).
 FIRST_NOTEBOOK_CELL = (
-    "# Run this notebook from the scenes/ folder of an asperity2d checkout: the script reads its\n"
-    "# data, or a sibling script, there. Its options, as on its command line: the quick settings\n"
+    "# Runs from any folder. A lesson that reads data (scenes/data/) or a sibling script runs from\n"
+    "# the scenes/ folder of an asperity2d source archive or checkout (How-tos: Get the code).\n"
+    "# Its options, as on its command line: the quick settings\n"
     "# the documentation ran (drop \"--quick\" for the full study), outputs written to ./outputs.\n"
     "import sys\n"
     "from pathlib import Path\n"
