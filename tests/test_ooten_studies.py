@@ -69,7 +69,7 @@ def test_script_writes_gif_and_claims(outputs, name):
     summary = json.loads((out / "summary.json").read_text())
     assert summary["claims"], "every study states at least one claim"
     for claim in summary["claims"]:
-        assert claim["verdict"] in (claims.HOLDS, claims.FAILS, claims.UNTESTABLE)
+        assert claim["verdict"] in claims.OUTCOMES
         assert claim["claim"] and claim["test"]
         assert isinstance(claim["numbers"], dict) and claim["numbers"]
     assert list(out.glob("*.png")), "plots written"
@@ -250,7 +250,8 @@ def test_fixed_track_spacing_verdicts_hold_on_new_seeds():
             c = found[measure, variant]
             assert c["verdict"] == claims.HOLDS and c["numbers"]["missing"] == 0, (measure, variant)
             assert c["numbers"]["ratio_ci_high"] < 0.95, (measure, variant)
-        assert found[measure, "random vs random-upper"]["verdict"] == claims.FAILS, measure
+        # not shown smaller: shown the other way, or undecided (never "holds")
+        assert found[measure, "random vs random-upper"]["verdict"] in (claims.FAILS, claims.UNDECIDED), measure
     assert found["critical-run-up", "random vs random-upper"]["numbers"]["ratio_ci_low"] > 1.0
     for variant in ("random-upper", "random"):
         n = found["first-breakaway", variant]["numbers"]

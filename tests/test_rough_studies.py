@@ -20,7 +20,7 @@ def test_height_spread_study(tmp_path, capsys):
         assert uniform["critical_force_N"]["mean"] > 0 and uniform["touched_fraction"]["mean"] == 1.0
     # the regular free slider breaks loose on its 45 degree flanks (flank law read backwards)
     assert summary["setups"]["free"]["per_spread"]["0"]["breakaway_angle_deg"]["mean"] == pytest.approx(45, abs=1)
-    assert all(c["verdict"] in ("holds", "does not hold", "not testable with so few seeds")
+    assert all(c["verdict"] in ("holds", "no effect", "does not hold", "undecided", "not testable with so few seeds")
                for c in summary["claims"])
 
 

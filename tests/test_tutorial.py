@@ -11,7 +11,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
 TUTORIAL = ROOT / "docs" / "tutorial_src" / "first_study.py"
-VERDICTS = ("holds", "does not hold", "not testable")
+VERDICTS = ("holds", "no effect", "does not hold", "undecided", "not testable")
 
 
 def test_tutorial_runs_in_order_and_its_files_read_back(tmp_path, monkeypatch, capsys):

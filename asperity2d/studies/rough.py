@@ -338,14 +338,16 @@ def trend_claim(text: str, x, y, sign: int, *, setup: str | None = None, alpha: 
     -------
     dict
         A claim record (:func:`asperity2d.experiments.verdicts.claim`): holds if the
-        correlation has the sign ``sign`` with p < ``alpha``; not testable when fewer than 3
-        finite pairs or a constant series give no p-value.
+        correlation has the sign ``sign`` with p < ``alpha``; does not hold if it has the other
+        sign with p < ``alpha``; undecided otherwise; not testable when fewer than 3 finite
+        pairs or a constant series give no p-value.
     """
-    from ..experiments.verdicts import UNTESTABLE, claim
+    from ..experiments.verdicts import FAILS, HOLDS, UNDECIDED, UNTESTABLE, claim
 
     rho, p = spearman(x, y)
     n = int(np.sum(np.isfinite(np.asarray(x, float)) & np.isfinite(np.asarray(y, float))))
-    verdict = UNTESTABLE if not math.isfinite(p) else bool(np.sign(rho) == sign and p < alpha)
+    verdict = (UNTESTABLE if not math.isfinite(p) else UNDECIDED if not p < alpha
+               else HOLDS if np.sign(rho) == sign else FAILS)
     return claim(text, verdict, {"spearman_rho": rho, "p": p, "n": n},
                  f"Spearman rank correlation over {n} runs, two-sided; holds if "
                  f"{'positive' if sign > 0 else 'negative'} with p < {alpha:g}", setup=setup)

@@ -120,23 +120,24 @@ print("random: ", ", ".join(f"{f * mN:.2f}" for f in forces), "mN")
 # The test is one-sided Wilcoxon signed-rank of the random values against the regular one
 # (:meth:`~asperity2d.Comparison.versus`), and the size of the change is the Hodges-Lehmann
 # ratio random / regular with its 95 % interval (:func:`asperity2d.stats.relative_effect`).
-# The rule the package's own studies use: the claim **holds** if p < 0.01 and the change is at
-# least 1 % (twice the model's force resolution); it **does not hold** otherwise; and it is
-# **not testable** when there are too few seeds for p to go below 0.01 at all. With n seeds the
-# smallest p a signed-rank test can give is 1/2**n: 6 seeds give at best 0.016, so 7 is the
-# fewest that can pass.
+# The rule the package's own studies use (:mod:`asperity2d.experiments.verdicts`): the claim
+# **holds** if p < 0.01 and the change is at least 1 % (twice the model's force resolution);
+# there is **no effect** if the ratio's 98 % interval lies within 1 % of 1; it **does not hold**
+# only if the change is shown to go the other way; it is **undecided** otherwise, with about
+# how many seeds would decide it; and it is **not testable** when there are too few seeds for
+# p to go below 0.01 at all. With n seeds the smallest p a signed-rank test can give is 1/2**n:
+# 6 seeds give at best 0.016, so 7 is the fewest that can pass.
+# :meth:`~asperity2d.Comparison.verdict` applies it.
 
-alpha, min_effect = 0.01, 0.01
 test = comparison.versus("random", "regular", alternative="less")
 effect = a.stats.relative_effect(forces, reference)
 n, p = test["n"], test["p_wilcoxon"]
-if 0.5 ** n >= alpha:
-    verdict = (f"not testable with {n} seeds (the smallest p is "
-               f"{0.5 ** n:.3g}; 7 seeds are the fewest)")
-elif p < alpha and -effect["estimate"] >= min_effect:
-    verdict = "holds"
-else:
-    verdict = "does not hold"
+record = comparison.verdict("random", "regular")
+verdict = record["verdict"]
+if verdict == "not testable with so few seeds":
+    verdict += f" ({n} seeds: the smallest p is {0.5 ** n:.3g}; 7 seeds are the fewest)"
+elif verdict == "undecided":
+    verdict += f" (about {record['numbers']['seeds_needed']} seeds would decide it)"
 ratio = effect["ratio"]
 low, high = 1 + effect["ci_low"], 1 + effect["ci_high"]
 print(f"random / regular = x{ratio:.2f} [{low:.2f}, {high:.2f}]")
