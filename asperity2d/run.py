@@ -589,7 +589,8 @@ class Run:
                 record: bool = True, observers: Iterable[Callable] = ()) -> str:
         """Step for ``duration`` (s), recording every ``record_every`` steps (default: the
         run's), until a stop condition holds. Returns (and sets) ``status``:
-        ``"duration"`` or the stop's name.
+        ``"duration"``, the stop's name, or ``"off-surface"`` when the slider left the far end
+        of the lower surface (a free slider's run ends there; a fixed-track one runs on).
 
         ``observers`` are called as ``observer(probe)`` at every sample, the first
         included, with the SI view of the state (``Probe``), before the stop

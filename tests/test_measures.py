@@ -3,8 +3,9 @@ step, on random seeds no test or study names: drawn from
 ``numpy.random.SeedSequence(HIDDEN_ENTROPY)``, disjoint from the README's seeds (0-23) and from
 the investigation's (entropy 2025).
 
-Deterministic measures (critical forces, quasi-static breakaway, first breakaway, travel) move
-by at most their tolerance (measures.STEP_TOLERANCE, 1 %) when the step is halved. The peak and mean stick force over a pass are chaotic
+Deterministic measures (critical forces, quasi-static breakaway, first breakaway) move by at
+most their tolerance (measures.STEP_TOLERANCE, 1 %) when the step is halved; so does the travel
+on these seeds (a distribution over seeds, its policy is checked in test_travel_policy.py). The peak and mean stick force over a pass are chaotic
 (which positions a pass sticks at changes with a 1e-6 change of the drive speed): they are the
 means of an ensemble of passes, and what must not move with the step is their distribution --
 pooled over seeds the dt/2 ensemble means differ from the dt ones by less than three standard

@@ -18,7 +18,8 @@ With one contact (a regular surface) R = L tan(45 deg + atan mu_k) throughout: t
 
 python tools/investigate/free_slider_saddle.py [--size 16/4] SEED... ; prints one line per seed
 and adds it to renders/measures/free_slider_saddle.json (seed -1: the regular surface); copied to
-docs/data/measures/ for the findings page. ``--summary [FILE]`` prints the numbers the page quotes.
+docs/data/measures/ for the findings page. ``--summary [FILE]`` prints the numbers the page quotes;
+``--figure [SIZE/SEED ...]`` draws R(s) and its running mean against the measured force.
 Measured: ``--size 16/4 -1 7636 0..7 7601..7624`` and ``--size 10/3 -1 0..23``.
 """
 from __future__ import annotations
@@ -148,7 +149,42 @@ def summary(path: Path) -> None:
                   f"{v['estimate_N'] * 1e3:.2f} mN, climb {v['climb_m'] * 1e9:.0f} nm")
 
 
+def figure(keys: list[str], path: Path, data_path: Path = OUT) -> Path:
+    """R(s) of the estimate, its running mean (the force that carries the slider that far) and
+    the measured critical force, for the recorded seeds ``keys`` ("16/4/7636", "16/4/-1")."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    data = json.loads(data_path.read_text())
+    fig, axes = plt.subplots(1, len(keys), figsize=(5.2 * len(keys), 3.6), squeeze=False)
+    for ax, key in zip(axes[0], keys):
+        rec = data[key]
+        size, seed = key.rsplit("/", 1)
+        scene = scene_of(int(seed), size)
+        fronts = [c["apex_minus_tip"] for c in rec["contacts"] if c["flank"] == "front"]
+        s = np.linspace(0.0, max(fronts), 1001)[1:-1]  # up to the apex, not over it
+        R, _ = resisting_force(scene, rec["contacts"], s)
+        mean = np.cumsum(0.5 * (R + np.concatenate(([R[0]], R[:-1]))) * np.diff(np.concatenate(([0.0], s)))) / s
+        ax.plot(s * 1e9, R * 1e3, label="resisting force R(s), quasi-static")
+        ax.plot(s * 1e9, mean * 1e3, label="its running mean (the force needed from rest)")
+        ax.axhline(rec["law_N"] * 1e3, color="0.5", ls="--", label="kinetic flank law")
+        ax.axhline(rec["critical_N"] * 1e3, color="k", ls=":", label="measured critical force")
+        ax.set_xlabel("slider travel s (nm)")
+        ax.set_ylabel("force (mN)")
+        ax.set_title("regular surface" if int(seed) < 0 else f"seed {seed}", fontsize=10)
+    axes[0][0].legend(fontsize=7, loc="lower right")
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    return path
+
+
 def main(argv: list[str]) -> int:
+    if argv[:1] == ["--figure"]:
+        print(figure(argv[1:] or ["16/4/7636", "16/4/-1"], OUT.with_suffix(".png")))
+        return 0
     if argv[:1] == ["--summary"]:
         summary(Path(argv[1]) if len(argv) > 1 else OUT)
         return 0
