@@ -36,7 +36,7 @@ from .space import COLLISION_SLOP, CORRECTION_PER_STEP, per_step_bias
 INSTALL = 'pip install "asperity2d[batch]"'
 #: Largest batch (bytes of state, geometry and record) accepted in one call.
 MAX_BATCH_BYTES = 2 << 30
-#: Samples kept per scene and call (x, v, y, vy, forces): the record of one run.
+#: The engine's name in the registry and in its results' meta.
 ENGINE = "batched"
 
 
@@ -248,8 +248,8 @@ class Batch:
                   self.bias_coef, self.joint_bias_coef, self.restitution, self.mu_s, self.mu_k,
                   self.v_stick, self.slip_dist, self.switch_on, self.floor_y, self.stop_x, self.first)
 
-    def error(self, b: int) -> SimulationError | None:
-        """Scene ``b``'s own failure (None if it ran)."""
+    def error(self, b: int, *, offset: int = 0) -> SimulationError | None:
+        """Scene ``b``'s own failure (None if it ran), naming it as scene ``offset + b``."""
         code = int(self.fail[b])
         if code == 0:
             return None
@@ -259,7 +259,7 @@ class Batch:
                k.FLOOR: "a slider tip reached the floor, which engine=\"batched\" does not model "
                         "(engine=\"pymunk\" runs it)",
                k.PAIRS: f"a slider tip touched more than {k.PAIRS_PER_TIP} lower asperities at once"}[code]
-        return SimulationError(f"scene {b} ({self.scenes[b].name}) stopped at t = {t:.4g} s: {why}")
+        return SimulationError(f"scene {offset + b} ({self.scenes[b].name}) stopped at t = {t:.4g} s: {why}")
 
     def result(self, b: int, *, status: str, meta: dict) -> tuple[dict, dict]:
         """Scene ``b``'s record: the arrays of a :class:`~asperity2d.Result` (SI; no
@@ -310,23 +310,43 @@ def _hull(points) -> tuple[np.ndarray, np.ndarray]:
     return v, n
 
 
+#: One call runs its scenes in batches of at most this many bytes (:meth:`Batch.nbytes_for`):
+#: the record dominates (72 B a sample and scene), and results do not depend on the batching.
+CHUNK_BYTES = 256 << 20
+
+
 def run(scenes, dts, durations, *, record_every: int = 10, iterations: int = 20, passed=None):
     """Run each scene for its duration (s) from rest: per scene, in order, its record
     ``(arrays, meta)`` (:meth:`Batch.result`) or the SimulationError that stopped it.
 
     ``passed[b]``: stop scene ``b`` when its slider has passed the surface (the default stop).
+    Scenes run in batches of at most :data:`CHUNK_BYTES` (a scene that alone is over
+    :data:`MAX_BATCH_BYTES` is refused by :class:`Batch`).
     """
     scenes = list(scenes)
     dts = [float(d) for d in dts]
+    passed = [False] * len(scenes) if passed is None else [bool(p) for p in passed]
     steps = [max(0, int(math.ceil(d / dt - 1e-9))) for d, dt in zip(durations, dts)]
+    N = max(s.lower.count for s in scenes)
+    U = max(s.slider.count for s in scenes)
+    per_scene = Batch.nbytes_for(1, N, U, max(1, max(steps) // record_every))
+    size = max(1, min(len(scenes), CHUNK_BYTES // max(1, per_scene)))
+    out = []
+    for start in range(0, len(scenes), size):
+        out += _run_chunk(scenes[start:start + size], dts[start:start + size], steps[start:start + size],
+                          record_every, iterations, passed[start:start + size], start)
+    return out
+
+
+def _run_chunk(scenes, dts, steps, record_every, iterations, passed, offset):
     samples = max(1, max(steps) // record_every)
     batch = Batch(scenes, dts, iterations=iterations, record_every=record_every, samples=samples)
     for b in range(len(scenes)):
-        batch.set_stop(b, bool(passed[b]) if passed is not None else False)
+        batch.set_stop(b, passed[b])
     batch.advance(steps)
     out = []
     for b in range(len(scenes)):
-        err = batch.error(b)
+        err = batch.error(b, offset=offset)
         if err is not None:
             out.append(err)
             continue
