@@ -244,3 +244,223 @@ def test_the_widget_module_renders_in_chromium(server, browser, tmp_path):
     shot(browser, "widget.png")
     assert console_errors(browser) == []
     widget.close()
+
+
+# -- the stage as Working Model's users touched it -------------------------------------------------
+def wait_run_after(browser, job, timeout=120):
+    """The number of the first finished run after ``job``."""
+    return wait_for(browser, f"s.run.job > {job} && s.run.finished && s.valid && s.run.job", timeout=timeout)
+
+
+def stage_point(browser, j):
+    """``(canvas, dx, dy, px_per_m)``: lower asperity ``j``'s body on the stage, as offsets from the
+    canvas's centre (where Selenium's pointer offsets start), and the stage's scale."""
+    from selenium.webdriver.common.by import By
+
+    boxes, scale, zoom = browser.execute_script(
+        "const p = window.asperityWorkbench.player().api.state(); return [p.drawn.lower_box, p.camera.scale, p.camera.zoom]")
+    canvas = browser.find_element(By.CSS_SELECTOR, ".aw-player .ap-scene")
+    w, h = browser.execute_script("const r = arguments[0].getBoundingClientRect(); return [r.width, r.height]", canvas)
+    box = boxes[j]
+    x, y = 0.5 * (box[0] + box[2]), 0.3 * box[1] + 0.7 * box[3]  # inside the triangle, below its apex
+    return canvas, int(round(x - w / 2)), int(round(y - h / 2)), scale * zoom
+
+
+def kept_pixels(browser, meter=0, colour=(0xE0, 0x7B, 0x00)):
+    """How many pixels of the run pane's meter ``meter`` are drawn in the first kept run's colour."""
+    return browser.execute_script("""
+        const c = document.querySelectorAll('.aw-player .ap-meters canvas')[arguments[0]];
+        const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data, [r, g, b] = arguments[1];
+        let n = 0; for (let i = 0; i < d.length; i += 4) if (Math.abs(d[i] - r) < 30 && Math.abs(d[i + 1] - g) < 30 && Math.abs(d[i + 2] - b) < 30) n++;
+        return n;""", meter, list(colour))
+
+
+def test_click_edit_drag_keep_compare_stop_and_save_reproduces(server, browser, tmp_path):
+    """The issue's "done when", as a person does it: click a lower asperity, change its stiffness,
+    drag it half a pitch, keep the run, change the drive, see both runs on one meter, stop at the
+    first slip, save a TOML that ``asperity2d run`` reproduces to the bit."""
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.by import By
+    from selenium.webdriver.common.keys import Keys
+    from selenium.webdriver.support.ui import Select
+
+    browser.get(server)
+    wait_for(browser, "s.schema && s.run.job !== null")
+    type_into(browser, "lower_count", "6")
+    type_into(browser, "upper_count", "2")
+    job = wait_run_after(browser, 2)
+
+    # click the first lower asperity: it is selected and its own panel shows its values
+    canvas, dx, dy, _ = stage_point(browser, 0)
+    ActionChains(browser).move_to_element_with_offset(canvas, dx, dy).click().perform()
+    wait_for(browser, "s.selected && s.selected.kind === 'lower' && s.selected.index === 0")
+    panel = browser.find_element(By.CSS_SELECTOR, ".aw-inspector")
+    for field in ("position", "height", "stiffness", "damping", "mass"):
+        assert panel.find_element(By.CSS_SELECTOR, f'[data-field="{field}"]')
+    stiffness = panel.find_element(By.CSS_SELECTOR, '[data-field="stiffness"]')
+    assert float(stiffness.get_attribute("value")) == 37200.0
+
+    # change its stiffness there: the scene's per-asperity list, and a new run
+    stiffness.clear()
+    stiffness.send_keys("50000" + Keys.ENTER)
+    job = wait_run_after(browser, job)
+    assert state(browser, "s.bodies.lower.stiffness") == [50000, 37200, 37200, 37200, 37200, 37200]
+    assert state(browser, "s.values.stiffness") == "[50000.0, 37200.0, 37200.0, 37200.0, 37200.0, 37200.0]"
+
+    # drag it half a pitch (leftwards: a neighbour half a pitch away would overlap its base)
+    canvas, dx, dy, px_per_m = stage_point(browser, 0)
+    pitch = 1.25e-6
+    shift = int(round(0.5 * pitch * px_per_m))
+    ActionChains(browser).move_to_element_with_offset(canvas, dx, dy).click_and_hold() \
+        .move_by_offset(-shift // 2, 0).move_by_offset(-(shift - shift // 2), 0).release().perform()
+    job = wait_run_after(browser, job)
+    x = state(browser, "s.bodies.lower.x")
+    assert x[1:] == pytest.approx([1.25e-6, 2.5e-6, 3.75e-6, 5e-6, 6.25e-6], abs=1e-18)
+    assert x[0] == pytest.approx(-0.5 * pitch, abs=1.0 / px_per_m)  # half a pitch, to a pixel
+    assert "lower_positions" in state(browser, "s.values")
+    shot(browser, "app_edited.png")
+
+    # keep the run, change the drive: both runs on one meter, in two colours
+    samples_kept = state(browser, "s.run.samples")
+    click(browser, '[data-act="keep"]')
+    type_into(browser, "drive_velocity", "10")
+    job = wait_run_after(browser, job)
+    overlays = browser.execute_script("return window.asperityWorkbench.player().api.overlays()")
+    assert overlays == [{"label": "kept 1", "colour": "#e07b00", "samples": samples_kept}]
+    time.sleep(0.3)  # a frame
+    assert kept_pixels(browser) > 200  # the kept run's trace is drawn on the drive-force meter
+    legend = browser.find_element(By.CSS_SELECTOR, ".aw-kept").text
+    assert "kept 1" in legend and "drive_velocity default (now 10)" in legend
+    rows = list(csv.reader(io.StringIO(browser.execute_script(
+        "return window.asperityWorkbench.player().api.exportMeter(0, 'csv-all')"))))
+    runs = [r[0] for r in rows[1:] if r]
+    assert runs.count("kept 1") == samples_kept and runs.count("this run") == state(browser, "s.run.samples")
+    # the difference channel: this run minus the kept one
+    browser.find_element(By.CSS_SELECTOR, '.aw-kept [data-diff="0"]').click()
+    meters = browser.execute_script("return window.asperityWorkbench.player().api.meters()")
+    assert "\u2212 kept 1" in meters[0]["labels"][0] or browser.execute_script(
+        "return window.asperityWorkbench.player().api.difference()") == 0
+    shot(browser, "app_kept.png")
+    browser.find_element(By.CSS_SELECTOR, '.aw-kept input[name="aw-diff"]').click()  # back to the runs
+
+    # stop at the first slip
+    Select(browser.find_element(By.CSS_SELECTOR, '.aw-side [name="stop_first_slip"]')).select_by_value("true")
+    job = wait_run_after(browser, job)
+    assert state(browser, "s.run.summary.status") == "first slip"
+    samples = state(browser, "s.run.samples")
+
+    # save the TOML: `asperity2d run` reproduces this run to the bit
+    click(browser, '[data-act="save-toml"]')
+    text = wait_for(browser, "s.exports.length && s.exports[s.exports.length - 1].text")
+    path = tmp_path / "edited.toml"
+    path.write_text(text)
+    out = tmp_path / "cli.npz"
+    done = subprocess.run([sys.executable, "-m", "asperity2d", "run", str(path), "--save", str(out)],
+                          capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    cli = a.load(out)
+    assert cli.status == "first slip" and len(cli.t) == samples
+    assert cli.scene.lower.stiffness[0] == 50000.0 and cli.scene.drive.velocity == 10.0
+    page = list(csv.reader(io.StringIO(browser.execute_script(
+        "return window.asperityWorkbench.player().api.exportMeter(0, 'csv')"))))
+    table = np.array([[float(v) for v in r[:2]] for r in page[1:] if r])
+    assert np.array_equal(table[:, 0], cli.t) and np.array_equal(table[:, 1], cli.drive_force)
+    assert console_errors(browser) == []
+
+
+def test_refusals_mark_the_control_typed_in_and_keep_the_last_run(server, browser):
+    """Each bad value: one line on the control typed in, nothing started, the last run's arrays
+    still drawn, Stop disabled and Save .npz enabled."""
+    browser.get(server)
+    wait_for(browser, "s.schema && s.run.job !== null")
+    type_into(browser, "lower_count", "6")
+    type_into(browser, "upper_count", "2")
+    job = wait_run_after(browser, 2)
+    samples = state(browser, "s.run.samples")
+    messages = {}
+    for name, text in [("duration", "1e308"), ("upper_count", "100000"), ("mass", "1e308"),
+                       ("lower_surface", "/etc/passwd"), ("mass", "nan"), ("mass", "NaN"), ("stop_force", "inf")]:
+        browser.execute_script("window.asperityWorkbench.state().messages.length = 0")
+        if name == "lower_surface":
+            browser.execute_script("document.querySelector('.aw-side details:not([open])') && "
+                                   "document.querySelectorAll('.aw-side details').forEach(d => d.open = true)")
+        type_into(browser, name, text)
+        wait_for(browser, "!s.valid")
+        marked = browser.execute_script("return [...document.querySelectorAll('.aw-side .aw-bad')].map(e => e.name)")
+        assert marked == [name], (name, text, marked, state(browser, "s.errors"))
+        messages[(name, text)] = state(browser, "s.errors")[name]
+        time.sleep(0.3)  # a run that wrongly started would have sent run-start by now
+        assert "run-start" not in state(browser, "s.messages"), (name, text)
+        assert state(browser, "s.run.job") == job and state(browser, "s.run.samples") == samples
+        assert browser.execute_script("return window.asperityWorkbench.player().samples") == samples
+        assert browser.execute_script("return document.querySelector('[data-act=\"stop\"]').disabled")
+        assert not browser.execute_script("return document.querySelector('[data-act=\"save-npz\"]').disabled")
+        type_into(browser, name, "")
+        job = wait_run_after(browser, job)
+    assert messages[("mass", "nan")] == messages[("mass", "NaN")]  # one reading, one message
+    assert "`duration`" in messages[("duration", "1e308")]
+
+
+def test_a_measured_force_is_marked_stale_when_the_scene_changes(server, browser):
+    browser.get(server)
+    wait_for(browser, "s.schema && s.run.job !== null")
+    type_into(browser, "lower_count", "6")
+    type_into(browser, "upper_count", "2")
+    job = wait_run_after(browser, 2)
+    click(browser, '[data-tab="measure"]')
+    click(browser, 'button[data-measure="critical"]')
+    wait_for(browser, "s.measures.critical && s.measures.critical.value", timeout=120)
+    cell = 'return document.querySelector(\'.aw-value[data-measure="critical"]\')'
+    assert "earlier scene" not in browser.execute_script(cell + ".textContent")
+    browser.execute_script("window.asperityWorkbench.set('mu_static', '0.4')")
+    wait_for(browser, "s.measures.critical.stale")
+    assert "earlier scene" in browser.execute_script(cell + ".textContent")
+    browser.execute_script("window.asperityWorkbench.set('mu_static', '')")  # the scene it was measured on
+    wait_for(browser, "!s.measures.critical.stale")
+    assert "earlier scene" not in browser.execute_script(cell + ".textContent")
+
+
+@pytest.mark.parametrize("width", [375, 1000, 1280])
+def test_the_page_at_a_phone_a_small_laptop_and_a_desktop_width(server, browser, width):
+    """375 px: the controls are a drawer and the run has the width; 1000 px: the header is one
+    row and Compare's two players are stacked, both on screen; 1280 px: the sidebar beside the run.
+    At every width a meter's read-out is in its axis' unit."""
+    browser.set_window_size(width, 900)
+    try:
+        browser.get(server)
+        wait_for(browser, "s.schema && s.run.job !== null")
+        browser.execute_script("window.asperityWorkbench.send({type: 'set', values: {lower_count: '6', upper_count: '2'}})")
+        wait_for(browser, "s.run.finished && s.bodies && s.bodies.lower.x.length === 6", timeout=120)
+        inner = browser.execute_script("return window.innerWidth")
+        rect = lambda sel: browser.execute_script(  # noqa: E731
+            f"const r = document.querySelector('{sel}').getBoundingClientRect(); return [r.left, r.top, r.width, r.height]")
+        side_shown = browser.execute_script("return getComputedStyle(document.querySelector('.aw-side-wrap')).display") != "none"
+        header = rect(".aw-header")
+        player = rect(".aw-player")
+        if width == 375:
+            assert not side_shown and player[2] >= 0.9 * inner  # the run has the page's width
+            click(browser, '[data-act="drawer"]')
+            assert browser.execute_script("return getComputedStyle(document.querySelector('.aw-side-wrap')).display") != "none"
+            assert rect(".aw-side-wrap")[2] <= inner
+            shot(browser, f"app_{width}_drawer.png")
+            click(browser, '[data-act="drawer"]')
+        else:
+            assert side_shown and player[2] >= 0.6 * inner
+            assert header[3] < 40, header  # one row
+        # a meter's read-out is in its axis' unit
+        for m in browser.execute_script("return window.asperityWorkbench.player().api.meters()"):
+            for text in m["readouts"]:
+                assert text.endswith(" " + m["axis_unit"]) or text.startswith("\u2013"), (m["title"], text, m["axis_unit"])
+        shot(browser, f"app_{width}.png")
+        if width == 1000:
+            click(browser, '[data-tab="compare"]')
+            click(browser, 'button[data-preset="profile"]')
+            wait_for(browser, "s.variants.done === 2", timeout=120)
+            boxes = browser.execute_script(
+                "return [...document.querySelectorAll('.aw-variant')].map(e => { const r = e.getBoundingClientRect(); "
+                "return [r.left, r.top, r.right, r.bottom]; })")
+            assert len(boxes) == 2 and boxes[1][1] >= boxes[0][3] - 1  # stacked
+            assert all(b[2] <= inner + 1 for b in boxes)  # both within the page's width
+            shot(browser, "app_1000_compare.png")
+    finally:
+        browser.set_window_size(1280, 800)

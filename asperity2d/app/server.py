@@ -179,8 +179,10 @@ def serve(*, port: int = 0, open_browser: bool = True, values: dict | None = Non
     port = sock.getsockname()[1]
     hosts = {f"{LOOPBACK}:{port}", f"localhost:{port}"}
     app = create_app(token=token, hosts=hosts, values=values, workers=workers)
+    # no keepalive pings: on the loopback a closed tab closes the socket, and uvicorn's ping
+    # timeout (20 s) dropped live pages whose pong waited behind a busy machine (close code 1005)
     config = uvicorn.Config(app, log_level="warning", access_log=False, ws="wsproto", lifespan="off",
-                            timeout_graceful_shutdown=2)
+                            timeout_graceful_shutdown=2, ws_ping_interval=None, ws_ping_timeout=None)
     server = uvicorn.Server(config)
     url = f"http://{LOOPBACK}:{port}/?token={token}"
     print(url, file=out or sys.stdout, flush=True)

@@ -57,8 +57,8 @@ export function socketModel(url) {
     ws = new WebSocket(url);
     ws.onopen = () => { open = true; status.connected = true; while (queue.length) ws.send(queue.shift()); };
     ws.onmessage = (m) => { for (const cb of listeners) cb(m.data); };
-    ws.onclose = () => { open = false; status.connected = false; status.closed = true;
-                         for (const cb of listeners) cb(JSON.stringify({ type: "disconnected" })); };
+    ws.onclose = (ev) => { open = false; status.connected = false; status.closed = true;
+                           for (const cb of listeners) cb(JSON.stringify({ type: "disconnected", code: ev.code, reason: ev.reason })); };
   }
   connect();
   return {
@@ -102,7 +102,7 @@ function render({ model, el }) {
   const bar = h("div", { class: "aw-bar" }, h("div", { class: "aw-bar-fill" }));
   const cancelRun = h("button", { class: "aw-btn", "data-act": "stop", title: "stop the run being computed", onclick: () => model.send({ type: "cancel", lane: "run" }) }, "Stop");
   const runBtn = h("button", { class: "aw-btn", "data-act": "run", title: "run the scene again from its start (a change runs by itself)", onclick: () => rerun() }, "\u25B6 Run");
-  const resetBtn = h("button", { class: "aw-btn", "data-act": "reset", title: "back to the model's start (the first sample)", onclick: () => { if (player) player.api.seek(player.api.t0); } }, "\u23EE Reset");
+  const resetBtn = h("button", { class: "aw-btn", "data-act": "reset", title: "back to the model's start (the first sample)", onclick: () => { if (player) player.api.seek(player.api.t0); } }, "Reset");
   const stepBtn = h("button", { class: "aw-btn", "data-act": "step", title: "one sample forward", onclick: () => { if (player) player.api.step(1); } }, "Step \u25B8");
   const keepBtn = h("button", { class: "aw-btn", "data-act": "keep", title: "keep this run: the next runs are drawn over it, in another colour", onclick: () => keepRun() }, "Keep run");
   const drawerBtn = h("button", { class: "aw-btn aw-drawer-btn", "data-act": "drawer", title: "show or hide the controls", "aria-expanded": "false", onclick: () => toggleDrawer() }, "\u2630 Controls");
@@ -301,7 +301,7 @@ function render({ model, el }) {
       const j = sel.index, L = B.lower;
       if (j >= L.x.length) return;
       field("position", L.x[j], "m", (t) => { const v = Number(t); if (isFinite(v) && t.trim()) moveLower(j, v - L.x[j]); else showErrors({ lower_positions: `the position of asperity ${j + 1} must be a finite number of m, got ${JSON.stringify(t.slice(0, 40))}` }); });
-      field("height", L.height[j], "m", null, true);
+      field("height", si(L.height[j], "m", 4), "", null, true);
       for (const [name, key, unit] of LOWER_FIELDS) field(key, L[key][j], unit, (t) => perAsperity(key, j, t));
       inspector.replaceChildren(h("div", { class: "aw-inspector-title" }, `lower asperity ${j + 1} of ${L.x.length}`,
         h("button", { class: "aw-btn", "data-act": "unmove", title: "every lower asperity back on its spacing", onclick: () => setControl("lower_positions", "") }, "undo moves")), ...rows,
@@ -320,7 +320,8 @@ function render({ model, el }) {
   // ---- kept runs: drawn over the next ones, a difference channel, CSV of all ---------------------
   function describeChanges(from, to) {  // the parameters where two runs' texts differ
     const names = [...new Set([...Object.keys(from), ...Object.keys(to)])].sort();
-    const out = names.filter((k) => (from[k] || "") !== (to[k] || "")).map((k) => `${k} ${from[k] === undefined ? "(default)" : from[k].length > 24 ? "(edited)" : from[k]}`);
+    const shown = (v) => (v === undefined ? "default" : v.length > 24 ? "edited list" : v);
+    const out = names.filter((k) => (from[k] || "") !== (to[k] || "")).map((k) => `${k} ${shown(from[k])} (now ${shown(to[k])})`);
     return out.length ? out.join(", ") : "same parameters";
   }
   function keepRun() {
@@ -537,7 +538,7 @@ function render({ model, el }) {
         if (m.lane === "measure") for (const [name, r] of Object.entries(measureRows)) { if (!r.stop.hidden) r.value.textContent = "cancelled"; r.stop.hidden = true; r.prog.hidden = true; if (S.measures[name]) S.measures[name].running = false; }
         if (m.lane === "ensemble") { ens.stats.textContent = "cancelled"; ens.progress.classList.remove("aw-busy"); }
         break;
-      case "disconnected": S.connected = false; break;
+      case "disconnected": S.connected = false; S.closedWith = [m.code, m.reason]; break;
       default:
         if (m.type.startsWith("run-")) onRun(m);
         else if (m.type.startsWith("measure-")) onMeasure(m);

@@ -914,12 +914,6 @@
       ctx.fillStyle = "#000"; ctx.font = "bold 12px system-ui, sans-serif"; ctx.textAlign = "left"; ctx.textBaseline = "top";
       const title = m.spec.title + " (" + unitLabel + ")";
       ctx.fillText(title, 6, 5);
-      if (m.clipped) { // inside the plot's top-left corner: the title row keeps the read-out
-        const note = "\u25B2\u25BC " + m.clipped + " off the axis";
-        ctx.font = "11px system-ui, sans-serif";
-        ctx.fillStyle = "rgba(255,255,255,0.85)"; ctx.fillRect(p.x0 + 1, p.y0 + 1, ctx.measureText(note).width + 8, 14);
-        ctx.fillStyle = "#a01010"; ctx.fillText(note, p.x0 + 5, p.y0 + 2);
-      }
       m.traces = traces;
     }
     function meterNow(ctx, m, W, hoverT) { // cursor, the future faded, the read-outs
@@ -960,6 +954,12 @@
           ctx.fillRect(lx, row + 5, 12, 3); ctx.fillText(text, lx + 16, row);
           slotIndex++;
         } else { ctx.font = "bold 12px system-ui, sans-serif"; ctx.fillText(text, W - 10, 5); }
+      }
+      if (m.clipped) { // inside the plot's top-left corner, over the faded future: the title row keeps the read-out
+        const note = "\u25B2\u25BC " + m.clipped + " off the axis";
+        ctx.font = "11px system-ui, sans-serif"; ctx.textAlign = "left"; ctx.textBaseline = "top";
+        ctx.fillStyle = "rgba(255,255,255,0.9)"; ctx.fillRect(p.x0 + 1, p.y0 + 1, ctx.measureText(note).width + 8, 14);
+        ctx.fillStyle = "#a01010"; ctx.fillText(note, p.x0 + 5, p.y0 + 2);
       }
       if (m.traces.length > LEGEND_MAX) {
         ctx.fillStyle = "#777"; ctx.font = "11px system-ui, sans-serif"; ctx.textAlign = "right";
