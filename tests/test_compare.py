@@ -207,3 +207,24 @@ def test_a_comparison_says_its_unit_and_its_verdict_in_words():
     assert lines[1].startswith("  regular: mean 1.000 m")
     assert lines[-1].startswith("random spacing lowers the travel under a constant force: holds (")
     assert summary["claims"][0]["verdict"] == "holds"
+
+
+def test_the_command_line_adds_seeds_in_stages(capsys):
+    """``--seeds auto --max-seeds N``: one stage of 2 seeds here (plan(2)), the design and the
+    seeds it took in the JSON; ``--max-seeds`` without ``auto`` and a word for ``--seeds`` are
+    one line each."""
+    import json
+
+    from asperity2d.cli import main
+
+    assert main(["compare", "--seeds", "auto", "--max-seeds", "2", "--set", "lower_count=4", "--set",
+                 "upper_count=2", "--workers", "1", "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["seeds"] == 2 and summary["design"]["stages"] == [2]
+    assert summary["design"]["looks"][0]["seeds"] == [0, 1]
+    assert summary["claims"][0]["verdict"] == "not testable with so few seeds"  # 2 seeds: p >= 1/4
+    assert main(["compare", "--seeds", "3", "--max-seeds", "5"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "`--max-seeds` is the budget of `--seeds auto`" in err[0]
+    assert main(["compare", "--seeds", "many"]) == 2
+    assert "(or auto)" in capsys.readouterr().err

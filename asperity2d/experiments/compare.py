@@ -272,6 +272,8 @@ class Comparison:
         unit = self.unit
         described = self.summary()
         summary = {"measure": self.measure, "seeds": len(self.seeds), "variants": described}
+        if self.design:  # seeds added in stages: the design and the seeds each stage took
+            summary["design"] = self.design
         names = list(self.values)
         if len(names) >= 2:
             summary["mann_whitney_p"] = {f"{names[0]} vs {other}": self.mann_whitney(names[0], other)

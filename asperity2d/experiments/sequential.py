@@ -7,9 +7,7 @@ first "holds" would raise the chance of a false "holds" well above alpha (with f
 fixed level 0.01 it is about 0.025); a group-sequential design spends alpha across the looks
 so that the chance of a false claim over *all* of them stays at alpha.
 
-Method
-------
-Lan-DeMets alpha spending (Lan & DeMets 1983, "Discrete sequential boundaries for clinical
+The method: Lan-DeMets alpha spending (Lan & DeMets 1983, "Discrete sequential boundaries for clinical
 trials", *Biometrika* 70(3), 659-663), with the spending function of either type:
 
 * ``"pocock"`` (the default): alpha(t) = alpha ln(1 + (e - 1) t), Lan & DeMets' Pocock-type
