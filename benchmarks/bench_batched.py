@@ -38,7 +38,7 @@ import numpy as np  # noqa: E402
 import asperity2d as a  # noqa: E402
 from asperity2d.engine import batched  # noqa: E402
 from asperity2d.experiments.measures import PASSES, STICK_DT_FRACTION, stick_forces_of  # noqa: E402
-from asperity2d.run import default_dt  # noqa: E402
+from asperity2d.run import default_dt, default_duration  # noqa: E402
 
 TARGETS = {"peak_stick_ratio": 30.0, "memory_1000_MB": 1024.0}
 SEED0 = 9401
@@ -77,7 +77,7 @@ def _peak_stick(seeds: int, pymunk_seeds: int) -> dict:
 def _memory() -> dict:
     scene = a.make_scene()
     dt = STICK_DT_FRACTION * default_dt(scene)
-    samples = int(a.run.default_duration(scene) / dt) // 10
+    samples = int(default_duration(scene) / dt) // 10
     state = batched.Batch([scene] * 1000, [dt] * 1000, samples=1)
     arrays = [v for v in vars(state).values() if isinstance(v, np.ndarray)]
     state_bytes = sum(v.nbytes for v in arrays) - state.rec.nbytes
