@@ -249,3 +249,14 @@ def test_the_contact_law_lesson_gives_a_verdict_per_law_and_measure(tmp_path, ca
     mu = summary["coefficients"]
     # the laws' own closed forms at rest and sliding: the viscous law has no static excess
     assert mu["viscous"]["rest"] < mu["viscous"]["drive"] and mu["static-kinetic"]["rest"] == 0.3
+
+
+def test_the_laws_examples_run(tmp_path, monkeypatch):
+    """The Examples sections of asperity2d.contact_laws (each law's) run as doctests."""
+    import doctest
+
+    import asperity2d.contact_laws as module
+
+    monkeypatch.chdir(tmp_path)
+    result = doctest.testmod(module, optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
+    assert result.attempted >= 20 and result.failed == 0
