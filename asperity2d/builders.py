@@ -49,6 +49,15 @@ KEYWORDS = (
 )
 
 _P = Parameter
+
+
+def _law_meaning(q) -> str:
+    """A contact law parameter's meaning with its default (the record itself says None: only the
+    chosen law's parameters may be given)."""
+    if "default" in q.meaning or q.default is None:
+        return q.meaning
+    return f"{q.meaning} (default {q.default:g}{'' if q.unit == '1' else ' ' + q.unit})"
+
 #: Every override make_scene accepts: Ooten's fixed track (:data:`asperity2d.scene.OOTEN_PARAMETERS`)
 #: and the parameters it leaves at a derived value or off. A default of None is derived from
 #: the others, as each meaning says.
@@ -87,8 +96,7 @@ PARAMETERS = OOTEN_PARAMETERS + (
        "parameters have no keyword here (one registered from outside)"),
     # the built-in contact laws' own parameters (asperity2d.contact_laws): given only with their law
     # (None here: a keyword of another law than the chosen one is refused, so none is set unless given)
-    *(_P(q.name, None, q.unit, q.meaning if "default" in q.meaning or q.default is None
-         else f"{q.meaning} (default {q.default:g}{'' if q.unit == '1' else ' ' + q.unit})") for e in LAWS.values() if e.model == "asperity"
+    *(_P(q.name, None, q.unit, _law_meaning(q)) for e in LAWS.values() if e.model == "asperity"
       for q in e.law.parameters),
     _P("drive_damping", 0.0, "N s/m", "damper in parallel with the drive spring"),
     _P("drive_preload", 0.0, "N", "the drive spring's force at the start"),
@@ -150,8 +158,9 @@ def _law_params(law: str, keys: set, overrides: dict) -> dict:
                 raise SceneError(f"`{name}` given both as a keyword and in `law_params`: give one")
             params[name] = value
         elif name in _LAW_KEYWORDS:
-            raise SceneError(f"`{name}` is a parameter of the contact law {_LAW_KEYWORDS[name]!r}, and "
-                             f"`contact_law` is {law!r}: set contact_law={_LAW_KEYWORDS[name]!r} or drop it")
+            owner = _LAW_KEYWORDS[name]
+            raise SceneError(f"`{name}` is a parameter of the contact law {owner!r}, and `contact_law` is "
+                             f"{law!r}: set contact_law={owner!r} or drop it")
     return params
 
 

@@ -230,3 +230,33 @@ def test_velocity_weakening_sticks_and_slips_only_where_its_slope_beats_the_damp
     assert np.abs(out[1.5].v[late] / (1.005 * V) - 1).max() < 1e-3
     stuck = out[0.5].v < 0.01 * V
     assert stuck.any() and (out[0.5].v[stuck.argmax():] > V).any()  # stuck, then slipping again
+
+
+@pytest.mark.slow  # ~40 s of CPU: 16 named measures on the smallest track
+def test_the_contact_law_lesson_gives_a_verdict_per_law_and_measure(tmp_path, capsys):
+    """scenes/contact_laws_spacing.py --quick: a claim record per (law, measure), every comparison
+    saved and drawn, each law's coefficients in the summary."""
+    from scene_scripts import run_script
+
+    summary = run_script("contact_laws_spacing", tmp_path, capsys, "--no-gif", "--workers", "1")
+    claims = summary["claims"]
+    assert len(claims) == 8 and all(c["verdict"] for c in claims)
+    assert {c["claim"].split(",")[0] for c in claims} == {f"under {law}" for law in
+                                                           ("static-kinetic", "velocity-weakening",
+                                                            "viscous", "rate-state")}
+    for m in ("critical-run-up", "peak-stick"):
+        assert (tmp_path / f"{m}.png").stat().st_size > 0 and (tmp_path / f"{m}.json").stat().st_size > 0
+    mu = summary["coefficients"]
+    # the laws' own closed forms at rest and sliding: the viscous law has no static excess
+    assert mu["viscous"]["rest"] < mu["viscous"]["drive"] and mu["static-kinetic"]["rest"] == 0.3
+
+
+def test_the_laws_examples_run(tmp_path, monkeypatch):
+    """The Examples sections of asperity2d.contact_laws (each law's) run as doctests."""
+    import doctest
+
+    import asperity2d.contact_laws as module
+
+    monkeypatch.chdir(tmp_path)
+    result = doctest.testmod(module, optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
+    assert result.attempted >= 20 and result.failed == 0
