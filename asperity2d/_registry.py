@@ -228,6 +228,11 @@ class Registry(MutableMapping):
         except SceneError as exc:
             raise SceneError(f"`{param or self.param}` {name!r} is not a {self.what}: {exc}") from None
 
+    def loaded(self) -> dict:
+        """The entries registered so far, without loading the entry points (a module's own
+        tables, built at import time, must not import outside packages)."""
+        return dict(self._data)
+
     def suggest(self, name: str) -> list[str]:
         """The registered names closest to ``name`` (at most three, nearest first)."""
         return difflib.get_close_matches(name, list(self), n=3, cutoff=0.6)

@@ -68,7 +68,7 @@ def _check_kind(kind) -> ResultKind:
         raise SceneError(f"`kind` must be a ResultKind, got {type(kind).__name__}")
     if "/" not in kind.tag or not kind.tag.rpartition("/")[2].isdigit():
         raise SceneError(f"`kind.tag` must be 'name/version', got {kind.tag!r}")
-    for other in RESULT_KINDS._data.values():  # the entries so far (checking must not load entry points)
+    for other in RESULT_KINDS.loaded().values():  # the entries so far (checking must not load entry points)
         if other.name != kind.name and other.tag == kind.tag:
             raise SceneError(f"`kind.tag` {kind.tag!r} is already the tag of {other.name!r}")
     return kind

@@ -623,12 +623,12 @@ for _entry in (
 ):
     register_measure(_entry)
 del _entry
-STEP_TOLERANCE.update({name: m.step_tolerance for name, m in MEASURES.items()})
+STEP_TOLERANCE.update({name: m.step_tolerance for name, m in MEASURES.loaded().items()})
 
 #: Measures whose single value is chaotic (reported as the mean of an ensemble of passes,
 #: compared over seeds as a distribution): the built-in ones (:attr:`Measure.distribution`
 #: says it of any registered measure).
-DISTRIBUTIONS = tuple(name for name, m in MEASURES.items() if m.distribution)
+DISTRIBUTIONS = tuple(name for name, m in MEASURES.loaded().items() if m.distribution)
 
 
 def find_measure(name: str) -> Measure | None:
