@@ -376,13 +376,13 @@ def events_table(events, path=None) -> dict:
     events : sequence of Event
         Events of a run (:func:`stick_slip_events`).
     path : str or os.PathLike, optional
-        A ``.csv`` file to write (atomically): a header line of :data:`EVENT_COLUMNS`, SI units,
+        A ``.csv`` file to write (atomically): a header line of ``EVENT_COLUMNS``, SI units,
         ``complete`` as 1 or 0.
 
     Returns
     -------
     dict
-        :data:`EVENT_COLUMNS` -> NumPy array (float64; ``complete`` bool), each with one entry per event.
+        ``EVENT_COLUMNS`` -> NumPy array (float64; ``complete`` bool), each with one entry per event.
 
     Examples
     --------

@@ -233,7 +233,7 @@ class Result:
 
         ``.mat`` holds every series of :class:`~asperity2d.Result` (SI; ``load("run.mat")`` in MATLAB gives
         row vectors ``t``, ``x``, ``drive_force``, ... and the ``lower_*`` matrices, ``lower_contact``
-        a ``logical`` matrix) and a ``metadata`` JSON string; :func:`read_mat` reads it back in Python
+        a ``logical`` matrix) and a ``metadata`` JSON string; ``asperity2d.result.read_mat`` reads it back in Python
         with ``lower_contact`` as ``bool`` (``scipy.io.loadmat`` alone gives ``uint8``); ``.csv`` the slider's eleven series, one column each, with a
         header line.
 

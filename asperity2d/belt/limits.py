@@ -59,7 +59,7 @@ def memory_estimate(n: int, n_values: int, dof: int = 1) -> float:
     (:func:`cache_estimate`: up to ``CACHE_BYTES`` each). ``dof``: 2 for a chain with a normal degree
     of freedom (its phase matrices are 4n x 4n: four times the first term). A 2,000-mass chain with
     2,001 samples was reported to take 3-5 GB (estimate 4.8 GB); a 200-mass chain with mu_s = 0.05
-    peaks at 284 MiB (estimate 375 MiB), 250 MiB of it cached mode patterns."""
+    peaks at 284 MiB (estimate 621 MiB), 250 MiB of it cached mode patterns."""
     return 1000.0 * (dof * n) ** 2 + 200.0 * n * n_values + cache_estimate(n, dof)
 
 

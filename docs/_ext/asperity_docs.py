@@ -800,13 +800,16 @@ def write_api(app, config=None) -> None:
         for group_name, group in groups:
             members = [n for n in public_names(group) if not _is_submodule(group, n)]
             if group_name != name:
-                lines += [f"``{group_name}``", "-" * (len(group_name) + 4), ""]
+                # a submodule is a link target: its ``module`` directive before its heading, so the
+                # anchor (module-NAME) lands on the section; after it, docutils moved it onto the
+                # table that follows, whose id the theme's table wrapper drops
+                lines += [f".. module:: {group_name}", "", f"``{group_name}``", "-" * (len(group_name) + 4), ""]
             first = (group.__doc__ or "").strip().split("\n\n")[0]
             if first:
                 lines += [" ".join(first.split()), ""]
-            directive = "currentmodule" if group_name == name else "module"  # a submodule is a link target
-            lines += [f".. {directive}:: {group_name}", "", ".. autosummary::", "   :toctree: generated",
-                      "   :nosignatures:", ""]
+            if group_name == name:
+                lines += [f".. currentmodule:: {group_name}", ""]
+            lines += [".. autosummary::", "   :toctree: generated", "   :nosignatures:", ""]
             lines += [f"   {n}" for n in members] + [""]
             expected.update(f"{group_name}.{n}.rst" for n in members)
         _write_if_changed(out / f"{name}.rst", "\n".join(lines) + "\n")
