@@ -191,7 +191,7 @@ def test_a_comparison_says_its_unit_and_its_verdict_in_words():
     spread = tuple(0.995 + 0.02 * x for x in (-1.5, -1, -0.6, -0.3, -0.1, 0.1, 0.3, 0.6, 1, 1.5))
     wide = Comparison(values={"regular": (1.0,) * 10, "random": spread}, seeds=tuple(range(10)), measure="critical")
     record = wide.verdict("random", "regular")
-    e, s = record["numbers"]["relative_hl"], record["numbers"]["relative_std"]
+    e, s = record["numbers"]["relative_difference"], record["numbers"]["relative_std"]
     expected = math.ceil((NormalDist().inv_cdf(0.99) * s / (0.01 - abs(e))) ** 2 * math.pi / 3)
     assert record["verdict"] == "undecided" and record["numbers"]["seeds_needed"] == expected
     assert f"about {expected} seeds would decide it at this spread" in verdict_line(record)

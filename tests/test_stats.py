@@ -96,7 +96,7 @@ def test_no_effect_needs_the_interval_inside_the_margin_not_a_small_mean():
     n = seeds_needed(numbers, 0.01)
     assert n is not None and n > 8
     # an effect that sits at the margin has no finite seed count
-    assert seeds_needed({**numbers, "relative_difference": -0.00999, "relative_hl": -0.00999}, 0.01) is None
+    assert seeds_needed({**numbers, "relative_difference": -0.00999}, 0.01) is None
 
 
 def test_equivalence_is_the_two_one_sided_tests():

@@ -162,8 +162,8 @@ def seeds_needed(numbers: dict, alpha: float, *, direction: str = "less",
 
     The assumption: the per-seed relative changes (value / reference - 1) are normal with the
     observed spread s (``relative_std``; an older record's |``relative_difference`` /
-    ``effect_size_d``|, the same number) and the observed effect e stays what it is (the mean's
-    change for "holds" and "does not hold", the Hodges-Lehmann estimate for "no effect"). Then a
+    ``effect_size_d``|, the same number) and the observed effect e, the mean's change (the
+    number the rule's margin is checked on), stays what it is. Then a
     one-sided test at alpha reaches significance at n = (z s / e)**2 when |e| >= m (holds, or the
     other way), and the ``1 - 2 alpha`` interval e +- z s / sqrt(n) fits inside +-m at
     n = (z s / (m - |e|))**2 when |e| < m (z = z(1 - alpha)); the signed-rank test needs pi/3
@@ -175,9 +175,9 @@ def seeds_needed(numbers: dict, alpha: float, *, direction: str = "less",
 
     Examples
     --------
-    >>> numbers = {"n": 8, "relative_difference": -0.008, "relative_hl": -0.0085, "relative_std": 0.017}
-    >>> seeds_needed(numbers, 0.01)   # 0.15 % from the 1 % margin, 1.7 % spread
-    728
+    >>> numbers = {"n": 8, "relative_difference": -0.008, "relative_std": 0.017}
+    >>> seeds_needed(numbers, 0.01)   # 0.2 % from the 1 % margin, 1.7 % spread
+    410
     >>> seeds_needed({**numbers, "relative_difference": -0.02}, 0.01)
     9
     """
@@ -191,12 +191,8 @@ def seeds_needed(numbers: dict, alpha: float, *, direction: str = "less",
     if not (_finite(rel) and _finite(spread)) or spread <= 0:
         return None
     z = NormalDist().inv_cdf(1.0 - alpha)
-    if abs(rel) >= min_effect:  # holds (or the other way) once the test is significant
-        distance = abs(rel)
-    else:
-        centre = numbers.get("relative_hl")
-        centre = centre if _finite(centre) else rel
-        distance = min_effect - abs(centre)
+    # holds (or the other way) once the test is significant; no effect once the interval fits
+    distance = abs(rel) if abs(rel) >= min_effect else min_effect - abs(rel)
     if distance <= 0:
         return None
     estimate = (z * spread / distance) ** 2 / _ARE
