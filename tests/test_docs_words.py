@@ -21,7 +21,7 @@ import pytest
 ROOT = Path(__file__).resolve().parent.parent
 SITE = Path(os.environ.get("ASPERITY2D_DOCS_HTML", ROOT / "docs" / "_build" / "html"))
 #: not user pages: Sphinx's own index and search pages, and the copied sources and assets
-SKIP_PARTS = {"_static", "_sources", "_images", "_downloads"}
+SKIP_PARTS = {"_static", "_sources", "_images", "_downloads", "_modules"}  # _modules: highlighted source code (viewcode)
 SKIP_NAMES = {"genindex.html", "search.html", "py-modindex.html"}
 
 #: (what it is, pattern) -- case-insensitive
