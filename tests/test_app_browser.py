@@ -414,6 +414,7 @@ def test_refusals_mark_the_control_typed_in_and_keep_the_last_run(server, browse
         assert not browser.execute_script("return document.querySelector('[data-act=\"save-npz\"]').disabled")
         retype(browser, name, "")
         job = wait_run_after(browser, job)
+        samples = state(browser, "s.run.samples")
     assert messages[("mass", "nan")] == messages[("mass", "NaN")]  # one reading, one message
     assert "`duration`" in messages[("duration", "1e308")]
 
