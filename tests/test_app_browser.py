@@ -341,12 +341,14 @@ def test_click_edit_drag_keep_compare_stop_and_save_reproduces(server, browser, 
         "return window.asperityWorkbench.player().api.exportMeter(0, 'csv-all')"))))
     runs = [r[0] for r in rows[1:] if r]
     assert runs.count("kept 1") == samples_kept and runs.count("this run") == state(browser, "s.run.samples")
+    browser.execute_script("document.querySelector('.aw-player .ap-meters').scrollIntoView()")
+    shot(browser, "app_kept.png")
     # the difference channel: this run minus the kept one
     browser.find_element(By.CSS_SELECTOR, '.aw-kept [data-diff="0"]').click()
     meters = browser.execute_script("return window.asperityWorkbench.player().api.meters()")
     assert "\u2212 kept 1" in meters[0]["labels"][0] or browser.execute_script(
         "return window.asperityWorkbench.player().api.difference()") == 0
-    shot(browser, "app_kept.png")
+    shot(browser, "app_difference.png")
     browser.find_element(By.CSS_SELECTOR, '.aw-kept input[name="aw-diff"]').click()  # back to the runs
 
     # stop at the first slip
