@@ -432,6 +432,7 @@ def test_a_measured_force_is_marked_stale_when_the_scene_changes(server, browser
     wait_for(browser, "s.measures.critical && s.measures.critical.value", timeout=120)
     cell = 'return document.querySelector(\'.aw-value[data-measure="critical"]\')'
     assert "earlier scene" not in browser.execute_script(cell + ".textContent")
+    shot(browser, "app_measure.png")
     browser.execute_script("window.asperityWorkbench.set('mu_static', '0.4')")
     wait_for(browser, "s.measures.critical.stale")
     assert "earlier scene" in browser.execute_script(cell + ".textContent")
