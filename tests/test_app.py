@@ -87,9 +87,9 @@ def test_controls_are_the_parameter_records_in_the_references_groups():
 class Page:
     """A page's end of a Session: every message, and waiting for one."""
 
-    def __init__(self, values=None):
+    def __init__(self, values=None, workers=None):
         self.messages, self.cond = [], threading.Condition()
-        self.session = Session(self.receive, values=values)
+        self.session = Session(self.receive, values=values, workers=workers)
 
     def receive(self, text):
         with self.cond:
@@ -426,3 +426,110 @@ def test_explore_is_a_lazy_public_name_and_import_stays_light():
             "print(sorted(m for m in ('numpy', 'starlette', 'uvicorn', 'anywidget') if m in sys.modules))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == "[]"
+
+
+# -- refusals before any run, on the control typed in ------------------------------------------------
+def test_over_budget_values_are_refused_before_any_run_on_the_control_typed_in():
+    page = Page()
+    for name, text in [("duration", "1e308"), ("upper_count", "100000"), ("mass", "1e308"),
+                       ("lower_surface", "/etc/passwd"), ("stop_pitches", "-2"), ("stop_force", "nan")]:
+        page.messages.clear()
+        page.session.handle({"type": "set", "values": {**SMALL, name: text}, "changed": name})
+        reply = page.wait(lambda m: m["type"] in ("invalid", "valid"), timeout=10)
+        assert reply["type"] == "invalid" and list(reply["errors"]) == [name], (name, reply)
+        time.sleep(0.2)
+        assert not page.of("run-start") and not page.session.lanes["run"].busy, name
+    # "nan" and "NaN" are one reading, one message
+    lines = []
+    for text in ("nan", "NaN", "-NaN"):
+        page.session.handle({"type": "set", "values": {**SMALL, "mass": text}, "changed": "mass"})
+        lines.append(page.wait(lambda m: m["type"] == "invalid")["errors"]["mass"])
+        page.messages.clear()
+    assert lines[0] == lines[1] == lines[2] == "`mass` must be a finite number, got nan"
+    page.session.close()
+
+
+# -- stop conditions: the API, the [run] table, the workbench -------------------------------------------
+def test_stop_conditions_in_the_api_stop_where_they_say():
+    from asperity2d.run import FirstSlip, ForceCrossed, stops_from_settings
+
+    scene = a.make_scene(lower_count=4, upper_count=2)
+    crossed = simulate(scene, stop=ForceCrossed(5e-3))
+    # the first sample at or above 5 mN ends the run; every one before it is below
+    assert crossed.status == "force crossed" and crossed.drive_force[-1] >= 5e-3 > crossed.drive_force[:-1].max()
+    slipped = simulate(scene, stop=FirstSlip.for_scene(scene))
+    (first, *_) = a.stick_slip_events(simulate(scene))
+    # the stop lands at the first sample faster than 3 V: inside the event finder's first slip
+    assert slipped.status == "first slip" and first.t_slip <= slipped.t[-1] <= first.t_end
+    assert slipped.v[-1] > 3 * scene.drive.velocity
+    moved = simulate(scene, stop=stops_from_settings(scene, {"stop_pitches": 2}))
+    assert moved.status == "travelled" and moved.x[-1] - moved.x[0] >= 2 * 1.25e-6
+    for bad in ({"stop_pitches": -1}, {"stop_force": float("nan")}, {"stop_first_slip": "yes"}):
+        with pytest.raises(a.SceneError, match="stop_"):
+            stops_from_settings(scene, bad)
+
+
+def test_an_edited_scene_with_a_stop_saves_as_toml_that_run_reproduces_to_the_bit(tmp_path, capsys):
+    """Per-asperity stiffness, a moved asperity (ExplicitSpacing) and "stop at the first slip":
+    the TOML the workbench saves, and its "Copy as Python", give its run to the bit."""
+    page = Page()
+    values = {**SMALL, "stiffness": "[50000.0, 37200.0, 37200.0, 37200.0, 37200.0, 37200.0]",
+              "lower_positions": "[-6.25e-7, 1.25e-6, 2.5e-6, 3.75e-6, 5e-6, 6.25e-6]", "drive_velocity": "10",
+              "stop_first_slip": "true"}
+    page.session.handle({"type": "set", "values": values, "changed": "stop_first_slip"})
+    end = page.wait(lambda m: m["type"] == "run-end", timeout=120)
+    assert end["summary"]["status"] == "first slip"
+    page.session.handle({"type": "export", "what": "toml"})
+    path = tmp_path / "edited.toml"
+    path.write_text(page.wait(lambda m: m["type"] == "export")["text"])
+    assert main(["run", str(path), "--save", str(tmp_path / "cli.npz")]) == 0
+    cli, app = a.load(tmp_path / "cli.npz"), page.session.result
+    assert cli.status == "first slip" and cli.scene.lower.spacing.positions[0] == -6.25e-7
+    for name in ARRAYS:
+        assert np.array_equal(getattr(cli, name), getattr(app, name)), name
+    namespace = {}
+    exec(controls.to_python(page.session.params, page.session.run_settings), namespace)
+    assert np.array_equal(namespace["result"].x, app.x) and namespace["scene"] == app.scene
+    # an asperity moved onto its neighbour: refused on the edit, nothing runs
+    page.messages.clear()
+    page.session.handle({"type": "set", "values": {**values, "lower_positions": "[0, 5e-7, 2.5e-6, 3.75e-6, 5e-6, 6.25e-6]"},
+                         "changed": "lower_positions"})
+    reply = page.wait(lambda m: m["type"] in ("invalid", "valid"))
+    assert list(reply["errors"]) == ["lower_positions"] and "overlap" in reply["errors"]["lower_positions"]
+    page.session.close()
+
+
+# -- the ensemble: interleaved per seed, one p text, workers gone with the tab ------------------------
+def test_the_ensemble_interleaves_variants_per_seed_and_formats_p_once():
+    from asperity2d.app.jobs import verdict  # noqa: F401 -- the row the page shows
+
+    page = Page(workers=1)
+    page.session.handle({"type": "set", "values": SMALL})
+    page.wait(lambda m: m["type"] == "run-end", timeout=60)
+    page.session.handle({"type": "ensemble", "measure": "first-breakaway", "seeds": 3, "preset": "spacing"})
+    page.wait(lambda m: m["type"] == "ensemble-end", timeout=300)
+    values = [(m["variant"], m["seed"]) for m in page.of("ensemble-value")]
+    assert values == [("regular", 0), ("random", 0), ("regular", 1), ("random", 1), ("regular", 2), ("random", 2)]
+    kinds = [m["type"] for m in page.messages if m["type"].startswith("ensemble-")]
+    assert kinds.index("ensemble-stats") == kinds.index("ensemble-value") + 4  # from the second seed on
+    for stats in page.of("ensemble-stats"):
+        (row,) = stats["versus"]
+        assert row["p_text"] == f"{row['p_wilcoxon']:.2g}" and f"p = {row['p_text']}" in row["line"]
+    page.session.close()
+
+
+def test_closing_the_tab_stops_the_ensembles_worker_processes():
+    from asperity2d.sweep.executors import _pools, warm_pools
+
+    page = Page(workers=2)
+    page.session.handle({"type": "set", "values": SMALL})
+    page.session.handle({"type": "ensemble", "measure": "first-breakaway", "seeds": 2, "preset": "spacing"})
+    page.wait(lambda m: m["type"] == "ensemble-end", timeout=300)
+    assert 2 in warm_pools()
+    workers = list(_pools[2]._processes.values())
+    assert workers and all(p.is_alive() for p in workers)
+    page.session.close()
+    end = time.monotonic() + 30
+    while (2 in warm_pools() or any(p.is_alive() for p in workers)) and time.monotonic() < end:
+        time.sleep(0.1)
+    assert 2 not in warm_pools() and not any(p.is_alive() for p in workers)

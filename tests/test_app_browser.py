@@ -266,12 +266,12 @@ def stage_point(browser, j):
     return canvas, int(round(x - w / 2)), int(round(y - h / 2)), scale * zoom
 
 
-def kept_pixels(browser, meter=0, colour=(0xE0, 0x7B, 0x00)):
+def kept_pixels(browser, meter=0, colour=(0x17, 0xBE, 0xCF)):
     """How many pixels of the run pane's meter ``meter`` are drawn in the first kept run's colour."""
     return browser.execute_script("""
         const c = document.querySelectorAll('.aw-player .ap-meters canvas')[arguments[0]];
         const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data, [r, g, b] = arguments[1];
-        let n = 0; for (let i = 0; i < d.length; i += 4) if (Math.abs(d[i] - r) < 30 && Math.abs(d[i + 1] - g) < 30 && Math.abs(d[i + 2] - b) < 30) n++;
+        let n = 0; for (let i = 0; i < d.length; i += 4) if (Math.abs(d[i] - r) < 20 && Math.abs(d[i + 1] - g) < 20 && Math.abs(d[i + 2] - b) < 20) n++;
         return n;""", meter, list(colour))
 
 
@@ -326,21 +326,29 @@ def test_click_edit_drag_keep_compare_stop_and_save_reproduces(server, browser, 
     type_into(browser, "drive_velocity", "10")
     job = wait_run_after(browser, job)
     overlays = browser.execute_script("return window.asperityWorkbench.player().api.overlays()")
-    assert overlays == [{"label": "kept 1", "colour": "#e07b00", "samples": samples_kept}]
+    assert overlays == [{"label": "kept 1", "colour": "#17becf", "samples": samples_kept}]
+    browser.execute_script("const p = window.asperityWorkbench.player(); p.api.seek(p.api.t1)")  # nothing faded
     time.sleep(0.3)  # a frame
-    assert kept_pixels(browser) > 200  # the kept run's trace is drawn on the drive-force meter
+    with_kept = kept_pixels(browser)
+    browser.execute_script("window.asperityWorkbench.player().setOverlays([])")
+    time.sleep(0.3)
+    without = kept_pixels(browser)
+    browser.execute_script("window.asperityWorkbench.player().setOverlays(window.asperityWorkbench.state().kept)")
+    assert with_kept - without > 50, (with_kept, without)  # the kept run's trace, drawn on the drive-force meter
     legend = browser.find_element(By.CSS_SELECTOR, ".aw-kept").text
     assert "kept 1" in legend and "drive_velocity default (now 10)" in legend
     rows = list(csv.reader(io.StringIO(browser.execute_script(
         "return window.asperityWorkbench.player().api.exportMeter(0, 'csv-all')"))))
     runs = [r[0] for r in rows[1:] if r]
     assert runs.count("kept 1") == samples_kept and runs.count("this run") == state(browser, "s.run.samples")
+    browser.execute_script("document.querySelector('.aw-player .ap-meters').scrollIntoView()")
+    shot(browser, "app_kept.png")
     # the difference channel: this run minus the kept one
     browser.find_element(By.CSS_SELECTOR, '.aw-kept [data-diff="0"]').click()
     meters = browser.execute_script("return window.asperityWorkbench.player().api.meters()")
     assert "\u2212 kept 1" in meters[0]["labels"][0] or browser.execute_script(
         "return window.asperityWorkbench.player().api.difference()") == 0
-    shot(browser, "app_kept.png")
+    shot(browser, "app_difference.png")
     browser.find_element(By.CSS_SELECTOR, '.aw-kept input[name="aw-diff"]').click()  # back to the runs
 
     # stop at the first slip
@@ -368,6 +376,17 @@ def test_click_edit_drag_keep_compare_stop_and_save_reproduces(server, browser, 
     assert console_errors(browser) == []
 
 
+def retype(browser, name, text):
+    """Select the control's text and type over it, as a person does (Selenium's clear() would send
+    a change of its own: an empty value, a run of the default)."""
+    from selenium.webdriver.common.by import By
+    from selenium.webdriver.common.keys import Keys
+
+    box = browser.find_element(By.CSS_SELECTOR, f'.aw-side [name="{name}"]')
+    box.send_keys(Keys.CONTROL, "a")
+    box.send_keys((text or Keys.BACKSPACE) + Keys.ENTER)
+
+
 def test_refusals_mark_the_control_typed_in_and_keep_the_last_run(server, browser):
     """Each bad value: one line on the control typed in, nothing started, the last run's arrays
     still drawn, Stop disabled and Save .npz enabled."""
@@ -384,7 +403,7 @@ def test_refusals_mark_the_control_typed_in_and_keep_the_last_run(server, browse
         if name == "lower_surface":
             browser.execute_script("document.querySelector('.aw-side details:not([open])') && "
                                    "document.querySelectorAll('.aw-side details').forEach(d => d.open = true)")
-        type_into(browser, name, text)
+        retype(browser, name, text)
         wait_for(browser, "!s.valid")
         marked = browser.execute_script("return [...document.querySelectorAll('.aw-side .aw-bad')].map(e => e.name)")
         assert marked == [name], (name, text, marked, state(browser, "s.errors"))
@@ -395,8 +414,9 @@ def test_refusals_mark_the_control_typed_in_and_keep_the_last_run(server, browse
         assert browser.execute_script("return window.asperityWorkbench.player().samples") == samples
         assert browser.execute_script("return document.querySelector('[data-act=\"stop\"]').disabled")
         assert not browser.execute_script("return document.querySelector('[data-act=\"save-npz\"]').disabled")
-        type_into(browser, name, "")
+        retype(browser, name, "")
         job = wait_run_after(browser, job)
+        samples = state(browser, "s.run.samples")
     assert messages[("mass", "nan")] == messages[("mass", "NaN")]  # one reading, one message
     assert "`duration`" in messages[("duration", "1e308")]
 
@@ -412,6 +432,7 @@ def test_a_measured_force_is_marked_stale_when_the_scene_changes(server, browser
     wait_for(browser, "s.measures.critical && s.measures.critical.value", timeout=120)
     cell = 'return document.querySelector(\'.aw-value[data-measure="critical"]\')'
     assert "earlier scene" not in browser.execute_script(cell + ".textContent")
+    shot(browser, "app_measure.png")
     browser.execute_script("window.asperityWorkbench.set('mu_static', '0.4')")
     wait_for(browser, "s.measures.critical.stale")
     assert "earlier scene" in browser.execute_script(cell + ".textContent")

@@ -26,7 +26,8 @@ function si(value, unit, digits) {  // the rule of asperity2d._format.si
 
 /* a TOML list of numbers, each written so it reads back as the same double (shortest round trip) */
 function tomlList(values) { return "[" + values.map((v) => { const t = String(v); return /[.eEn]/.test(t) ? t : t + ".0"; }).join(", ") + "]"; }
-const KEPT_COLOURS = ["#e07b00", "#8e44ad", "#2a9d8f", "#c2185b", "#6d4c41"];
+// kept runs: colours none of the meters' own traces use (those are matplotlib's tab10 c0-c6)
+const KEPT_COLOURS = ["#17becf", "#bcbd22", "#e377c2", "#7f7f7f", "#000000"];
 /* the units menu: automatic SI prefixes, or one fixed prefix per quantity (an exponent of 10) */
 const UNIT_CHOICES = { m: [["auto", null], ["nm", -9], ["\u00b5m", -6], ["mm", -3], ["m", 0]],
                        N: [["auto", null], ["\u00b5N", -6], ["mN", -3], ["N", 0]],
