@@ -73,7 +73,7 @@ GROUPS = {
     "asperity2d.formats": "renderers.FORMATS: an OutputFormat",
     "asperity2d.belt_methods": "belt.METHODS: a Backend, a tuple of them, or a back-end class",
     "asperity2d.result_kinds": "saved.RESULT_KINDS: a ResultKind",
-    "asperity2d.engines": "engine registry: an engine entry",
+    "asperity2d.engines": "engine.ENGINES: an EngineEntry",
 }
 
 #: Longest name a registry looks up (a name is a word; anything longer is refused, not searched).

@@ -22,7 +22,7 @@ def test_the_reference_is_first_and_the_default():
 
 
 def test_an_unknown_engine_is_one_line_naming_the_parameter():
-    with pytest.raises(SceneError, match=r"`engine` must be one of 'pymunk', 'batched', got 'gpu'"):
+    with pytest.raises(SceneError, match=r"`engine` must be one of pymunk, batched, got 'gpu'"):
         check_engine("gpu")
     with pytest.raises(SceneError, match="`engine` must be one of"):
         a.simulate(a.make_scene(lower_count=2, upper_count=1), 1e-9, engine=3)

@@ -42,7 +42,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable
 
-from .._inputs import check_choice
+from .._registry import Registry
 from ..errors import SceneError
 from . import batched
 
@@ -73,24 +73,33 @@ def _everything(scene, *, settle: bool = False) -> None:
     return None
 
 
-#: Name -> engine, the reference first.
-ENGINES: dict[str, EngineEntry] = {
-    "pymunk": EngineEntry("pymunk", "pymunk (Chipmunk 2D), one scene at a time: the reference; every "
-                          "scene option", _always, _everything),
-    "batched": EngineEntry("batched", "the model's own compiled loop (Numba), many scenes in lockstep: "
-                           "full triangles on spring tracks, no lattice or substrate", batched.unavailable,
-                           batched.refusal, batched.run),
-}
+def _check_entry(entry) -> EngineEntry:
+    if not isinstance(entry, EngineEntry):
+        raise SceneError(f"`engine` must be an EngineEntry, got {type(entry).__name__}")
+    return entry
+
+
+#: Name -> engine, the reference first (a :class:`~asperity2d._registry.Registry`: an installed
+#: package adds one through the entry-point group ``asperity2d.engines``).
+ENGINES: Registry = Registry("engine", "asperity2d.engines", key=lambda e: e.name, check=_check_entry,
+                             param="engine")
+ENGINES.register(EngineEntry("pymunk", "pymunk (Chipmunk 2D), one scene at a time: the reference; every "
+                             "scene option", _always, _everything))
+ENGINES.register(EngineEntry("batched", "the model's own compiled loop (Numba), many scenes in lockstep: "
+                             "full triangles on spring tracks, no lattice or substrate", batched.unavailable,
+                             batched.refusal, batched.run))
 
 
 def check_engine(engine) -> str:
-    """``engine`` as a known, usable name; a ``SceneError`` line otherwise (an unknown name, or
-    an engine whose optional dependency is missing, saying how to install it)."""
-    name = check_choice("engine", engine, tuple(ENGINES))
-    why = ENGINES[name].unavailable()
+    """``engine`` as a known, usable name; a ``SceneError`` line otherwise (an unknown name, with
+    the nearest ones, or an engine whose optional dependency is missing, saying how to install it)."""
+    if not isinstance(engine, str):
+        raise SceneError(f"`engine` must be one of {', '.join(ENGINES)}, got {type(engine).__name__}")
+    entry = ENGINES.lookup(engine, "engine")
+    why = entry.unavailable()
     if why is not None:
         raise SceneError(why)
-    return name
+    return entry.name
 
 
 def refuse(engine: str, scene, *, settle: bool = False) -> None:
