@@ -1,5 +1,5 @@
 """Regular against random spacing under each contact law
-====================================================
+=====================================================
 
 Ooten's fixed track (the default scene) asks whether random asperity spacing lowers the force
 that breaks the slider loose; his Working Model contacts had a static and a kinetic coefficient.

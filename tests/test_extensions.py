@@ -310,7 +310,7 @@ class AlwaysKinetic(ContactLaw):
     mu: float
 
     @classmethod
-    def from_contact(cls, contact, stick_speed, slip_distance, dt):
+    def from_contact(cls, contact, *, units, stick_speed, slip_distance, dt):
         return cls(contact.mu_kinetic)
 
     @property
@@ -321,11 +321,11 @@ class AlwaysKinetic(ContactLaw):
     def idle(self):
         return self.mu
 
-    def coefficient(self, stuck):
-        return self.mu
+    def step(self, state, slip, impulse, new):
+        return self.mu, ()
 
-    def step(self, stuck, slid, slip, new):
-        return False, 0.0
+    def steady(self, v):
+        return self.mu
 ''',
     "formats.py": '''
 from asperity2d.renderers import OutputFormat

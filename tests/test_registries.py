@@ -334,7 +334,7 @@ def test_a_saved_comparison_of_a_measure_this_session_does_not_know_keeps_its_un
 def test_a_contact_law_missing_a_method_is_refused_in_one_line_naming_it():
     from dataclasses import dataclass
 
-    from asperity2d.contact_laws import LAWS, ContactLaw, LawEntry, register_law
+    from asperity2d.contact_laws import LAWS, REQUIRED_METHODS, ContactLaw, LawEntry, register_law
 
     @dataclass(frozen=True)
     class Half(ContactLaw):
@@ -344,13 +344,13 @@ def test_a_contact_law_missing_a_method_is_refused_in_one_line_naming_it():
         def from_contact(cls, contact, stick_speed, slip_distance, dt):
             return cls(contact.mu_kinetic)
 
-        def coefficient(self, stuck):
+        def coefficient(self, stuck):  # the old contract's method: not the new one's step / idle / steady
             return self.mu
 
-    with pytest.raises(SceneError, match=r"^`law` 'half' \(Half\) does not define step, idle \(the ContactLaw "
+    with pytest.raises(SceneError, match=r"^`law` 'half' \(Half\) does not define step, idle, steady \(the ContactLaw "
                                          r"contract\)$"):
         register_law(LawEntry("half", "asperity", Half))
     assert "half" not in LAWS
     for name, entry in LAWS.items():  # every registered asperity law keeps the whole contract
         if entry.model == "asperity":
-            assert all(getattr(entry.law, m) is not getattr(ContactLaw, m) for m in ("step", "coefficient"))
+            assert all(getattr(entry.law, m) is not getattr(ContactLaw, m) for m in REQUIRED_METHODS)
