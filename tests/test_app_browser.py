@@ -84,7 +84,7 @@ def state(browser, expr="s"):
     return browser.execute_script(f"const s = window.asperityWorkbench.state(); return {expr};")
 
 
-def wait_for(browser, expr, timeout=60.0, every=0.05):
+def wait_for(browser, expr, timeout=180.0, every=0.05):
     # the workbench may not exist yet (a module still importing): not yet, rather than an error
     end = time.monotonic() + timeout
     while time.monotonic() < end:
@@ -169,7 +169,7 @@ def test_the_workbench_as_a_person_uses_it(server, browser):
     # a critical force on a click, with its unit
     click(browser, '[data-tab="measure"]')
     click(browser, 'button[data-measure="critical"]')
-    value = wait_for(browser, "s.measures.critical && s.measures.critical.value", timeout=120)
+    value = wait_for(browser, "s.measures.critical && s.measures.critical.value", timeout=240)
     from asperity2d.critical import critical_force
 
     assert value == critical_force(a.make_scene(lower_count=6, upper_count=2, drive="force"))
@@ -184,7 +184,7 @@ def test_the_workbench_as_a_person_uses_it(server, browser):
         const n = document.querySelector('[name="ensemble-seeds"]'); n.value = '4';
         document.querySelector('[name="ensemble-preset"]').value = 'spacing';""")
     click(browser, '[data-act="ensemble-start"]')
-    wait_for(browser, "s.ensemble.done", timeout=120)
+    wait_for(browser, "s.ensemble.done", timeout=240)
     ens = state(browser, "s.ensemble")
     assert sorted(ens["values"]) == ["random", "regular"] and all(len(v) == 4 for v in ens["values"].values())
     (versus,) = ens["stats"]["versus"]
@@ -196,7 +196,7 @@ def test_the_workbench_as_a_person_uses_it(server, browser):
     # two variants side by side, one time cursor
     click(browser, '[data-tab="compare"]')
     click(browser, 'button[data-preset="profile"]')
-    wait_for(browser, "s.variants.done === 2", timeout=120)
+    wait_for(browser, "s.variants.done === 2", timeout=240)
     t_full = browser.execute_script("""
         const ps = window.asperityWorkbench.players();
         const t = ps.full.api.seek(ps.full.api.t1 * 0.5); return [t, ps.half.api.state().t];""")
@@ -233,7 +233,7 @@ def test_the_widget_module_renders_in_chromium(server, browser, tmp_path):
         });""", widget._esm, widget._css, f"ws://127.0.0.1:{port_token.group(1)}/ws?token={port_token.group(2)}")
     wait_for(browser, "s.schema && s.run.job !== null")
     browser.execute_script("window.asperityWorkbench.send({type: 'set', values: arguments[0]})", CHANGE)
-    wait_for(browser, "s.run.finished && s.run.samples > 1000", timeout=90)
+    wait_for(browser, "s.run.finished && s.run.samples > 1000", timeout=180)
     assert browser.execute_script("return typeof window.widgetCleanup") == "function"
     from asperity2d.builders import KEYWORDS, PARAMETERS
 
@@ -247,7 +247,7 @@ def test_the_widget_module_renders_in_chromium(server, browser, tmp_path):
 
 
 # -- the stage as Working Model's users touched it -------------------------------------------------
-def wait_run_after(browser, job, timeout=120):
+def wait_run_after(browser, job, timeout=240):
     """The number of the first finished run after ``job``."""
     return wait_for(browser, f"s.run.job > {job} && s.run.finished && s.valid && s.run.job", timeout=timeout)
 
@@ -429,7 +429,7 @@ def test_a_measured_force_is_marked_stale_when_the_scene_changes(server, browser
     job = wait_run_after(browser, 2)
     click(browser, '[data-tab="measure"]')
     click(browser, 'button[data-measure="critical"]')
-    wait_for(browser, "s.measures.critical && s.measures.critical.value", timeout=120)
+    wait_for(browser, "s.measures.critical && s.measures.critical.value", timeout=240)
     cell = 'return document.querySelector(\'.aw-value[data-measure="critical"]\')'
     assert "earlier scene" not in browser.execute_script(cell + ".textContent")
     shot(browser, "app_measure.png")
@@ -451,7 +451,7 @@ def test_the_page_at_a_phone_a_small_laptop_and_a_desktop_width(server, browser,
         browser.get(server)
         wait_for(browser, "s.schema && s.run.job !== null")
         browser.execute_script("window.asperityWorkbench.send({type: 'set', values: {lower_count: '6', upper_count: '2'}})")
-        wait_for(browser, "s.run.finished && s.bodies && s.bodies.lower.x.length === 6", timeout=120)
+        wait_for(browser, "s.run.finished && s.bodies && s.bodies.lower.x.length === 6", timeout=240)
         inner = browser.execute_script("return window.innerWidth")
         rect = lambda sel: browser.execute_script(  # noqa: E731
             f"const r = document.querySelector('{sel}').getBoundingClientRect(); return [r.left, r.top, r.width, r.height]")
@@ -476,7 +476,7 @@ def test_the_page_at_a_phone_a_small_laptop_and_a_desktop_width(server, browser,
         if width == 1000:
             click(browser, '[data-tab="compare"]')
             click(browser, 'button[data-preset="profile"]')
-            wait_for(browser, "s.variants.done === 2", timeout=120)
+            wait_for(browser, "s.variants.done === 2", timeout=240)
             boxes = browser.execute_script(
                 "return [...document.querySelectorAll('.aw-variant')].map(e => { const r = e.getBoundingClientRect(); "
                 "return [r.left, r.top, r.right, r.bottom]; })")
