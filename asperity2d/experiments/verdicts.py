@@ -161,12 +161,12 @@ def seeds_needed(numbers: dict, alpha: float, *, direction: str = "less",
     """About how many seeds would decide an undecided comparison, at the spread observed.
 
     The assumption: the per-seed relative changes (value / reference - 1) are normal with the
-    observed spread s (``relative_std``; an older record's |``relative_difference`` /
-    ``effect_size_d``|, the same number) and the observed effect e, the mean's change (the
+    observed spread s (``relative_std``; an older record's abs(``relative_difference`` /
+    ``effect_size_d``), the same number) and the observed effect e, the mean's change (the
     number the rule's margin is checked on), stays what it is. Then a
-    one-sided test at alpha reaches significance at n = (z s / e)**2 when |e| >= m (holds, or the
-    other way), and the ``1 - 2 alpha`` interval e +- z s / sqrt(n) fits inside +-m at
-    n = (z s / (m - |e|))**2 when |e| < m (z = z(1 - alpha)); the signed-rank test needs pi/3
+    one-sided test at alpha reaches significance at n = (z s / e)**2 when abs(e) >= m (holds, or
+    the other way), and the ``1 - 2 alpha`` interval e +- z s / sqrt(n) fits inside +-m at
+    n = (z s / (m - abs(e)))**2 when abs(e) < m (z = z(1 - alpha)); the signed-rank test needs pi/3
     times that (its efficiency against the t test on normal data). The estimate is at least one
     seed more than ``n`` and at least the smallest testable count.
 
