@@ -3,9 +3,9 @@
 A :class:`Registry` is a mapping name -> entry (a measure, a contact law, an output format, a
 result kind, a belt back end, an engine) that:
 
-* adds an entry with :meth:`~Registry.register` (checked by the registry's own ``check``; a name
+* adds an entry with ``Registry.register`` (checked by the registry's own ``check``; a name
   already taken is refused in one line unless ``replace=True``) and removes it with
-  :meth:`~Registry.unregister`;
+  ``Registry.unregister``;
 * looks a name up with :meth:`~Registry.lookup`: an unknown name is one ``SceneError`` naming
   the parameter and the nearest registered names ("did you mean ...?", :mod:`difflib`);
 * accepts ``"package.module:attribute"`` wherever a registered name is (the attribute is
@@ -143,7 +143,7 @@ class Registry(MutableMapping):
     group : str or None
         The entry-point group loaded on first use (None: no outside entries).
     key : callable, optional
-        ``entry -> name`` for :meth:`register` (None: entries carry no name; ``register(entry,
+        ``entry -> name`` for ``register`` (None: entries carry no name; ``register(entry,
         name=...)`` and entry points give it).
     check : callable, optional
         ``entry -> entry``; raises ``SceneError`` naming what is wrong with an entry.

@@ -10,7 +10,7 @@ Segmentation (Ooten's stick–slip: the slider stops, the drive spring loads
 it, it breaks away and slips): a sample is *stick* when the slider is nearly at
 rest, ``|v| < stick_speed``, and *slip* when it moves clearly faster than the
 drive, ``v > slip_speed``; in between the previous state holds (hysteresis).
-The slip speed follows the scene (:func:`slip_speed_threshold`): a block that
+The slip speed follows the scene (``slip_speed_threshold``): a block that
 loses no friction swings on the drive spring from rest to exactly 2 V, and a
 real slip peaks above that by an amount the closed form of a spring-driven
 block gives (:func:`spring_block_slip`), so the threshold sits between the two.
@@ -39,7 +39,7 @@ from .scene import SpringDrive
 
 #: Default stick threshold as a multiple of the drive velocity V.
 STICK_SPEED_FRACTION = 0.5
-#: The slip threshold's bounds, as multiples of V (:func:`slip_speed_threshold`). A slider that
+#: The slip threshold's bounds, as multiples of V (``slip_speed_threshold``). A slider that
 #: loses no friction (steady sliding, mu_s = mu_k, or a hold that never releases) swings on an
 #: undamped drive spring from rest to exactly 2 V: that is the level of no slip. Measured on the
 #: flat block of ``tests/test_analysis.py`` with mu_s = mu_k = 0.35, the start's transient lifts
@@ -278,7 +278,7 @@ def scene_slip(scene) -> SpringBlockSlip | None:
 
 def _min_stick(scene, period: float | None) -> float | None:
     """The default ``min_stick`` (s): half the slider's period on the drive spring, or half the
-    closed-form stick of :func:`scene_slip` when that is shorter. A flat block with a small
+    closed-form stick of ``scene_slip`` when that is shorter. A flat block with a small
     static/kinetic gap sticks for less than half a period (mu 0.36 / 0.35 on the test block: 0.29
     of a period), so a whole-period rule took its real sticks for bounces; on asperity scenes the
     drive reloads a whole flank barrier and the stick lasts hundreds of periods: unchanged."""
@@ -296,7 +296,7 @@ def slip_speed_threshold(scene) -> float | None:
 
     A slider that loses no friction swings on the drive spring from rest to exactly 2 V (V the
     drive speed): that is the speed of no slip. A real slip of the scene peaks at the closed-form
-    ``peak_speed`` of :func:`scene_slip` (the spring-driven block with the hold rule: V plus the
+    ``peak_speed`` of ``scene_slip`` (the spring-driven block with the hold rule: V plus the
     slip's amplitude over sqrt(k m)). The threshold is halfway between the two, at least
     ``SLIP_MARGIN_FRACTION`` V above 2 V (the start's transient, measured up to 2.18 V with no
     friction drop) and at most 3 V (every asperity scene's slips, tens of V, clear that; so their
@@ -486,7 +486,7 @@ def stick_slip_events(result, *, stick_speed: float | None = None, slip_speed: f
     stick_speed : float, optional
         abs(v) below this (m/s) is stick. Default: 0.5 x the drive velocity.
     slip_speed : float, optional
-        v above this (m/s) is slip. Default: :func:`slip_speed_threshold`, from
+        v above this (m/s) is slip. Default: ``slip_speed_threshold``, from
         the scene's own scales: halfway between 2 V (a slider that loses no
         friction, released from rest on the drive spring, peaks at exactly
         2 V) and the closed-form peak speed of the scene's slips, between
@@ -494,7 +494,7 @@ def stick_slip_events(result, *, stick_speed: float | None = None, slip_speed: f
     min_stick : float, optional
         A stick shorter than this (s) between two slips is a bounce, merged
         into the slip. Default: half the slider's period on the drive spring,
-        or half the closed-form stick (:func:`scene_slip`) if shorter.
+        or half the closed-form stick (``scene_slip``) if shorter.
     min_slip : float, optional
         A slip shorter than this (s) is ignored. Default: 0.1 of that period.
     min_slip_distance : float, optional

@@ -8,7 +8,7 @@ its own state (:class:`ContactLaw` states the contract). Every law has a plain-P
 step loop (``engine/_kernel.c``) implements the laws named by their :attr:`ContactLaw.kernel`,
 held to the reference's bits (``tests/test_engine_kernel.py``, ``tests/test_contact_laws.py``).
 For any other law the engine steps in Python and says why
-(:attr:`asperity2d.engine.Engine.loop_reason`).
+(``Engine.loop_reason`` (``asperity2d.engine``)).
 
 The laws here: :class:`StaticKineticSwitch` (the default: static / kinetic with the hold rule),
 :class:`VelocityWeakening` (an exponential Stribeck-type fall from ``mu_static`` to
@@ -68,14 +68,14 @@ class ContactLaw:
     1. be a frozen dataclass built by the classmethod
        ``from_contact(contact, *, units, stick_speed, slip_distance, dt)``: the scene's
        :class:`~asperity2d.scene.Contact` (its coefficients and :attr:`parameters` in SI), the
-       run's :class:`~asperity2d.units.Units`, and the switch's stick speed, slip distance and
+       run's ``Units`` (``asperity2d.units``), and the switch's stick speed, slip distance and
        step already in internal units. ``from_contact`` converts every SI parameter to internal
        units once (a speed divides by ``units.velocity``, a length by ``units.length``, a time by
-       ``units.time``): :meth:`step` works in internal units only;
+       ``units.time``): ``step`` works in internal units only;
     2. declare its own parameters as :attr:`parameters` (:class:`LawParameter` records, SI):
        they become fields of the contact (``Contact(law_params=...)``), keywords of
        ``make_scene``, TOML keys and rows of the parameter reference, validated there;
-    3. give :meth:`step`: ``step(state, slip, impulse, new) -> (mu, state)`` for one touching
+    3. give ``step``: ``step(state, slip, impulse, new) -> (mu, state)`` for one touching
        contact after one step -- ``slip`` the signed slip speed of the slider over the lower
        asperity along the contact's +x tangent (internal units; the largest in magnitude where a
        lower asperity touches two tips), ``impulse`` its normal impulse over the step (internal
@@ -83,14 +83,14 @@ class ContactLaw:
        ``state`` is :attr:`initial`) -- returning the friction coefficient pymunk uses from the
        next step (>= 0) and the contact's new state, a tuple of the names :attr:`state_names`;
        a lost contact goes back to :attr:`initial` and the coefficient :attr:`idle` without a call;
-    4. give :meth:`steady`: the coefficient of a contact in steady sliding at ``v`` (m/s), the
+    4. give ``steady``: the coefficient of a contact in steady sliding at ``v`` (m/s), the
        closed form the flat-block validation and ``tests/test_contact_laws.py`` check every
        registered law against;
     5. be pure: the same inputs give the same outputs, bit for bit (the golden runs and the C
        loop's comparison rely on it);
     6. set :attr:`kernel` to the name of its C implementation in ``engine/_kernel.c`` if it
        has one (held to this reference to the bit), or leave it None: the engine then runs the
-       Python loop, naming the law as the reason (:attr:`asperity2d.engine.Engine.loop_reason`).
+       Python loop, naming the law as the reason (``Engine.loop_reason`` (``asperity2d.engine``)).
 
     Register it with :func:`register_law` (``model="asperity"``).
     """
@@ -152,7 +152,7 @@ class StaticKineticSwitch(ContactLaw):
     stick_speed, slip_distance, dt : float
         Stick speed, slip distance and step (internal units).
     velocity : float, default 1.0
-        The internal speed unit in m/s (for :meth:`steady`, which takes m/s).
+        The internal speed unit in m/s (for ``steady``, which takes m/s).
 
     Examples
     --------
@@ -506,7 +506,7 @@ def _adapt_law(obj, name: str) -> LawEntry:
 
 
 #: Every friction law: name -> :class:`LawEntry`, for both models (a
-#: :class:`~asperity2d._registry.Registry`: an installed package adds its own through the entry-point
+#: ``Registry`` (``asperity2d._registry``): an installed package adds its own through the entry-point
 #: group ``asperity2d.contact_laws``, and ``"module:Class"`` works wherever a law's name does).
 LAWS: Registry = Registry("contact law", "asperity2d.contact_laws", key=lambda e: e.name, check=_check_law,
                           adapt=_adapt_law, param="law")

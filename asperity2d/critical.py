@@ -415,7 +415,7 @@ def critical_force(scene: Scene, *, start: str = "rest", rel_tol: float = REL_TO
     max_steps : int, optional
         Step budget of each run.
     engine : str, default "pymunk"
-        The engine (:data:`asperity2d.engine.ENGINES`). The search settles the slider against the
+        The engine (``asperity2d.engine.ENGINES``). The search settles the slider against the
         flanks (from rest) and forks settled runs, which only ``"pymunk"`` does: another engine is
         refused in one line.
 

@@ -883,7 +883,7 @@ def simulate(scene: Scene, duration: float | None = None, *, dt: float | None = 
         that is killed leaves the samples written so far, loaded with status
         ``"interrupted"``; one that raises leaves them too, its message saying why.
     engine : str, default "pymunk"
-        The engine that steps it (:data:`asperity2d.engine.ENGINES`): ``"pymunk"``, the
+        The engine that steps it (``asperity2d.engine.ENGINES``): ``"pymunk"``, the
         reference, runs every option; ``"batched"`` (the ``[batch]`` extra) runs the model's
         common case in a compiled loop, without the energy books, observers, custom stops,
         streaming, settling or the lower asperities' records (each refused in one line).

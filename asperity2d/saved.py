@@ -75,7 +75,7 @@ def _check_kind(kind) -> ResultKind:
 
 
 #: Kind name -> :class:`ResultKind`, in registration order. A
-#: :class:`~asperity2d._registry.Registry`: an installed package adds its kinds through the
+#: ``Registry`` (``asperity2d._registry``): an installed package adds its kinds through the
 #: entry-point group ``asperity2d.result_kinds`` (each entry point names a :class:`ResultKind`).
 RESULT_KINDS: Registry = Registry("result kind", "asperity2d.result_kinds", key=lambda k: k.name,
                                   check=_check_kind, param="kind")

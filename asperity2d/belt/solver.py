@@ -75,7 +75,7 @@ def _check_method(entry) -> tuple[Backend, ...]:
 
 
 #: method name -> back-ends in order of preference (the contract: :mod:`.backend`). A
-#: :class:`~asperity2d._registry.Registry`: :func:`register_method` adds a method, an installed
+#: ``Registry`` (``asperity2d._registry``): :func:`register_method` adds a method, an installed
 #: package adds its own through the entry-point group ``asperity2d.belt_methods`` (a Backend, a
 #: tuple of them or a back-end class), and ``"module:name"`` works wherever a method's name does.
 #: Item assignment (``METHODS["frozen"] = (Backend(...),)``) still adds one.
@@ -94,7 +94,7 @@ METHODS.register((Backend("sign() friction through solve_ivp", _tangential, run_
 
 def register_method(name: str, backends, *, replace: bool = False) -> tuple[Backend, ...]:
     """Add the method ``name`` to :data:`METHODS`: its back ends (a :class:`Backend`, a tuple of
-    them in order of preference, or a back-end class: :func:`backends_of`); a name already taken
+    them in order of preference, or a back-end class: ``backends_of``); a name already taken
     raises ``SceneError`` unless ``replace``. Returns the back ends as registered.
 
     Examples
@@ -198,7 +198,7 @@ def simulate_chain(
         ``"exact"`` (event-driven stick/slip), ``"sign"`` (the thesis' sign() friction), another
         name of :data:`METHODS` (an installed package's too) or ``"module:name"``; or, as
         ``solve_ivp`` takes one, a :class:`Backend`, a tuple of them or a back-end class or
-        instance (:func:`backends_of`).
+        instance (``backends_of``).
     n_samples : int, default 2001
         Uniform output samples (ignored with ``t_eval``).
     t_eval : array_like, optional

@@ -1,6 +1,6 @@
 """The batched asperity engine: many scenes stepped in lockstep in one compiled loop.
 
-Part of :mod:`asperity2d.engine` (the entry ``"batched"`` of :data:`asperity2d.engine.ENGINES`).
+Part of :mod:`asperity2d.engine` (the entry ``"batched"`` of ``asperity2d.engine.ENGINES``).
 The model is the pymunk adapter's, rebuilt for this model alone: lower asperities are
 translating bodies on vertical spring-damper tracks (groove joints with their travel limits),
 the slider a translating body on a horizontal track or free under its normal load, driven by a

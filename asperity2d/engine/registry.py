@@ -79,7 +79,7 @@ def _check_entry(entry) -> EngineEntry:
     return entry
 
 
-#: Name -> engine, the reference first (a :class:`~asperity2d._registry.Registry`: an installed
+#: Name -> engine, the reference first (a ``Registry`` (``asperity2d._registry``): an installed
 #: package adds one through the entry-point group ``asperity2d.engines``).
 ENGINES: Registry = Registry("engine", "asperity2d.engines", key=lambda e: e.name, check=_check_entry,
                              param="engine")

@@ -90,7 +90,7 @@ class Comparison:
         stage run: its number, the seeds it took and each variant's verdict after it. Empty for a
         comparison of fixed seeds.
     engine : str, default "pymunk"
-        The engine that ran the scenes (:data:`asperity2d.engine.ENGINES`).
+        The engine that ran the scenes (``asperity2d.engine.ENGINES``).
 
     Raises
     ------
@@ -424,7 +424,7 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
         Seeds per stage of ``seeds="auto"`` (default 10: the fewest with which the exact
         signed-rank test can reach the first look's level at alpha 0.01).
     engine : str, default "pymunk"
-        The engine that runs the scenes (:data:`asperity2d.engine.ENGINES`). ``"batched"``
+        The engine that runs the scenes (``asperity2d.engine.ENGINES``). ``"batched"``
         (the ``[batch]`` extra) runs every scene of the comparison in one batch, in this
         process, for the measures it implements (``"peak-stick"``, ``"mean-stick"``); the
         comparison records the engine.

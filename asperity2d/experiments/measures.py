@@ -97,7 +97,7 @@ TRAVEL_DT_FRACTION = dict(CRITICAL_DT_FRACTION)
 #: slider): from its step (dt/4) to dt/8 the per-seed shifts average +1.2 +- 1.9 % (one standard
 #: error; the mean travel moves +0.5 %) while 4 seeds move by more than 1 % (up to 30 %); the full
 #: triangles, which pass, -0.05 +- 0.01 % (docs/data/measures/travel_dt.json).
-#: Each built-in entry carries its own (:attr:`Measure.step_tolerance`); this table is read from them.
+#: Each built-in entry carries its own (``Measure.step_tolerance``); this table is read from them.
 STEP_TOLERANCE: dict[str, float] = {}
 
 
@@ -108,7 +108,7 @@ DEFAULT_DT_FRACTION = 1.0
 
 def measure_step(name: str, scene: Scene, *, start: str | None = None) -> float:
     """The step (s) the named measure runs ``scene`` at under the step policy (``start`` for the
-    travel: default ``"run-up"``): its entry's :attr:`Measure.dt_fraction` of ``default_dt``
+    travel: default ``"run-up"``): its entry's ``Measure.dt_fraction`` of ``default_dt``
     (``default_dt`` itself for a measure that states none, :attr:`Measure.step_policy` says so)."""
     entry = MEASURES.lookup(name, "name")
     if entry.name == "travel" and start is not None:
@@ -175,7 +175,7 @@ def stick_forces(scene: Scene, *, passes: int = PASSES, dt: float | None = None,
 
     ``dt`` (s) is the step of every pass (default: the step policy's,
     :data:`STICK_DT_FRACTION` of ``default_dt``). ``engine``: the engine that runs the passes
-    (:data:`asperity2d.engine.ENGINES`; ``"batched"`` runs them all in one batch).
+    (``asperity2d.engine.ENGINES``; ``"batched"`` runs them all in one batch).
     """
     return stick_forces_of([scene], passes=passes, dt=dt, engine=engine)[0]
 
@@ -565,7 +565,7 @@ def _adapt_measure(obj, name: str) -> "Measure":
 #: The registry of named measures: name -> :class:`Measure`. The CLI's ``--measure``,
 #: ``compare(measure="...")``, plots and verdicts read it; :func:`register_measure` adds one, and
 #: an installed package adds its own through the entry-point group ``asperity2d.measures``
-#: (a :class:`~asperity2d._registry.Registry`: ``"module:function"`` works wherever a name does).
+#: (a ``Registry`` (``asperity2d._registry``): ``"module:function"`` works wherever a name does).
 MEASURES: Registry = Registry("measure", "asperity2d.measures", key=lambda m: m.name, check=_check_measure,
                               adapt=_adapt_measure)
 

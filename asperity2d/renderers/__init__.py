@@ -152,7 +152,7 @@ def _check_format(fmt) -> OutputFormat:
 
 
 #: The output formats: extension -> :class:`OutputFormat`. :func:`render` chooses by it. A
-#: :class:`~asperity2d._registry.Registry`: an installed package adds its formats through the
+#: ``Registry`` (``asperity2d._registry``): an installed package adds its formats through the
 #: entry-point group ``asperity2d.formats`` (each entry point names an :class:`OutputFormat`).
 FORMATS: Registry = Registry("output format", "asperity2d.formats", key=lambda f: f.extension,
                              check=_check_format, param="fmt", modules=False)
