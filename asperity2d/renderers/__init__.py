@@ -216,6 +216,13 @@ def unregister_format(extension: str) -> OutputFormat:
     ------
     SceneError
         No format is registered for ``extension`` (the message names the nearest ones).
+
+    Examples
+    --------
+    >>> from asperity2d.renderers import FORMATS, OutputFormat, register_format, unregister_format
+    >>> fmt = register_format(OutputFormat(".stamp", "the run's length", {"belt": lambda r, p, **o: p}))
+    >>> unregister_format(".stamp") is fmt, ".stamp" in FORMATS
+    (True, False)
     """
     return FORMATS.unregister(extension)
 
