@@ -533,3 +533,79 @@ def test_closing_the_tab_stops_the_ensembles_worker_processes():
     while (2 in warm_pools() or any(p.is_alive() for p in workers)) and time.monotonic() < end:
         time.sleep(0.1)
     assert 2 not in warm_pools() and not any(p.is_alive() for p in workers)
+
+
+# -- the ensemble with seeds="auto": stages until decided, as compare(seeds="auto") ---------------------
+def smallest_gap(scene):
+    """A measure that needs no run (the closest two lower tips): random spacing lowers it on every
+    seed, so the first look decides."""
+    return float(np.min(np.diff(scene.lower.tips())))
+
+
+def first_gap(scene):
+    """The first two tips' gap: random spacing moves it either way, too little to decide in 30 seeds."""
+    tips = scene.lower.tips()
+    return float(tips[1] - tips[0])
+
+
+@pytest.mark.parametrize("fn, max_seeds", [pytest.param(smallest_gap, 30, marks=pytest.mark.slow), (first_gap, 30)])
+def test_the_ensemble_with_auto_seeds_decides_as_compare_does(monkeypatch, fn, max_seeds):
+    """The page's ``seeds: "auto"`` takes the stages, the looks and the verdicts of
+    ``asperity2d.compare(seeds="auto", max_seeds=...)``, streams an interim line from the second
+    seed, and says how many more seeds an undecided verdict wants. Measures that need no run keep
+    it to ~3 s on a loaded machine (most of it the design's boundaries): what is tested is the
+    staging, not a measure. The case decided at the first look is marked slow."""
+    from asperity2d.app import session as session_module
+    from asperity2d.experiments.measures import Measure, register_measure, unregister_measure
+
+    register_measure(Measure(fn.__name__, fn, fn.__name__.replace("_", " "), unit="m"), replace=True)
+    monkeypatch.setattr(session_module, "OFFERED", (*session_module.OFFERED, fn.__name__))
+    try:
+        base = {"lower_count": 6, "upper_count": 2}
+        api = a.compare(fn.__name__, {"regular": {"spacing": "regular"}, "random": {"spacing": "random"}}, "auto",
+                        max_seeds=max_seeds, base=base, progress=False, workers=1)
+        page = Page(workers=1)
+        page.session.handle({"type": "set", "values": {k: str(v) for k, v in base.items()}})
+        page.session.handle({"type": "cancel", "lane": "run"})  # the scene's run is not what is tested
+        page.session.handle({"type": "ensemble", "measure": fn.__name__, "seeds": "auto", "max_seeds": max_seeds,
+                             "preset": "spacing"})
+        end = page.wait(lambda m: m["type"] == "ensemble-end", timeout=120)
+        page.session.close()
+    finally:
+        unregister_measure(fn.__name__)
+    start = page.of("ensemble-start")[-1]
+    assert start["design"]["stages"] == api.design["stages"] and start["reference"] == "regular"
+    stages = page.of("ensemble-stage")
+    assert [s["seeds"] for s in stages] == [look["seeds"] for look in api.design["looks"]]
+    assert end["seeds_done"] == len(api.seeds) and end["looks"] == len(api.design["looks"])
+    values = {v: [m["value"] for m in page.of("ensemble-value") if m["variant"] == v] for v in api.values}
+    assert values == {v: list(x) for v, x in api.values.items()}  # the same numbers, seed by seed
+    stats = page.of("ensemble-stats")
+    assert stats[0]["seeds_done"] == 2 and stats[0]["look"]["interim"]  # the line fills in from the second seed
+    looks = [m for m in stats if not m["look"].get("interim")]
+    assert [m["versus"][0]["verdict"] for m in looks] == [look["verdicts"]["random"] for look in api.design["looks"]]
+    final = looks[-1]["versus"][0]
+    record = api.verdict("random", "regular")
+    assert final["line"] == verdict_line_of(record) and end["decided"] == (record["verdict"] != "undecided")
+    if record["verdict"] == "undecided":  # spent the budget: about how many more seeds would decide it
+        assert final["more"] == record["numbers"]["seeds_needed"] - len(api.seeds) > 0
+    else:
+        assert len(api.seeds) < max_seeds  # decided before the budget was spent: it stopped there
+
+
+def verdict_line_of(record):
+    from asperity2d.experiments.verdicts import verdict_line
+
+    return verdict_line(record)
+
+
+def test_the_ensemble_refuses_a_bad_seed_budget_in_one_line():
+    page = Page(workers=1)
+    for message, text in [({"seeds": "auto", "max_seeds": 1}, "`max_seeds` must be a whole number from 2 to 200"),
+                          ({"seeds": "many"}, "`seeds` must be a whole number from 2 to 200 or 'auto'"),
+                          ({"seeds": "auto", "max_seeds": 20, "stage_seeds": 30}, "`stage_seeds` must be a whole number from 2 to 20")]:
+        page.session.handle({"type": "ensemble", "measure": "first-breakaway", "preset": "spacing", **message})
+        error = page.wait(lambda m: m["type"] == "error")
+        assert error["message"].startswith(text), error
+        page.messages.clear()
+    page.session.close()

@@ -223,54 +223,128 @@ def verdict(comparison, name: str, reference: str, measure: str) -> dict:
             # the p the verdict line prints, formatted once here (Python rounds half to even, the
             # page's toPrecision half up: 0.0625 would read 0.062 in one line and 0.063 in the next)
             "p_text": f"{p:.2g}" if p is not None and math.isfinite(p) else "\u2013",
-            "verdict": record["verdict"], "line": verdict_line(record), "n": numbers.get("n")}
+            "verdict": record["verdict"], "line": verdict_line(record), "n": numbers.get("n"),
+            "seeds_needed": numbers.get("seeds_needed")}
+
+
+def more_seeds(row: dict, seeds_done: int) -> int | None:
+    """How many seeds beyond ``seeds_done`` would decide an undecided verdict row at the spread
+    observed (its ``seeds_needed``, :func:`asperity2d.experiments.verdicts.seeds_needed`, is a
+    total); None when no practical number would."""
+    needed = row.get("seeds_needed")
+    return None if needed is None else max(1, int(needed) - int(seeds_done))
 
 
 def ensemble(request: dict, job: Job, emit, *, workers: int | None = None) -> None:
     """Measure every variant on every seed with the ensemble engine (every core), emitting each
-    value as it arrives and the running statistics over the seeds every variant has finished."""
-    from ..experiments.compare import Comparison, _evaluate
-    from ..sweep.engine import run_calls
+    value as it arrives and the running statistics over the seeds every variant has finished.
+
+    ``request["auto"]`` (``{"max_seeds": N, "stage_seeds": k}``) runs the seeds in stages until
+    every variant's verdict against the reference is decided or N seeds are spent: the design,
+    the looks and the verdicts of ``asperity2d.compare(seeds="auto", max_seeds=N)``
+    (:func:`~asperity2d.experiments.sequential.run_in_stages`), streamed. Between two looks the
+    running numbers are shown as an interim (judged at the design's last level); only a look
+    stops the comparison."""
+    from ..experiments.sequential import STAGE_SEEDS, Design, plan, run_in_stages
+    from ..experiments.verdicts import DECIDED
 
     name = request["measure"]
     info = measure_info(name)
-    variants, seeds, base = request["variants"], request["seeds"], request["base"]
-    base = {**base, "drive": info["drive"]}
-    jobs, where = [], []
-    for seed in seeds:  # variants interleaved per seed: the verdict fills in from the second seed
-        for vname, kw in variants.items():
-            scene = measure_scene(name, {**base, **kw, "seed": seed})
-            jobs.append((info["fn"], scene, f"variant {vname!r} with seed {seed}"))
-            where.append((vname, seed))
-    job.check()
+    variants, base = request["variants"], {**request["base"], "drive": info["drive"]}
+    names = list(variants)
+    auto = request.get("auto")
     n = workers or os.cpu_count() or 1
+    design = None
+    if auto:
+        from ..experiments.measures import MEASURES
+
+        design = Design(stages=plan(auto["max_seeds"], auto.get("stage_seeds", STAGE_SEEDS)),
+                        alpha=MEASURES[name].rule.alpha)
+        reference = "regular" if "regular" in variants else names[0]  # compare()'s default reference
+        seeds = list(range(design.stages[-1]))
+    else:
+        reference, seeds = names[0], list(request["seeds"])
     values = {v: [math.nan] * len(seeds) for v in variants}
     done = {v: [False] * len(seeds) for v in variants}
-    names = list(variants)
+    looks: list[dict] = []
+    state = {"decided": False}
+
+    def comparison(k: list[int]):
+        from ..experiments.compare import Comparison
+
+        record = {} if design is None else {
+            "stages": list(design.stages), "alpha": design.alpha, "spending": design.spending,
+            "reference": reference, "method": design.to_dict()["method"], "looks": list(looks)}
+        return Comparison(values={v: tuple(values[v][j] for j in k) for v in names},
+                          seeds=tuple(seeds[j] for j in k), measure=name, design=record)
+
+    def stats(k: list[int], look: dict | None = None) -> list[dict]:
+        comp = comparison(k)
+        rows = [verdict(comp, other, reference, name) for other in names if other != reference]
+        for row in rows:
+            if row["verdict"] == "undecided":
+                row["more"] = more_seeds(row, len(k))
+        message = {"type": "ensemble-stats", "job": job.id, "seeds_done": len(k), "reference": reference,
+                   "summary": comp.summary(), "versus": rows}
+        if design is not None:
+            message["look"] = look or {"interim": True, "stage": len(looks) + 1, "of": len(design.stages),
+                                       "next": design.stages[len(looks)]}
+        emit(message)
+        return rows
+
+    def measure_seeds(first: int, last: int) -> None:
+        jobs, where = [], []
+        for j in range(first, last):  # variants interleaved per seed: the verdict fills in from the second seed
+            for vname, kw in variants.items():
+                scene = measure_scene(name, {**base, **kw, "seed": seeds[j]})
+                jobs.append((info["fn"], scene, f"variant {vname!r} with seed {seeds[j]}"))
+                where.append((vname, j))
+        job.check()
+        calls = run_calls(_evaluate, jobs, workers=n)
+        try:
+            for outcome in calls:
+                job.check()
+                vname, j = where[outcome.index]
+                value = float(outcome.value) if outcome.ok else math.nan
+                values[vname][j], done[vname][j] = value, True
+                message = {"type": "ensemble-value", "job": job.id, "variant": vname, "seed": seeds[j], "value": value}
+                if not outcome.ok:
+                    message["error"] = error_text(outcome.exception) if outcome.exception else "failed"
+                emit(message)
+                complete = [k for k in range(len(seeds)) if all(done[v][k] for v in names)]
+                if len(names) >= 2 and len(complete) >= 2 and not (design is not None and len(complete) == last):
+                    stats(complete)  # a look's own numbers follow from decide()
+        finally:
+            calls.close()  # a cancelled comparison shuts its workers down
+
+    from ..experiments.compare import _evaluate
+    from ..sweep.engine import run_calls
+
     emit({"type": "ensemble-start", "job": job.id, "measure": name, "label": info["label"], "unit": info["unit"],
-          "variants": names, "seeds": list(seeds), "workers": n})
-    calls = run_calls(_evaluate, jobs, workers=n)
-    try:
-        for outcome in calls:
-            job.check()
-            vname, seed = where[outcome.index]
-            j = seeds.index(seed)
-            value = float(outcome.value) if outcome.ok else math.nan
-            values[vname][j], done[vname][j] = value, True
-            message = {"type": "ensemble-value", "job": job.id, "variant": vname, "seed": seed, "value": value}
-            if not outcome.ok:
-                message["error"] = error_text(outcome.exception) if outcome.exception else "failed"
-            emit(message)
-            complete = [k for k in range(len(seeds)) if all(done[v][k] for v in names)]
-            if len(names) >= 2 and len(complete) >= 2:
-                comp = Comparison(values={v: tuple(values[v][k] for k in complete) for v in names},
-                                  seeds=tuple(seeds[k] for k in complete), measure=name)
-                stats = [verdict(comp, other, names[0], name) for other in names[1:]]
-                emit({"type": "ensemble-stats", "job": job.id, "seeds_done": len(complete),
-                      "summary": comp.summary(), "versus": stats})
-    finally:
-        calls.close()  # a cancelled comparison shuts its workers down
-    emit({"type": "ensemble-end", "job": job.id})
+          "variants": names, "reference": reference, "seeds": [] if design is not None else list(seeds),
+          "workers": n, **({"design": {**design.to_dict(), "text": design.describe()}} if design is not None else {})})
+    if design is None:
+        measure_seeds(0, len(seeds))
+        emit({"type": "ensemble-end", "job": job.id})
+        return
+
+    def on_stage(k: int, first: int, last: int) -> None:
+        emit({"type": "ensemble-stage", "job": job.id, "stage": k + 1, "of": len(design.stages),
+              "seeds": seeds[first:last]})
+
+    def decide(k: int, nominal: float) -> bool:  # compare()'s look: the same record, the same verdicts
+        last = design.stages[k]
+        looks.append({"stage": k + 1, "seeds": list(range(design.stages[k - 1] if k else 0, last)),
+                      "nominal_alpha": nominal})
+        rows = stats(list(range(last)), {"stage": k + 1, "of": len(design.stages), "nominal_alpha": nominal})
+        looks[-1]["verdicts"] = {row["variant"]: row["verdict"] for row in rows}
+        state["decided"] = all(row["verdict"] in DECIDED for row in rows)
+        return state["decided"]
+
+    _, measured = run_in_stages(design, lambda k, first, last: measure_seeds(first, last), decide,
+                                on_stage=on_stage)
+    emit({"type": "ensemble-end", "job": job.id, "seeds_done": measured, "looks": len(looks),
+          "decided": state["decided"], "max_seeds": design.stages[-1]})
 
 
 def format_exception(exc: BaseException) -> str:

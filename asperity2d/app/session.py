@@ -17,7 +17,11 @@ From the page:
   / ``variant-end``, each streamed into its own player;
 * ``{"type": "ensemble", "measure", "seeds": N, "variants": {...}|"preset"}`` ->
   ``ensemble-start``, ``ensemble-value`` per (variant, seed) as it arrives, ``ensemble-stats``
-  (running ratio, interval, Wilcoxon p, verdict), ``ensemble-end``;
+  (running ratio, interval, Wilcoxon p, verdict), ``ensemble-end``; with ``"seeds": "auto"``
+  (and ``"max_seeds"``, ``"stage_seeds"``) the seeds come in stages until every verdict is
+  decided, as ``compare(seeds="auto")``: an ``ensemble-stage`` before each, the ``look`` of each
+  ``ensemble-stats`` (an interim one between looks; ``more``: about how many seeds would decide
+  an undecided row), and the seeds spent and whether it was decided in ``ensemble-end``;
 * ``{"type": "export", "what": "toml"|"python"|"npz"}`` -> ``export`` with the text, or the
   ``.npz`` file of the last finished run as base64.
 
@@ -54,6 +58,16 @@ PRESETS = {
     "damping": {"damped": {"damping_ratio": 0.1}, "undamped": {"damping_ratio": 0.0}},
 }
 MAX_SEEDS = 200
+#: The seed budget of an ensemble with ``seeds: "auto"`` when the page gives none (compare()'s).
+AUTO_MAX_SEEDS = 40
+
+
+def _whole(value, name: str, low: int, high: int, *, also: str = "") -> int:
+    """A whole number from the page in [low, high], else one line naming it."""
+    if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
+        raise SceneError(f"`{name}` must be a whole number from {low} to {high}{' ' + also if also else ''}, "
+                         f"got {str(value)[:40]!r}")
+    return value
 
 
 def dumps(message: dict) -> str:
@@ -212,16 +226,21 @@ class Session:
         if name not in OFFERED:
             raise SceneError(f"`measure` must be one of {', '.join(OFFERED)}")
         seeds = message.get("seeds", 4)
-        if isinstance(seeds, bool) or not isinstance(seeds, int) or not 2 <= seeds <= MAX_SEEDS:
-            raise SceneError(f"`seeds` must be a whole number from 2 to {MAX_SEEDS}")
+        auto = None
+        if seeds == "auto":  # stages until decided, as compare(seeds="auto", max_seeds=...)
+            auto = {"max_seeds": _whole(message.get("max_seeds", AUTO_MAX_SEEDS), "max_seeds", 2, MAX_SEEDS)}
+            if "stage_seeds" in message:
+                auto["stage_seeds"] = _whole(message["stage_seeds"], "stage_seeds", 2, auto["max_seeds"])
+        else:
+            seeds = _whole(seeds, "seeds", 2, MAX_SEEDS, also="or 'auto'")
         variants = self._variant_set(message)
         base = {k: v for k, v in self.params.items() if k not in ("seed",)}
         for vname, kw in variants.items():  # refused before anything runs
             _, errors = controls.build({**base, **kw, "seed": 0})
             if errors:
                 raise SceneError(f"variant {vname}: {next(iter(errors.values()))}")
-        self.lanes["ensemble"].submit({"measure": name, "variants": variants, "seeds": list(range(seeds)),
-                                       "base": base})
+        self.lanes["ensemble"].submit({"measure": name, "variants": variants, "base": base,
+                                       **({"auto": auto} if auto else {"seeds": list(range(seeds))})})
 
     def _on_export(self, message) -> None:
         what = message.get("what")
