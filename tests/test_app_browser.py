@@ -118,6 +118,8 @@ def click(browser, selector):
 
 
 def test_the_workbench_as_a_person_uses_it(server, browser):
+    from selenium.webdriver.common.by import By
+
     browser.get(server)
     wait_for(browser, "s.schema && s.run.job !== null")
     # every make_scene parameter has its control, with its unit
@@ -177,20 +179,26 @@ def test_the_workbench_as_a_person_uses_it(server, browser):
     assert shown.endswith(" mN"), shown
     shot(browser, "app_measure.png")
 
-    # a 4-seed comparison, filled in per seed, with the ratio, its interval, p and the verdict
+    # a comparison over seeds "until decided", at most 4: filled in per seed, with the ratio, its
+    # interval, p and the verdict from the second seed, and what the budget came to
     click(browser, '[data-tab="ensemble"]')
     browser.execute_script("""
         document.querySelector('[name="ensemble-measure"]').value = 'first-breakaway';
-        const n = document.querySelector('[name="ensemble-seeds"]'); n.value = '4';
+        const mode = document.querySelector('[name="ensemble-mode"]'); mode.value = 'auto'; mode.dispatchEvent(new Event('change'));
+        document.querySelector('[name="ensemble-max-seeds"]').value = '4';
         document.querySelector('[name="ensemble-preset"]').value = 'spacing';""")
+    assert browser.find_element(By.CSS_SELECTOR, '[name="ensemble-max-seeds"]').is_displayed()
+    assert not browser.find_element(By.CSS_SELECTOR, '[name="ensemble-seeds"]').is_displayed()
     click(browser, '[data-act="ensemble-start"]')
     wait_for(browser, "s.ensemble.done", timeout=240)
     ens = state(browser, "s.ensemble")
     assert sorted(ens["values"]) == ["random", "regular"] and all(len(v) == 4 for v in ens["values"].values())
+    assert ens["design"]["stages"] == [4] and ens["end"]["seeds_done"] == 4
     (versus,) = ens["stats"]["versus"]
     assert ens["stats"]["seeds_done"] == 4 and versus["verdict"] and versus["line"].startswith("random lowers")
     page = browser.execute_script("return document.querySelector('.aw-stats').textContent")
     assert "Wilcoxon p" in page and "ratio" in page and versus["verdict"] in page
+    assert ("decided after 4 seeds" if ens["end"]["decided"] else "the budget of 4 seeds is spent") in page
     shot(browser, "app_ensemble.png")
 
     # two variants side by side, one time cursor
@@ -335,6 +343,13 @@ def test_click_edit_drag_keep_compare_stop_and_save_reproduces(server, browser, 
     without = kept_pixels(browser)
     browser.execute_script("window.asperityWorkbench.player().setOverlays(window.asperityWorkbench.state().kept)")
     assert with_kept - without > 50, (with_kept, without)  # the kept run's trace, drawn on the drive-force meter
+    # every meter's axis holds the kept run's axis as its own meter had it, and this run's own
+    axes = browser.execute_script("""
+        const w = window.asperityWorkbench, p = w.player(), kept = w.state().kept[0].limits, own = p.snapshot().limits;
+        return p.api.meters().map((m) => [m.channel, m.limits, kept[m.channel], own[m.channel]]);""")
+    for channel, lim, kept_axis, own_axis in axes:
+        for axis in (kept_axis, own_axis):
+            assert lim[0] <= axis[0] and lim[1] >= axis[1], (channel, lim, kept_axis, own_axis)
     legend = browser.find_element(By.CSS_SELECTOR, ".aw-kept").text
     assert "kept 1" in legend and "drive_velocity default (now 10)" in legend
     rows = list(csv.reader(io.StringIO(browser.execute_script(

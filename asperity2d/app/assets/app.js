@@ -329,7 +329,7 @@ function render({ model, el }) {
     if (!player || !S.run.finished) return;
     const snap = player.snapshot(), k = S.kept.length;
     S.kept.push({ label: `kept ${k + 1}`, colour: KEPT_COLOURS[k % KEPT_COLOURS.length], T: snap.T, S: snap.S,
-                  values: { ...S.values }, samples: snap.samples });
+                  values: { ...S.values }, samples: snap.samples, limits: snap.limits });
     player.setOverlays(S.kept);
     showKept(); flash(`run kept as "kept ${k + 1}": the next runs are drawn over it`);
   }
@@ -462,39 +462,67 @@ function render({ model, el }) {
   function buildEnsemble(list, presets) {
     const measure = h("select", { name: "ensemble-measure", "aria-label": "measure" }, list.map((m) => h("option", { value: m.name, text: m.label })));
     const seeds = h("input", { name: "ensemble-seeds", type: "number", min: "2", max: "200", value: "4", "aria-label": "seeds" });
+    const maxSeeds = h("input", { name: "ensemble-max-seeds", type: "number", min: "2", max: "200", value: "40", "aria-label": "at most this many seeds" });
+    const fixedBox = h("label", {}, "seeds ", seeds), autoBox = h("label", { hidden: true, title: "seeds are added in stages of 10 until every verdict is decided, as compare(seeds=\"auto\")" }, "at most ", maxSeeds, " seeds");
+    const mode = h("select", { name: "ensemble-mode", "aria-label": "how many seeds" }, h("option", { value: "fixed", text: "a fixed number of seeds" }),
+                   h("option", { value: "auto", text: "seeds until decided (auto)" }));
+    mode.addEventListener("change", () => { fixedBox.hidden = mode.value === "auto"; autoBox.hidden = mode.value !== "auto"; });
     const preset = h("select", { name: "ensemble-preset", "aria-label": "variants" }, Object.entries(presets).map(([id, n]) => h("option", { value: id, text: n.join(" vs ") })));
-    const start = h("button", { class: "aw-btn", "data-act": "ensemble-start", onclick: () => model.send({ type: "ensemble", measure: measure.value, seeds: parseInt(seeds.value, 10), preset: preset.value }) }, "Compare over seeds");
+    const start = h("button", { class: "aw-btn", "data-act": "ensemble-start", onclick: () => model.send(mode.value === "auto"
+      ? { type: "ensemble", measure: measure.value, seeds: "auto", max_seeds: parseInt(maxSeeds.value, 10), preset: preset.value }
+      : { type: "ensemble", measure: measure.value, seeds: parseInt(seeds.value, 10), preset: preset.value }) }, "Compare over seeds");
     const stop = h("button", { class: "aw-btn", onclick: () => model.send({ type: "cancel", lane: "ensemble" }) }, "Cancel");
-    panes.ensemble.replaceChildren(h("p", { class: "aw-help" }, "A measure of each variant over N seeds, on every core (the ensemble engine); the table fills in per seed as results arrive, with the running ratio, its 95 % interval, the Wilcoxon p and the verdict."),
-      h("div", { class: "aw-row" }, measure, preset, h("label", {}, "seeds ", seeds), start, stop), ens.progress, ens.stats, ens.table);
+    panes.ensemble.replaceChildren(h("p", { class: "aw-help" }, "A measure of each variant over N seeds, on every core (the ensemble engine); the table fills in per seed as results arrive, with the running ratio, its 95 % interval, the Wilcoxon p and the verdict. \"Until decided\" adds seeds in stages of 10 and stops at the first stage where every verdict is decided (holds, no effect, or the other way), as asperity2d.compare(seeds=\"auto\") does."),
+      h("div", { class: "aw-row" }, measure, preset, mode, fixedBox, autoBox, start, stop), ens.progress, ens.stats, ens.table);
+  }
+  function seedRows(seeds) {
+    const E = S.ensemble;
+    for (const s of seeds) ens.table.append(h("tr", {}, h("td", {}, String(s)), E.variants.map((v) => h("td", { "data-cell": `${v}/${s}`, text: "\u2026" }))));
+  }
+  function undecidedText(c, E) {  // an undecided row: about how many more seeds would decide it
+    if (c.verdict !== "undecided") return null;
+    if (c.more === null || c.more === undefined) return "undecided: no number of seeds would decide it at this spread (the effect sits at the margin)";
+    const left = E.design ? E.design.stages[E.design.stages.length - 1] - (E.stats ? E.stats.seeds_done : 0) : null;
+    return `undecided: about ${c.more} more seed${c.more === 1 ? "" : "s"}` + (left !== null && c.more > left ? ` (more than the ${left} left of the budget)` : "");
   }
   function onEnsemble(m) {
     const E = S.ensemble;
     if (m.type === "ensemble-start") {
-      Object.assign(E, { job: m.job, values: {}, stats: null, done: false, variants: m.variants, seeds: m.seeds, unit: m.unit, label: m.label });
+      Object.assign(E, { job: m.job, values: {}, stats: null, done: false, variants: m.variants, seeds: [], unit: m.unit, label: m.label,
+                         design: m.design || null, stage: null, end: null });
       ens.table.replaceChildren(h("tr", {}, h("th", {}, "seed"), m.variants.map((v) => h("th", {}, v))));
-      for (const s of m.seeds) ens.table.append(h("tr", {}, h("td", {}, String(s)), m.variants.map((v) => h("td", { "data-cell": `${v}/${s}`, text: "\u2026" }))));
-      ens.stats.textContent = `${m.label}: running on ${m.workers} worker${m.workers > 1 ? "s" : ""}\u2026`;
+      seedRows(m.seeds); E.seeds = m.seeds.slice();
+      ens.stats.textContent = `${m.label}: running on ${m.workers} worker${m.workers > 1 ? "s" : ""}` + (m.design ? `, seeds in ${m.design.text}\u2026` : "\u2026");
       ens.progress.classList.add("aw-busy"); ens.progress.firstChild.style.width = "0%";
       return;
     }
     if (m.job !== E.job) return;
-    if (m.type === "ensemble-value") {
+    if (m.type === "ensemble-stage") {
+      E.stage = m; seedRows(m.seeds); E.seeds = E.seeds.concat(m.seeds);
+    } else if (m.type === "ensemble-value") {
       (E.values[m.variant] = E.values[m.variant] || {})[m.seed] = m.value;
       const cell = ens.table.querySelector(`[data-cell="${CSS.escape(m.variant + "/" + m.seed)}"]`);
       if (cell) { cell.textContent = m.error ? "failed" : si(m.value, E.unit, 4); if (m.error) cell.title = m.error; }
       const n = Object.values(E.values).reduce((a, o) => a + Object.keys(o).length, 0);
-      ens.progress.firstChild.style.width = `${Math.round(100 * n / (E.variants.length * E.seeds.length))}%`;
+      const total = E.design ? E.design.stages[E.design.stages.length - 1] : E.seeds.length;
+      ens.progress.firstChild.style.width = `${Math.round(100 * n / (E.variants.length * total))}%`;
     } else if (m.type === "ensemble-stats") {
       E.stats = m;
-      ens.stats.replaceChildren(h("div", {}, `${E.label} \u2014 ${m.seeds_done} of ${E.seeds.length} seeds done`),
+      const L = m.look;
+      const head = !E.design ? `${E.label} \u2014 ${m.seeds_done} of ${E.seeds.length} seeds done`
+        : L.interim ? `${E.label} \u2014 ${m.seeds_done} seeds; interim: stage ${L.stage} of ${L.of} is judged after seed ${L.next}`
+        : `${E.label} \u2014 ${m.seeds_done} seeds; the look after stage ${L.stage} of ${L.of} (level ${L.nominal_alpha.toPrecision(2)})`;
+      ens.stats.replaceChildren(h("div", {}, head),
         ...Object.entries(m.summary).map(([v, s]) => h("div", {}, `${v}: mean ${si(s.mean, E.unit, 4)}, 95 % CI [${si(s.ci_low, E.unit, 3)}, ${si(s.ci_high, E.unit, 3)}]`)),
-        ...m.versus.map((c) => h("div", { class: "aw-verdict", "data-verdict": c.verdict },
+        ...m.versus.map((c) => { const more = undecidedText(c, E); return h("div", { class: "aw-verdict", "data-verdict": c.verdict, "data-more": more === null || c.more == null ? null : String(c.more) },
           `${c.variant} / ${c.reference}: ratio \u00d7${fix(c.ratio)}, 95 % interval ${c.ratio_ci[0] === null ? "not yet (too few seeds)" : `[${fix(c.ratio_ci[0])}, ${fix(c.ratio_ci[1])}]`}, Wilcoxon p = ${c.p_text}, ${c.n} seeds`,
-          h("br"), c.line)));
+          h("br"), c.line, more ? h("div", { class: "aw-more" }, more) : null); }));
     } else if (m.type === "ensemble-end") {
-      E.done = true; ens.progress.classList.remove("aw-busy"); ens.progress.firstChild.style.width = "100%";
+      E.done = true; E.end = m; ens.progress.classList.remove("aw-busy"); ens.progress.firstChild.style.width = "100%";
       if (!E.stats) ens.stats.textContent = `${E.label}: done (a ratio needs two variants and two seeds)`;
+      else if (E.design) ens.stats.append(h("div", { class: "aw-ensemble-end" }, m.decided
+        ? `decided after ${m.seeds_done} seeds in ${m.looks} stage${m.looks > 1 ? "s" : ""} (of up to ${m.max_seeds})`
+        : `the budget of ${m.max_seeds} seeds is spent before every verdict was decided`));
     }
   }
 

@@ -805,7 +805,20 @@
       if (m.zoomY) return m.zoomY;
       if (m.spec.limits && finished && !overlays.length) return m.spec.limits;
       if (!m.autoLimits || m.autoN !== N || m.autoV !== overlayVersion) {
-        m.autoLimits = robustLimits(traces.map((t) => t.values).concat(overlayTraces(m).map((t) => t.values)), m.spec.include_zero !== false);
+        const zero = m.spec.include_zero !== false;
+        // this run's axis as its meter has it alone (the difference channel: the difference's own) ...
+        let lim = !N ? null : difference === null && m.spec.limits && finished ? m.spec.limits.slice()
+          : robustLimits(traces.map((t) => t.values), zero);
+        // ... widened by each kept run's, as its own meter had it: a kept trace is never clipped
+        // more here than it was in its own run (one robust range over the runs pooled would clip
+        // the run whose extremes are the rarer ones)
+        if (difference === null) for (const ov of overlays) {
+          const vs = m.spec.traces.map((tr) => rawValues(ov.S, tr)).filter((v) => v);
+          if (!vs.length) continue;
+          const own = ov.limits && ov.limits[m.spec.id] ? ov.limits[m.spec.id] : robustLimits(vs, zero);
+          lim = lim ? [Math.min(lim[0], own[0]), Math.max(lim[1], own[1])] : own.slice();
+        }
+        m.autoLimits = lim || [-1, 1];
         m.autoN = N; m.autoV = overlayVersion;
       }
       return m.autoLimits;
@@ -1415,7 +1428,12 @@
       setOverlays(list) { overlays = (list || []).slice(); if (difference !== null && !overlays[difference]) difference = null; overlayVersion++; for (const m of meters) m.cache = null; requestRender(); },
       /* the meters show this run minus kept run k (interpolated at this run's samples); null: the runs themselves */
       setDifference(k) { difference = k === null || k === undefined || !overlays[k] ? null : k; overlayVersion++; for (const m of meters) { m.cache = null; m.zoomY = null; } requestRender(); },
-      snapshot() { return { T: T, S: S, samples: N }; },
+      /* this run's arrays, and each channel's axis as its meter draws it (kept runs widen later runs' axes to theirs) */
+      snapshot() {
+        const limits = {};
+        for (const c of channels) if (c.limits) limits[c.id] = c.limits.slice();
+        return { T: T, S: S, samples: N, limits: limits };
+      },
       onSelect(cb) { selectListeners.push(cb); },
       onEdit(cb) { editListeners.push(cb); },
       clearPreview() { state.preview = null; requestRender(); },
