@@ -75,13 +75,15 @@ def lab():
     env = {**os.environ, "JUPYTER_CONFIG_DIR": str(root / "config"), "JUPYTER_RUNTIME_DIR": str(root / "runtime"),
            "JUPYTERLAB_SETTINGS_DIR": str(root / "settings"), "JUPYTERLAB_WORKSPACES_DIR": str(root / "workspaces"),
            "IPYTHONDIR": str(root / "ipython")}
+    news = root / "settings" / "@jupyterlab" / "apputils-extension"  # no "Jupyter news?" toast over the cell
+    news.mkdir(parents=True)
+    (news / "notification.jupyterlab-settings").write_text(json.dumps({"fetchNews": "false"}))
     port = _free_port()
     log = open(root / "lab.log", "w")
     proc = subprocess.Popen([sys.executable, "-m", "jupyter", "lab", "--no-browser", "--ip=127.0.0.1",
                              f"--port={port}", "--port-retries=0", f"--ServerApp.root_dir={work}",
                              f"--IdentityProvider.token={TOKEN}", "--LabApp.expose_app_in_browser=True",
-                             "--LabApp.news_url=",
-                             *(["--allow-root"] if hasattr(os, "geteuid") and os.geteuid() == 0 else [])],  # CI runs as root
+                                                          *(["--allow-root"] if hasattr(os, "geteuid") and os.geteuid() == 0 else [])],  # CI runs as root
                             cwd=work, env=env, stdout=log, stderr=subprocess.STDOUT)
     base = f"http://127.0.0.1:{port}"
     try:
@@ -179,6 +181,17 @@ def test_the_widget_renders_and_runs_in_jupyterlab(lab, browser):
     assert probe["errors"] == [], probe["errors"]
     text = browser.execute_script("return document.querySelector('.jp-OutputArea').textContent")
     assert "Error displaying widget" not in text and "Failed to load model" not in text
+    # at the cell's width nothing is cut off: every header button and every meter's menu and
+    # buttons inside the widget's box and their meter's
+    cut = browser.execute_script("""
+        const aw = document.querySelector('.jp-OutputArea .aw'), R = aw.getBoundingClientRect(), out = [];
+        for (const b of aw.querySelectorAll('.aw-header > *:not(.aw-status)')) { const r = b.getBoundingClientRect();
+          if (r.width && (r.right > R.right + 1 || r.left < R.left - 1)) out.push(b.textContent); }
+        for (const m of aw.querySelectorAll('.aw-player .ap-meter')) { const M = m.getBoundingClientRect();
+          for (const b of m.querySelectorAll('.ap-meter-head select, .ap-meter-head button')) { const r = b.getBoundingClientRect();
+            if (r.right > M.right + 1) out.push(b.textContent.slice(0, 20)); } }
+        return [out, R.width];""")
+    assert cut[0] == [], cut
     severe = [e for e in browser.get_log("browser") if e["level"] == "SEVERE" and "favicon" not in e["message"]]
     assert severe == [], severe
     print(f"widget rendered {rendered_s:.1f} s after Run All")
