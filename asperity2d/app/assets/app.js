@@ -255,8 +255,8 @@ function render({ model, el }) {
       const r = S.run;
       r.chunks += 1; r.samples = player.samples; r.t = m.t;
       if (r.firstChunkMs === null) r.firstChunkMs = performance.now() - (S.changedAt || r.started);
-      r.chunkLog.push({ at: performance.now(), samples: r.samples, index: player.api.state().index });
       if (follow) player.setCursor(m.t);  // the scene shows the newest computed state
+      r.chunkLog.push({ at: performance.now(), samples: r.samples, index: player.api.state().index });
     } else if (m.type === "run-end") {
       player.finish(m.final);
       Object.assign(S.run, { running: false, finished: true, summary: m.summary, samples: player.samples,
