@@ -82,6 +82,9 @@ PARAMETERS = OOTEN_PARAMETERS + (
     _P("lateral_damping", 0.0, "N s/m", "dampers in parallel with `lateral_stiffness`"),
     _P("interference", None, "m", "fixed track: how far the deepest tip reaches below the highest "
        "lower tip (default a quarter of the asperity height)"),
+    _P("slider_start", None, "m", "where the slider's rear tip starts along the track, the first lower "
+       "tip at 0 (default the set-up's: left of the surface on the fixed track, over the first valley "
+       "when free)"),
     _P("mu", None, "1", "sets `mu_static` and `mu_kinetic` to one value"),
     _P("mu_kinetic", None, "1", "kinetic friction coefficient (default two thirds of `mu_static`)"),
     _P("slip_distance", None, "m", "how far a stuck contact must slide without pause before it "
@@ -409,7 +412,7 @@ def make_scene(*, spacing: str = "regular", seed: int = 0, profile: str = "full"
     slider = Slider(
         profile=upper_shape, spacing=upper_spacing, shapes=upper_shapes,
         mass=p["slider_mass"], track=p["track"], normal_load=p["normal_load"],
-        interference=interference)
+        interference=interference, start=p["slider_start"])
     if drive == "spring":
         drv = SpringDrive(stiffness=p["drive_stiffness"], velocity=p["drive_velocity"],
                           damping=p["drive_damping"], preload=p["drive_preload"])

@@ -121,6 +121,25 @@ class Scene:
                         f"`interference` ({self.slider.interference:g} m) puts the fixed track's tips at "
                         f"{level:g} m, at or below the profile's rigid valley floor ({highest:g} m): the "
                         "slider would jam; use a smaller `interference`")
+        if self.slider.start is not None:
+            self._check_start()
+
+    def _check_start(self) -> None:
+        """A slider start the run can begin from: on the fixed track (at its working depth) its
+        front base clear of the first lower base; a free slider (it starts above the tips and
+        settles) not past the last lower tip."""
+        start, lower_x = self.slider.start, self.lower.tips()
+        if self.slider.track == "fixed":
+            left = float(np.ravel(self.lower.runs()[0])[0])
+            right = float(np.ravel(self.slider.runs()[1])[-1])
+            latest = float(lower_x[0]) - left - right - float(self.slider.tips()[-1])
+            if start > latest:
+                raise SceneError(f"`slider_start` ({start:g} m) puts the fixed-track slider's front tip over the "
+                                 f"lower surface at its working depth: it must be at most {latest:g} m (its "
+                                 "front base clear of the first lower base), or use track = \"free\"")
+        elif start > float(lower_x[-1]):
+            raise SceneError(f"`slider_start` ({start:g} m) is past the last lower tip ({float(lower_x[-1]):g} m): "
+                             "the slider would start off the surface")
 
     # -- display -------------------------------------------------------------
     def __repr__(self) -> str:

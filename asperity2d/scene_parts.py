@@ -207,9 +207,14 @@ class Slider(SurfaceGeometry):
     lower tip). ``track="free"``: free to move vertically, pressed down by
     ``normal_load`` (N). ``shapes`` gives each upper asperity its own shape
     (heights and levels measured downwards), as for :class:`~asperity2d.LowerSurface`.
+    ``start`` (m) is where its rear tip starts along the track, in the lower surface's x (its
+    first tip at 0); None: the set-up's start (left of the surface on the fixed track, its front
+    base a tenth of a base clear of the first lower base; over the first valley when free). A
+    run that starts the slider engaged (the critical force from rest) starts it over the first
+    valley whatever ``start`` says.
 
     Each field is one of :func:`~asperity2d.make_scene`'s keywords (``upper_count``, ``slider_mass``,
-    ``track``, ``normal_load``, ``interference``, ...).
+    ``track``, ``normal_load``, ``interference``, ``slider_start``, ...).
 
     Raises
     ------
@@ -241,10 +246,13 @@ class Slider(SurfaceGeometry):
     normal_load: float = OOTEN_DEFAULTS["normal_load"]
     interference: float | None = None
     shapes: Shapes | None = None
+    start: float | None = None
 
     def __post_init__(self):
         self._check_shapes()
         object.__setattr__(self, "mass", check_positive("slider_mass", self.mass))
+        if self.start is not None:  # where it lies against the surface is the Scene's check
+            object.__setattr__(self, "start", check_finite("slider_start", self.start))
         check_choice("track", self.track, TRACKS)
         object.__setattr__(self, "normal_load", check_nonnegative("normal_load", self.normal_load))
         if self.interference is None:

@@ -34,6 +34,8 @@ def default_duration(scene: Scene) -> float:
     """Time limit (s) when ``duration=None``: long enough to cross the surface."""
     lower_x = scene.lower.tips()
     span = (lower_x[-1] - lower_x[0]) + scene.slider.tips()[-1] + 4 * scene.lower.spacing.mean_pitch
+    if scene.slider.start is not None:  # a start of its own: the way to the surface as well
+        span += max(0.0, float(lower_x[0]) - scene.slider.start)
     if isinstance(scene.drive, SpringDrive):
         return 2.0 * span / scene.drive.velocity + 20.0 * scene.slowest_period()
     force = max(abs(scene.drive.force), 1e-300)

@@ -609,3 +609,61 @@ def test_the_ensemble_refuses_a_bad_seed_budget_in_one_line():
         assert error["message"].startswith(text), error
         page.messages.clear()
     page.session.close()
+
+
+# -- the slider's start: a scene field, set on the stage ---------------------------------------------
+def test_slider_start_moves_the_first_contact_by_its_distance_over_the_drive_speed(tmp_path):
+    """``slider_start`` is where the slider's rear tip is at t = 0; starting d farther left on the
+    fixed track, the spring-driven slider meets the surface d / v later. The drive spring from
+    rest leaves the slider oscillating about the drive end's steady lag with amplitude v / omega
+    (omega = sqrt(k / M), undamped): each run's contact time is off its steady one by at most
+    1 / omega, so the two differ from d / v by at most 2 / omega (1.8 ns here), plus a sample."""
+    import dataclasses
+    import math
+
+    def first_contact(result):
+        return result.t[np.argmax(np.abs(result.normal_force) > 0)]
+
+    scene = a.make_scene(lower_count=6, upper_count=2)
+    here = a.simulate(scene, 3e-7)
+    start = -4e-6
+    moved = scene.replace(slider=dataclasses.replace(scene.slider, start=start))
+    there = a.simulate(moved, 3e-7)
+    assert a.Scene.from_toml(moved.to_toml(tmp_path / "moved.toml")) == moved  # the whole-scene file keeps it
+    assert there.x[0] == start and here.x[0] < 0  # the rear tip there at t = 0 (the set-up's start otherwise)
+    d, v = float(here.x[0]) - start, scene.drive.velocity
+    omega = math.sqrt(scene.drive.stiffness / scene.slider.mass)
+    assert abs((first_contact(there) - first_contact(here)) - d / v) <= 2 / omega + (here.t[1] - here.t[0])
+    assert a.make_scene(lower_count=6, upper_count=2, slider_start=start).slider.start == start
+    for bad, says in [(1e-6, "`slider_start` (1e-06 m) puts the fixed-track slider's front tip over the lower surface"),
+                      (math.nan, "`slider_start` must be a finite number")]:
+        with pytest.raises(a.SceneError, match=re.escape(says)):
+            a.make_scene(lower_count=6, upper_count=2, slider_start=bad)
+    with pytest.raises(a.SceneError, match="past the last lower tip"):
+        a.make_scene(lower_count=6, upper_count=2, track="free", slider_start=7e-6)
+
+
+def test_a_slider_start_set_on_the_page_saves_as_toml_and_python_that_reproduce_the_run(tmp_path, capsys):
+    page = Page()
+    page.session.handle({"type": "set", "values": {**SMALL, "slider_start": "-3.1e-06", "duration": "1.5e-7"}})
+    valid = page.wait(lambda m: m["type"] == "valid")
+    assert valid["bodies"]["slider"]["start"] == -3.1e-06  # the stage's panel shows it
+    page.wait(lambda m: m["type"] == "run-end")
+    app = page.session.result
+    assert app.x[0] == -3.1e-06
+    page.session.handle({"type": "export", "what": "toml"})
+    (tmp_path / "scene.toml").write_text(page.wait(lambda m: m["type"] == "export")["text"])
+    assert main(["run", str(tmp_path / "scene.toml"), "--save", str(tmp_path / "cli.npz")]) == 0
+    cli = a.load(tmp_path / "cli.npz")
+    for name in ARRAYS:
+        assert np.array_equal(getattr(cli, name), getattr(app, name)), name
+    namespace = {}
+    exec(controls.to_python(page.session.params, page.session.run_settings).replace("result = simulate", "_ = None and simulate"),
+         namespace)
+    assert namespace["scene"] == cli.scene and cli.scene.slider.start == -3.1e-06
+    # a start over the surface on the fixed track: one line on that control, nothing runs
+    page.messages.clear()
+    page.session.handle({"type": "set", "values": {**SMALL, "slider_start": "1e-6"}, "changed": "slider_start"})
+    invalid = page.wait(lambda m: m["type"] == "invalid")
+    assert list(invalid["errors"]) == ["slider_start"] and not page.of("run-start")
+    page.session.close()

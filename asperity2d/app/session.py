@@ -350,13 +350,13 @@ def stop_workers(workers: int) -> None:
 
 def bodies(scene) -> dict:
     """What the stage's selection panel shows of each body (SI): every lower asperity's x, height,
-    stiffness, damping and mass, and the slider's mass, track and load."""
+    stiffness, damping and mass, and the slider's mass, track, load and start (None: the set-up's)."""
     lower, slider = scene.lower, scene.slider
     return {"lower": {"x": [float(v) for v in lower.tips()], "height": [float(v) for v in lower.heights()],
                       "stiffness": list(lower.stiffness), "damping": list(lower.damping), "mass": list(lower.mass),
                       "pitch": float(lower.spacing.mean_pitch), "base": float(lower.profile.base)},
             "slider": {"mass": float(slider.mass), "track": slider.track, "normal_load": float(slider.normal_load),
-                       "count": int(slider.count)}}
+                       "count": int(slider.count), "start": slider.start}}
 
 
 def _expected_duration(scene, default_duration) -> float:

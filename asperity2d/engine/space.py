@@ -284,6 +284,8 @@ def _build_slider(space, scene, u: Units, bias: float, lower: dict, engaged: boo
         y0 = y_start = clear
         if s.track == "fixed":  # the track's height; the slider starts above it
             y0 = lower["height"] - s.interference / u.length + h_up
+    if s.start is not None and not engaged:  # the scene's own start: its rear tip there, at the same height
+        x0 = s.start / u.length - float(apex[0])
     body.position = (x0, y_start)
     flt = pymunk.ShapeFilter(categories=SLIDER, mask=LOWER | FLOOR)
     shapes = []

@@ -127,7 +127,7 @@ function render({ model, el }) {
   }
   const playerHost = h("div", { class: "aw-player" });
   const inspector = h("div", { class: "aw-inspector", "data-panel": "selection" },
-                      h("span", { class: "aw-help" }, "Click a lower asperity or the slider to select it; drag a lower asperity along the surface to move it."));
+                      h("span", { class: "aw-help" }, "Click a lower asperity or the slider to select it; drag a lower asperity along the surface to move it, the slider along its track to set its start."));
   const keptBox = h("div", { class: "aw-kept", hidden: true });
   panes.run.append(inspector, keptBox, playerHost, h("details", { class: "aw-py" }, h("summary", {}, "make_scene call"), note));
   const sideWrap = h("div", { class: "aw-side-wrap" }, formError, sidebar);
@@ -243,7 +243,7 @@ function render({ model, el }) {
       player.setOverlays(S.kept);
       if (S.difference !== null) player.setDifference(S.difference);
       player.onSelect((sel) => select(sel));
-      player.onEdit((edit) => moveLower(edit.index, edit.dx));
+      player.onEdit((edit) => (edit.kind === "slider" ? moveSlider(edit.dx) : moveLower(edit.index, edit.dx)));
       if (S.selected && player.api.select) player.api.select(S.selected);
       Object.assign(S.run, { job: m.job, running: true, chunks: 0, samples: 0, t: 0, started: performance.now(),
                               firstChunkMs: null, endMs: null, finished: false, summary: null, chunkLog: [],
@@ -284,6 +284,16 @@ function render({ model, el }) {
     S.selected = { kind: "lower", index: j };
     setControl("lower_positions", tomlList(xs));
   }
+  function sliderStart() {  // where the slider's rear tip starts: the scene's slider_start, else where this run began
+    if (S.bodies && S.bodies.slider.start !== null && S.bodies.slider.start !== undefined) return S.bodies.slider.start;
+    return player && player.samples ? player.snapshot().S.x[0] : null;
+  }
+  function moveSlider(dx) {
+    const x0 = sliderStart();
+    if (x0 === null || !isFinite(dx)) return;
+    S.selected = { kind: "slider", index: null };
+    setControl("slider_start", String(x0 + dx));
+  }
   function select(sel) { S.selected = sel; showSelection(); }
   function showSelection() {
     const sel = S.selected, B = S.bodies;
@@ -308,11 +318,14 @@ function render({ model, el }) {
         h("button", { class: "aw-btn", "data-act": "unmove", title: "every lower asperity back on its spacing", onclick: () => setControl("lower_positions", "") }, "undo moves")), ...rows,
         h("div", { class: "aw-help" }, "Edits go into the scene's per-asperity fields (lists); the height follows the surface's shape."));
     } else {
+      const x0 = sliderStart();
+      field("start", x0 === null ? "" : x0, "m", (t) => setControl("slider_start", t.trim()));
       field("slider_mass", B.slider.mass, "kg", (t) => setControl("slider_mass", t));
       field("normal_load", B.slider.normal_load, "N", (t) => setControl("normal_load", t));
       field("track", B.slider.track, "", (t) => setControl("track", t));
-      inspector.replaceChildren(h("div", { class: "aw-inspector-title" }, `slider (${B.slider.count} tips)`), ...rows,
-        h("div", { class: "aw-help" }, "The slider starts left of the surface (fixed track) or over its first valley (free)."));
+      inspector.replaceChildren(h("div", { class: "aw-inspector-title" }, `slider (${B.slider.count} tips)`,
+        h("button", { class: "aw-btn", "data-act": "unstart", title: "the set-up's start: left of the surface (fixed track), over the first valley (free)", onclick: () => setControl("slider_start", "") }, "set-up's start")), ...rows,
+        h("div", { class: "aw-help" }, "Drag the slider along its track to set its start (slider_start: its rear tip's x, the first lower tip at 0); by default it starts left of the surface (fixed track) or over the first valley (free)."));
     }
     if (player && player.api.select) player.api.select(sel);
     showErrors(S.errors);

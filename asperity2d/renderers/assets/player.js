@@ -1242,9 +1242,9 @@
       const d = drag; drag = null; ui.scene.classList.remove("dragging");
       if (!d || !d.edit) return;
       state.selected = d.edit; render(); emitSelect({ ...d.edit });
-      if (d.moved && d.edit.kind === "lower" && sceneState.camera) {
-        const c = sceneState.camera;
-        emitEdit({ kind: "lower", index: d.edit.index, dx: (ev.clientX - d.x) / (c.scale * c.zoom) });
+      if (d.moved && sceneState.camera) { // a lower asperity moved along the surface, or the slider's start along its track
+        const c = sceneState.camera, dx = (ev.clientX - d.x) / (c.scale * c.zoom);
+        emitEdit(d.edit.kind === "lower" ? { kind: "lower", index: d.edit.index, dx: dx } : { kind: "slider", index: null, dx: dx });
       }
     });
     listen(ui.scene, "pointermove", (ev) => {
@@ -1416,6 +1416,9 @@
       dragLower: (j, dxPx) => { // as a person drags lower asperity j by dxPx pixels (tests)
         const c = sceneState.camera; if (!c) return null;
         const dx = dxPx / (c.scale * c.zoom); emitEdit({ kind: "lower", index: j, dx: dx }); return dx; },
+      dragSlider: (dxPx) => { // as a person drags the slider by dxPx pixels: its start moves (tests)
+        const c = sceneState.camera; if (!c) return null;
+        const dx = dxPx / (c.scale * c.zoom); emitEdit({ kind: "slider", index: null, dx: dx }); return dx; },
       exportFrame: () => frameSvg(),
       events: () => eventList().map((e) => ({ t: e.t, end: e.end, label: e.label, lands: eventTime(e) })),
       jumpToEvent: (k) => { const e = eventList()[k]; pause(); userSeek(eventTime(e)); return T[state.index]; },
