@@ -497,3 +497,35 @@ def test_the_page_at_a_phone_a_small_laptop_and_a_desktop_width(server, browser,
             shot(browser, "app_1000_compare.png")
     finally:
         browser.set_window_size(1280, 800)
+
+
+@pytest.mark.slow
+def test_dragging_the_slider_sets_its_start(server, browser):
+    """Drag the slider a micrometre to the left: ``slider_start`` is where its rear tip now starts,
+    the new run begins there, and the slider's panel shows it."""
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.by import By
+
+    browser.get(server)
+    wait_for(browser, "s.schema && s.run.job !== null")
+    type_into(browser, "lower_count", "6")
+    type_into(browser, "upper_count", "2")
+    job = wait_run_after(browser, 2)
+    x0 = browser.execute_script("return window.asperityWorkbench.player().snapshot().S.x[0]")
+    box, scale, zoom = browser.execute_script(
+        "const p = window.asperityWorkbench.player().api.state(); return [p.drawn.slider_box, p.camera.scale, p.camera.zoom]")
+    canvas = browser.find_element(By.CSS_SELECTOR, ".aw-player .ap-scene")
+    w, h = browser.execute_script("const r = arguments[0].getBoundingClientRect(); return [r.width, r.height]", canvas)
+    dx, dy = int(round(0.5 * (box[0] + box[2]) - w / 2)), int(round(0.5 * (box[1] + box[3]) - h / 2))
+    shift = int(round(1e-6 * scale * zoom))
+    ActionChains(browser).move_to_element_with_offset(canvas, dx, dy).click_and_hold() \
+        .move_by_offset(-shift // 2, 0).move_by_offset(-(shift - shift // 2), 0).release().perform()
+    wait_run_after(browser, job)
+    start = float(state(browser, "s.values.slider_start"))
+    assert start == pytest.approx(x0 - 1e-6, abs=1.0 / (scale * zoom))  # a micrometre, to a pixel
+    assert state(browser, "s.bodies.slider.start") == start
+    assert browser.execute_script("return window.asperityWorkbench.player().snapshot().S.x[0]") == start
+    assert state(browser, "s.selected.kind") == "slider"
+    shown = browser.find_element(By.CSS_SELECTOR, '.aw-inspector [data-field="start"]').get_attribute("value")
+    assert float(shown) == start
+    assert console_errors(browser) == []

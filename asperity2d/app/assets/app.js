@@ -220,6 +220,7 @@ function render({ model, el }) {
     else if (r.job !== null) text = "stopped";
     else text = "ready";
     status.textContent = status.classList.contains("aw-flash") ? status.dataset.flash : text;
+    status.title = status.textContent;  // the whole line where the header cuts it
     bar.classList.toggle("aw-busy", r.running);
     const duration = player && r.duration ? Math.min(1, r.t / r.duration) : (r.finished ? 1 : 0);
     bar.firstChild.style.width = `${Math.round(100 * (r.finished ? 1 : duration))}%`;
