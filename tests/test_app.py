@@ -661,6 +661,7 @@ def test_a_slider_start_set_on_the_page_saves_as_toml_and_python_that_reproduce_
     exec(controls.to_python(page.session.params, page.session.run_settings).replace("result = simulate", "_ = None and simulate"),
          namespace)
     assert namespace["scene"] == cli.scene and cli.scene.slider.start == -3.1e-06
+    assert controls.params_of(cli.scene)["slider_start"] == -3.1e-06  # explore(scene) starts from it too
     # a start over the surface on the fixed track: one line on that control, nothing runs
     page.messages.clear()
     page.session.handle({"type": "set", "values": {**SMALL, "slider_start": "1e-6"}, "changed": "slider_start"})

@@ -347,7 +347,7 @@ _FIELDS = {"lower_count": "lower.count", "upper_count": "slider.spacing.count", 
            "restitution": "contact.restitution", "drive_stiffness": "drive.stiffness",
            "drive_velocity": "drive.velocity", "drive_force": "drive.force", "drive_damping": "drive.damping",
            "drive_preload": "drive.preload", "gravity": "gravity",
-           "pitch": "lower.spacing.pitch"}
+           "pitch": "lower.spacing.pitch", "slider_start": "slider.start"}
 
 
 def params_of(scene) -> dict:
