@@ -369,9 +369,10 @@ class RateState(ContactLaw):
     unstable below k_c = N (b - a) / D_c (1 + m V^2 / (N a D_c)) (J. R. Rice & A. Ruina,
     *Stability of steady frictional slipping*, J. Appl. Mech. 50, 1983).
 
-    C version: ``rate_state_mu`` and the ``law_kind == 3`` branch of ``engine/_kernel.c``, the same
-    operations and the same libm functions (``log``, ``exp``, ``asinh``) as this reference, which
-    Python's :mod:`math` calls: the two loops agree to the bit (``tests/test_contact_laws.py``).
+    C version: ``asp_rate_state_step`` (the ``law_kind == 3`` branch) in ``engine/_kernel.c``, the
+    same operations and the same libm functions (``log``, ``exp``, ``expm1``, ``asinh``) as this
+    reference, which Python's :mod:`math` calls: the two loops agree to the bit
+    (``tests/test_contact_laws.py``).
 
     Parameters
     ----------
