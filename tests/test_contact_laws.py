@@ -150,7 +150,8 @@ def test_the_c_rate_state_step_is_the_reference_on_every_branch():
     for law in (RateState(a=0.01, b=0.015, d_c=1e-9, v_0=1.0, mu_0=0.3, dt=1e-12),
                 RateState(a=0.005, b=0.0075, d_c=3e-3, v_0=2e-4, mu_0=0.2, dt=0.7)):
         ctx = ffi.new("asp_ctx *")
-        ctx.rs_a, ctx.rs_b, ctx.rs_d_c, ctx.rs_v_0, ctx.rs_mu_0, ctx.rs_dt = law.a, law.b, law.d_c, law.v_0, law.mu_0, law.dt
+        for name in ("a", "b", "d_c", "v_0", "mu_0", "dt"):
+            setattr(ctx, f"rs_{name}", getattr(law, name))
         theta_c = ffi.new("double *")
         xs = []
         for v in (0.0, 1e-300, 1e-12, 1e-3, 0.37, 1.0, 3.0, 1e4, 1e12):
@@ -158,9 +159,11 @@ def test_the_c_rate_state_step_is_the_reference_on_every_branch():
                 for new in (False, True):
                     mu, (theta_py,) = law.step((theta,), v, 1.0, new)
                     theta_c[0] = theta
-                    assert (lib.asp_rate_state_step(ctx, new, v, theta_c), theta_c[0]) == (mu, theta_py), (v, theta, new)
-                    if v > 0:
-                        xs.append(math.log(v / (2 * law.v_0)) + (law.mu_0 + law.b * math.log(law.v_0 * theta_py / law.d_c)) / law.a)
+                    mu_c = lib.asp_rate_state_step(ctx, new, v, theta_c)
+                    assert (mu_c, theta_c[0]) == (mu, theta_py), (v, theta, new)
+                    if v > 0:  # RateState.coefficient's x
+                        ln_state = math.log(law.v_0 * theta_py / law.d_c)
+                        xs.append(math.log(v / (2 * law.v_0)) + (law.mu_0 + law.b * ln_state) / law.a)
         assert min(xs) < 30.0 < max(xs)  # both forms of the coefficient were compared
 
 
