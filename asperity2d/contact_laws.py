@@ -336,7 +336,8 @@ class ViscousCoulomb(ContactLaw):
         return self.step((), v / self.velocity, 0.0, False)[0]
 
 
-_LN2 = math.log(2.0)
+#: ln 2 rounded to a double (what math.log(2.0) gives); ``engine/_kernel.c`` uses the same literal
+_LN2 = 0.6931471805599453
 
 
 @dataclass(frozen=True)
@@ -360,12 +361,18 @@ class RateState(ContactLaw):
     engine resolves), and 0 at v = 0 (a contact resists only by slipping). Over a step of
     length dt at the step's slip speed v the ageing law is integrated exactly:
     theta <- D_c / v + (theta - D_c / v) exp(-v dt / D_c), and theta <- theta + dt at v = 0,
-    which is stable for any dt. A contact forms at the reference state theta = D_c / v_0
+    which is stable for any dt. It is evaluated as theta e^(-eps) - (D_c / v) expm1(-eps),
+    eps = v dt / D_c: two terms >= 0, so theta stays > 0 and keeps its precision at creep
+    speeds (the first form subtracts two numbers near D_c / v, which for eps under ~1e-16 left
+    nothing of theta). A contact forms at the reference state theta = D_c / v_0
     (mu = mu_0 at v_0). A spring-block of stiffness k, mass m, normal force N sliding at V is
     unstable below k_c = N (b - a) / D_c (1 + m V^2 / (N a D_c)) (J. R. Rice & A. Ruina,
     *Stability of steady frictional slipping*, J. Appl. Mech. 50, 1983).
 
-    No C version: a scene with this law steps in the Python loop (the engine says so).
+    C version: ``asp_rate_state_step`` (the ``law_kind == 3`` branch) in ``engine/_kernel.c``, the
+    same operations and the same libm functions (``log``, ``exp``, ``expm1``, ``asinh``) as this
+    reference, which Python's :mod:`math` calls: the two loops agree to the bit
+    (``tests/test_contact_laws.py``).
 
     Parameters
     ----------
@@ -410,6 +417,7 @@ class RateState(ContactLaw):
         LawParameter("mu_0", None, "1", "rate-and-state law: the steady coefficient at `v_0` "
                      "(default `mu_kinetic`)", minimum="nonnegative"),
     )
+    kernel = "rate-state"
     state_names = ("theta",)
     initial = (math.nan,)  # replaced on contact by the reference state D_c / v_0
 
@@ -438,8 +446,10 @@ class RateState(ContactLaw):
         if new:
             theta = self.d_c / self.v_0
         elif v > 0:
-            ss = self.d_c / v  # the exact solution of the ageing law at constant v over the step
-            theta = ss + (state[0] - ss) * math.exp(-v * self.dt / self.d_c)
+            # the exact solution of the ageing law at constant v over the step, as two terms >= 0
+            # (no cancellation between theta and D_c / v, however slow the creep)
+            eps = v * self.dt / self.d_c
+            theta = state[0] * math.exp(-eps) - self.d_c / v * math.expm1(-eps)
         else:
             theta = state[0] + self.dt
         return self.coefficient(v, theta), (theta,)

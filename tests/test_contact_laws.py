@@ -85,14 +85,23 @@ def test_every_registered_contact_law_meets_its_own_steady_curve(outside_law):
 
 
 def test_a_law_without_a_c_version_steps_in_python_and_says_so(outside_law):
-    for name, cls in (("rate-state", "RateState"), (outside_law, "LinearWeakening")):
-        scene = a.make_scene(contact_law=name, lower_count=4, upper_count=2)
-        engine = Engine(scene, default_dt(scene))
+    scene = a.make_scene(contact_law=outside_law, lower_count=4, upper_count=2)
+    engine = Engine(scene, default_dt(scene))
+    engine.step(5)
+    assert engine._kernel is None and engine.loop_reason == "the contact law LinearWeakening has no C implementation"
+    # every law of the package has one: none of them says so
+    for name in ("static-kinetic", "velocity-weakening", "viscous", "rate-state"):
+        engine = Engine(a.make_scene(contact_law=name, lower_count=4, upper_count=2), default_dt(scene))
         engine.step(5)
-        assert engine._kernel is None and engine.loop_reason == f"the contact law {cls} has no C implementation"
+        assert engine.loop_reason is None, name
+        assert (engine._kernel is not None) == kernel.KERNEL, name
 
 
-C_LAWS = [("velocity-weakening", {"v_s": 50.0}), ("viscous", {"viscosity": 0.002})]
+# rate-state twice: its default a = 0.01 keeps x (RateState.coefficient) under 30, where mu is
+# a asinh(e^x); a = 0.005 (mu_0 / a = 40) puts every contact past it, on the x + ln 2 form; D_c
+# = 4 nm is ~1 step of slip at 400 m/s, so theta is between its old value and D_c / v each step
+C_LAWS = [("velocity-weakening", {"v_s": 50.0}), ("viscous", {"viscosity": 0.002}),
+          ("rate-state", {"d_c": 4e-9}), ("rate-state", {"rs_a": 0.005, "rs_b": 0.0075, "d_c": 4e-9})]
 
 
 @pytest.mark.skipif(not kernel.KERNEL, reason=f"the C loop is not usable here: {kernel.KERNEL_REASON}")
@@ -111,14 +120,51 @@ def test_a_c_law_steps_the_same_in_both_loops_to_the_bit(law, params, scene_args
             engine._kernel = None
         else:
             assert engine._kernel is not None and engine.loop_reason is None
-        engine.step(1500)
+        engine.step(700)
+        if loop == "C":  # 100 steps in Python in between: the law's state goes to the lists and back
+            held, engine._kernel = engine._kernel, None
+            engine.step(100)
+            engine._kernel = held
+        else:
+            engine.step(100)
+        engine.step(700)
         mu = engine.switch.mu
         assert [s.friction for s in engine.layout.lower_shapes] == mu.tolist()
-        out[loop] = (engine.bodies_internal().copy(), mu)
+        out[loop] = (engine.bodies_internal().copy(), mu, engine.switch.state)
     np.testing.assert_array_equal(out["C"][0], out["python"][0])
     np.testing.assert_array_equal(out["C"][1], out["python"][1])
+    np.testing.assert_array_equal(out["C"][2], out["python"][2])  # rate-state's theta (NaN: not touching)
     # the coefficients moved with the slip speed: more than the two values of a switch
     assert len(set(out["C"][1].tolist())) > 2
+
+
+@pytest.mark.skipif(not kernel.KERNEL, reason=f"the C loop is not usable here: {kernel.KERNEL_REASON}")
+def test_the_c_rate_state_step_is_the_reference_on_every_branch():
+    """The C loop's rate-and-state step (``asp_rate_state_step``, the function its loop calls)
+    against RateState.step, bit for bit, on the branches a run seldom reaches: slip speed 0
+    (theta ages by dt, mu = 0), a contact just formed, creep at 1e-300 (a denormal-range
+    log), x past 30 (the x + ln 2 form) and just under it, an underflowing exp(-v dt / D_c),
+    and an aged state. Both call the same libm (Python's math.log, exp, expm1 and asinh are
+    libm's; checked bit-equal here), so no tolerance: equal or not."""
+    ffi, lib = kernel.ffi, kernel.lib
+    for law in (RateState(a=0.01, b=0.015, d_c=1e-9, v_0=1.0, mu_0=0.3, dt=1e-12),
+                RateState(a=0.005, b=0.0075, d_c=3e-3, v_0=2e-4, mu_0=0.2, dt=0.7)):
+        ctx = ffi.new("asp_ctx *")
+        for name in ("a", "b", "d_c", "v_0", "mu_0", "dt"):
+            setattr(ctx, f"rs_{name}", getattr(law, name))
+        theta_c = ffi.new("double *")
+        xs = []
+        for v in (0.0, 1e-300, 1e-12, 1e-3, 0.37, 1.0, 3.0, 1e4, 1e12):
+            for theta in (1e-30, law.d_c / law.v_0, 2.5e-9, 1.0, 1e8):
+                for new in (False, True):
+                    mu, (theta_py,) = law.step((theta,), v, 1.0, new)
+                    theta_c[0] = theta
+                    mu_c = lib.asp_rate_state_step(ctx, new, v, theta_c)
+                    assert (mu_c, theta_c[0]) == (mu, theta_py), (v, theta, new)
+                    if v > 0:  # RateState.coefficient's x
+                        ln_state = math.log(law.v_0 * theta_py / law.d_c)
+                        xs.append(math.log(v / (2 * law.v_0)) + (law.mu_0 + law.b * ln_state) / law.a)
+        assert min(xs) < 30.0 < max(xs)  # both forms of the coefficient were compared
 
 
 def test_the_rate_state_state_follows_the_ageing_laws_exact_solution():
@@ -128,20 +174,27 @@ def test_the_rate_state_state_follows_the_ageing_laws_exact_solution():
     for _ in range(400):
         _, state = law.step(state, -v, 1.0, False)  # the sign of the slip does not matter
     ss = law.d_c / v
-    assert state[0] == pytest.approx(ss + (theta0 - ss) * math.exp(-v * 400e-12 / law.d_c), rel=1e-12)
+    assert state[0] == pytest.approx(ss + (theta0 - ss) * math.exp(-v * 400e-12 / law.d_c), rel=1e-12, abs=0)
     for _ in range(10):  # at rest the contact ages one step per step
         _, state = law.step(state, 0.0, 1.0, False)
-    assert state[0] == pytest.approx(ss + (theta0 - ss) * math.exp(-1.2) + 1e-11, rel=1e-12)
+    assert state[0] == pytest.approx(ss + (theta0 - ss) * math.exp(-1.2) + 1e-11, rel=1e-12, abs=0)
     # stable whatever the step: a step of 1000 D_c / v lands on the steady state, not past it
     coarse = RateState(a=0.01, b=0.015, d_c=1e-9, v_0=1.0, mu_0=0.3, dt=1e-6)
     mu, (theta,) = coarse.step((theta0,), v, 1.0, False)
-    assert theta == pytest.approx(ss, rel=1e-12) and mu == pytest.approx(coarse.steady(v), rel=1e-12)
+    assert theta == pytest.approx(ss, rel=1e-12, abs=0) and mu == pytest.approx(coarse.steady(v), rel=1e-12)
+    # creep: over a step at eps = v dt / D_c << 1 the contact ages by dt less eps (theta + dt / 2),
+    # to O(eps^2) -- theta keeps its precision at any creep speed (the form
+    # D_c / v + (theta - D_c / v) e^(-eps) cancels to ~ulp(D_c / v): 0 at 1e-300, and log(0))
+    for creep in (1e-8, 1e-300):
+        eps = creep * 1e-12 / law.d_c
+        _, (aged,) = law.step((theta0,), creep, 1.0, False)
+        assert aged == pytest.approx(theta0 + 1e-12 - eps * (theta0 + 0.5e-12), rel=1e-15, abs=0)
     # regularised: 0 at rest, never negative, the logarithmic form where v / v_0 e^(mu / a) >> 1
     assert law.coefficient(0.0, 1e-9) == 0.0 and law.coefficient(1e-30, 1e-9) >= 0.0
     assert law.steady(3.0) == pytest.approx(0.3 + (0.01 - 0.015) * math.log(3.0), rel=1e-14)
     # a contact forms at the reference state: mu_0 at v_0
     mu, (theta,) = law.step(law.initial, 1.0, 1.0, True)
-    assert mu == pytest.approx(0.3, rel=1e-14) and theta == pytest.approx(1e-9, rel=1e-14)
+    assert mu == pytest.approx(0.3, rel=1e-14) and theta == pytest.approx(1e-9, rel=1e-14, abs=0)
 
 
 @pytest.mark.parametrize("law,params", [("velocity-weakening", {"v_s": 2.5}), ("viscous", {"viscosity": 0.01}),
@@ -249,6 +302,22 @@ def test_the_contact_law_lesson_gives_a_verdict_per_law_and_measure(tmp_path, ca
     mu = summary["coefficients"]
     # the laws' own closed forms at rest and sliding: the viscous law has no static excess
     assert mu["viscous"]["rest"] < mu["viscous"]["drive"] and mu["static-kinetic"]["rest"] == 0.3
+
+
+@pytest.mark.slow  # ~10 s of CPU: two critical-force searches on the smallest track
+def test_the_lessons_long_limit_check_is_the_measures_own_search():
+    """contact_laws_spacing.py section 4: with the time limit four times longer, the run-up
+    critical force of a scene whose slider never runs out of time is the measure's value to the
+    bit (the same start, step and search; only the limit differs)."""
+    from scene_scripts import SCENES
+
+    from asperity2d.cli.args import load_script
+    from asperity2d.experiments.measures import MEASURES
+
+    lesson = load_script(SCENES / "contact_laws_spacing.py")
+    scene = a.make_scene(lower_count=2, upper_count=1, track="fixed", interference=0.125e-6, spacing="random",
+                         seed=0, contact_law="viscous", viscosity=0.005)
+    assert lesson.critical_run_up_long_limit(scene) == MEASURES.lookup("critical-run-up", "m").function(scene)
 
 
 def test_the_laws_examples_run(tmp_path, monkeypatch):

@@ -45,13 +45,16 @@ typedef struct {
     double y_track, track_tolerance, max_drift;
     double *lower_x0;
     /* the contact law (StickSlip.law), its state one entry per lower asperity; law_kind: 0 the
-     * static/kinetic switch, 1 velocity weakening, 2 viscous plus Coulomb (kernel.py's C_LAWS) */
+     * static/kinetic switch, 1 velocity weakening, 2 viscous plus Coulomb, 3 rate-and-state
+     * (kernel.py's C_LAWS); mu_idle: the law's coefficient of a contact not touching */
     int switch_active;
-    double switch_dt, stick_speed, slip_distance, mu_static, mu_kinetic;
+    double switch_dt, stick_speed, slip_distance, mu_static, mu_kinetic, mu_idle;
     int law_kind;
     double v_s, viscosity;
+    double rs_a, rs_b, rs_d_c, rs_v_0, rs_mu_0, rs_dt; /* RateState's fields, internal units */
     uint8_t *stuck, *present;
     double *slid, *mu;
+    double *theta; /* the rate-and-state law's state per lower asperity (NaN: not touching) */
     uintptr_t *shapes;
     uintptr_t slider_id;
     uintptr_t *ids; /* the lower bodies' ids, sorted ... */
@@ -111,9 +114,41 @@ static void project(asp_ctx *c)
     }
 }
 
+/* ln 2 rounded to a double: contact_laws.py's _LN2, the same literal */
+#define ASP_LN2 0.6931471805599453
+
+/* RateState.coefficient: mu at slip speed v >= 0 and state theta, regularised at v = 0 (the
+ * same libm calls as Python's math module makes -- log, exp, asinh, and expm1 in the step -- in
+ * the same order) */
+static double rate_state_mu(const asp_ctx *c, double v, double theta)
+{
+    if (v == 0) return 0.0;
+    double x = log(v / (2.0 * c->rs_v_0)) + (c->rs_mu_0 + c->rs_b * log(c->rs_v_0 * theta / c->rs_d_c)) / c->rs_a;
+    return c->rs_a * (x > 30.0 ? x + ASP_LN2 : asinh(exp(x)));
+}
+
+/* RateState.step for one contact: *theta its state, replaced by the new one (the ageing law solved
+ * exactly over the step at the slip speed v >= 0; the reference state D_c / v_0 for a contact just
+ * formed); returns the coefficient. Exported for tests/test_contact_laws.py, which holds it to the
+ * Python reference over the branches a run seldom reaches (v = 0, the large-x form). */
+double asp_rate_state_step(const asp_ctx *c, int is_new, double v, double *theta)
+{
+    double t;
+    if (is_new) {
+        t = c->rs_d_c / c->rs_v_0;
+    } else if (v > 0) {
+        double eps = v * c->rs_dt / c->rs_d_c;
+        t = *theta * exp(-eps) - c->rs_d_c / v * expm1(-eps);
+    } else {
+        t = *theta + c->rs_dt;
+    }
+    *theta = t;
+    return rate_state_mu(c, v, t);
+}
+
 /* StickSlip.update on the contacts just read: each touching lower asperity's slip speed (the
  * largest over the tips; its sign does not matter to the laws here), then the law. A lost contact
- * goes back to mu_kinetic, every C law's idle coefficient. */
+ * goes back to the law's initial state and its idle coefficient. */
 static void stick_slip(asp_ctx *c)
 {
     const asp_int_array *ia = (const asp_int_array *)c->arbiter_ints;
@@ -139,16 +174,17 @@ static void stick_slip(asp_ctx *c)
             c->has[i] = 1;
         }
     }
-    double v_stick = c->stick_speed, mu_s = c->mu_static, mu_k = c->mu_kinetic;
+    double v_stick = c->stick_speed, mu_s = c->mu_static, mu_k = c->mu_kinetic, mu_idle = c->mu_idle;
     set_friction_fn set_friction = (set_friction_fn)c->set_friction;
     for (int i = 0; i < n; i++) {
         if (!c->has[i]) {
             if (c->present[i]) { /* contact lost */
                 c->stuck[i] = 0;
                 c->slid[i] = 0.0;
-                if (c->mu[i] != mu_k) {
-                    set_friction((void *)c->shapes[i], mu_k);
-                    c->mu[i] = mu_k;
+                c->theta[i] = NAN;
+                if (c->mu[i] != mu_idle) {
+                    set_friction((void *)c->shapes[i], mu_idle);
+                    c->mu[i] = mu_idle;
                 }
             }
             continue;
@@ -159,6 +195,8 @@ static void stick_slip(asp_ctx *c)
             mu = mu_k + (mu_s - mu_k) * exp(-slip / c->v_s);
         } else if (c->law_kind == 2) { /* ViscousCoulomb.step */
             mu = mu_k + c->viscosity * slip;
+        } else if (c->law_kind == 3) { /* RateState.step */
+            mu = asp_rate_state_step(c, !c->present[i], slip, &c->theta[i]);
         } else { /* StaticKineticSwitch.step */
             if (!c->present[i]) { /* a new contact */
                 c->stuck[i] = slip < v_stick;

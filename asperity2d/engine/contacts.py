@@ -204,6 +204,8 @@ class StickSlip:
         if self.law.kernel == "static-kinetic":  # its (stuck, slid) live in the C loop's arrays
             kernel.stuck[:] = [s[0] for s in self._state]
             kernel.slid[:] = [s[1] for s in self._state]
+        elif self.law.kernel == "rate-state":  # its theta (NaN where not touching) likewise
+            kernel.theta[:] = [s[0] for s in self._state]
         kernel.mu[:] = self._mu
         kernel.present[:] = 0
         kernel.present[list(self._present)] = 1
@@ -216,6 +218,8 @@ class StickSlip:
             return
         if self.law.kernel == "static-kinetic":
             self._state = [(bool(s), d) for s, d in zip(k.stuck.tolist(), k.slid.tolist())]
+        elif self.law.kernel == "rate-state":
+            self._state = [(t,) for t in k.theta.tolist()]
         self._mu = k.mu.tolist()
         self._present = dict.fromkeys(np.flatnonzero(k.present).tolist()).keys()
         self._kernel = None

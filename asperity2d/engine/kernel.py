@@ -45,11 +45,13 @@ typedef struct {
     double y_track, track_tolerance, max_drift;
     double *lower_x0;
     int switch_active;
-    double switch_dt, stick_speed, slip_distance, mu_static, mu_kinetic;
+    double switch_dt, stick_speed, slip_distance, mu_static, mu_kinetic, mu_idle;
     int law_kind;
     double v_s, viscosity;
+    double rs_a, rs_b, rs_d_c, rs_v_0, rs_mu_0, rs_dt;
     uint8_t *stuck, *present;
     double *slid, *mu;
+    double *theta;
     uintptr_t *shapes;
     uintptr_t slider_id;
     uintptr_t *ids;
@@ -60,6 +62,7 @@ typedef struct {
 void asp_steps(asp_ctx *c, int64_t n);
 void asp_settle_steps(asp_ctx *c, int64_t n, double push);
 size_t asp_layout(int which);
+double asp_rate_state_step(const asp_ctx *c, int is_new, double v, double *theta);
 """
 
 ffi = lib = None
@@ -68,7 +71,7 @@ KERNEL_REASON: str | None = None
 #: The contact laws the C loop implements, by their ``kernel`` name
 #: (:attr:`asperity2d.contact_laws.ContactLaw.kernel`) -> ``law_kind`` in ``_kernel.c``, whose
 #: ``stick_slip`` is held to each one's Python reference ``step``.
-C_LAWS = {"static-kinetic": 0, "velocity-weakening": 1, "viscous": 2}
+C_LAWS = {"static-kinetic": 0, "velocity-weakening": 1, "viscous": 2, "rate-state": 3}
 #: True when :class:`Kernel` is usable.
 KERNEL = False
 
@@ -123,20 +126,24 @@ class Kernel:
         c.switch_dt, c.stick_speed, c.slip_distance = switch.dt, switch.stick_speed, switch.slip_distance
         law = switch.law
         c.law_kind = C_LAWS[law.kernel]
-        # each C law's parameters, internal units, as its Python reference holds them
-        c.mu_static = getattr(law, "mu_static", law.mu_kinetic)
-        c.mu_kinetic = law.mu_kinetic
+        # each C law's parameters, internal units, as its Python reference holds them (a field
+        # the law lacks is never read by its branch)
+        c.mu_idle = law.idle
+        c.mu_kinetic = getattr(law, "mu_kinetic", law.idle)
+        c.mu_static = getattr(law, "mu_static", c.mu_kinetic)
         c.v_s, c.viscosity = getattr(law, "v_s", 1.0), getattr(law, "viscosity", 0.0)
-        # the switch's state (handed over from its lists when the C loop first steps)
+        if law.kernel == "rate-state":
+            c.rs_a, c.rs_b, c.rs_d_c, c.rs_v_0, c.rs_mu_0, c.rs_dt = law.a, law.b, law.d_c, law.v_0, law.mu_0, law.dt
+        # the law's state (handed over from the switch's lists when the C loop first steps)
         self.stuck, self.present = np.zeros(n, np.uint8), np.zeros(n, np.uint8)
-        self.slid, self.mu = np.zeros(n), np.zeros(n)
+        self.slid, self.mu, self.theta = np.zeros(n), np.zeros(n), np.full(n, np.nan)
         self._shapes = np.array([_address(s._shape) for s in layout.lower_shapes], dtype=np.uintp)
         order = sorted(range(n), key=lambda i: layout.lower_bodies[i].id)
         self._ids = np.array([layout.lower_bodies[i].id for i in order], dtype=np.uintp)
         self._id_index = np.array(order, dtype=np.int32)
         self._slips, self._has = np.zeros(n), np.zeros(n, np.uint8)
         c.slider_id = layout.slider_id
-        for name in ("stuck", "present", "slid", "mu", "_shapes", "_ids", "_id_index", "_slips", "_has"):
+        for name in ("stuck", "present", "slid", "mu", "theta", "_shapes", "_ids", "_id_index", "_slips", "_has"):
             arr = getattr(self, name)
             ctype = {np.uint8: "uint8_t *", np.float64: "double *", np.uintp: "uintptr_t *",
                      np.int32: "int32_t *"}[arr.dtype.type]
