@@ -38,7 +38,9 @@ def test_results_do_not_depend_on_workers():
     assert serial == parallel
 
 
-@pytest.mark.parametrize("measure", ["peak-stick", "critical"])
+# peak-stick is the slow one (about 70 s on a quiet 2-core machine, in workers): the default run keeps
+# "critical", which exercises the same worker path; -m slow runs both
+@pytest.mark.parametrize("measure", [pytest.param("peak-stick", marks=pytest.mark.slow), "critical"])
 def test_real_measures_are_bit_identical_in_workers_and_here(measure):
     # a simulation's every bit is fixed by its scene (fixed dt, single-threaded pymunk, exactly
     # rounded contact sums): where it runs cannot change it

@@ -110,7 +110,8 @@ def test_stick_slip_fit_breakaway_is_the_wedge_law(calibration_run):
     assert fit.relative_rms < 0.015
 
 
-@pytest.mark.parametrize("stiffness, lower_count", [(1000.0, None), (500.0, 24), (2000.0, 12)])
+@pytest.mark.parametrize("stiffness, lower_count", [(1000.0, None), pytest.param(500.0, 24, marks=pytest.mark.slow),
+                                                    (2000.0, 12)])  # the 24-asperity track: -m slow
 def test_stick_slip_law_in_the_belt_solver_predicts_the_asperity_period(calibration_run, stiffness, lower_count):
     """The law fitted on the 1000 N/m run, run in the belt solver, gives the asperity period.
 
@@ -139,6 +140,7 @@ def test_stick_slip_cycles_needs_cycles():
         ft.stick_slip_cycles(a.simulate(scene))
 
 
+@pytest.mark.slow  # three calibration runs of random surfaces
 def test_pooled_law_of_random_surfaces_predicts_a_held_out_seed(calibration_run):
     """A law pooled over two random surfaces predicts a third seed's mean period.
 

@@ -83,6 +83,7 @@ def check_deterministic(scene, values: dict) -> None:
             assert math.isfinite(fine) and relative(fine, coarse) <= 0.01, (name, coarse, fine)
 
 
+@pytest.mark.slow  # every measure at dt and dt/2 (the -m slow study scenes repeat it per seed)
 def test_deterministic_measures_converge_at_their_default_step():
     seed = hidden_seeds(1)[0]
     scene = a.make_scene(spacing="random", seed=seed, drive="force", lower_count=6, upper_count=3)

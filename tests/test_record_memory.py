@@ -75,6 +75,7 @@ def test_a_sample_costs_88_bytes_for_the_slider_and_17_per_lower_asperity():
     assert Recorder(run.engine, lower=False).bytes_per_sample == 88  # the "<= 100 B"
 
 
+@pytest.mark.slow  # long runs on purpose; benchmarks/bench_long_run.py measures the same on a 1e8-step run
 @pytest.mark.skipif(sys.platform != "linux", reason="/proc/self/status (VmHWM) and page accounting of Linux")
 def test_resident_memory_is_flat_against_run_length_when_streamed(tmp_path):
     # steps, each recorded; the short run already fills the streamed record's one 4 MB block

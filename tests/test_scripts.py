@@ -56,6 +56,7 @@ def test_toml_scene_runs_saves_and_reanalyses(tmp_path, capsys):
     assert (tmp_path / "again.gif").stat().st_size > 0
 
 
+@pytest.mark.slow  # the whole tribometer lesson, calibration included
 def test_tribometer_script_hands_the_stick_slip_law_to_a_belt_chain(tmp_path, capsys):
     """scenes/tribometer.py --quick: held-out period within 5 %, and its chain file runs via the CLI."""
     module = load_script(SCENES / "tribometer.py")
