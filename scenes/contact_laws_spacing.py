@@ -170,7 +170,7 @@ def coefficients(base: dict) -> dict:
 # -------------------------------------------------------------------
 #
 # The critical force is the smallest force that carries the slider over the track within the
-# run's time limit (``asperity2d.run.default_duration``: ten times the frictionless crossing).
+# run's time limit (``asperity2d.steps.default_duration``: ten times the frictionless crossing).
 # A friction that grows with speed caps the speed the slider crosses at, and the limit may then
 # decide instead of a stop. The check: the measure's own start, step and search
 # (``asperity2d.critical``), with ``LONG_LIMIT`` times the time limit, and how the runs tried
@@ -184,7 +184,8 @@ def critical_run_up_long_limit(scene: a.Scene) -> float:
     """The critical force with a run-up (N) as the measure finds it, with ``LONG_LIMIT`` times its
     time limit; NaN if a tried force still ran out of the longer limit."""
     from asperity2d import critical
-    from asperity2d.run import MAX_STEPS, default_duration, default_stops
+    from asperity2d.steps import MAX_STEPS, default_duration
+    from asperity2d.stops import default_stops
 
     base = critical.settled_run(scene, start="run-up", dt=critical.measure_dt(scene, "run-up"),
                                 max_steps=int(LONG_LIMIT * MAX_STEPS))
