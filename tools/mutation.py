@@ -1,6 +1,6 @@
 """Mutation score of the measure code, with mutmut (``pip install -e ".[mutation]"``).
 
-    python tools/mutation.py                      # the five modules below, every mutant
+    python tools/mutation.py                      # the eight modules below, every mutant
     python tools/mutation.py stats geometry       # some of them
     python tools/mutation.py --sample 80          # a seeded sample of mutants per module
     python tools/mutation.py --rev ed006ba        # the code and tests of another commit
@@ -16,7 +16,7 @@ endless loop then costs a minute, not ten (a mutant that only slows the tests do
 slow them 4-fold to be counted killed; the record counts the time-outs).
 Writes ``docs/data/mutation/<module>.json`` (every mutant and its outcome, the commit and the
 date; the Validation page's table reads these files, so commit them) and prints one line per
-module. Not part of the default test run: the five modules take about 21 minutes on
+module. Not part of the default test run: the eight modules take about 21 minutes on
 two shared cores (critical.py 12 of them: its mutants run simulations).
 """
 
@@ -41,7 +41,10 @@ ROOT = Path(__file__).resolve().parent.parent
 MODULES = {
     "critical": ("asperity2d/critical.py", ["tests/test_critical.py",
                                             "tests/test_ooten_studies.py::test_critical_force_brackets_correctly"]),
-    "analysis": ("asperity2d/analysis.py", ["tests/test_analysis.py", "tests/test_contact_states.py"]),
+    "events": ("asperity2d/events.py", ["tests/test_analysis.py", "tests/test_events_table.py"]),
+    "forces": ("asperity2d/forces.py", ["tests/test_analysis.py"]),
+    "slip-thresholds": ("asperity2d/slip_thresholds.py", ["tests/test_analysis.py"]),
+    "contact-states": ("asperity2d/contact_states.py", ["tests/test_contact_states.py"]),
     "stats": ("asperity2d/stats.py", ["tests/test_stats.py"]),
     "geometry": ("asperity2d/geometry.py", ["tests/test_geometry.py", "tests/test_scene_validation.py"]),
     "belt-events": ("asperity2d/belt/phases/events.py", ["tests/test_belt_events.py", "tests/test_belt_exact.py"]),

@@ -575,7 +575,8 @@ class BenchmarkTables(_Generated):
 # -- mutation scores ---------------------------------------------------------------------------
 MUTATION = DOCS / "data" / "mutation"
 #: tools/mutation.py's modules, in the order the page lists them
-MUTATION_MODULES = ("critical", "analysis", "stats", "geometry", "belt-events")
+MUTATION_MODULES = ("critical", "events", "forces", "slip-thresholds", "contact-states", "stats", "geometry",
+                    "belt-events")
 
 
 class MutationTable(_Generated):
