@@ -115,7 +115,8 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
     sn_y = np.empty(N)
     s_vcoef = np.empty(N)
     s_target = np.empty(N)
-    s_jacc = np.empty(N)
+    isl = np.empty(N, np.int64)
+    in_contact = np.zeros(N, np.bool_)
     g_clamp = np.empty(N)
     g_bx = np.empty(N)
     g_by = np.empty(N)
@@ -139,6 +140,9 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
     # the solver (its spring force (100 - 100) k dt is 0, its groove's bias and impulse are 0),
     # so it is left out of the step's loops: bit for bit the same numbers, for less work.
     act = np.empty(N, np.int64)
+    # each spring's exact damping coefficient 1 - exp(-c dt / m): a constant of the scene
+    for i in range(N):
+        s_vcoef[i] = 1.0 - math.exp(-lc[b, i] * h * lm_inv[b, i])
     touched = np.zeros(N, np.bool_)
     still = g_x[b] == 0.0 and g_y[b] == 0.0
     for _ in range(steps[b]):
@@ -161,6 +165,7 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
         n_act = 0
         for i in range(N):
             touched[i] = False
+            in_contact[i] = False
             if (still and lp[b, i, 1] == 0.0 and lp[b, i, 0] == lx0[b, i] and lv[b, i, 0] == 0.0
                     and lv[b, i, 1] == 0.0 and lvb[b, i, 0] == 0.0 and lvb[b, i, 1] == 0.0
                     and gj[b, i, 0] == 0.0 and gj[b, i, 1] == 0.0):
@@ -267,6 +272,7 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                     continue
                 a_first[na] = c_n[b, j, i] == 0
                 touched[i] = True
+                in_contact[i] = True
                 a_j[na], a_i[na], a_nx[na], a_ny[na], a_cnt[na] = j, i, n_x, n_y, cnt
                 a_u[na] = mu[b, i]
                 na += 1
@@ -308,9 +314,7 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
             inv = 1.0 / dist
             sn_x[i], sn_y[i] = dx * inv, dy * inv
             s_target[i] = 0.0
-            s_vcoef[i] = 1.0 - math.exp(-lc[b, i] * h * m_inv)
             j_spring = (100.0 - dist) * lk[b, i] * h
-            s_jacc[i] = j_spring
             lv[b, i, 0] = lv[b, i, 0] + sn_x[i] * j_spring * m_inv
             lv[b, i, 1] = lv[b, i, 1] + sn_y[i] * j_spring * m_inv
             # groove along y at x0 from -down to up; n = (-1, 0), td = y
@@ -357,7 +361,49 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
             sv[b, 0] += sgj[b, 0] * coef * sm_inv
             sv[b, 1] += sgj[b, 1] * coef * sm_inv
         first[b] = False
+        # The sweeps. Only the island -- the slider, its contacts, the lower bodies they touch --
+        # is coupled; a moving lower body with no contact is its own system (its spring and
+        # groove touch nothing else), so it iterates alone, in registers, with the same
+        # operations in the same order (the order between independent bodies changes no number).
+        # An iteration that changes nothing -- no accumulated impulse, no spring target, no
+        # damping impulse -- leaves every velocity as it was, so the sweeps after it would
+        # repeat it exactly: the loop stops there, bit for bit the result of all its sweeps.
+        n_isl = 0
+        for q in range(n_act):
+            i = act[q]
+            if in_contact[i]:
+                isl[n_isl] = i
+                n_isl += 1
+                continue
+            mi = lm_inv[b, i]
+            v0, v1 = lv[b, i, 0], lv[b, i, 1]
+            o0, o1 = gj[b, i, 0], gj[b, i, 1]
+            tgt = s_target[i]
+            snx, sny, vco, bx, by, clamp = sn_x[i], sn_y[i], s_vcoef[i], g_bx[i], g_by[i], g_clamp[i]
+            kinv = mi / (mi * mi)
+            for _it in range(iterations[b]):
+                vrn = v0 * snx + v1 * sny
+                v_damp = (tgt - vrn) * vco
+                tgt_new = vrn + v_damp
+                j_damp = v_damp * (1.0 / mi)
+                v0 += snx * j_damp * mi
+                v1 += sny * j_damp * mi
+                jx = kinv * (bx - v0)
+                jy = kinv * (by - v1)
+                sx, sy = o0 + jx, o1 + jy
+                if not (clamp * sy > 0.0):
+                    sy = 0.0
+                v0 += (sx - o0) * mi
+                v1 += (sy - o1) * mi
+                same = v_damp == 0.0 and tgt_new == tgt and sx == o0 and sy == o1
+                tgt, o0, o1 = tgt_new, sx, sy
+                if same:
+                    break
+            lv[b, i, 0], lv[b, i, 1] = v0, v1
+            gj[b, i, 0], gj[b, i, 1] = o0, o1
+            s_target[i] = tgt
         for _it in range(iterations[b]):
+            changed = False
             for a in range(na):
                 i = a_i[a]
                 n_x, n_y = a_nx[a], a_ny[a]
@@ -379,6 +425,8 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                     jt_new = -vrt * tmass[a, c]
                     jt_old = jt[a, c]
                     jt[a, c] = min(max(jt_old + jt_new, -jt_max), jt_max)
+                    if jb[a, c] != jb_old or jn[a, c] != jn_old or jt[a, c] != jt_old:
+                        changed = True
                     dbn = jb[a, c] - jb_old
                     svb[b, 0] -= n_x * dbn * sm_inv
                     svb[b, 1] -= n_y * dbn * sm_inv
@@ -391,15 +439,17 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                     sv[b, 1] -= jy * sm_inv
                     lv[b, i, 0] += jx * mi
                     lv[b, i, 1] += jy * mi
-            for q in range(n_act):
-                i = act[q]
+            for q in range(n_isl):
+                i = isl[q]
                 mi = lm_inv[b, i]
                 # the spring's damping: exact decay of the velocity along it
                 vrn = lv[b, i, 0] * sn_x[i] + lv[b, i, 1] * sn_y[i]
                 v_damp = (s_target[i] - vrn) * s_vcoef[i]
-                s_target[i] = vrn + v_damp
+                tgt_new = vrn + v_damp
+                if v_damp != 0.0 or tgt_new != s_target[i]:
+                    changed = True
+                s_target[i] = tgt_new
                 j_damp = v_damp * (1.0 / mi)
-                s_jacc[i] += j_damp
                 lv[b, i, 0] += sn_x[i] * j_damp * mi
                 lv[b, i, 1] += sn_y[i] * j_damp * mi
                 # the groove (its mass tensor is m I for a body that cannot rotate)
@@ -410,6 +460,8 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                 sx, sy = ox + jx, oy + jy
                 if not (g_clamp[i] * sy > 0.0):  # cross(j, n) = j.y for n = (-1, 0)
                     sy = 0.0  # projected onto n: (sx, 0)
+                if sx != ox or sy != oy:
+                    changed = True
                 gj[b, i, 0], gj[b, i, 1] = sx, sy
                 lv[b, i, 0] += (sx - ox) * mi
                 lv[b, i, 1] += (sy - oy) * mi
@@ -419,9 +471,13 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                 jy = kinv * (sgb_y - sv[b, 1])
                 ox, oy = sgj[b, 0], sgj[b, 1]
                 sx, sy = 0.0, oy + jy  # never at the track's ends: projected onto n = (0, 1)
+                if sx != ox or sy != oy:
+                    changed = True
                 sgj[b, 0], sgj[b, 1] = sx, sy
                 sv[b, 0] += (sx - ox) * sm_inv
                 sv[b, 1] += (sy - oy) * sm_inv
+            if not changed:
+                break
         # remember this step's contacts for the next step's warm start
         for j in range(U):
             for i in range(N):
