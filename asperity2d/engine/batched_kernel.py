@@ -117,6 +117,27 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
     s_target = np.empty(N)
     isl = np.empty(N, np.int64)
     in_contact = np.zeros(N, np.bool_)
+    # the island in registers: per island body (slot) and per contact point
+    slot = np.zeros(N, np.int64)
+    bmi = np.empty(N)
+    bv0 = np.empty(N)
+    bv1 = np.empty(N)
+    bb0 = np.empty(N)
+    bb1 = np.empty(N)
+    bg0 = np.empty(N)
+    bg1 = np.empty(N)
+    btg = np.empty(N)
+    fs = np.empty(2 * max_pairs, np.int64)
+    fnx = np.empty(2 * max_pairs)
+    fny = np.empty(2 * max_pairs)
+    fu = np.empty(2 * max_pairs)
+    fnm = np.empty(2 * max_pairs)
+    ftm = np.empty(2 * max_pairs)
+    fcb = np.empty(2 * max_pairs)
+    fbo = np.empty(2 * max_pairs)
+    fjb = np.empty(2 * max_pairs)
+    fjn = np.empty(2 * max_pairs)
+    fjt = np.empty(2 * max_pairs)
     g_clamp = np.empty(N)
     g_bx = np.empty(N)
     g_by = np.empty(N)
@@ -402,82 +423,114 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
             lv[b, i, 0], lv[b, i, 1] = v0, v1
             gj[b, i, 0], gj[b, i, 1] = o0, o1
             s_target[i] = tgt
+        # the island's state copied into registers and small unit-stride arrays (the slider's
+        # velocities, per island body and per contact point), swept, and written back: the same
+        # operations in the same order as on the batch's arrays
+        for q in range(n_isl):
+            i = isl[q]
+            slot[i] = q
+            bmi[q] = lm_inv[b, i]
+            bv0[q], bv1[q] = lv[b, i, 0], lv[b, i, 1]
+            bb0[q], bb1[q] = lvb[b, i, 0], lvb[b, i, 1]
+            bg0[q], bg1[q] = gj[b, i, 0], gj[b, i, 1]
+            btg[q] = s_target[i]
+        n_c = 0
+        for a in range(na):
+            q = slot[a_i[a]]
+            for c in range(a_cnt[a]):
+                fs[n_c], fnx[n_c], fny[n_c], fu[n_c] = q, a_nx[a], a_ny[a], a_u[a]
+                fnm[n_c], ftm[n_c], fcb[n_c], fbo[n_c] = nmass[a, c], tmass[a, c], cbias[a, c], bounce[a, c]
+                fjb[n_c], fjn[n_c], fjt[n_c] = jb[a, c], jn[a, c], jt[a, c]
+                n_c += 1
+        s0, s1, sb0, sb1 = sv[b, 0], sv[b, 1], svb[b, 0], svb[b, 1]
+        sg0, sg1 = sgj[b, 0], sgj[b, 1]
         for _it in range(iterations[b]):
             changed = False
-            for a in range(na):
-                i = a_i[a]
-                n_x, n_y = a_nx[a], a_ny[a]
-                u = a_u[a]
-                mi = lm_inv[b, i]
-                for c in range(a_cnt[a]):
-                    vrx = lv[b, i, 0] - sv[b, 0]
-                    vry = lv[b, i, 1] - sv[b, 1]
-                    vbn = (lvb[b, i, 0] - svb[b, 0]) * n_x + (lvb[b, i, 1] - svb[b, 1]) * n_y
-                    vrn = vrx * n_x + vry * n_y
-                    vrt = vrx * (-n_y) + vry * n_x
-                    jbn = (cbias[a, c] - vbn) * nmass[a, c]
-                    jb_old = jb[a, c]
-                    jb[a, c] = max(jb_old + jbn, 0.0)
-                    jn_new = -(bounce[a, c] + vrn) * nmass[a, c]
-                    jn_old = jn[a, c]
-                    jn[a, c] = max(jn_old + jn_new, 0.0)
-                    jt_max = u * jn[a, c]
-                    jt_new = -vrt * tmass[a, c]
-                    jt_old = jt[a, c]
-                    jt[a, c] = min(max(jt_old + jt_new, -jt_max), jt_max)
-                    if jb[a, c] != jb_old or jn[a, c] != jn_old or jt[a, c] != jt_old:
-                        changed = True
-                    dbn = jb[a, c] - jb_old
-                    svb[b, 0] -= n_x * dbn * sm_inv
-                    svb[b, 1] -= n_y * dbn * sm_inv
-                    lvb[b, i, 0] += n_x * dbn * mi
-                    lvb[b, i, 1] += n_y * dbn * mi
-                    djn, djt = jn[a, c] - jn_old, jt[a, c] - jt_old
-                    jx = n_x * djn - n_y * djt
-                    jy = n_x * djt + n_y * djn
-                    sv[b, 0] -= jx * sm_inv
-                    sv[b, 1] -= jy * sm_inv
-                    lv[b, i, 0] += jx * mi
-                    lv[b, i, 1] += jy * mi
+            for m in range(n_c):
+                q = fs[m]
+                n_x, n_y = fnx[m], fny[m]
+                mi = bmi[q]
+                vrx = bv0[q] - s0
+                vry = bv1[q] - s1
+                vbn = (bb0[q] - sb0) * n_x + (bb1[q] - sb1) * n_y
+                vrn = vrx * n_x + vry * n_y
+                vrt = vrx * (-n_y) + vry * n_x
+                jbn = (fcb[m] - vbn) * fnm[m]
+                jb_old = fjb[m]
+                jb_ = max(jb_old + jbn, 0.0)
+                jn_new = -(fbo[m] + vrn) * fnm[m]
+                jn_old = fjn[m]
+                jn_ = max(jn_old + jn_new, 0.0)
+                jt_max = fu[m] * jn_
+                jt_new = -vrt * ftm[m]
+                jt_old = fjt[m]
+                jt_ = min(max(jt_old + jt_new, -jt_max), jt_max)
+                if jb_ != jb_old or jn_ != jn_old or jt_ != jt_old:
+                    changed = True
+                fjb[m], fjn[m], fjt[m] = jb_, jn_, jt_
+                dbn = jb_ - jb_old
+                sb0 -= n_x * dbn * sm_inv
+                sb1 -= n_y * dbn * sm_inv
+                bb0[q] += n_x * dbn * mi
+                bb1[q] += n_y * dbn * mi
+                djn, djt = jn_ - jn_old, jt_ - jt_old
+                jx = n_x * djn - n_y * djt
+                jy = n_x * djt + n_y * djn
+                s0 -= jx * sm_inv
+                s1 -= jy * sm_inv
+                bv0[q] += jx * mi
+                bv1[q] += jy * mi
             for q in range(n_isl):
                 i = isl[q]
-                mi = lm_inv[b, i]
+                mi = bmi[q]
                 # the spring's damping: exact decay of the velocity along it
-                vrn = lv[b, i, 0] * sn_x[i] + lv[b, i, 1] * sn_y[i]
-                v_damp = (s_target[i] - vrn) * s_vcoef[i]
+                vrn = bv0[q] * sn_x[i] + bv1[q] * sn_y[i]
+                v_damp = (btg[q] - vrn) * s_vcoef[i]
                 tgt_new = vrn + v_damp
-                if v_damp != 0.0 or tgt_new != s_target[i]:
+                if v_damp != 0.0 or tgt_new != btg[q]:
                     changed = True
-                s_target[i] = tgt_new
+                btg[q] = tgt_new
                 j_damp = v_damp * (1.0 / mi)
-                lv[b, i, 0] += sn_x[i] * j_damp * mi
-                lv[b, i, 1] += sn_y[i] * j_damp * mi
+                bv0[q] += sn_x[i] * j_damp * mi
+                bv1[q] += sn_y[i] * j_damp * mi
                 # the groove (its mass tensor is m I for a body that cannot rotate)
                 kinv = mi / (mi * mi)
-                jx = kinv * (g_bx[i] - lv[b, i, 0])
-                jy = kinv * (g_by[i] - lv[b, i, 1])
-                ox, oy = gj[b, i, 0], gj[b, i, 1]
+                jx = kinv * (g_bx[i] - bv0[q])
+                jy = kinv * (g_by[i] - bv1[q])
+                ox, oy = bg0[q], bg1[q]
                 sx, sy = ox + jx, oy + jy
                 if not (g_clamp[i] * sy > 0.0):  # cross(j, n) = j.y for n = (-1, 0)
                     sy = 0.0  # projected onto n: (sx, 0)
                 if sx != ox or sy != oy:
                     changed = True
-                gj[b, i, 0], gj[b, i, 1] = sx, sy
-                lv[b, i, 0] += (sx - ox) * mi
-                lv[b, i, 1] += (sy - oy) * mi
+                bg0[q], bg1[q] = sx, sy
+                bv0[q] += (sx - ox) * mi
+                bv1[q] += (sy - oy) * mi
             if fixed[b]:
                 kinv = sm_inv / (sm_inv * sm_inv)
-                jx = kinv * (0.0 - sv[b, 0])
-                jy = kinv * (sgb_y - sv[b, 1])
-                ox, oy = sgj[b, 0], sgj[b, 1]
+                jx = kinv * (0.0 - s0)
+                jy = kinv * (sgb_y - s1)
+                ox, oy = sg0, sg1
                 sx, sy = 0.0, oy + jy  # never at the track's ends: projected onto n = (0, 1)
                 if sx != ox or sy != oy:
                     changed = True
-                sgj[b, 0], sgj[b, 1] = sx, sy
-                sv[b, 0] += (sx - ox) * sm_inv
-                sv[b, 1] += (sy - oy) * sm_inv
+                sg0, sg1 = sx, sy
+                s0 += (sx - ox) * sm_inv
+                s1 += (sy - oy) * sm_inv
             if not changed:
                 break
+        sv[b, 0], sv[b, 1], svb[b, 0], svb[b, 1] = s0, s1, sb0, sb1
+        sgj[b, 0], sgj[b, 1] = sg0, sg1
+        for q in range(n_isl):
+            i = isl[q]
+            lv[b, i, 0], lv[b, i, 1] = bv0[q], bv1[q]
+            lvb[b, i, 0], lvb[b, i, 1] = bb0[q], bb1[q]
+            gj[b, i, 0], gj[b, i, 1] = bg0[q], bg1[q]
+        n_c = 0
+        for a in range(na):
+            for c in range(a_cnt[a]):
+                jn[a, c], jt[a, c] = fjn[n_c], fjt[n_c]
+                n_c += 1
         # remember this step's contacts for the next step's warm start
         for j in range(U):
             for i in range(N):
