@@ -13,8 +13,8 @@ projection and stick/slip switch (:mod:`.core`, :mod:`.contacts`):
 1. the slider's force (the drive spring at the position the step will end at, or the constant
    force; the normal load on a free slider);
 2. positions: ``p += (v + v_bias) dt``, ``v_bias = 0``;
-3. contacts: every slider triangle (the last first, the order pymunk's broad phase reports
-   them in, which decides the sequential solver's sweep) against every lower triangle whose
+3. contacts: every slider asperity (the last first, the order pymunk's broad phase reports
+   them in, which decides the sequential solver's sweep) against every lower one whose
    bounding boxes overlap;
    the normal and depth by the separating-axis test (for two overlapping convex polygons the
    same minimum-penetration axis GJK/EPA converges to), the contact points by Chipmunk's
@@ -42,8 +42,8 @@ from numba import njit, prange
 
 #: Contact points per pair (Chipmunk's CP_MAX_CONTACTS_PER_ARBITER).
 MAX_CONTACTS = 2
-#: Pairs in contact per scene and step the scratch arrays hold (a slider triangle touches at
-#: most its two neighbouring lower flanks, and the lower triangle under it near an apex).
+#: Pairs in contact per scene and step the scratch arrays hold (a slider asperity touches at
+#: most its two neighbouring lower flanks, and the lower asperity under it near an apex).
 PAIRS_PER_TIP = 4
 #: Failure codes (per scene): 0 ok; the others name why a scene stopped.
 OK, NONFINITE, OVERLAP, FLOOR, PAIRS = 0, 1, 2, 3, 4
@@ -52,6 +52,8 @@ OK, NONFINITE, OVERLAP, FLOOR, PAIRS = 0, 1, 2, 3, 4
 N_REC = 9  # x, vx, y, vy, drive force, fx, fy, f_tangential, contact count
 #: The divergence guard's deepest overlap (bases), as the pymunk path's (recorder.MAX_OVERLAP).
 MAX_OVERLAP = 0.5
+#: A contact's key, the pair of vertices it joins: a * KEY_BASE + b (more than any outline's vertices).
+KEY_BASE = 1 << 16
 
 DBL_MAX = 1.7976931348623157e308
 
@@ -62,16 +64,16 @@ def _clamp01(t):
 
 
 @njit(cache=True)
-def _support_edge(vx, vy, nxs, nys, px, py, n_x, n_y):
-    """Chipmunk's SupportEdgeForPoly for a triangle translated by (px, py): the edge's two
-    vertex indices (a, b) and their world coordinates."""
+def _support_edge(vx, vy, nxs, nys, px, py, n_x, n_y, nv):
+    """Chipmunk's SupportEdgeForPoly for a convex polygon of ``nv`` vertices translated by
+    (px, py): the edge's two vertex indices (a, b)."""
     best, i1 = -np.inf, 0
-    for i in range(3):
+    for i in range(nv):
         d = (vx[i] + px) * n_x + (vy[i] + py) * n_y
         if d > best:
             best, i1 = d, i
-    i0 = (i1 - 1 + 3) % 3
-    i2 = (i1 + 1) % 3
+    i0 = (i1 - 1 + nv) % nv
+    i2 = (i1 + 1) % nv
     if n_x * nxs[i1] + n_y * nys[i1] > n_x * nxs[i2] + n_y * nys[i2]:
         return i0, i1
     return i1, i2
@@ -80,8 +82,8 @@ def _support_edge(vx, vy, nxs, nys, px, py, n_x, n_y):
 @njit(cache=True)
 def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, sgj,
                 c_n, c_key, c_jn, c_jt, stuck, slid, mu, present, nstep, fail, fail_step,
-                lx0, lverts, lnorms, lm_inv, lk, lc, ldown, lup, n_lower,
-                uverts, unorms, n_upper, s_m_inv, fixed, track_y, g_x, g_y,
+                lx0, lverts, lnorms, nv_l, lm_inv, lk, lc, ldown, lup, n_lower,
+                uverts, unorms, nv_u, n_upper, s_m_inv, fixed, track_y, g_x, g_y,
                 spring, dk, dc, dv, dorigin, dforce, load,
                 dt, iterations, slop, bias_coef, joint_bias_coef, restitution,
                 mu_s, mu_k, v_stick, slip_dist, switch_on, floor_y, stop_x, first):
@@ -143,19 +145,21 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
     g_by = np.empty(N)
     slips = np.empty(N)
     seen = np.zeros(N, np.bool_)
-    wvx = np.empty(3)
-    wvy = np.empty(3)
-    uvx = np.empty(3)
-    uvy = np.empty(3)
+    wvx = np.empty(lverts.shape[2])
+    wvy = np.empty(lverts.shape[2])
+    uvx = np.empty(uverts.shape[2])
+    uvy = np.empty(uverts.shape[2])
     sm_inv = s_m_inv[b]
     h = dt[b]
-    # the lower triangles' x extents about their bodies (the broad phase's cheap rejection:
+    # the lower outlines' x extents about their bodies (the broad phase's cheap rejection:
     # lp + min(v) rounds as min(lp + v), so it rejects exactly the pairs the full test would)
     lxlo = np.empty(N)
     lxhi = np.empty(N)
     for i in range(N):
-        lxlo[i] = min(lverts[b, i, 0, 0], min(lverts[b, i, 1, 0], lverts[b, i, 2, 0]))
-        lxhi[i] = max(lverts[b, i, 0, 0], max(lverts[b, i, 1, 0], lverts[b, i, 2, 0]))
+        lxlo[i], lxhi[i] = np.inf, -np.inf
+        for q in range(nv_l[b, i]):
+            lxlo[i] = min(lxlo[i], lverts[b, i, q, 0])
+            lxhi[i] = max(lxhi[i], lverts[b, i, q, 0])
     # Bodies at rest: a lower asperity exactly at its rest position, with no velocity, no
     # groove impulse and no contact, and no gravity, receives exactly zero from every step of
     # the solver (its spring force (100 - 100) k dt is 0, its groove's bias and impulse are 0),
@@ -199,13 +203,14 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
         spx, spy = sp[b, 0], sp[b, 1]
         # 3. contacts
         na = 0
-        # Chipmunk's broad phase reports the pairs of the slider's triangles last-added first
+        # Chipmunk's broad phase reports the pairs of the slider's asperities last-added first
         # (measured: this order reproduces pymunk to 1e-16 through two tips meeting their flanks
         # in the same step; the x order left 2.7e-6 of the slider's speed, the residual of 20
         # Gauss-Seidel sweeps that have not converged at a hard impact)
         for j in range(U - 1, -1, -1):
             ul, ur, ub, ut = np.inf, -np.inf, np.inf, -np.inf
-            for q in range(3):
+            nu = nv_u[b, j]
+            for q in range(nu):
                 uvx[q] = uverts[b, j, q, 0] + spx
                 uvy[q] = uverts[b, j, q, 1] + spy
                 ul, ur = min(ul, uvx[q]), max(ur, uvx[q])
@@ -218,7 +223,8 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                     c_n[b, j, i] = 0
                     continue
                 ll, lr, lb, lt = np.inf, -np.inf, np.inf, -np.inf
-                for q in range(3):
+                nl = nv_l[b, i]
+                for q in range(nl):
                     wvx[q] = lverts[b, i, q, 0] + lpx
                     wvy[q] = lverts[b, i, q, 1] + lpy
                     ll, lr = min(ll, wvx[q]), max(lr, wvx[q])
@@ -230,14 +236,15 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                 # (B's outward normals and A's negated): h(m) = max_B m.b - min_A m.a
                 best, mx, my = np.inf, 0.0, 0.0
                 for side in range(2):
-                    for e in range(3):
+                    for e in range(nl if side == 0 else nu):
                         if side == 0:
                             ex, ey = lnorms[b, i, e, 0], lnorms[b, i, e, 1]
                         else:
                             ex, ey = -unorms[b, j, e, 0], -unorms[b, j, e, 1]
                         hb, ha = -np.inf, np.inf
-                        for q in range(3):
+                        for q in range(nl):
                             hb = max(hb, wvx[q] * ex + wvy[q] * ey)
+                        for q in range(nu):
                             ha = min(ha, uvx[q] * ex + uvy[q] * ey)
                         depth = hb - ha
                         if depth < best:
@@ -248,9 +255,9 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                 n_x, n_y = -mx, -my  # from the slider (a) to the lower body (b)
                 # ContactPoints(SupportEdgeForPoly(a, n), SupportEdgeForPoly(b, -n))
                 a0, a1 = _support_edge(uverts[b, j, :, 0], uverts[b, j, :, 1], unorms[b, j, :, 0],
-                                       unorms[b, j, :, 1], spx, spy, n_x, n_y)
+                                       unorms[b, j, :, 1], spx, spy, n_x, n_y, nu)
                 b0, b1 = _support_edge(lverts[b, i, :, 0], lverts[b, i, :, 1], lnorms[b, i, :, 0],
-                                       lnorms[b, i, :, 1], lpx, lpy, -n_x, -n_y)
+                                       lnorms[b, i, :, 1], lpx, lpy, -n_x, -n_y, nl)
                 e1ax, e1ay, e1bx, e1by = uvx[a0], uvy[a0], uvx[a1], uvy[a1]
                 e2ax, e2ay, e2bx, e2by = wvx[b0], wvy[b0], wvx[b1], wvy[b1]
                 d_e1_a = e1ax * n_y - e1ay * n_x
@@ -267,11 +274,11 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                     if which == 0:
                         t1 = _clamp01((d_e2_b - d_e1_a) * e1_denom)
                         t2 = _clamp01((d_e1_a - d_e2_a) * e2_denom)
-                        kk = a0 * 3 + b1
+                        kk = a0 * KEY_BASE + b1
                     else:
                         t1 = _clamp01((d_e2_a - d_e1_a) * e1_denom)
                         t2 = _clamp01((d_e1_b - d_e2_a) * e2_denom)
-                        kk = a1 * 3 + b0
+                        kk = a1 * KEY_BASE + b0
                     p1x = e1ax * (1.0 - t1) + e1bx * t1
                     p1y = e1ay * (1.0 - t1) + e1by * t1
                     p2x = e2ax * (1.0 - t2) + e2bx * t2
@@ -643,8 +650,8 @@ def _record(b, rec, rec_at, sp, sv, na, a_nx, a_ny, a_cnt, jn, jt, h, spring, dk
 @njit(parallel=True, cache=True)
 def advance(steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, sgj,
             c_n, c_key, c_jn, c_jt, stuck, slid, mu, present, nstep, fail, fail_step,
-            lx0, lverts, lnorms, lm_inv, lk, lc, ldown, lup, n_lower,
-            uverts, unorms, n_upper, s_m_inv, fixed, track_y, g_x, g_y,
+            lx0, lverts, lnorms, nv_l, lm_inv, lk, lc, ldown, lup, n_lower,
+            uverts, unorms, nv_u, n_upper, s_m_inv, fixed, track_y, g_x, g_y,
             spring, dk, dc, dv, dorigin, dforce, load,
             dt, iterations, slop, bias_coef, joint_bias_coef, restitution,
             mu_s, mu_k, v_stick, slip_dist, switch_on, floor_y, stop_x, first):
@@ -652,8 +659,8 @@ def advance(steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, sgj,
     for b in prange(steps.shape[0]):
         _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, sgj,
                     c_n, c_key, c_jn, c_jt, stuck, slid, mu, present, nstep, fail, fail_step,
-                    lx0, lverts, lnorms, lm_inv, lk, lc, ldown, lup, n_lower,
-                    uverts, unorms, n_upper, s_m_inv, fixed, track_y, g_x, g_y,
+                    lx0, lverts, lnorms, nv_l, lm_inv, lk, lc, ldown, lup, n_lower,
+                    uverts, unorms, nv_u, n_upper, s_m_inv, fixed, track_y, g_x, g_y,
                     spring, dk, dc, dv, dorigin, dforce, load,
                     dt, iterations, slop, bias_coef, joint_bias_coef, restitution,
                     mu_s, mu_k, v_stick, slip_dist, switch_on, floor_y, stop_x, first)
