@@ -178,6 +178,36 @@ def test_a_batch_too_large_is_refused_up_front_naming_its_size(monkeypatch):
         simulate_many(scenes, 1e-9, engine="batched")
 
 
+def test_a_thousand_full_passes_run_in_batches_under_a_gigabyte():
+    """1,000 default scenes, each a full pass at the stick step (dt/2): their records alone
+    would be 3.5 GB, so :func:`batched.run` steps them in batches whose arrays -- state,
+    geometry and record, as allocated -- stay within CHUNK_BYTES (256 MiB), well under 1 GB."""
+    from asperity2d.run import default_dt, default_duration
+
+    scenes = [a.make_scene()] * 1000
+    dt = 0.5 * default_dt(scenes[0])
+    steps = int(default_duration(scenes[0]) / dt)
+    size = batched.batch_size(scenes, steps)
+    assert 1 < size < 1000
+    nbytes = batched.Batch.nbytes_for(size, 16, 4, steps // 10)
+    assert nbytes <= batched.CHUNK_BYTES < 2**30
+    # the estimate is what a batch allocates (here for a short record, the same formula)
+    batch = batched.Batch(scenes[:size], [dt] * size, samples=100)
+    allocated = sum(v.nbytes for v in vars(batch).values() if isinstance(v, np.ndarray))
+    assert allocated <= batched.Batch.nbytes_for(size, 16, 4, 100) < 1.1 * allocated
+
+
+def test_results_do_not_depend_on_how_a_call_is_batched(monkeypatch):
+    scenes = [a.make_scene(**SMALL, spacing="random", seed=s) for s in range(5)]
+    whole = simulate_many(scenes, 30e-9, engine="batched")
+    monkeypatch.setattr(batched, "CHUNK_BYTES", 1)  # one scene per batch
+    assert batched.batch_size(scenes, 10_000) == 1
+    split = simulate_many(scenes, 30e-9, engine="batched")
+    for one, two in zip(whole, split):
+        np.testing.assert_array_equal(one.x, two.x)
+        np.testing.assert_array_equal(one.friction_force, two.friction_force)
+
+
 @pytest.mark.parametrize("option", [{"energy": True}, {"contact_work": True}, {"stop": a.Passed()},
                                     {"observers": [print]}])
 def test_what_only_the_reference_runs_is_refused_in_one_line(option):

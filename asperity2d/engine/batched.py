@@ -332,6 +332,18 @@ def _hull(points) -> tuple[np.ndarray, np.ndarray]:
 CHUNK_BYTES = 256 << 20
 
 
+def batch_size(scenes, steps: int, *, record_every: int = 10) -> int:
+    """How many of ``scenes`` :func:`run` steps in one batch when the longest runs ``steps``
+    steps: as many as keep the batch's arrays (:meth:`Batch.nbytes_for`, its record included)
+    within :data:`CHUNK_BYTES`, at least one."""
+    N = max(s.lower.count for s in scenes)
+    U = max(s.slider.count for s in scenes)
+    V = max(max(len(o) for o in s.lower.outlines()) for s in scenes)
+    W = max(max(len(o) for o in s.slider.outlines()) for s in scenes)
+    per_scene = Batch.nbytes_for(1, N, U, max(1, steps // record_every), vertices=max(V, W))
+    return max(1, min(len(scenes), CHUNK_BYTES // max(1, per_scene)))
+
+
 def run(scenes, dts, durations, *, record_every: int = 10, iterations: int = 20, passed=None):
     """Run each scene for its duration (s) from rest: per scene, in order, its record
     ``(arrays, meta)`` (:meth:`Batch.result`) or the SimulationError that stopped it.
@@ -344,10 +356,7 @@ def run(scenes, dts, durations, *, record_every: int = 10, iterations: int = 20,
     dts = [float(d) for d in dts]
     passed = [False] * len(scenes) if passed is None else [bool(p) for p in passed]
     steps = [max(0, int(math.ceil(d / dt - 1e-9))) for d, dt in zip(durations, dts)]
-    N = max(s.lower.count for s in scenes)
-    U = max(s.slider.count for s in scenes)
-    per_scene = Batch.nbytes_for(1, N, U, max(1, max(steps) // record_every))
-    size = max(1, min(len(scenes), CHUNK_BYTES // max(1, per_scene)))
+    size = batch_size(scenes, max(steps), record_every=record_every)
     out = []
     for start in range(0, len(scenes), size):
         out += _run_chunk(scenes[start:start + size], dts[start:start + size], steps[start:start + size],
