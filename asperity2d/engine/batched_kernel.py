@@ -16,7 +16,8 @@ projection and stick/slip switch (:mod:`.core`, :mod:`.contacts`):
 3. contacts: every slider asperity (the last first, the order pymunk's broad phase reports
    them in, which decides the sequential solver's sweep) against every lower one whose
    bounding boxes overlap;
-   the normal and depth by the separating-axis test (for two overlapping convex polygons the
+   the normal and depth by the separating-axis test (for two overlapping convex polygons --
+   triangles, half triangles, flat tops, any strictly convex outline -- the
    same minimum-penetration axis GJK/EPA converges to), the contact points by Chipmunk's
    ``SupportEdgeForPoly`` / ``ContactPoints`` clipping (at most two per pair), warm-started from
    the previous step's impulses of the same vertex pair (contacts persist one step, as
@@ -26,7 +27,13 @@ projection and stick/slip switch (:mod:`.core`, :mod:`.contacts`):
    ``1 - exp(-c dt / m)``; each groove's anchor, clamp and bias;
 5. velocities: ``v = v + (g + f / m) dt``;
 6. cached impulses (contacts, grooves), then ``iterations`` sweeps of sequential impulses over
-   the contacts, then the springs' damping and the grooves;
+   the contacts, then the springs' damping and the grooves. Two rearrangements that change no
+   bit: a moving lower body without a contact is a system of its own (its spring and groove
+   touch nothing else), so its sweeps run alone, in registers; the island -- the slider, its
+   contacts and the bodies they touch -- is swept on registers and small unit-stride copies,
+   written back after. And a sweep that changes nothing (no accumulated impulse, no spring
+   target, no damping impulse) is a fixed point, which the sweeps left would repeat exactly:
+   the loop stops there;
 7. the projection back onto the tracks when a body drifted more than ``1e-9`` bases, and the
    static/kinetic switch with its hold rule (:class:`asperity2d.contact_laws.StaticKineticSwitch`).
 
