@@ -3,6 +3,7 @@ that say which engine made them. Needs no optional dependency."""
 
 import importlib.util
 import json
+from pathlib import Path
 
 import pytest
 
@@ -12,6 +13,9 @@ from asperity2d.engine import batched
 from asperity2d.engine.registry import DEFAULT, refuse
 from asperity2d.errors import SceneError
 from asperity2d.experiments.compare import Comparison
+
+#: A measured-style profile shipped with the package: its asperities and its rigid valleys.
+MEASURED = Path(__file__).resolve().parent.parent / "scenes" / "data" / "measured_style_profile.csv"
 
 
 def test_the_reference_is_first_and_the_default():
@@ -42,13 +46,13 @@ def test_without_numba_the_batched_engine_says_how_to_install_it(monkeypatch):
 
 
 @pytest.mark.parametrize("kwargs, option", [
-    ({"profile": "half"}, "`profile` = 'half'"),
-    ({"profile": "flat"}, "`profile` = 'flat'"),
     ({"lateral_stiffness": 1e4}, "`lateral_stiffness`"),
+    ({"lower_surface": MEASURED}, "`substrate`"),
 ])
 def test_the_batched_engine_refuses_what_it_does_not_implement_in_one_line(kwargs, option):
+    size = {} if "lower_surface" in kwargs else {"lower_count": 4, "upper_count": 2}
     try:
-        scene = a.make_scene(lower_count=4, upper_count=2, **kwargs)
+        scene = a.make_scene(**size, **kwargs)
     except SceneError as exc:  # an option this build of make_scene does not take
         pytest.skip(f"make_scene does not take {kwargs}: {exc}")
     assert ENGINES["pymunk"].refusal(scene) is None

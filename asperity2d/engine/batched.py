@@ -10,9 +10,11 @@ with its hold rule follows every step, as in :mod:`.core`. The step itself is in
 :mod:`.batched_kernel` (Numba, the optional ``[batch]`` extra).
 
 What it covers, and refuses (one :class:`~asperity2d.errors.SceneError` line naming the option
-and saying ``engine="pymunk"`` runs it): triangular asperities only (every outline three
-vertices: the full profile), no lattice links, no substrate, the ``static-kinetic`` contact law,
-and no settling (a free slider runs with ``settle=False``). The floor is not modelled: a slider
+and saying ``engine="pymunk"`` runs it): every profile (full and half triangles, flat tops),
+random heights and measured profiles' asperities -- each asperity one strictly convex outline,
+as Chipmunk keeps it -- but no lattice links, no substrate (a measured profile's rigid
+valleys), the ``static-kinetic`` contact law, and no settling (a free slider runs with
+``settle=False``). The floor is not modelled: a slider
 tip that goes below it stops that scene with a :class:`~asperity2d.errors.SimulationError`.
 
 A batch is refused up front when its arrays would pass :data:`MAX_BATCH_BYTES`; a scene that
@@ -47,11 +49,13 @@ def unavailable() -> str | None:
     return None
 
 
-def _outline_triangles(outlines, what: str) -> None:
-    for outline in outlines:
-        if len(outline) != 3:
-            raise SceneError(f"`{what}` has an asperity of {len(outline)} vertices; engine=\"batched\" "
-                             "runs triangular asperities only (profile 'full'); engine=\"pymunk\" runs it")
+def _strictly_convex(points) -> bool:
+    """Every vertex a strict corner, all turning the same way (what Chipmunk's hull keeps as given)."""
+    pts = [tuple(map(float, p)) for p in points]
+    n = len(pts)
+    turns = [(pts[i][0] - pts[i - 1][0]) * (pts[(i + 1) % n][1] - pts[i - 1][1])
+             - (pts[i][1] - pts[i - 1][1]) * (pts[(i + 1) % n][0] - pts[i - 1][0]) for i in range(n)]
+    return n >= 3 and (all(t > 0.0 for t in turns) or all(t < 0.0 for t in turns))
 
 
 def refusal(scene, *, settle: bool = False) -> str | None:
@@ -62,11 +66,10 @@ def refusal(scene, *, settle: bool = False) -> str | None:
         return "`lateral_stiffness` (lattice links between lower asperities) is not implemented on engine=\"batched\"" + tail
     if lower.substrate:
         return "`substrate` (a profile's rigid valleys) is not implemented on engine=\"batched\"" + tail
-    if lower.profile.kind != "full" or scene.slider.profile.kind != "full":
-        kind = lower.profile.kind if lower.profile.kind != "full" else scene.slider.profile.kind
-        return f"`profile` = {kind!r} is not implemented on engine=\"batched\" (full triangles only)" + tail
-    if lower.shapes is not None or getattr(scene.slider, "shapes", None) is not None:
-        return "`shapes` (measured or per-asperity profiles) are not implemented on engine=\"batched\"" + tail
+    for what, outlines in (("lower", lower.outlines()), ("slider", scene.slider.outlines())):
+        if not all(_strictly_convex(outline) for outline in outlines):
+            return (f"`shapes`: a {what} asperity's outline is not strictly convex (collinear or reflex "
+                    "vertices), which engine=\"batched\" does not implement" + tail)
     if contact.law != "static-kinetic":
         return f"`law` = {contact.law!r} is not implemented on engine=\"batched\" (static-kinetic only)" + tail
     if settle:
@@ -103,7 +106,9 @@ class Batch:
                 raise SceneError(why)
         N = max(s.lower.count for s in self.scenes)
         U = max(s.slider.count for s in self.scenes)
-        need = self.nbytes_for(B, N, U, samples)
+        V = max(max(len(o) for o in s.lower.outlines()) for s in self.scenes)
+        W = max(max(len(o) for o in s.slider.outlines()) for s in self.scenes)
+        need = self.nbytes_for(B, N, U, samples, vertices=max(V, W))
         if need > MAX_BATCH_BYTES:
             raise SceneError(
                 f"a batch of {B} scenes ({N} lower and {U} upper asperities, {samples} samples each) needs "
@@ -121,11 +126,12 @@ class Batch:
         self.slid, self.mu = f8(B, N), f8(B, N)
         self.nstep = np.zeros(B, np.int64)
         self.fail, self.fail_step = np.zeros(B, np.int64), np.zeros(B, np.int64)
-        self.lx0, self.lverts, self.lnorms = f8(B, N), f8(B, N, 3, 2), f8(B, N, 3, 2)
+        self.lx0, self.lverts, self.lnorms = f8(B, N), f8(B, N, V, 2), f8(B, N, V, 2)
+        self.nv_l, self.nv_u = np.zeros((B, N), np.int64), np.zeros((B, U), np.int64)
         self.lm_inv, self.lk, self.lc = np.ones((B, N)), f8(B, N), f8(B, N)
         self.ldown, self.lup = f8(B, N), f8(B, N)
         self.n_lower, self.n_upper = np.zeros(B, np.int64), np.zeros(B, np.int64)
-        self.uverts, self.unorms = f8(B, U, 3, 2), f8(B, U, 3, 2)
+        self.uverts, self.unorms = f8(B, U, W, 2), f8(B, U, W, 2)
         self.s_m_inv = f8(B)
         self.fixed = np.zeros(B, np.bool_)
         self.track_y, self.g_x, self.g_y = f8(B), f8(B), f8(B)
@@ -144,11 +150,12 @@ class Batch:
         self._initial = self._sample0()
 
     @staticmethod
-    def nbytes_for(B: int, N: int, U: int, samples: int) -> int:
-        """Bytes of a batch's arrays: state and geometry per scene, and its record."""
-        per_lower = 8 * (4 * 2 + 3 + 2 * 3 * 2 + 6) + 2
+    def nbytes_for(B: int, N: int, U: int, samples: int, *, vertices: int = 3) -> int:
+        """Bytes of a batch's arrays: state and geometry per scene (outlines of up to
+        ``vertices`` vertices), and its record."""
+        per_lower = 8 * (4 * 2 + 4 + 2 * vertices * 2 + 6) + 2
         per_pair = 8 * 1 + 8 * 2 * 3
-        per_scene = N * per_lower + U * N * per_pair + U * 8 * 12 + 8 * 40 + 8 * 9 * samples
+        per_scene = N * per_lower + U * N * per_pair + U * 8 * (4 * vertices + 1) + 8 * 40 + 8 * 9 * samples
         return B * per_scene
 
     def _load(self, b: int, scene, dt: float) -> None:
@@ -163,7 +170,9 @@ class Batch:
         self.lx0[b, :n] = x0
         self.lp[b, :n, 0] = x0
         for i, outline in enumerate(lower.outlines()):
-            self.lverts[b, i], self.lnorms[b, i] = _hull([(vx / u.length, vy / u.length) for vx, vy in outline])
+            v, nrm = _hull([(vx / u.length, vy / u.length) for vx, vy in outline])
+            self.nv_l[b, i] = len(v)
+            self.lverts[b, i, :len(v)], self.lnorms[b, i, :len(v)] = v, nrm
         self.lm_inv[b, :n] = 1.0 / (np.asarray(lower.mass, float) / u.mass)
         self.lk[b, :n] = np.asarray(lower.stiffness, float) / u.stiffness
         self.lc[b, :n] = np.asarray(lower.damping, float) / u.damping
@@ -171,7 +180,9 @@ class Batch:
         self.lup[b, :n] = lower.travel_up / u.length
         apex = slider.tips() / u.length
         for j, (c, outline) in enumerate(zip(apex, slider.outlines())):
-            self.uverts[b, j], self.unorms[b, j] = _hull([(c + x / u.length, y / u.length) for x, y in outline])
+            v, nrm = _hull([(c + x / u.length, y / u.length) for x, y in outline])
+            self.nv_u[b, j] = len(v)
+            self.uverts[b, j, :len(v)], self.unorms[b, j, :len(v)] = v, nrm
         self.s_m_inv[b] = 1.0 / (slider.mass / u.mass)
         # where the slider starts: as space.build places a fixed-track slider (not engaged) or a
         # free one (over the first valley, just clear of the tips)
@@ -184,7 +195,8 @@ class Batch:
             sy = height - slider.interference / u.length + h_up
             self.fixed[b] = True
         else:
-            x_tip = 0.5 * (x0[0] + x0[1]) if n > 1 else x0[0] - 0.5 * left
+            flat = lower.profile.kind == "flat"
+            x_tip = 0.5 * (x0[0] + x0[1]) if n > 1 else x0[0] - (0.0 if flat else 0.5 * left)
             sx = x_tip - apex[0]
             sy = height + h_up + 1e-3
         self.sp[b] = sx, sy
@@ -241,8 +253,8 @@ class Batch:
         k.advance(np.asarray(steps, np.int64), self.record_every, self.rec_at, self.rec, self.lp, self.lv,
                   self.lvb, self.gj, self.sp, self.sv, self.svb, self.sgj, self.c_n, self.c_key, self.c_jn,
                   self.c_jt, self.stuck, self.slid, self.mu, self.present, self.nstep, self.fail,
-                  self.fail_step, self.lx0, self.lverts, self.lnorms, self.lm_inv, self.lk, self.lc,
-                  self.ldown, self.lup, self.n_lower, self.uverts, self.unorms, self.n_upper, self.s_m_inv,
+                  self.fail_step, self.lx0, self.lverts, self.lnorms, self.nv_l, self.lm_inv, self.lk, self.lc,
+                  self.ldown, self.lup, self.n_lower, self.uverts, self.unorms, self.nv_u, self.n_upper, self.s_m_inv,
                   self.fixed, self.track_y, self.g_x, self.g_y, self.spring, self.dk, self.dc, self.dv,
                   self.dorigin, self.dforce, self.load, self.dt, self.iterations, COLLISION_SLOP,
                   self.bias_coef, self.joint_bias_coef, self.restitution, self.mu_s, self.mu_k,
@@ -291,17 +303,22 @@ def _rear(batch: Batch, b: int) -> float:
 
 
 def _hull(points) -> tuple[np.ndarray, np.ndarray]:
-    """A triangle's vertices in Chipmunk's hull order (counter-clockwise from the lowest x, then
-    y) and each vertex's plane normal (of the edge that ends at it, outward, unit)."""
+    """A convex outline's vertices in Chipmunk's hull order (``cpConvexHull``: counter-clockwise
+    from the lowest x, then y) and each vertex's plane normal (of the edge that ends at it,
+    outward, unit: ``cpPolyShape``'s planes)."""
     pts = [tuple(map(float, p)) for p in points]
-    area = sum(pts[i][0] * pts[(i + 1) % 3][1] - pts[(i + 1) % 3][0] * pts[i][1] for i in range(3))
+    count = len(pts)
+    area = sum(pts[i][0] * pts[(i + 1) % count][1] - pts[(i + 1) % count][0] * pts[i][1] for i in range(count))
     if area < 0:
         pts = pts[::-1]
-    start = min(range(3), key=lambda i: pts[i])
+    if not _strictly_convex(pts):  # the hull keeps only strict corners: refused, as by refusal()
+        raise SceneError("`shapes`: an asperity's outline is not strictly convex (collinear or reflex "
+                         'vertices), which engine="batched" does not implement; engine="pymunk" runs it')
+    start = min(range(count), key=lambda i: pts[i])
     pts = pts[start:] + pts[:start]
     v = np.array(pts)
-    n = np.empty((3, 2))
-    for i in range(3):
+    n = np.empty((count, 2))
+    for i in range(count):
         ax, ay = v[i - 1]
         bx, by = v[i]
         dx, dy = bx - ax, by - ay  # cpvnormalize(cpvrperp(b - a)): rperp(d) = (d.y, -d.x)
@@ -313,6 +330,18 @@ def _hull(points) -> tuple[np.ndarray, np.ndarray]:
 #: One call runs its scenes in batches of at most this many bytes (:meth:`Batch.nbytes_for`):
 #: the record dominates (72 B a sample and scene), and results do not depend on the batching.
 CHUNK_BYTES = 256 << 20
+
+
+def batch_size(scenes, steps: int, *, record_every: int = 10) -> int:
+    """How many of ``scenes`` :func:`run` steps in one batch when the longest runs ``steps``
+    steps: as many as keep the batch's arrays (:meth:`Batch.nbytes_for`, its record included)
+    within :data:`CHUNK_BYTES`, at least one."""
+    N = max(s.lower.count for s in scenes)
+    U = max(s.slider.count for s in scenes)
+    V = max(max(len(o) for o in s.lower.outlines()) for s in scenes)
+    W = max(max(len(o) for o in s.slider.outlines()) for s in scenes)
+    per_scene = Batch.nbytes_for(1, N, U, max(1, steps // record_every), vertices=max(V, W))
+    return max(1, min(len(scenes), CHUNK_BYTES // max(1, per_scene)))
 
 
 def run(scenes, dts, durations, *, record_every: int = 10, iterations: int = 20, passed=None):
@@ -327,10 +356,7 @@ def run(scenes, dts, durations, *, record_every: int = 10, iterations: int = 20,
     dts = [float(d) for d in dts]
     passed = [False] * len(scenes) if passed is None else [bool(p) for p in passed]
     steps = [max(0, int(math.ceil(d / dt - 1e-9))) for d, dt in zip(durations, dts)]
-    N = max(s.lower.count for s in scenes)
-    U = max(s.slider.count for s in scenes)
-    per_scene = Batch.nbytes_for(1, N, U, max(1, max(steps) // record_every))
-    size = max(1, min(len(scenes), CHUNK_BYTES // max(1, per_scene)))
+    size = batch_size(scenes, max(steps), record_every=record_every)
     out = []
     for start in range(0, len(scenes), size):
         out += _run_chunk(scenes[start:start + size], dts[start:start + size], steps[start:start + size],

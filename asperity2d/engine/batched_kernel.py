@@ -13,10 +13,11 @@ projection and stick/slip switch (:mod:`.core`, :mod:`.contacts`):
 1. the slider's force (the drive spring at the position the step will end at, or the constant
    force; the normal load on a free slider);
 2. positions: ``p += (v + v_bias) dt``, ``v_bias = 0``;
-3. contacts: every slider triangle (the last first, the order pymunk's broad phase reports
-   them in, which decides the sequential solver's sweep) against every lower triangle whose
+3. contacts: every slider asperity (the last first, the order pymunk's broad phase reports
+   them in, which decides the sequential solver's sweep) against every lower one whose
    bounding boxes overlap;
-   the normal and depth by the separating-axis test (for two overlapping convex polygons the
+   the normal and depth by the separating-axis test (for two overlapping convex polygons --
+   triangles, half triangles, flat tops, any strictly convex outline -- the
    same minimum-penetration axis GJK/EPA converges to), the contact points by Chipmunk's
    ``SupportEdgeForPoly`` / ``ContactPoints`` clipping (at most two per pair), warm-started from
    the previous step's impulses of the same vertex pair (contacts persist one step, as
@@ -26,7 +27,13 @@ projection and stick/slip switch (:mod:`.core`, :mod:`.contacts`):
    ``1 - exp(-c dt / m)``; each groove's anchor, clamp and bias;
 5. velocities: ``v = v + (g + f / m) dt``;
 6. cached impulses (contacts, grooves), then ``iterations`` sweeps of sequential impulses over
-   the contacts, then the springs' damping and the grooves;
+   the contacts, then the springs' damping and the grooves. Two rearrangements that change no
+   bit: a moving lower body without a contact is a system of its own (its spring and groove
+   touch nothing else), so its sweeps run alone, in registers; the island -- the slider, its
+   contacts and the bodies they touch -- is swept on registers and small unit-stride copies,
+   written back after. And a sweep that changes nothing (no accumulated impulse, no spring
+   target, no damping impulse) is a fixed point, which the sweeps left would repeat exactly:
+   the loop stops there;
 7. the projection back onto the tracks when a body drifted more than ``1e-9`` bases, and the
    static/kinetic switch with its hold rule (:class:`asperity2d.contact_laws.StaticKineticSwitch`).
 
@@ -42,8 +49,8 @@ from numba import njit, prange
 
 #: Contact points per pair (Chipmunk's CP_MAX_CONTACTS_PER_ARBITER).
 MAX_CONTACTS = 2
-#: Pairs in contact per scene and step the scratch arrays hold (a slider triangle touches at
-#: most its two neighbouring lower flanks, and the lower triangle under it near an apex).
+#: Pairs in contact per scene and step the scratch arrays hold (a slider asperity touches at
+#: most its two neighbouring lower flanks, and the lower asperity under it near an apex).
 PAIRS_PER_TIP = 4
 #: Failure codes (per scene): 0 ok; the others name why a scene stopped.
 OK, NONFINITE, OVERLAP, FLOOR, PAIRS = 0, 1, 2, 3, 4
@@ -52,6 +59,8 @@ OK, NONFINITE, OVERLAP, FLOOR, PAIRS = 0, 1, 2, 3, 4
 N_REC = 9  # x, vx, y, vy, drive force, fx, fy, f_tangential, contact count
 #: The divergence guard's deepest overlap (bases), as the pymunk path's (recorder.MAX_OVERLAP).
 MAX_OVERLAP = 0.5
+#: A contact's key, the pair of vertices it joins: a * KEY_BASE + b (more than any outline's vertices).
+KEY_BASE = 1 << 16
 
 DBL_MAX = 1.7976931348623157e308
 
@@ -62,16 +71,16 @@ def _clamp01(t):
 
 
 @njit(cache=True)
-def _support_edge(vx, vy, nxs, nys, px, py, n_x, n_y):
-    """Chipmunk's SupportEdgeForPoly for a triangle translated by (px, py): the edge's two
-    vertex indices (a, b) and their world coordinates."""
+def _support_edge(vx, vy, nxs, nys, px, py, n_x, n_y, nv):
+    """Chipmunk's SupportEdgeForPoly for a convex polygon of ``nv`` vertices translated by
+    (px, py): the edge's two vertex indices (a, b)."""
     best, i1 = -np.inf, 0
-    for i in range(3):
+    for i in range(nv):
         d = (vx[i] + px) * n_x + (vy[i] + py) * n_y
         if d > best:
             best, i1 = d, i
-    i0 = (i1 - 1 + 3) % 3
-    i2 = (i1 + 1) % 3
+    i0 = (i1 - 1 + nv) % nv
+    i2 = (i1 + 1) % nv
     if n_x * nxs[i1] + n_y * nys[i1] > n_x * nxs[i2] + n_y * nys[i2]:
         return i0, i1
     return i1, i2
@@ -80,8 +89,8 @@ def _support_edge(vx, vy, nxs, nys, px, py, n_x, n_y):
 @njit(cache=True)
 def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, sgj,
                 c_n, c_key, c_jn, c_jt, stuck, slid, mu, present, nstep, fail, fail_step,
-                lx0, lverts, lnorms, lm_inv, lk, lc, ldown, lup, n_lower,
-                uverts, unorms, n_upper, s_m_inv, fixed, track_y, g_x, g_y,
+                lx0, lverts, lnorms, nv_l, lm_inv, lk, lc, ldown, lup, n_lower,
+                uverts, unorms, nv_u, n_upper, s_m_inv, fixed, track_y, g_x, g_y,
                 spring, dk, dc, dv, dorigin, dforce, load,
                 dt, iterations, slop, bias_coef, joint_bias_coef, restitution,
                 mu_s, mu_k, v_stick, slip_dist, switch_on, floor_y, stop_x, first):
@@ -115,30 +124,57 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
     sn_y = np.empty(N)
     s_vcoef = np.empty(N)
     s_target = np.empty(N)
-    s_jacc = np.empty(N)
+    isl = np.empty(N, np.int64)
+    in_contact = np.zeros(N, np.bool_)
+    # the island in registers: per island body (slot) and per contact point
+    slot = np.zeros(N, np.int64)
+    bmi = np.empty(N)
+    bv0 = np.empty(N)
+    bv1 = np.empty(N)
+    bb0 = np.empty(N)
+    bb1 = np.empty(N)
+    bg0 = np.empty(N)
+    bg1 = np.empty(N)
+    btg = np.empty(N)
+    fs = np.empty(2 * max_pairs, np.int64)
+    fnx = np.empty(2 * max_pairs)
+    fny = np.empty(2 * max_pairs)
+    fu = np.empty(2 * max_pairs)
+    fnm = np.empty(2 * max_pairs)
+    ftm = np.empty(2 * max_pairs)
+    fcb = np.empty(2 * max_pairs)
+    fbo = np.empty(2 * max_pairs)
+    fjb = np.empty(2 * max_pairs)
+    fjn = np.empty(2 * max_pairs)
+    fjt = np.empty(2 * max_pairs)
     g_clamp = np.empty(N)
     g_bx = np.empty(N)
     g_by = np.empty(N)
     slips = np.empty(N)
     seen = np.zeros(N, np.bool_)
-    wvx = np.empty(3)
-    wvy = np.empty(3)
-    uvx = np.empty(3)
-    uvy = np.empty(3)
+    wvx = np.empty(lverts.shape[2])
+    wvy = np.empty(lverts.shape[2])
+    uvx = np.empty(uverts.shape[2])
+    uvy = np.empty(uverts.shape[2])
     sm_inv = s_m_inv[b]
     h = dt[b]
-    # the lower triangles' x extents about their bodies (the broad phase's cheap rejection:
+    # the lower outlines' x extents about their bodies (the broad phase's cheap rejection:
     # lp + min(v) rounds as min(lp + v), so it rejects exactly the pairs the full test would)
     lxlo = np.empty(N)
     lxhi = np.empty(N)
     for i in range(N):
-        lxlo[i] = min(lverts[b, i, 0, 0], min(lverts[b, i, 1, 0], lverts[b, i, 2, 0]))
-        lxhi[i] = max(lverts[b, i, 0, 0], max(lverts[b, i, 1, 0], lverts[b, i, 2, 0]))
+        lxlo[i], lxhi[i] = np.inf, -np.inf
+        for q in range(nv_l[b, i]):
+            lxlo[i] = min(lxlo[i], lverts[b, i, q, 0])
+            lxhi[i] = max(lxhi[i], lverts[b, i, q, 0])
     # Bodies at rest: a lower asperity exactly at its rest position, with no velocity, no
     # groove impulse and no contact, and no gravity, receives exactly zero from every step of
     # the solver (its spring force (100 - 100) k dt is 0, its groove's bias and impulse are 0),
     # so it is left out of the step's loops: bit for bit the same numbers, for less work.
     act = np.empty(N, np.int64)
+    # each spring's exact damping coefficient 1 - exp(-c dt / m): a constant of the scene
+    for i in range(N):
+        s_vcoef[i] = 1.0 - math.exp(-lc[b, i] * h * lm_inv[b, i])
     touched = np.zeros(N, np.bool_)
     still = g_x[b] == 0.0 and g_y[b] == 0.0
     for _ in range(steps[b]):
@@ -161,6 +197,7 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
         n_act = 0
         for i in range(N):
             touched[i] = False
+            in_contact[i] = False
             if (still and lp[b, i, 1] == 0.0 and lp[b, i, 0] == lx0[b, i] and lv[b, i, 0] == 0.0
                     and lv[b, i, 1] == 0.0 and lvb[b, i, 0] == 0.0 and lvb[b, i, 1] == 0.0
                     and gj[b, i, 0] == 0.0 and gj[b, i, 1] == 0.0):
@@ -173,13 +210,14 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
         spx, spy = sp[b, 0], sp[b, 1]
         # 3. contacts
         na = 0
-        # Chipmunk's broad phase reports the pairs of the slider's triangles last-added first
+        # Chipmunk's broad phase reports the pairs of the slider's asperities last-added first
         # (measured: this order reproduces pymunk to 1e-16 through two tips meeting their flanks
         # in the same step; the x order left 2.7e-6 of the slider's speed, the residual of 20
         # Gauss-Seidel sweeps that have not converged at a hard impact)
         for j in range(U - 1, -1, -1):
             ul, ur, ub, ut = np.inf, -np.inf, np.inf, -np.inf
-            for q in range(3):
+            nu = nv_u[b, j]
+            for q in range(nu):
                 uvx[q] = uverts[b, j, q, 0] + spx
                 uvy[q] = uverts[b, j, q, 1] + spy
                 ul, ur = min(ul, uvx[q]), max(ur, uvx[q])
@@ -192,7 +230,8 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                     c_n[b, j, i] = 0
                     continue
                 ll, lr, lb, lt = np.inf, -np.inf, np.inf, -np.inf
-                for q in range(3):
+                nl = nv_l[b, i]
+                for q in range(nl):
                     wvx[q] = lverts[b, i, q, 0] + lpx
                     wvy[q] = lverts[b, i, q, 1] + lpy
                     ll, lr = min(ll, wvx[q]), max(lr, wvx[q])
@@ -204,14 +243,15 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                 # (B's outward normals and A's negated): h(m) = max_B m.b - min_A m.a
                 best, mx, my = np.inf, 0.0, 0.0
                 for side in range(2):
-                    for e in range(3):
+                    for e in range(nl if side == 0 else nu):
                         if side == 0:
                             ex, ey = lnorms[b, i, e, 0], lnorms[b, i, e, 1]
                         else:
                             ex, ey = -unorms[b, j, e, 0], -unorms[b, j, e, 1]
                         hb, ha = -np.inf, np.inf
-                        for q in range(3):
+                        for q in range(nl):
                             hb = max(hb, wvx[q] * ex + wvy[q] * ey)
+                        for q in range(nu):
                             ha = min(ha, uvx[q] * ex + uvy[q] * ey)
                         depth = hb - ha
                         if depth < best:
@@ -222,9 +262,9 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                 n_x, n_y = -mx, -my  # from the slider (a) to the lower body (b)
                 # ContactPoints(SupportEdgeForPoly(a, n), SupportEdgeForPoly(b, -n))
                 a0, a1 = _support_edge(uverts[b, j, :, 0], uverts[b, j, :, 1], unorms[b, j, :, 0],
-                                       unorms[b, j, :, 1], spx, spy, n_x, n_y)
+                                       unorms[b, j, :, 1], spx, spy, n_x, n_y, nu)
                 b0, b1 = _support_edge(lverts[b, i, :, 0], lverts[b, i, :, 1], lnorms[b, i, :, 0],
-                                       lnorms[b, i, :, 1], lpx, lpy, -n_x, -n_y)
+                                       lnorms[b, i, :, 1], lpx, lpy, -n_x, -n_y, nl)
                 e1ax, e1ay, e1bx, e1by = uvx[a0], uvy[a0], uvx[a1], uvy[a1]
                 e2ax, e2ay, e2bx, e2by = wvx[b0], wvy[b0], wvx[b1], wvy[b1]
                 d_e1_a = e1ax * n_y - e1ay * n_x
@@ -241,11 +281,11 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                     if which == 0:
                         t1 = _clamp01((d_e2_b - d_e1_a) * e1_denom)
                         t2 = _clamp01((d_e1_a - d_e2_a) * e2_denom)
-                        kk = a0 * 3 + b1
+                        kk = a0 * KEY_BASE + b1
                     else:
                         t1 = _clamp01((d_e2_a - d_e1_a) * e1_denom)
                         t2 = _clamp01((d_e1_b - d_e2_a) * e2_denom)
-                        kk = a1 * 3 + b0
+                        kk = a1 * KEY_BASE + b0
                     p1x = e1ax * (1.0 - t1) + e1bx * t1
                     p1y = e1ay * (1.0 - t1) + e1by * t1
                     p2x = e2ax * (1.0 - t2) + e2bx * t2
@@ -267,6 +307,7 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                     continue
                 a_first[na] = c_n[b, j, i] == 0
                 touched[i] = True
+                in_contact[i] = True
                 a_j[na], a_i[na], a_nx[na], a_ny[na], a_cnt[na] = j, i, n_x, n_y, cnt
                 a_u[na] = mu[b, i]
                 na += 1
@@ -308,9 +349,7 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
             inv = 1.0 / dist
             sn_x[i], sn_y[i] = dx * inv, dy * inv
             s_target[i] = 0.0
-            s_vcoef[i] = 1.0 - math.exp(-lc[b, i] * h * m_inv)
             j_spring = (100.0 - dist) * lk[b, i] * h
-            s_jacc[i] = j_spring
             lv[b, i, 0] = lv[b, i, 0] + sn_x[i] * j_spring * m_inv
             lv[b, i, 1] = lv[b, i, 1] + sn_y[i] * j_spring * m_inv
             # groove along y at x0 from -down to up; n = (-1, 0), td = y
@@ -357,71 +396,155 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
             sv[b, 0] += sgj[b, 0] * coef * sm_inv
             sv[b, 1] += sgj[b, 1] * coef * sm_inv
         first[b] = False
-        for _it in range(iterations[b]):
-            for a in range(na):
-                i = a_i[a]
-                n_x, n_y = a_nx[a], a_ny[a]
-                u = a_u[a]
-                mi = lm_inv[b, i]
-                for c in range(a_cnt[a]):
-                    vrx = lv[b, i, 0] - sv[b, 0]
-                    vry = lv[b, i, 1] - sv[b, 1]
-                    vbn = (lvb[b, i, 0] - svb[b, 0]) * n_x + (lvb[b, i, 1] - svb[b, 1]) * n_y
-                    vrn = vrx * n_x + vry * n_y
-                    vrt = vrx * (-n_y) + vry * n_x
-                    jbn = (cbias[a, c] - vbn) * nmass[a, c]
-                    jb_old = jb[a, c]
-                    jb[a, c] = max(jb_old + jbn, 0.0)
-                    jn_new = -(bounce[a, c] + vrn) * nmass[a, c]
-                    jn_old = jn[a, c]
-                    jn[a, c] = max(jn_old + jn_new, 0.0)
-                    jt_max = u * jn[a, c]
-                    jt_new = -vrt * tmass[a, c]
-                    jt_old = jt[a, c]
-                    jt[a, c] = min(max(jt_old + jt_new, -jt_max), jt_max)
-                    dbn = jb[a, c] - jb_old
-                    svb[b, 0] -= n_x * dbn * sm_inv
-                    svb[b, 1] -= n_y * dbn * sm_inv
-                    lvb[b, i, 0] += n_x * dbn * mi
-                    lvb[b, i, 1] += n_y * dbn * mi
-                    djn, djt = jn[a, c] - jn_old, jt[a, c] - jt_old
-                    jx = n_x * djn - n_y * djt
-                    jy = n_x * djt + n_y * djn
-                    sv[b, 0] -= jx * sm_inv
-                    sv[b, 1] -= jy * sm_inv
-                    lv[b, i, 0] += jx * mi
-                    lv[b, i, 1] += jy * mi
-            for q in range(n_act):
-                i = act[q]
-                mi = lm_inv[b, i]
-                # the spring's damping: exact decay of the velocity along it
-                vrn = lv[b, i, 0] * sn_x[i] + lv[b, i, 1] * sn_y[i]
-                v_damp = (s_target[i] - vrn) * s_vcoef[i]
-                s_target[i] = vrn + v_damp
+        # The sweeps. Only the island -- the slider, its contacts, the lower bodies they touch --
+        # is coupled; a moving lower body with no contact is its own system (its spring and
+        # groove touch nothing else), so it iterates alone, in registers, with the same
+        # operations in the same order (the order between independent bodies changes no number).
+        # An iteration that changes nothing -- no accumulated impulse, no spring target, no
+        # damping impulse -- leaves every velocity as it was, so the sweeps after it would
+        # repeat it exactly: the loop stops there, bit for bit the result of all its sweeps.
+        n_isl = 0
+        for q in range(n_act):
+            i = act[q]
+            if in_contact[i]:
+                isl[n_isl] = i
+                n_isl += 1
+                continue
+            mi = lm_inv[b, i]
+            v0, v1 = lv[b, i, 0], lv[b, i, 1]
+            o0, o1 = gj[b, i, 0], gj[b, i, 1]
+            tgt = s_target[i]
+            snx, sny, vco, bx, by, clamp = sn_x[i], sn_y[i], s_vcoef[i], g_bx[i], g_by[i], g_clamp[i]
+            kinv = mi / (mi * mi)
+            for _it in range(iterations[b]):
+                vrn = v0 * snx + v1 * sny
+                v_damp = (tgt - vrn) * vco
+                tgt_new = vrn + v_damp
                 j_damp = v_damp * (1.0 / mi)
-                s_jacc[i] += j_damp
-                lv[b, i, 0] += sn_x[i] * j_damp * mi
-                lv[b, i, 1] += sn_y[i] * j_damp * mi
+                v0 += snx * j_damp * mi
+                v1 += sny * j_damp * mi
+                jx = kinv * (bx - v0)
+                jy = kinv * (by - v1)
+                sx, sy = o0 + jx, o1 + jy
+                if not (clamp * sy > 0.0):
+                    sy = 0.0
+                v0 += (sx - o0) * mi
+                v1 += (sy - o1) * mi
+                same = v_damp == 0.0 and tgt_new == tgt and sx == o0 and sy == o1
+                tgt, o0, o1 = tgt_new, sx, sy
+                if same:
+                    break
+            lv[b, i, 0], lv[b, i, 1] = v0, v1
+            gj[b, i, 0], gj[b, i, 1] = o0, o1
+            s_target[i] = tgt
+        # the island's state copied into registers and small unit-stride arrays (the slider's
+        # velocities, per island body and per contact point), swept, and written back: the same
+        # operations in the same order as on the batch's arrays
+        for q in range(n_isl):
+            i = isl[q]
+            slot[i] = q
+            bmi[q] = lm_inv[b, i]
+            bv0[q], bv1[q] = lv[b, i, 0], lv[b, i, 1]
+            bb0[q], bb1[q] = lvb[b, i, 0], lvb[b, i, 1]
+            bg0[q], bg1[q] = gj[b, i, 0], gj[b, i, 1]
+            btg[q] = s_target[i]
+        n_c = 0
+        for a in range(na):
+            q = slot[a_i[a]]
+            for c in range(a_cnt[a]):
+                fs[n_c], fnx[n_c], fny[n_c], fu[n_c] = q, a_nx[a], a_ny[a], a_u[a]
+                fnm[n_c], ftm[n_c], fcb[n_c], fbo[n_c] = nmass[a, c], tmass[a, c], cbias[a, c], bounce[a, c]
+                fjb[n_c], fjn[n_c], fjt[n_c] = jb[a, c], jn[a, c], jt[a, c]
+                n_c += 1
+        s0, s1, sb0, sb1 = sv[b, 0], sv[b, 1], svb[b, 0], svb[b, 1]
+        sg0, sg1 = sgj[b, 0], sgj[b, 1]
+        for _it in range(iterations[b]):
+            changed = False
+            for m in range(n_c):
+                q = fs[m]
+                n_x, n_y = fnx[m], fny[m]
+                mi = bmi[q]
+                vrx = bv0[q] - s0
+                vry = bv1[q] - s1
+                vbn = (bb0[q] - sb0) * n_x + (bb1[q] - sb1) * n_y
+                vrn = vrx * n_x + vry * n_y
+                vrt = vrx * (-n_y) + vry * n_x
+                jbn = (fcb[m] - vbn) * fnm[m]
+                jb_old = fjb[m]
+                jb_ = max(jb_old + jbn, 0.0)
+                jn_new = -(fbo[m] + vrn) * fnm[m]
+                jn_old = fjn[m]
+                jn_ = max(jn_old + jn_new, 0.0)
+                jt_max = fu[m] * jn_
+                jt_new = -vrt * ftm[m]
+                jt_old = fjt[m]
+                jt_ = min(max(jt_old + jt_new, -jt_max), jt_max)
+                if jb_ != jb_old or jn_ != jn_old or jt_ != jt_old:
+                    changed = True
+                fjb[m], fjn[m], fjt[m] = jb_, jn_, jt_
+                dbn = jb_ - jb_old
+                sb0 -= n_x * dbn * sm_inv
+                sb1 -= n_y * dbn * sm_inv
+                bb0[q] += n_x * dbn * mi
+                bb1[q] += n_y * dbn * mi
+                djn, djt = jn_ - jn_old, jt_ - jt_old
+                jx = n_x * djn - n_y * djt
+                jy = n_x * djt + n_y * djn
+                s0 -= jx * sm_inv
+                s1 -= jy * sm_inv
+                bv0[q] += jx * mi
+                bv1[q] += jy * mi
+            for q in range(n_isl):
+                i = isl[q]
+                mi = bmi[q]
+                # the spring's damping: exact decay of the velocity along it
+                vrn = bv0[q] * sn_x[i] + bv1[q] * sn_y[i]
+                v_damp = (btg[q] - vrn) * s_vcoef[i]
+                tgt_new = vrn + v_damp
+                if v_damp != 0.0 or tgt_new != btg[q]:
+                    changed = True
+                btg[q] = tgt_new
+                j_damp = v_damp * (1.0 / mi)
+                bv0[q] += sn_x[i] * j_damp * mi
+                bv1[q] += sn_y[i] * j_damp * mi
                 # the groove (its mass tensor is m I for a body that cannot rotate)
                 kinv = mi / (mi * mi)
-                jx = kinv * (g_bx[i] - lv[b, i, 0])
-                jy = kinv * (g_by[i] - lv[b, i, 1])
-                ox, oy = gj[b, i, 0], gj[b, i, 1]
+                jx = kinv * (g_bx[i] - bv0[q])
+                jy = kinv * (g_by[i] - bv1[q])
+                ox, oy = bg0[q], bg1[q]
                 sx, sy = ox + jx, oy + jy
                 if not (g_clamp[i] * sy > 0.0):  # cross(j, n) = j.y for n = (-1, 0)
                     sy = 0.0  # projected onto n: (sx, 0)
-                gj[b, i, 0], gj[b, i, 1] = sx, sy
-                lv[b, i, 0] += (sx - ox) * mi
-                lv[b, i, 1] += (sy - oy) * mi
+                if sx != ox or sy != oy:
+                    changed = True
+                bg0[q], bg1[q] = sx, sy
+                bv0[q] += (sx - ox) * mi
+                bv1[q] += (sy - oy) * mi
             if fixed[b]:
                 kinv = sm_inv / (sm_inv * sm_inv)
-                jx = kinv * (0.0 - sv[b, 0])
-                jy = kinv * (sgb_y - sv[b, 1])
-                ox, oy = sgj[b, 0], sgj[b, 1]
+                jx = kinv * (0.0 - s0)
+                jy = kinv * (sgb_y - s1)
+                ox, oy = sg0, sg1
                 sx, sy = 0.0, oy + jy  # never at the track's ends: projected onto n = (0, 1)
-                sgj[b, 0], sgj[b, 1] = sx, sy
-                sv[b, 0] += (sx - ox) * sm_inv
-                sv[b, 1] += (sy - oy) * sm_inv
+                if sx != ox or sy != oy:
+                    changed = True
+                sg0, sg1 = sx, sy
+                s0 += (sx - ox) * sm_inv
+                s1 += (sy - oy) * sm_inv
+            if not changed:
+                break
+        sv[b, 0], sv[b, 1], svb[b, 0], svb[b, 1] = s0, s1, sb0, sb1
+        sgj[b, 0], sgj[b, 1] = sg0, sg1
+        for q in range(n_isl):
+            i = isl[q]
+            lv[b, i, 0], lv[b, i, 1] = bv0[q], bv1[q]
+            lvb[b, i, 0], lvb[b, i, 1] = bb0[q], bb1[q]
+            gj[b, i, 0], gj[b, i, 1] = bg0[q], bg1[q]
+        n_c = 0
+        for a in range(na):
+            for c in range(a_cnt[a]):
+                jn[a, c], jt[a, c] = fjn[n_c], fjt[n_c]
+                n_c += 1
         # remember this step's contacts for the next step's warm start
         for j in range(U):
             for i in range(N):
@@ -534,8 +657,8 @@ def _record(b, rec, rec_at, sp, sv, na, a_nx, a_ny, a_cnt, jn, jt, h, spring, dk
 @njit(parallel=True, cache=True)
 def advance(steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, sgj,
             c_n, c_key, c_jn, c_jt, stuck, slid, mu, present, nstep, fail, fail_step,
-            lx0, lverts, lnorms, lm_inv, lk, lc, ldown, lup, n_lower,
-            uverts, unorms, n_upper, s_m_inv, fixed, track_y, g_x, g_y,
+            lx0, lverts, lnorms, nv_l, lm_inv, lk, lc, ldown, lup, n_lower,
+            uverts, unorms, nv_u, n_upper, s_m_inv, fixed, track_y, g_x, g_y,
             spring, dk, dc, dv, dorigin, dforce, load,
             dt, iterations, slop, bias_coef, joint_bias_coef, restitution,
             mu_s, mu_k, v_stick, slip_dist, switch_on, floor_y, stop_x, first):
@@ -543,8 +666,8 @@ def advance(steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, sgj,
     for b in prange(steps.shape[0]):
         _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, sgj,
                     c_n, c_key, c_jn, c_jt, stuck, slid, mu, present, nstep, fail, fail_step,
-                    lx0, lverts, lnorms, lm_inv, lk, lc, ldown, lup, n_lower,
-                    uverts, unorms, n_upper, s_m_inv, fixed, track_y, g_x, g_y,
+                    lx0, lverts, lnorms, nv_l, lm_inv, lk, lc, ldown, lup, n_lower,
+                    uverts, unorms, nv_u, n_upper, s_m_inv, fixed, track_y, g_x, g_y,
                     spring, dk, dc, dv, dorigin, dforce, load,
                     dt, iterations, slop, bias_coef, joint_bias_coef, restitution,
                     mu_s, mu_k, v_stick, slip_dist, switch_on, floor_y, stop_x, first)

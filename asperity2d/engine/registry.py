@@ -86,8 +86,8 @@ ENGINES: Registry = Registry("engine", "asperity2d.engines", key=lambda e: e.nam
 ENGINES.register(EngineEntry("pymunk", "pymunk (Chipmunk 2D), one scene at a time: the reference; every "
                              "scene option", _always, _everything))
 ENGINES.register(EngineEntry("batched", "the model's own compiled loop (Numba), many scenes in lockstep: "
-                             "full triangles on spring tracks, no lattice or substrate", batched.unavailable,
-                             batched.refusal, batched.run))
+                             "convex asperities of every profile on spring tracks, no lattice or substrate",
+                             batched.unavailable, batched.refusal, batched.run))
 
 
 def check_engine(engine) -> str:
