@@ -70,6 +70,8 @@ def refusal(scene, *, settle: bool = False) -> str | None:
         if not all(_strictly_convex(outline) for outline in outlines):
             return (f"`shapes`: a {what} asperity's outline is not strictly convex (collinear or reflex "
                     "vertices), which engine=\"batched\" does not implement" + tail)
+    if scene.slider.start is not None:
+        return "`slider_start` (a start of the scene's own) is not implemented on engine=\"batched\"" + tail
     if contact.law != "static-kinetic":
         return f"`law` = {contact.law!r} is not implemented on engine=\"batched\" (static-kinetic only)" + tail
     if settle:
