@@ -94,7 +94,9 @@ def configure(project: Path, module: str, tests: list[str], timeout_multiplier: 
              'source_paths = ["asperity2d"]\n'
              f"only_mutate = [{json.dumps(module)}]\n"
              f"pytest_add_cli_args_test_selection = {json.dumps(tests)}\n"
-             'pytest_add_cli_args = ["-p", "no:cacheprovider", "-q", "-m", "not slow"]\n'
+             # one process: mutmut records which test reaches which mutant only in its own process, and the
+             # project's addopts start xdist workers (-n auto), where it would see none
+             'pytest_add_cli_args = ["-p", "no:cacheprovider", "-q", "-m", "not slow", "-n", "0"]\n'
              f"timeout_multiplier = {float(timeout_multiplier)!r}\n")
     pyproject.write_text(text)
     return tests
