@@ -515,3 +515,24 @@ def test_from_the_entry_the_front_tip_rests_against_the_first_flank():
     scene = a.make_scene(drive="force", **SMALL)
     assert len(settled_run(scene, start="entry").engine.arbiters_internal()) > 0
     assert len(settled_run(scene, start="run-up").engine.arbiters_internal()) == 0
+
+
+def test_a_slider_still_moving_at_the_time_limit_runs_on_until_it_passes_or_stops(monkeypatch):
+    """Under the viscous law friction grows with speed, so a force just above the threshold
+    crosses at a crawl: on Ooten's 16/4 track (random, seed 0) with a run-up, 34 mN is still
+    moving at the first time limit (ten frictionless crossings) and passes in the second. Counting
+    the limit as "did not pass" made the run-up critical force measure the time to cross."""
+    from asperity2d.run import Run
+
+    scene = a.make_scene(spacing="random", seed=0, contact_law="viscous", viscosity=0.005, drive="force")
+    base = settled_run(scene, start="run-up", dt=measure_dt(scene, "run-up"))
+    outcomes = []
+    advance = Run.advance
+
+    def spy(self, duration, **kw):
+        outcomes.append(advance(self, duration, **kw))
+        return outcomes[-1]
+
+    monkeypatch.setattr(Run, "advance", spy)
+    assert passes(base, 0.034)
+    assert outcomes == ["duration", "passed"]  # the first limit alone would have said "stopped"
