@@ -25,7 +25,7 @@ run once). At the run-up threshold the slider meets the track at ~400 m/s and cr
 120 to 1,560 m/s, a mean 950 m/s (recorded every 20 steps under the switch at 2.1 mN, regular
 track), so what decides is each law's coefficient at those speeds:
 
-* **static-kinetic: undecided** (regular 2.08 mN; random +0.8 %, 3 of 7 seeds below, p = 0.45;
+* **static-kinetic: undecided** (regular 2.07 mN; random +0.8 %, 3 of 7 seeds below, p = 0.45;
   the effect sits at the rule's 1 % margin, about 8,000 seeds would decide it). Far above the
   stick speed (~1.1 m/s) no contact sticks while the slider crosses (none did in the recorded
   crossing, sampled every 20 steps): every contact slides at mu_k = 0.2, and the threshold is
@@ -40,18 +40,16 @@ track), so what decides is each law's coefficient at those speeds:
   mu_0 + (a - b) ln(v / v_0) = 0.18 at 120 m/s, 0.16 at 1,500 m/s: a Coulomb friction under the
   switch's 0.2, hence the lower regular threshold. Its spacing effect leans the other way
   from the switch's (-3.5 % against +0.8 %), not yet decided.
-* **viscous: does not hold -- random spacing raises the measure** (regular 33.7 mN, random
-  0.26 to 0.28 N, 0 of 7 seeds below; p = 0.0078 that way). Here mu = 0.2 + 0.005 s/m x v is
-  0.8 at 120 m/s and 2.2 at 400 m/s: at crossing speeds the friction is a drag that grows with
-  speed, so how fast the slider crosses depends on the force and the track, and the measure's
-  time limit (``default_duration``: ten times the frictionless crossing) decides, not a stop. At
-  34 mN the regular track is crossed at a mean 430 m/s, in 56 ns, just inside the limit; the
-  random seed 0 at a mean 290 m/s, and when the limit runs out its slider is still moving,
-  16 of its 24 um across (it passes at 1.4 times the limit). So 0.27 N is the force that
-  crosses the random track in time. With four times the limit (section 4: every run tried
-  either passed or stopped) the threshold is a force that stops the slider, and random spacing
-  lowers it -- **holds** (regular 29.6 mN, random 14.4 to 20.6 mN: -40 %, x0.60 [0.52, 0.69],
-  7 of 7 seeds below, p = 0.0078).
+* **viscous: holds** (regular 29.6 mN, random 14.4 to 20.6 mN: -40 %, 7 of 7 seeds below,
+  p = 0.0078). Here mu = 0.2 + 0.005 s/m x v is 0.8 at 120 m/s and 2.2 at 400 m/s: at crossing
+  speeds the friction is a drag that grows with speed, fourteen times the switch's threshold on
+  the regular track. A force just above the threshold crosses at a crawl: random seed 0 at 34 mN
+  is still moving, 16 of its 24 um across, when ten frictionless crossings have gone by, and
+  passes at 1.4 times that. The measure's trials run on until the slider passes or stops
+  (within the step budget), so the threshold is a force that stops the slider; counted at a
+  fixed time limit, it would have measured how long the crossing takes (random 0.26 to 0.28 N,
+  "raises" the other way). Which contacts stop the regular track's slider, and why fewer stop
+  the random track's, is not traced here.
 
 The peak stick force (a holding threshold: the all-tips flank force at the coefficient that holds
 a stuck contact) costs about four times the run-up's CPU time; on Ooten's track it was run on
@@ -72,12 +70,11 @@ phase, on a random one out of phase, whatever the law. Under the switch on Ooten
 ``scenes/quickstart.py`` (seeds added in stages until decided) finds the same: holds, -46 %,
 10 of 10 seeds below, p = 0.00098.
 
-So the verdict changes with the law only where the friction grows with speed, and there through
-how long the slider takes to cross, not through a force that stops it: judged on the force
-that stops the slider, random spacing lowers the viscous law's run-up threshold too. Under the
-three laws whose friction at crossing speeds is Coulomb-like, 7 seeds do not tell the spacings
-apart by the run-up threshold (rate-and-state leans to lower, about 41 seeds would decide it);
-the holding threshold tells them apart under every law.
+So the verdict changes with the law only where the friction grows with speed: under the viscous
+law random spacing lowers the run-up threshold, decided on 7 seeds. Under the three laws whose
+friction at crossing speeds is Coulomb-like, 7 seeds do not tell the spacings apart by the run-up
+threshold (rate-and-state leans to lower, about 41 seeds would decide it); the holding threshold
+tells them apart under every law.
 
 Run::
 
@@ -88,11 +85,10 @@ Run::
 # %%
 # The gallery runs it with ``--quick``: the smallest track (two lower asperities, one tip), one
 # seed, so its verdicts read "not testable" (a one-sided signed-rank test over n seeds cannot give
-# p below 1/2**n; a verdict needs 7 seeds or more), and it leaves out section 4's check. The
+# p below 1/2**n; a verdict needs 7 seeds or more). The
 # default run is Ooten's 16/4 track with 8 seeds; ``--size small`` runs the 4/2 track of the other
 # lessons' quick settings. On Ooten's track a peak stick force (three spring-driven passes at
-# half the step) costs about four times a run-up critical force, and section 4's check (a search
-# with longer runs) two to six times.
+# half the step) costs about four times a run-up critical force.
 
 from __future__ import annotations
 
@@ -165,61 +161,6 @@ def coefficients(base: dict) -> dict:
     return out
 
 
-# %%
-# 4. The viscous law's run-up threshold without the time limit's say
-# -------------------------------------------------------------------
-#
-# The critical force is the smallest force that carries the slider over the track within the
-# run's time limit (``asperity2d.steps.default_duration``: ten times the frictionless crossing).
-# A friction that grows with speed caps the speed the slider crosses at, and the limit may then
-# decide instead of a stop. The check: the measure's own start, step and search
-# (``asperity2d.critical``), with ``LONG_LIMIT`` times the time limit, and how the runs tried
-# ended -- a threshold where every run either passed or stopped is a force that stops the slider.
-
-#: The check's time limit, in multiples of the measure's.
-LONG_LIMIT = 4.0
-
-
-def critical_run_up_long_limit(scene: a.Scene) -> float:
-    """The critical force with a run-up (N) as the measure finds it, with ``LONG_LIMIT`` times its
-    time limit; NaN if a tried force still ran out of the longer limit."""
-    from asperity2d import critical
-    from asperity2d.steps import MAX_STEPS, default_duration
-    from asperity2d.stops import default_stops
-
-    base = critical.settled_run(scene, start="run-up", dt=critical.measure_dt(scene, "run-up"),
-                                max_steps=int(LONG_LIMIT * MAX_STEPS))
-    ends = []
-
-    def passes(force: float) -> bool:  # critical.passes with the longer limit
-        run = base.fork()
-        run.set_drive_force(force)
-        pushed = scene.replace(drive=a.ConstantForce(force=force))
-        room = 0.999 * (run.max_steps - run.engine.step_count) * run.dt
-        ends.append(run.advance(min(LONG_LIMIT * default_duration(pushed), room), stop=default_stops(pushed),
-                                record=False))
-        return ends[-1] == "passed"
-
-    _, force, _, _ = critical.smallest_passing(passes, critical.flank_estimate(scene),
-                                                first=critical.FIRST_POWER[scene.slider.track, "run-up"])
-    return float("nan") if "duration" in ends else float(force)
-
-
-def compare_long_limit(seeds: list[int], base: dict) -> a.Comparison:
-    """:func:`critical_run_up_long_limit` of the viscous law's regular and random tracks (in this
-    process: the function lives in this script)."""
-    law = "viscous"
-    kw = {"contact_law": law, **LAWS[law]}
-    random = a.compare(critical_run_up_long_limit, {f"random {law}": {"spacing": "random", **kw}}, seeds,
-                       base=base, progress=False, workers=1)
-    regular = a.compare(critical_run_up_long_limit, {f"regular {law}": {"spacing": "regular", **kw}}, seeds[:1],
-                        base=base, progress=False, workers=1)
-    return a.Comparison(values={**{k: v * len(seeds) for k, v in regular.values.items()}, **random.values},
-                        seeds=random.seeds, variants={**regular.variants, **random.variants}, base=random.base,
-                        measure=random.measure, saved_unit="N",
-                        saved_label=f"critical force with a run-up and {LONG_LIMIT:g} x the time limit")
-
-
 def mechanism_lines(comparisons: dict, mu: dict) -> list[str]:
     lines = []
     for law in LAWS:
@@ -253,19 +194,12 @@ def main(argv=None) -> int:
     measures = MEASURES if args.measure == "both" else (args.measure,)
     comparisons = {m: compare_laws(m, seeds, base, args.workers) for m in measures}
     claims = [v for c in comparisons.values() for v in verdicts_of(c)]
-    long_limit = None
-    if "critical-run-up" in comparisons and not args.quick:  # ~2 x the run-up's CPU time, one process
-        long_limit = compare_long_limit(seeds, base)
-        claims.append(long_limit.verdict("random viscous", "regular viscous", setup="fixed",
-                                         subject="under viscous, random spacing"))
     mu = coefficients(base)
     lines = [verdicts.verdict_line(v) for v in claims]
     lines += mechanism_lines(comparisons, mu)
     for m, c in comparisons.items():
         c.save(out / f"{m}.json")
         a.render(c, out / f"{m}.png")
-    if long_limit is not None:
-        long_limit.save(out / "critical-run-up-long-limit.json")
     summary = {"size": size, "seeds": len(seeds), "laws": LAWS, "coefficients": mu, "claims": claims,
                "comparisons": {m: c.summary() for m, c in comparisons.items()}}
     return scripting.finish(args, summary, out, lines)

@@ -304,22 +304,6 @@ def test_the_contact_law_lesson_gives_a_verdict_per_law_and_measure(tmp_path, ca
     assert mu["viscous"]["rest"] < mu["viscous"]["drive"] and mu["static-kinetic"]["rest"] == 0.3
 
 
-@pytest.mark.slow  # ~10 s of CPU: two critical-force searches on the smallest track
-def test_the_lessons_long_limit_check_is_the_measures_own_search():
-    """contact_laws_spacing.py section 4: with the time limit four times longer, the run-up
-    critical force of a scene whose slider never runs out of time is the measure's value to the
-    bit (the same start, step and search; only the limit differs)."""
-    from scene_scripts import SCENES
-
-    from asperity2d.cli.args import load_script
-    from asperity2d.experiments.measures import MEASURES
-
-    lesson = load_script(SCENES / "contact_laws_spacing.py")
-    scene = a.make_scene(lower_count=2, upper_count=1, track="fixed", interference=0.125e-6, spacing="random",
-                         seed=0, contact_law="viscous", viscosity=0.005)
-    assert lesson.critical_run_up_long_limit(scene) == MEASURES.lookup("critical-run-up", "m").function(scene)
-
-
 def test_the_laws_examples_run(tmp_path, monkeypatch):
     """The Examples sections of asperity2d.contact_laws (each law's) run as doctests."""
     import doctest
