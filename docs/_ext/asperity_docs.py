@@ -478,10 +478,45 @@ def cost_fit(rows: list[dict]) -> tuple[float, float]:
     return float(a), float(b)
 
 
+def batched_cost_lines(res: dict | None, pymunk: tuple[float, float]) -> list[str]:
+    """The batched engine's measured cost per scene-step by batch size B and lower count N
+    (``benchmarks/bench_batched.py``'s ``cost``), its fitted lines, and pymunk's beside them."""
+    if not res or "cost" not in res:
+        why = (res or {}).get("skipped", "not measured in benchmarks/results.json")
+        return [f"The batched engine's cost model is not measured here: {why}.", ""]
+    cost = res["cost"]
+    sizes = sorted({r["B"] for r in cost["rows"]})
+    counts = sorted({r["N"] for r in cost["rows"]})
+    cell_of = {(r["B"], r["N"]): r for r in cost["rows"]}
+    rows = []
+    for n in counts:
+        row = [str(n)]
+        for b in sizes:
+            r = cell_of.get((b, n))
+            row.append("" if r is None else f"{_us(r['cpu_us_per_scene_step'])} ({_us(r['wall_us_per_scene_step'])})")
+        row.append(_us(pymunk[0] + pymunk[1] * n))
+        rows.append(row)
+    fit = cost["fit_cpu_us"]
+    pa, pb = pymunk
+    out = [f"CPU (wall) per scene-step of the batched engine, a regular fixed-track scene of N lower asperities "
+           f"and 4 tips with its slider on the surface, {cost['threads']} threads, measured "
+           f"{res['measured']['date'].split()[0]} (load {res['measured']['load_average_before'][0]:.1f}); the "
+           "last column is pymunk's line above:", ""]
+    out += list_table(["N"] + [f"B = {b}" for b in sizes] + ["pymunk c(N)"], rows, cls="benchmark-table")
+    out += [f"The fitted line over every cell: **c(N) = {fit['a']:.2f} µs + {fit['b_per_N']:.3f} µs × N** of CPU a "
+            f"scene-step (within {100 * fit['worst']:.0f} % of each cell), against pymunk's "
+            f"{pa:.1f} µs + {pb:.2f} µs × N. Each scene runs its steps in one thread, so the CPU of a "
+            "scene-step does not depend on B; the wall time falls with B until every thread has scenes. "
+            "Per B: " + ", ".join(f"B = {b}: {f['a']:.2f} + {f['b_per_N']:.3f} N"
+                                  for b, f in cost["fit_cpu_us_by_B"].items()) + " µs.", ""]
+    return out
+
+
 class BenchmarkTables(_Generated):
     """The benchmarks page's figures, read from ``benchmarks/results.json`` when the page is built.
 
-    Argument: ``cost`` (the per-step cost by asperity count and the cost model), ``measures``
+    Argument: ``cost`` (the per-step cost by asperity count and the cost model), ``batched`` (the
+    batched engine's cost per scene-step by batch size and asperity count), ``measures``
     (a critical force's steps and time), ``workers`` (what parallel workers give), ``others``
     (the belt solver, pictures, start-up) or ``machine`` (where and when it was measured).
     """
@@ -528,6 +563,8 @@ class BenchmarkTables(_Generated):
                     f"is {dt * 1e12:.1f} ps and 1 µs of simulated time is {per_um:,.0f} steps: about "
                     f"**{_secs(per_um * c16 * 1e-6)}** of CPU at {_us(c16)} a step.", ""]
             return out
+        if what == "batched":
+            return batched_cost_lines(res.get("batched"), cost_fit(res["core"]["rows"]))
         if what == "measures":
             rows = []
             for key, r in res["critical"]["rows"].items():
