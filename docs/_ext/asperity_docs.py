@@ -496,17 +496,26 @@ def batched_cost_lines(res: dict | None, pymunk: tuple[float, float]) -> list[st
             row.append("" if r is None else f"{_us(r['cpu_us_per_scene_step'])} ({_us(r['wall_us_per_scene_step'])})")
         row.append(_us(pymunk[0] + pymunk[1] * n))
         rows.append(row)
-    fit = cost["fit_cpu_us"]
+    import numpy as np
+
+    # the line through the batches that fill the threads (B >= 16), weighted by 1 / cost as pymunk's
+    full = [r for r in cost["rows"] if r["B"] >= 16] or cost["rows"]
+    n = np.array([r["N"] for r in full], float)
+    c = np.array([r["cpu_us_per_scene_step"] for r in full], float)
+    fb, fa = np.polyfit(n, c, 1, w=1.0 / c)
+    worst = float(np.max(np.abs((fa + fb * n) / c - 1.0)))
     pa, pb = pymunk
+    load = res["measured"].get("load_average_before")
     out = [f"CPU (wall) per scene-step of the batched engine, a regular fixed-track scene of N lower asperities "
            f"and 4 tips with its slider on the surface, {cost['threads']} threads, measured "
-           f"{res['measured']['date'].split()[0]} (load {res['measured']['load_average_before'][0]:.1f}); the "
+           f"{res['measured']['date'].split()[0]}" + (f" (load {load[0]:.1f})" if load else "") + "; the "
            "last column is pymunk's line above:", ""]
     out += list_table(["N"] + [f"B = {b}" for b in sizes] + ["pymunk c(N)"], rows, cls="benchmark-table")
-    out += [f"The fitted line over every cell: **c(N) = {fit['a']:.2f} µs + {fit['b_per_N']:.3f} µs × N** of CPU a "
-            f"scene-step (within {100 * fit['worst']:.0f} % of each cell), against pymunk's "
-            f"{pa:.1f} µs + {pb:.2f} µs × N. Each scene runs its steps in one thread, so the CPU of a "
-            "scene-step does not depend on B; the wall time falls with B until every thread has scenes. "
+    out += [f"The fitted line through the batches of 16 scenes or more: **c(N) = {fa:.2f} µs + {fb:.3f} µs × N** "
+            f"of CPU a scene-step (within {100 * worst:.0f} % of each of those cells), against pymunk's "
+            f"{pa:.1f} µs + {pb:.2f} µs × N. Each scene runs its steps in one thread: from B = 16 on the CPU of a "
+            "scene-step no longer depends on B, and the wall time falls with B until every thread has scenes; "
+            "a batch of one or four leaves threads idle, which the CPU time of its cells also counts. "
             "Per B: " + ", ".join(f"B = {b}: {f['a']:.2f} + {f['b_per_N']:.3f} N"
                                   for b, f in cost["fit_cpu_us_by_B"].items()) + " µs.", ""]
     return out
