@@ -27,14 +27,25 @@ PASSES = 5
 #: independent samples, p < ALPHA happens once in 100 runs. The samples are paired by seed (the
 #: same scenes and drive speeds), which makes a false alarm rarer still.
 ALPHA = 0.01
+#: pymunk's side runs in this many worker processes (the slow test's wall time on 2 cores)
+WORKERS = 3
+
+
+def _pymunk_forces(seed: int):
+    """One seed's StickForces on pymunk (module level: worker processes run it)."""
+    return stick_forces_of([a.make_scene(spacing="random", seed=seed)], passes=PASSES, engine="pymunk")[0]
 
 
 @pytest.fixture(scope="module")
 def both():
     """Per engine, the StickForces of the default scene (Ooten's fixed track, 16 lower asperities,
-    random spacing) on SEEDS, 5 passes each at the step policy's step."""
+    random spacing) on SEEDS, 5 passes each at the step policy's step: the batched engine in one
+    batch, pymunk seed by seed in worker processes (every core; the same numbers as in one)."""
+    from asperity2d.sweep import map_calls
+
     scenes = [a.make_scene(spacing="random", seed=s) for s in SEEDS]
-    return {engine: stick_forces_of(scenes, passes=PASSES, engine=engine) for engine in ("pymunk", "batched")}
+    return {"batched": stick_forces_of(scenes, passes=PASSES, engine="batched"),
+            "pymunk": map_calls(_pymunk_forces, [{"seed": s} for s in SEEDS], workers=WORKERS)}
 
 
 @pytest.mark.parametrize("name", ["peak", "mean"])
@@ -55,9 +66,8 @@ def test_stick_force_distributions_agree(both, name):
     """
     from scipy import stats
 
-    ref = np.array([f._finite(name) for f in both["pymunk"]], dtype=object)
-    got = np.array([f._finite(name) for f in both["batched"]], dtype=object)
-    r_pass, g_pass = np.concatenate(list(ref)), np.concatenate(list(got))
+    r_pass = np.concatenate([f._finite(name) for f in both["pymunk"]]).astype(float)
+    g_pass = np.concatenate([f._finite(name) for f in both["batched"]]).astype(float)
     assert len(r_pass) == len(g_pass) == len(SEEDS) * PASSES  # every pass had a stick
     p_ks, p_mw = stats.ks_2samp(r_pass, g_pass).pvalue, stats.mannwhitneyu(r_pass, g_pass).pvalue
 
@@ -83,7 +93,7 @@ def test_the_headline_verdict_is_the_same_on_both_engines():
     variants = {"regular": {"spacing": "regular"}, "random": {"spacing": "random"}}
     base = {"track": "fixed", "drive": "spring"}
     out = {engine: a.compare("peak-stick", variants, "auto", base=base, max_seeds=30, progress=False,
-                             workers=1, engine=engine) for engine in ("pymunk", "batched")}
+                             workers=WORKERS, engine=engine) for engine in ("pymunk", "batched")}
     verdicts = {engine: c.verdict("random", "regular") for engine, c in out.items()}
     for engine, v in verdicts.items():
         print(engine, v["verdict"], len(out[engine].seeds), "seeds, ratio", v["numbers"]["ratio_hl"])
