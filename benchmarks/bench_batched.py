@@ -16,7 +16,10 @@
   record for a full pass at dt/2 (the record dominates; :func:`asperity2d.engine.batched.run`
   splits a call into batches of at most ``CHUNK_BYTES``).
 * **cost model**: CPU per scene-step while the slider crosses a regular surface, for batch sizes
-  B and lower counts N, fitted as c(N) = a + b N (per scene-step, at the largest B).
+  B (1-256) and lower counts N (8-64), fitted as c(N) = a + b N (µs per scene-step) over every
+  cell and for each B, beside pymunk's c(N) on the benchmarks page (CPU and wall: a scene runs
+  its steps in one thread, so the CPU should not depend on B while the wall time falls until
+  every thread has scenes). Without Numba the module returns ``{"skipped": why}``.
 
 CPU time is ``time.process_time`` (every thread of the process); wall time ``perf_counter``.
 """
@@ -87,28 +90,65 @@ def _memory() -> dict:
             "estimate_MB": batched.Batch.nbytes_for(1000, 16, 4, samples) / 2**20}
 
 
+#: The cost model's grid: batch sizes B and lower counts N (the slider carries 4 tips), and the
+#: scene-steps each cell times (its steps: this over B, at least 1,000).
+COST_B = (1, 4, 16, 64, 256)
+COST_N = (8, 16, 32, 64)
+COST_SCENE_STEPS = 300_000
+
+
+def cost_fit(rows: list[dict], key: str = "cpu_us_per_scene_step") -> dict:
+    """The line c(N) = a + b N (µs per scene-step) through the measured cells, as pymunk's c(N) on
+    the benchmarks page: least squares in the relative error (each cell weighted by 1 / its cost).
+    ``worst``: the largest relative miss of a measured cell."""
+    n = np.array([r["N"] for r in rows], float)
+    c = np.array([r[key] for r in rows], float)
+    fb, fa = np.polyfit(n, c, 1, w=1.0 / c)
+    return {"a": float(fa), "b_per_N": float(fb), "worst": float(np.max(np.abs((fa + fb * n) / c - 1.0)))}
+
+
+def full_batch_fit(rows: list[dict]) -> dict:
+    """:func:`cost_fit` through the cells whose batch fills the threads (B >= 16; a smaller batch
+    leaves threads idle, and its CPU time counts them)."""
+    return cost_fit([r for r in rows if r["B"] >= 16] or rows)
+
+
 def _cost(quick: bool) -> dict:
+    """CPU and wall time per scene-step of a regular fixed-track scene (N lower asperities, 4 tips)
+    whose slider is on the surface, for every (B, N) of the grid; the threads as Numba sets them
+    (``threads``: every core unless NUMBA_NUM_THREADS says otherwise)."""
+    import numba
+
     rows = []
-    sizes = (1, 8) if quick else (1, 8, 64)
-    counts = (8, 16) if quick else (8, 16, 32, 64)
-    steps = 2000 if quick else 10000
+    sizes = (1, 16) if quick else COST_B
+    counts = (8, 16) if quick else COST_N
     for n in counts:
         scene = a.make_scene(lower_count=n, upper_count=4, track="fixed")
         dt = default_dt(scene)
         for B in sizes:
+            steps = max(1000, (COST_SCENE_STEPS // 10 if quick else COST_SCENE_STEPS) // B)
             batch = batched.Batch([scene] * B, [dt] * B, samples=steps // 10 + 1)
             batch.advance([int(0.3e-6 / dt)] * B)  # the slider onto the surface first
+            batch.rec_at[:] = 0  # the timed steps record from the start of the record
             _, wall, cpu = _timed(lambda: batch.advance([steps] * B))
-            rows.append({"N": n, "B": B, "cpu_us_per_scene_step": cpu / (B * steps) * 1e6,
+            assert not batch.fail.any(), "a cost-model scene failed"
+            rows.append({"N": n, "B": B, "steps": steps, "cpu_us_per_scene_step": cpu / (B * steps) * 1e6,
                          "wall_us_per_scene_step": wall / (B * steps) * 1e6})
-    big = [r for r in rows if r["B"] == max(sizes)]
-    b, a0 = np.polyfit([r["N"] for r in big], [r["cpu_us_per_scene_step"] for r in big], 1)
-    return {"rows": rows, "fit_cpu_us": {"a": float(a0), "b_per_N": float(b)}}
+    # each scene runs all its steps in one thread (prange over scenes): the CPU of a scene-step
+    # should not depend on B, the wall time falls with B until every thread has scenes
+    by_b = {str(B): cost_fit([r for r in rows if r["B"] == B]) for B in sizes}
+    by_b_wall = {str(B): cost_fit([r for r in rows if r["B"] == B], "wall_us_per_scene_step") for B in sizes}
+    return {"rows": rows, "threads": numba.get_num_threads(), "fit_cpu_us": full_batch_fit(rows),
+            "fit_cpu_us_by_B": by_b, "fit_wall_us_by_B": by_b_wall}
 
 
-def run(quick: bool = False) -> dict:
+def run(quick: bool = False, *, cost_only: bool = False) -> dict:
+    why = batched.unavailable()
+    if why is not None:  # run_all runs every module: without the extra this one says why, and stops
+        return {"skipped": why}
     out = {"load": _load()}
-    out["peak_stick"] = _peak_stick(8 if quick else 64, 1 if quick else 2)
+    if not cost_only:
+        out["peak_stick"] = _peak_stick(8 if quick else 64, 1 if quick else 2)
     out["memory"] = _memory()
     out["cost"] = _cost(quick)
     out["targets"] = TARGETS
@@ -116,20 +156,28 @@ def run(quick: bool = False) -> dict:
 
 
 def headline(res: dict) -> list[tuple[str, float, str]]:
-    p, m = res["peak_stick"], res["memory"]
-    return [(f"batched / pymunk, {p['seeds']} seeds x {p['passes']} peak-stick passes (wall, {p['cores']} cores)",
-             p["ratio_wall"], ">= 30"),
-            ("batched: largest per-seed peak-stick difference to pymunk", p["max_relative_difference_per_seed"], "< 0.01"),
+    if "skipped" in res:
+        return [(f"batched engine: not measured ({res['skipped']})", math.nan, "")]
+    p, m, f = res.get("peak_stick"), res["memory"], full_batch_fit(res["cost"]["rows"])
+    rows = [] if p is None else [
+        (f"batched / pymunk, {p['seeds']} seeds x {p['passes']} peak-stick passes (wall, {p['cores']} cores)",
+         p["ratio_wall"], ">= 30"),
+        ("batched: largest per-seed peak-stick difference to pymunk", p["max_relative_difference_per_seed"], "< 0.01")]
+    return rows + [
             ("batched: 1,000 scenes' state (MB)", m["state_MB"], "< 1024"),
-            ("batched: 1,000 scenes' state + full-pass record (MB)", m["state_MB"] + m["record_MB_full_pass"], "< 1024")]
+            ("batched: 1,000 scenes' state + full-pass record (MB)", m["state_MB"] + m["record_MB_full_pass"], "< 1024"),
+            ("batched cost model c(N) = a + b N, B >= 16: a (us CPU a scene-step)", f["a"], "stated"),
+            ("batched cost model: b (us CPU a scene-step per lower asperity)", f["b_per_N"], "stated")]
 
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--json", action="store_true")
+    parser.add_argument("--cost-only", action="store_true", help="the load, memory and cost model only "
+                        "(no pymunk passes): for run_all.py --merge batched=FILE")
     args = parser.parse_args()
-    res = run(args.quick)
+    res = run(args.quick, cost_only=args.cost_only)
     if args.json:
         print(json.dumps(res, indent=1))
     else:

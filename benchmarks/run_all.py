@@ -57,7 +57,8 @@ def _generic(res, prefix=""):
 
 
 HEADLINES = {"sweep": _sweep}  # the other modules define headline()
-ORDER = ("core", "steel", "studies", "critical", "parallel", "belt", "basins", "gif", "surface", "sweep", "startup")
+ORDER = ("core", "steel", "studies", "critical", "batched", "parallel", "belt", "basins", "gif", "surface", "sweep",
+         "startup")
 
 
 def _load(name):

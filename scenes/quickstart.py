@@ -46,6 +46,7 @@ import math
 
 import asperity2d as a
 from asperity2d import scripting
+from asperity2d.engine.registry import engine_label
 from asperity2d.experiments.measures import MEASURES as NAMED, measure_label
 from asperity2d.experiments.verdicts import outcome_text, verdict_line
 
@@ -90,6 +91,9 @@ def stick_slip_run(out, size: dict, frames: int | None, progress: bool):
 # track and on the free slider under a 10 mN load. With ``seeds="auto"`` it adds seeds in
 # stages until the verdict against the regular surface is decided, under a sequential design
 # that keeps the chance of a false verdict at 0.01 despite looking after every stage.
+# ``engine="auto"``: where Numba is installed (the ``[batch]`` extra), the comparisons the batched
+# engine covers (the peak stick force on the fixed track) run on it, every pass in one batch, and
+# the summary says so; everything else, and every run without Numba, runs on pymunk.
 
 def spacing_comparison(measure: str, setup: str, size: dict, seeds: int | str, workers, progress: bool,
                        max_seeds: int = MAX_SEEDS):
@@ -99,7 +103,7 @@ def spacing_comparison(measure: str, setup: str, size: dict, seeds: int | str, w
     auto = seeds == "auto"
     return a.compare(measure, variants, "auto" if auto else range(seeds), progress=progress,
                      base={**size, "track": setup, "drive": drive}, workers=workers,
-                     max_seeds=max_seeds if auto else None)
+                     max_seeds=max_seeds if auto else None, engine="auto")
 
 
 # %%
@@ -141,7 +145,7 @@ def main(argv=None) -> int:
                "seeds": args.seeds, "alpha": ALPHA, "comparisons": {}, "claims": []}
     if args.seeds == "auto":
         summary["max_seeds"] = args.max_seeds
-    verdicts = {}
+    verdicts, engines = {}, {}
     for setup in ("fixed", "free"):
         for name in MEASURES:
             comparison = spacing_comparison(name, setup, size, args.seeds, args.workers, not args.json,
@@ -153,6 +157,7 @@ def main(argv=None) -> int:
             summary["comparisons"][f"{setup}/{name}"] = comparison.summary()
             summary["claims"].append(record)
             verdicts[setup, name] = record
+            engines[f"{setup}/{name}"] = comparison.engine
 
     lines = [
         f"stick-slip run on Ooten's set-up ({scene.lower.count} regular lower asperities, a slider with "
@@ -167,6 +172,11 @@ def main(argv=None) -> int:
         fixed, free = verdicts["fixed", name], verdicts["free", name]
         lines.append(f"  {verdict_line({**fixed, 'setup': None})}"
                      f"  | free slider: {outcome_text(free['verdict'], free['numbers'])}")
+    batched = [key for key, engine in engines.items() if engine != "pymunk"]
+    if batched:  # said only when it happened: without Numba the summary is as it always was
+        summary["engines"] = engines
+        lines.append(f"engine: {engine_label(engines[batched[0]])} for {', '.join(batched)}; "
+                     "pymunk (the reference) for the rest and the stick-slip run")
     return scripting.finish(args, summary, out, lines)
 
 

@@ -10,7 +10,7 @@ import pytest
 import asperity2d as a
 from asperity2d.engine import ENGINES, check_engine
 from asperity2d.engine import batched
-from asperity2d.engine.registry import DEFAULT, refuse
+from asperity2d.engine.registry import DEFAULT, choose_engine, engine_label, refuse
 from asperity2d.errors import SceneError
 from asperity2d.experiments.compare import Comparison
 
@@ -89,3 +89,58 @@ def test_the_measures_that_need_settling_are_refused_on_the_batched_engine():
                 r'critical_force is not available on engine=\'batched\'.*engine="pymunk" runs it')
     with pytest.raises(SceneError, match=expected):
         a.critical_force(a.make_scene(lower_count=4, upper_count=2), engine="batched")
+
+
+def _numba(monkeypatch, present: bool):
+    """Make Numba look installed or missing to the batched engine (nothing compiles here)."""
+    real = importlib.util.find_spec
+    monkeypatch.setattr(batched.importlib.util, "find_spec",
+                        lambda name, *rest: (real("json") if present else None) if name == "numba" else real(name, *rest))
+
+
+def test_auto_takes_the_batched_engine_only_where_it_is_installed_and_runs_every_scene(monkeypatch):
+    fixed = a.make_scene(lower_count=4, upper_count=2, spacing="random", seed=3)
+    _numba(monkeypatch, True)
+    assert choose_engine("auto", [fixed, a.make_scene(lower_count=4, upper_count=2)]) == "batched"
+    # one scene it does not implement keeps the whole ensemble on the reference
+    assert choose_engine("auto", [fixed, a.make_scene(lower_count=4, upper_count=2, profile="half")]) == "pymunk"
+    # a free slider settles unless told otherwise, as simulate decides it
+    free = a.make_scene(lower_count=4, upper_count=2, track="free")
+    assert choose_engine("auto", [free]) == "pymunk"
+    assert choose_engine("auto", [free], settle=False) == "batched"
+    # a named engine is that engine, checked
+    assert choose_engine("pymunk", [fixed]) == "pymunk"
+    with pytest.raises(SceneError, match="`engine` must be one of"):
+        choose_engine("gpu", [fixed])
+    _numba(monkeypatch, False)
+    assert choose_engine("auto", [fixed]) == "pymunk"
+
+
+def test_output_names_the_engine_and_its_package():
+    assert engine_label("pymunk") == "pymunk"
+    assert engine_label("batched") == "batched (Numba)"
+
+
+def test_compare_with_seeds_auto_asks_the_registry_and_records_its_answer(monkeypatch):
+    """``compare(seeds="auto")`` of a measure with a batched form runs it on the batched engine
+    where that is installed (its batched form is replaced here by a stand-in that records the
+    engine it was given and returns a clear effect, so nothing compiles or steps)."""
+    from asperity2d.experiments import compare as compare_module
+
+    given = []
+
+    def stand_in(scenes, engine):
+        given.append(engine)
+        return [1.0 if scene.name.startswith("regular") else 0.5 for scene in scenes]
+
+    monkeypatch.setitem(compare_module.BATCHED, "peak-stick", stand_in)
+    variants = {"regular": {"spacing": "regular"}, "random": {"spacing": "random"}}
+    _numba(monkeypatch, True)
+    c = a.compare("peak-stick", variants, "auto", base={"lower_count": 4, "upper_count": 2}, progress=False)
+    assert c.engine == "batched" and set(given) == {"batched"}
+    assert set(c.values["random"]) == {0.5} and set(c.values["regular"]) == {1.0}
+    # named seeds keep the reference unless told; "auto" asks
+    given.clear()
+    c = a.compare("peak-stick", variants, range(3), base={"lower_count": 4, "upper_count": 2}, progress=False,
+                  engine="auto")
+    assert c.engine == "batched" and given == ["batched"]

@@ -28,6 +28,13 @@ default is always ``"pymunk"``. The contract:
 asperities' records, pictures and the workbench; its runs are :class:`asperity2d.Run`.
 ``"batched"`` (:mod:`.batched`) steps many scenes of the model's common case at once.
 
+Who asks which engine: a single run, a picture and the workbench's live run take the reference
+unless told otherwise; an ensemble (``compare(seeds="auto")``, a sweep, the main job's
+comparisons) may pass ``engine="auto"``, and :func:`choose_engine` -- the one place that
+decides -- gives it ``"batched"`` when Numba is installed and the engine runs every one of its
+scenes, else ``"pymunk"``; :func:`engine_label` is how output names the engine it used
+(``engine: batched (Numba)``).
+
 Examples
 --------
 >>> from asperity2d.engine import ENGINES
@@ -35,6 +42,11 @@ Examples
 ['pymunk', 'batched']
 >>> ENGINES["pymunk"].unavailable() is None  # the reference is always there
 True
+>>> from asperity2d import make_scene
+>>> choose_engine("auto", [make_scene(profile="half")])  # half triangles: only the reference runs them
+'pymunk'
+>>> engine_label("pymunk")
+'pymunk'
 """
 
 from __future__ import annotations
@@ -48,6 +60,10 @@ from . import batched
 
 #: The engine every run uses unless told otherwise.
 DEFAULT = "pymunk"
+#: The engine name that leaves the choice to :func:`choose_engine` (ensembles only).
+AUTO = "auto"
+#: The engine :func:`choose_engine` prefers for an ensemble, where it is installed and covers it.
+ENSEMBLE = "batched"
 
 
 @dataclass(frozen=True)
@@ -56,13 +72,15 @@ class EngineEntry:
     here (None: it can), ``refusal(scene, settle)`` names a scene option it does not implement
     (None: it runs the scene), ``run(scenes, dts, durations, record_every=, iterations=,
     passed=)`` returns one record ``(arrays, meta)`` or SimulationError per scene (None for the reference, whose
-    run loop is :class:`asperity2d.Run`)."""
+    run loop is :class:`asperity2d.Run`); ``dependency`` names the optional package it runs on,
+    for output (:func:`engine_label`)."""
 
     name: str
     description: str
     unavailable: Callable[[], str | None]
     refusal: Callable[..., str | None]
     run: Callable | None = None
+    dependency: str | None = None
 
 
 def _always() -> None:
@@ -87,7 +105,7 @@ ENGINES.register(EngineEntry("pymunk", "pymunk (Chipmunk 2D), one scene at a tim
                              "scene option", _always, _everything))
 ENGINES.register(EngineEntry("batched", "the model's own compiled loop (Numba), many scenes in lockstep: "
                              "convex asperities of every profile on spring tracks, no lattice or substrate",
-                             batched.unavailable, batched.refusal, batched.run))
+                             batched.unavailable, batched.refusal, batched.run, dependency="Numba"))
 
 
 def check_engine(engine) -> str:
@@ -107,3 +125,43 @@ def refuse(engine: str, scene, *, settle: bool = False) -> None:
     why = ENGINES[engine].refusal(scene, settle=settle)
     if why is not None:
         raise SceneError(why)
+
+
+def choose_engine(engine, scenes, *, settle: bool | None = None) -> str:
+    """The engine that runs the ensemble ``scenes``: ``engine`` itself (checked, as
+    :func:`check_engine`) unless it is ``"auto"``; then :data:`ENSEMBLE` (``"batched"``) when its
+    optional dependency is installed and it implements every scene (its ``refusal`` is None for
+    each, ``settle`` as :func:`asperity2d.simulate` decides it: None settles a free slider), else
+    the reference. Nothing else decides it: the ensembles that take ``engine="auto"`` ask here.
+
+    Examples
+    --------
+    >>> from asperity2d import make_scene
+    >>> choose_engine("pymunk", [make_scene()])
+    'pymunk'
+    >>> choose_engine("auto", [make_scene(track="free")])  # a free slider settles: the reference
+    'pymunk'
+    """
+    if engine != AUTO:
+        return check_engine(engine)
+    entry = ENGINES[ENSEMBLE]
+    if entry.unavailable() is not None:
+        return DEFAULT
+    for scene in scenes:
+        settles = scene.slider.track == "free" if settle is None else bool(settle)
+        if entry.refusal(scene, settle=settles) is not None:
+            return DEFAULT
+    return entry.name
+
+
+def engine_label(engine: str) -> str:
+    """How output names ``engine``: its name, and the package it runs on when that is optional
+    (``"batched (Numba)"``).
+
+    Examples
+    --------
+    >>> engine_label("batched")
+    'batched (Numba)'
+    """
+    entry = ENGINES.lookup(engine, "engine")
+    return f"{entry.name} ({entry.dependency})" if entry.dependency else entry.name

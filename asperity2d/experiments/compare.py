@@ -382,7 +382,7 @@ def _measure(measure: Callable, variants: dict, base: dict, seeds: tuple, where:
 def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[int] | str, *,
             base: dict | None = None, progress: bool = True, workers: int | str | None = None,
             scheduler: str | None = None, max_seeds: int | None = None, reference: str | None = None,
-            spending: str = "pocock", stage_seeds: int = STAGE_SEEDS, engine: str = "pymunk") -> Comparison:
+            spending: str = "pocock", stage_seeds: int = STAGE_SEEDS, engine: str | None = None) -> Comparison:
     """Measure every variant on every seed, or on seeds added in stages until decided.
 
     Parameters
@@ -423,11 +423,14 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
     stage_seeds : int
         Seeds per stage of ``seeds="auto"`` (default 10: the fewest with which the exact
         signed-rank test can reach the first look's level at alpha 0.01).
-    engine : str, default "pymunk"
+    engine : str, optional
         The engine that runs the scenes (``asperity2d.engine.ENGINES``). ``"batched"``
         (the ``[batch]`` extra) runs every scene of the comparison in one batch, in this
         process, for the measures it implements (``"peak-stick"``, ``"mean-stick"``); the
-        comparison records the engine.
+        comparison records the engine. ``"auto"``: ``"batched"`` where Numba is installed and
+        it runs the measure and every variant's scene
+        (:func:`asperity2d.engine.registry.choose_engine`), else ``"pymunk"``. Default: ``"auto"``
+        with ``seeds="auto"`` (an ensemble of up to ``max_seeds``), ``"pymunk"`` with seeds given.
 
     Returns
     -------
@@ -468,14 +471,18 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
     >>> len(c.seeds), c.verdict("random", "regular")["verdict"]
     (10, 'holds')
     """
-    from ..engine.registry import check_engine
+    from ..engine.registry import AUTO, DEFAULT, check_engine, choose_engine
 
-    engine = check_engine(engine)
-    if engine != "pymunk" and not (isinstance(measure, str) and measure in BATCHED):
-        raise SceneError(f"`measure` {show(measure if isinstance(measure, str) else getattr(measure, '__name__', measure))} "
-                         f"is not available on engine={engine!r} (it runs {', '.join(map(repr, BATCHED))}); "
-                         "engine=\"pymunk\" runs it")
-    batched = BATCHED[measure] if engine != "pymunk" else None
+    if engine is None:
+        engine = AUTO if isinstance(seeds, str) and seeds == "auto" else DEFAULT
+    runs_batched = isinstance(measure, str) and measure in BATCHED  # the measures with a batched form
+    if engine != AUTO:
+        engine = check_engine(engine)
+        if engine != DEFAULT and not runs_batched:
+            raise SceneError(f"`measure` {show(measure if isinstance(measure, str) else getattr(measure, '__name__', measure))} "
+                             f"is not available on engine={engine!r} (it runs {', '.join(map(repr, BATCHED))}); "
+                             "engine=\"pymunk\" runs it")
+    batched_form = BATCHED[measure] if runs_batched else None
     if isinstance(measure, str):
         entry = MEASURES.lookup(measure, "measure")  # a registered name or "module:name"
         measure, described = entry.function, {"saved_label": entry.label, "saved_unit": entry.unit}
@@ -507,6 +514,10 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
         seeds = tuple(check_int("seeds", s, minimum=0, maximum=2**63 - 1) for s in seeds)
     if "seed" in base or any("seed" in (kw or {}) for kw in variants.values()):
         raise SceneError("`variants` and `base` must not set `seed` (it comes from `seeds`)")
+    if engine == AUTO:  # what a scene is does not depend on its seed: the first seed's scenes decide
+        engine = choose_engine(AUTO, [make_scene(**{**base, **(kw or {})}, seed=seeds[0]) for kw in variants.values()]) \
+            if runs_batched else DEFAULT
+    batched = batched_form if engine != DEFAULT else None
     workers = None if is_auto(workers) else check_int("workers", workers, minimum=1, maximum=1024)
     check_executor_args(workers=workers, scheduler=scheduler)  # before the progress bar is drawn
     if workers != 1 or scheduler is not None:

@@ -21,6 +21,7 @@ from ..builders import make_scene
 from ..critical import critical_force, critical_force_bracket, settled_run
 from ..scene import ConstantForce
 from ..run import default_dt, default_duration, default_stops, simulate
+from ..sweep.runner import BatchedRun
 
 #: Scene size of the Ooten studies (lower / upper asperities) and the quick (test) size.
 STUDY_SIZE = {"lower_count": 10, "upper_count": 3}
@@ -223,6 +224,11 @@ def spring_pass_run(*, seed: int = 0, contact_work: bool = False, **params) -> d
     ``pushing_force_mean_N`` (pushing work per metre of travel).
     """
     result, books = spring_pass(make_scene(seed=seed, drive="spring", **params), contact_work=contact_work)
+    return _pass_quantities(result, books)
+
+
+def _pass_quantities(result, books) -> dict:
+    """:func:`spring_pass_run`'s quantities of one pass (and its contact-work books, or None)."""
     events = stick_slip_events(result)
     stats = event_statistics(events)
     t, x, f = result.t, result.x, result.drive_force
@@ -247,6 +253,35 @@ def spring_pass_run(*, seed: int = 0, contact_work: bool = False, **params) -> d
                    contact_work_resisting_J=books["resisting_J"], floor_work_J=books["floor_J"],
                    pushing_force_mean_N=books["pushing_J"] / travel if travel > 0 else nan)
     return out
+
+
+def _pass_scene(params: dict, seed: int):
+    """The scene of ``spring_pass_run(**params, seed=seed)``; None with ``contact_work`` (the
+    books are the reference's)."""
+    params = dict(params)
+    if params.pop("contact_work", False):
+        return None
+    return make_scene(seed=seed, drive="spring", **params)
+
+
+def _pass_runs(calls, engine: str) -> list:
+    """:func:`spring_pass_run` of every ``(params, seed)`` of ``calls`` on ``engine``, the passes
+    in one batch per step (each at the step policy's step, as :func:`spring_pass` takes it): per
+    call its quantities, or the error that stopped that pass alone."""
+    from ..experiments.measures import measure_step
+    from ..run import simulate_many
+
+    scenes = [_pass_scene(params, seed) for params, seed in calls]
+    steps = [measure_step("peak-stick", scene) for scene in scenes]
+    out: list = [None] * len(scenes)
+    for dt in sorted(set(steps)):
+        chosen = [j for j, step in enumerate(steps) if step == dt]
+        for j, result in zip(chosen, simulate_many([scenes[j] for j in chosen], dt=dt, engine=engine)):
+            out[j] = result if isinstance(result, Exception) else _pass_quantities(result, None)
+    return out
+
+
+spring_pass_run.batched = BatchedRun(scene=_pass_scene, runs=_pass_runs)
 
 
 #: Energy channels :func:`damping_travel_run` reports for each run (J, see

@@ -98,7 +98,12 @@ def execute_run(run: str, params: Mapping[str, Any], seed: int, quantities: Sequ
     >>> f"{values['critical_force_N'] * 1e3:.3g} mN"
     '7.61 mN'
     """
-    raw = resolve_run(run)(**params, seed=seed)
+    return run_values(resolve_run(run)(**params, seed=seed), quantities)
+
+
+def run_values(raw, quantities: Sequence[str] | None) -> dict[str, float]:
+    """A run function's result as its quantities (name -> float); raise for a result that is not
+    a mapping of numbers or lacks one of ``quantities`` (the engine records the failure)."""
     if not isinstance(raw, Mapping):
         raise TypeError(f"run function must return a mapping, got {type(raw).__name__}")
     values = {str(name): float(value) for name, value in raw.items()}

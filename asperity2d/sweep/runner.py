@@ -15,12 +15,13 @@ import contextlib
 import os
 import time
 from dataclasses import dataclass
-from typing import Iterator
+from typing import Callable, Iterator
 
 from .._inputs import check_runs
 from ..errors import SceneError
-from .engine import is_auto, run_calls
-from .executors import DaskExecutor, LocalExecutor, check_executor_args, execute_run, jobs_for, resolve_run
+from .engine import Outcome, is_auto, run_calls
+from .executors import (DaskExecutor, LocalExecutor, check_executor_args, execute_run, jobs_for, resolve_run,
+                        run_values)
 from .progress import Progress
 from .record import RunRecord
 from .store import ResultStore
@@ -73,6 +74,72 @@ class SweepSummary:
         return data
 
 
+@dataclass(frozen=True)
+class BatchedRun:
+    """A run function's batched form, set as its attribute ``batched``: what lets a sweep run the
+    whole study on the batched engine (:func:`run_study`'s ``engine``).
+
+    ``scene(params, seed)``: the scene the run ``fn(**params, seed=seed)`` steps, or None when
+    the run needs the reference for something else than its scene (an option only pymunk has);
+    the engine registry decides from these scenes (:func:`asperity2d.engine.registry.choose_engine`).
+    ``runs(calls, engine)``: every run of ``calls`` (``(params, seed)`` pairs) at once on
+    ``engine``, per call, in order, what ``fn`` returns or the exception that stopped that run
+    alone (returned, not raised).
+    """
+
+    scene: Callable
+    runs: Callable
+
+
+#: Runs handed to a batched form at once: the store gets their records after each such batch, so a
+#: stopped sweep loses at most one batch.
+BATCH_CALLS = 64
+
+
+def _study_engine(engine: str, fn, todo: list) -> str:
+    """The engine the unfinished runs ``todo`` of run function ``fn`` run on."""
+    from ..engine.registry import AUTO, DEFAULT, check_engine, choose_engine, refuse
+
+    form = getattr(fn, "batched", None)
+    if engine != AUTO:
+        engine = check_engine(engine)
+        if engine == DEFAULT or not todo:
+            return engine
+        if not isinstance(form, BatchedRun):
+            raise SceneError(f"`run` {getattr(fn, '__name__', fn)!r} has no batched form (a BatchedRun as its "
+                             f"attribute `batched`): engine={engine!r} cannot run it; engine=\"pymunk\" runs it")
+    if not isinstance(form, BatchedRun) or not todo:
+        return DEFAULT
+    scenes = [form.scene(dict(spec.params), spec.seed) for spec in todo]
+    if any(scene is None for scene in scenes):
+        if engine == AUTO:
+            return DEFAULT
+        raise SceneError(f"a run of the study needs an option engine={engine!r} does not have; engine=\"pymunk\" runs it")
+    if engine == AUTO:
+        return choose_engine(AUTO, scenes)
+    for scene in scenes:
+        refuse(engine, scene, settle=scene.slider.track == "free")
+    return engine
+
+
+def _batched_outcomes(form: BatchedRun, todo: list, engine: str, quantities) -> Iterator[Outcome]:
+    """:class:`~.engine.Outcome` of every run of ``todo`` on ``engine``, in order, batch by batch
+    (each run's wall time: its batch's, shared)."""
+    for start in range(0, len(todo), BATCH_CALLS):
+        part = todo[start:start + BATCH_CALLS]
+        began = time.perf_counter()
+        raw = form.runs([(dict(spec.params), spec.seed) for spec in part], engine)
+        wall = (time.perf_counter() - began) / len(part)
+        for k, value in enumerate(raw):
+            index = start + k
+            try:
+                if isinstance(value, Exception):
+                    raise value
+                yield Outcome(index, "done", run_values(value, quantities), wall_time=wall)
+            except Exception as exc:  # a failed run is data (the engine's failure contract)
+                yield Outcome(index, "failed", error=f"{type(exc).__name__}: {exc}", wall_time=wall, exception=exc)
+
+
 @contextlib.contextmanager
 def _locked(store: ResultStore) -> Iterator[None]:
     if store.path.exists() and not store.path.is_dir():
@@ -109,6 +176,7 @@ def run_study(
     retry_failed: bool = False,
     executor: LocalExecutor | DaskExecutor | None = None,
     max_runs: int | None = None,
+    engine: str = "auto",
 ) -> SweepSummary:
     """Run every unfinished run of ``study`` and record it in ``store``.
 
@@ -137,6 +205,13 @@ def run_study(
     max_runs : int, optional
         Refuse (``SceneError``, before any run starts) a study of more runs (grid points x
         seeds) than this; default ``MAX_RUNS`` (100,000).
+    engine : str, default "auto"
+        The asperity engine of a run function that has a batched form (:class:`BatchedRun`, its
+        attribute ``batched``): ``"auto"`` runs the study on the batched engine, in this process,
+        where Numba is installed and that engine runs every unfinished run's scene
+        (:func:`asperity2d.engine.registry.choose_engine`), and says so in ``executor``
+        (``"in-process, engine: batched (Numba)"``); otherwise, and for every other run
+        function, the executors as above. ``"pymunk"`` or ``"batched"`` choose it.
 
     Returns
     -------
@@ -167,7 +242,7 @@ def run_study(
     check_runs(len(study), max_runs, study_size(study))
     store = store if isinstance(store, ResultStore) else ResultStore(store)
     check_executor_args(workers=workers, scheduler=scheduler)
-    resolve_run(study.run)  # fail fast on a bad dotted path, before any process starts
+    fn = resolve_run(study.run)  # fail fast on a bad dotted path, before any process starts
     start = time.perf_counter()
     with _locked(store):
         store.check_study(study)
@@ -176,6 +251,7 @@ def run_study(
         if retry_failed:
             finished = {k: r for k, r in finished.items() if r.status == "done"}
         todo = [spec for spec in specs if spec.key not in finished]
+        chosen = _study_engine(engine, fn, todo)
         done = sum(r.status == "done" for r in finished.values())
         failed = len(finished) - done
         executed: list[str] = []
@@ -185,9 +261,13 @@ def run_study(
         report = {"executor": executor.description if executor is not None else
                   ("local processes (decided by cost)" if workers is None and scheduler is None else
                    f"dask ({scheduler})" if scheduler is not None else f"local processes ({workers})")}
+        if chosen != "pymunk":
+            from ..engine.registry import engine_label
+
+            report["executor"] = f"in-process, engine: {engine_label(chosen)}"
         bar, cluster = None, None
         try:
-            if todo and executor is None and scheduler not in (None, "local"):
+            if todo and chosen == "pymunk" and executor is None and scheduler not in (None, "local"):
                 # reach the cluster before the progress bar: one that cannot be reached is one line
                 executor = cluster = DaskExecutor(scheduler=scheduler)
                 scheduler = None
@@ -195,10 +275,14 @@ def run_study(
             bar = Progress(total=len(specs), done=done, failed=failed, label=study.name,
                            enabled=progress)
             if todo:
-                jobs = jobs_for(study.run, todo, study.quantities)
-                where = {"executor": executor} if executor is not None else \
-                    {"workers": workers, "scheduler": scheduler, "cost": cost}
-                for outcome in run_calls(execute_run, jobs, report=report, **where):
+                if chosen != "pymunk":
+                    outcomes = _batched_outcomes(fn.batched, todo, chosen, study.quantities)
+                else:
+                    jobs = jobs_for(study.run, todo, study.quantities)
+                    where = {"executor": executor} if executor is not None else \
+                        {"workers": workers, "scheduler": scheduler, "cost": cost}
+                    outcomes = run_calls(execute_run, jobs, report=report, **where)
+                for outcome in outcomes:
                     record = RunRecord.from_outcome(todo[outcome.index], study.run, outcome)
                     store.write_run(record)
                     executed.append(record.key)

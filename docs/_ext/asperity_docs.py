@@ -478,10 +478,54 @@ def cost_fit(rows: list[dict]) -> tuple[float, float]:
     return float(a), float(b)
 
 
+def batched_cost_lines(res: dict | None, pymunk: tuple[float, float]) -> list[str]:
+    """The batched engine's measured cost per scene-step by batch size B and lower count N
+    (``benchmarks/bench_batched.py``'s ``cost``), its fitted lines, and pymunk's beside them."""
+    if not res or "cost" not in res:
+        why = (res or {}).get("skipped", "not measured in benchmarks/results.json")
+        return [f"The batched engine's cost model is not measured here: {why}.", ""]
+    cost = res["cost"]
+    sizes = sorted({r["B"] for r in cost["rows"]})
+    counts = sorted({r["N"] for r in cost["rows"]})
+    cell_of = {(r["B"], r["N"]): r for r in cost["rows"]}
+    rows = []
+    for n in counts:
+        row = [str(n)]
+        for b in sizes:
+            r = cell_of.get((b, n))
+            row.append("" if r is None else f"{_us(r['cpu_us_per_scene_step'])} ({_us(r['wall_us_per_scene_step'])})")
+        row.append(_us(pymunk[0] + pymunk[1] * n))
+        rows.append(row)
+    import numpy as np
+
+    # the line through the batches that fill the threads (B >= 16), weighted by 1 / cost as pymunk's
+    full = [r for r in cost["rows"] if r["B"] >= 16] or cost["rows"]
+    n = np.array([r["N"] for r in full], float)
+    c = np.array([r["cpu_us_per_scene_step"] for r in full], float)
+    fb, fa = np.polyfit(n, c, 1, w=1.0 / c)
+    worst = float(np.max(np.abs((fa + fb * n) / c - 1.0)))
+    pa, pb = pymunk
+    load = res["measured"].get("load_average_before")
+    out = [f"CPU (wall) per scene-step of the batched engine, a regular fixed-track scene of N lower asperities "
+           f"and 4 tips with its slider on the surface, {cost['threads']} threads, measured "
+           f"{res['measured']['date'].split()[0]}" + (f" (load {load[0]:.1f})" if load else "") + "; the "
+           "last column is pymunk's line above:", ""]
+    out += list_table(["N"] + [f"B = {b}" for b in sizes] + ["pymunk c(N)"], rows, cls="benchmark-table")
+    out += [f"The fitted line through the batches of 16 scenes or more: **c(N) = {fa:.2f} µs + {fb:.3f} µs × N** "
+            f"of CPU a scene-step (within {100 * worst:.0f} % of each of those cells), against pymunk's "
+            f"{pa:.1f} µs + {pb:.2f} µs × N. Each scene runs its steps in one thread: from B = 16 on the CPU of a "
+            "scene-step no longer depends on B, and the wall time falls with B until every thread has scenes; "
+            "a batch of one or four leaves threads idle, which the CPU time of its cells also counts. "
+            "Per B: " + ", ".join(f"B = {b}: {f['a']:.2f} + {f['b_per_N']:.3f} N"
+                                  for b, f in cost["fit_cpu_us_by_B"].items()) + " µs.", ""]
+    return out
+
+
 class BenchmarkTables(_Generated):
     """The benchmarks page's figures, read from ``benchmarks/results.json`` when the page is built.
 
-    Argument: ``cost`` (the per-step cost by asperity count and the cost model), ``measures``
+    Argument: ``cost`` (the per-step cost by asperity count and the cost model), ``batched`` (the
+    batched engine's cost per scene-step by batch size and asperity count), ``measures``
     (a critical force's steps and time), ``workers`` (what parallel workers give), ``others``
     (the belt solver, pictures, start-up) or ``machine`` (where and when it was measured).
     """
@@ -528,6 +572,8 @@ class BenchmarkTables(_Generated):
                     f"is {dt * 1e12:.1f} ps and 1 µs of simulated time is {per_um:,.0f} steps: about "
                     f"**{_secs(per_um * c16 * 1e-6)}** of CPU at {_us(c16)} a step.", ""]
             return out
+        if what == "batched":
+            return batched_cost_lines(res.get("batched"), cost_fit(res["core"]["rows"]))
         if what == "measures":
             rows = []
             for key, r in res["critical"]["rows"].items():
