@@ -144,3 +144,14 @@ def test_compare_with_seeds_auto_asks_the_registry_and_records_its_answer(monkey
     c = a.compare("peak-stick", variants, range(3), base={"lower_count": 4, "upper_count": 2}, progress=False,
                   engine="auto")
     assert c.engine == "batched" and given == ["batched"]
+
+
+def test_the_command_lines_compare_takes_the_apis_engine_rule():
+    """``asperity2d compare`` without ``--engine`` leaves the choice to ``compare()`` (auto with
+    ``--seeds auto``, else pymunk): one rule, not a second default in the command line."""
+    from asperity2d.cli.main import build_parser
+
+    parser = build_parser()
+    assert parser.parse_args(["compare", "--seeds", "auto"]).engine is None
+    assert parser.parse_args(["compare", "--engine", "auto"]).engine == "auto"
+    assert parser.parse_args(["run", "scene.toml"]).engine == "pymunk"  # one run: the reference

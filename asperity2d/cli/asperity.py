@@ -232,7 +232,7 @@ def compare(args) -> int:
         comparison = run_compare(args.measure, variants, "auto" if auto else range(args.seeds), base=base,
                                  progress=not args.json, workers=args.workers, scheduler=args.scheduler,
                                  max_seeds=args.max_seeds if auto else None,
-                                 engine=getattr(args, "engine", "pymunk"))
+                                 engine=getattr(args, "engine", None))
     if save:
         with _io.argument("--save"), _io.writing("--save", save):
             comparison.save(save)

@@ -130,7 +130,7 @@ def build_parser() -> Parser:
     p.add_argument("--load", help="re-use a saved comparison instead of running")
     p.add_argument("-o", "--output", help="comparison plot (.png, .svg, .pdf)")
     _max_runs(p)
-    _engine_flag(p)
+    _engine_flag(p, ensemble=True)
     _json_flag(p)
     p.set_defaults(handler=asperity.compare)
 
@@ -166,7 +166,13 @@ def _belt_common() -> Parser:
 ENGINE_NAMES = ("pymunk", "batched")
 
 
-def _engine_flag(p) -> None:
+def _engine_flag(p, *, ensemble: bool = False) -> None:
+    if ensemble:  # compare: the API's default (auto with --seeds auto: batched where installed and covered)
+        p.add_argument("--engine", choices=("auto",) + ENGINE_NAMES, default=None,
+                       help="the engine that steps the scenes: pymunk (the reference), batched (many scenes "
+                            "in one compiled loop; pip install \"asperity2d[batch]\") or auto (batched where "
+                            "installed and every scene is covered); default: auto with --seeds auto, else pymunk")
+        return
     p.add_argument("--engine", choices=ENGINE_NAMES, default="pymunk",
                    help="the engine that steps the scenes: pymunk (the reference, default) or batched "
                         "(many scenes in one compiled loop; pip install \"asperity2d[batch]\")")
