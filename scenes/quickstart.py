@@ -46,7 +46,6 @@ import math
 
 import asperity2d as a
 from asperity2d import scripting
-from asperity2d.engine.registry import engine_label
 from asperity2d.experiments.measures import MEASURES as NAMED, measure_label
 from asperity2d.experiments.verdicts import outcome_text, verdict_line
 
@@ -175,7 +174,7 @@ def main(argv=None) -> int:
     batched = [key for key, engine in engines.items() if engine != "pymunk"]
     if batched:  # said only when it happened: without Numba the summary is as it always was
         summary["engines"] = engines
-        lines.append(f"engine: {engine_label(engines[batched[0]])} for {', '.join(batched)}; "
+        lines.append(f"engine: {engines[batched[0]]} (Numba) for {', '.join(batched)}; "
                      "pymunk (the reference) for the rest and the stick-slip run")
     return scripting.finish(args, summary, out, lines)
 

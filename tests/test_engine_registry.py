@@ -103,7 +103,7 @@ def test_auto_takes_the_batched_engine_only_where_it_is_installed_and_runs_every
     _numba(monkeypatch, True)
     assert choose_engine("auto", [fixed, a.make_scene(lower_count=4, upper_count=2)]) == "batched"
     # one scene it does not implement keeps the whole ensemble on the reference
-    assert choose_engine("auto", [fixed, a.make_scene(lower_count=4, upper_count=2, profile="half")]) == "pymunk"
+    assert choose_engine("auto", [fixed, a.make_scene(lower_count=4, upper_count=2, lateral_stiffness=1e4)]) == "pymunk"
     # a free slider settles unless told otherwise, as simulate decides it
     free = a.make_scene(lower_count=4, upper_count=2, track="free")
     assert choose_engine("auto", [free]) == "pymunk"

@@ -85,6 +85,18 @@ class BatchedRun:
     ``runs(calls, engine)``: every run of ``calls`` (``(params, seed)`` pairs) at once on
     ``engine``, per call, in order, what ``fn`` returns or the exception that stopped that run
     alone (returned, not raised).
+
+    Examples
+    --------
+    The study runs' own: a spring-driven pass of Ooten's set-up declares the scene it steps,
+    which is what the registry looks at to choose the engine.
+
+    >>> from asperity2d.engine.registry import choose_engine
+    >>> from asperity2d.studies.ooten import spring_pass_run
+    >>> form = spring_pass_run.batched
+    >>> scene = form.scene({"lower_count": 4, "upper_count": 2}, 7)
+    >>> scene.lower.count, choose_engine("pymunk", [scene])
+    (4, 'pymunk')
     """
 
     scene: Callable
