@@ -17,7 +17,7 @@ slow them 4-fold to be counted killed; the record counts the time-outs).
 Writes ``docs/data/mutation/<module>.json`` (every mutant and its outcome, the commit and the
 date; the Validation page's table reads these files, so commit them) and prints one line per
 module. Not part of the default test run: critical.py takes about 12 minutes on two shared
-cores (its mutants run simulations), events.py 6 to 18 with the load.
+cores (its mutants run simulations), events.py 18 on a loaded machine.
 """
 
 from __future__ import annotations
