@@ -106,6 +106,8 @@ def check_budget(scene: Scene, dt: float, max_steps: int, *, done: int = 0, sett
     else:
         why = f"`duration` = {duration:.3g} s is {steps_run:.3g} steps"
         fix = "shorten `duration`"
+        if scene.slider.start is not None:  # the default duration covers the way from it
+            fix += " or move `slider_start` closer to the surface"
     size = ""
     if cost > 1:
         size = (f"; each step of these {scene.lower.count + scene.slider.count:,} asperities counts "

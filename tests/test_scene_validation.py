@@ -105,3 +105,14 @@ def test_the_dataclass_defaults_are_the_builders_defaults():
     built = a.make_scene()
     assert dataclasses.replace(built, name="") == a.Scene()
     assert built.slider.track == "fixed" and built.contact.mu_kinetic == 0.2
+
+
+def test_a_slider_start_far_from_the_surface_is_refused_naming_it():
+    """The default duration covers the way from ``slider_start`` to the surface: a start a metre
+    away is refused up front by the step budget, and the message names the field that made it long."""
+    import asperity2d as a
+
+    scene = a.make_scene(lower_count=4, upper_count=2, slider_start=-1.0)
+    with pytest.raises(a.SceneError, match=r"move `slider_start` closer to the surface") as info:
+        a.simulate(scene)
+    assert "\n" not in str(info.value)
