@@ -442,3 +442,11 @@ class Contact:
         s(self, "restitution", check_nonnegative("restitution", self.restitution))
         if self.restitution > 1:
             raise SceneError(f"`restitution` must be <= 1, got {self.restitution!r}")
+
+
+# The parts are documented, reprinted and pickled under the module users import them from,
+# ``asperity2d.scene`` (as NumPy's ``set_module`` does): this file is where they are written, not
+# their address (the API reference would otherwise describe each twice under this module's name).
+for _part in (LowerSurface, Slider, ConstantForce, SpringDrive, Contact):
+    _part.__module__ = "asperity2d.scene"
+del _part

@@ -76,11 +76,16 @@ def test_a_pickle_that_names_the_old_module_loads():
 
     # a pickle written before the split names the class by its old module (protocol 0 spells it out)
     for obj, new, old in [(Event(0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 1.0), b"asperity2d.events", b"asperity2d.analysis"),
-                          (a.Passed(), b"asperity2d.stops", b"asperity2d.run"),
-                          (a.make_scene(lower_count=4, upper_count=2), b"asperity2d.scene_parts", b"asperity2d.scene")]:
+                          (a.Passed(), b"asperity2d.stops", b"asperity2d.run")]:
         data = pickle.dumps(obj, protocol=0)
         assert new in data
         back = pickle.loads(data.replace(new, old))
         assert type(back) is type(obj)
         if not isinstance(obj, a.Passed):  # Passed has no fields to compare (no __eq__)
             assert back == obj
+    # the scene's parts keep the address they had before the split (asperity2d.scene, where users
+    # import them and the reference documents them): a pickle of a scene is what it was
+    scene = a.make_scene(lower_count=4, upper_count=2)
+    data = pickle.dumps(scene, protocol=0)
+    assert b"asperity2d.scene_parts" not in data and b"asperity2d.scene\n" in data
+    assert pickle.loads(data) == scene

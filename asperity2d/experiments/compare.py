@@ -429,7 +429,7 @@ def compare(measure: Callable | str, variants: dict[str, dict], seeds: Iterable[
         process, for the measures it implements (``"peak-stick"``, ``"mean-stick"``); the
         comparison records the engine. ``"auto"``: ``"batched"`` where Numba is installed and
         it runs the measure and every variant's scene
-        (:func:`asperity2d.engine.registry.choose_engine`), else ``"pymunk"``. Default: ``"auto"``
+        (``asperity2d.engine.registry.choose_engine``), else ``"pymunk"``. Default: ``"auto"``
         with ``seeds="auto"`` (an ensemble of up to ``max_seeds``), ``"pymunk"`` with seeds given.
 
     Returns

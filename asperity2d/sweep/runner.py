@@ -81,7 +81,7 @@ class BatchedRun:
 
     ``scene(params, seed)``: the scene the run ``fn(**params, seed=seed)`` steps, or None when
     the run needs the reference for something else than its scene (an option only pymunk has);
-    the engine registry decides from these scenes (:func:`asperity2d.engine.registry.choose_engine`).
+    the engine registry decides from these scenes (``asperity2d.engine.registry.choose_engine``).
     ``runs(calls, engine)``: every run of ``calls`` (``(params, seed)`` pairs) at once on
     ``engine``, per call, in order, what ``fn`` returns or the exception that stopped that run
     alone (returned, not raised).
@@ -221,7 +221,7 @@ def run_study(
         The asperity engine of a run function that has a batched form (:class:`BatchedRun`, its
         attribute ``batched``): ``"auto"`` runs the study on the batched engine, in this process,
         where Numba is installed and that engine runs every unfinished run's scene
-        (:func:`asperity2d.engine.registry.choose_engine`), and says so in ``executor``
+        (``asperity2d.engine.registry.choose_engine``), and says so in ``executor``
         (``"in-process, engine: batched (Numba)"``); otherwise, and for every other run
         function, the executors as above. ``"pymunk"`` or ``"batched"`` choose it.
 
