@@ -28,7 +28,7 @@ from pathlib import Path
 
 import pytest
 
-from test_player_browser import CHROMEDRIVER, CHROMIUM, INSTALL, _missing
+from test_player_browser import INSTALL, _missing, chromium
 
 pytestmark = pytest.mark.slow
 
@@ -113,25 +113,8 @@ def lab():
 
 @pytest.fixture(scope="module")
 def browser():
-    from selenium import webdriver
-    from selenium.webdriver.chrome.service import Service
-
-    options = webdriver.ChromeOptions()
-    options.binary_location = CHROMIUM
-    for flag in ("--headless", "--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking",
-                 "--disable-component-update", "--disable-sync", "--window-size=1280,900"):
-        options.add_argument(flag)
-    profile = tempfile.mkdtemp(prefix="asperity2d-chromium-")
-    options.add_argument(f"--user-data-dir={profile}")
-    options.set_capability("goog:loggingPrefs", {"browser": "ALL"})
-    driver = webdriver.Chrome(service=Service(CHROMEDRIVER), options=options)
-    driver.set_page_load_timeout(60)
-    driver.set_script_timeout(30)
-    try:
+    with chromium(window="1280,900", page_load_timeout=60) as driver:
         yield driver
-    finally:
-        driver.quit()
-        shutil.rmtree(profile, ignore_errors=True)
 
 
 def wait_for(browser, script, timeout=180.0, what=""):

@@ -8,6 +8,7 @@ without the browser: ``apt-get install chromium chromium-driver`` (Debian) and
 ``pip install selenium`` (in the ``test`` extra).
 """
 
+import contextlib
 import os
 import shutil
 import tempfile
@@ -23,8 +24,7 @@ from asperity2d.renderers import raster, render
 CHROMIUM = os.environ.get("ASPERITY2D_CHROMIUM", "/usr/bin/chromium")
 CHROMEDRIVER = os.environ.get("ASPERITY2D_CHROMEDRIVER", "/usr/bin/chromedriver")
 FLAGS = ("--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-         "--disable-background-networking", "--disable-component-update", "--disable-sync",
-         "--window-size=1100,1300")
+         "--disable-background-networking", "--disable-component-update", "--disable-sync")
 INSTALL = ("needs headless Chromium and its driver: apt-get install chromium chromium-driver "
            "(Debian; or set ASPERITY2D_CHROMIUM / ASPERITY2D_CHROMEDRIVER) and pip install selenium")
 
@@ -43,26 +43,34 @@ def _missing() -> str | None:
 pytestmark = pytest.mark.skipif(_missing() is not None, reason=f"{_missing()}: {INSTALL}")
 
 
-@pytest.fixture(scope="module")
-def browser():
+@contextlib.contextmanager
+def chromium(*, window: str, page_load_timeout: float = 30):
+    """Headless Chromium through its driver, at ``window`` ("W,H" px), its console log kept, in a
+    profile folder of its own (removed after): the one way every browser test opens it."""
     from selenium import webdriver
     from selenium.webdriver.chrome.service import Service
 
     options = webdriver.ChromeOptions()
     options.binary_location = CHROMIUM
-    for flag in FLAGS:
+    for flag in (*FLAGS, f"--window-size={window}"):
         options.add_argument(flag)
     profile = tempfile.mkdtemp(prefix="asperity2d-chromium-")
     options.add_argument(f"--user-data-dir={profile}")
     options.set_capability("goog:loggingPrefs", {"browser": "ALL"})
     driver = webdriver.Chrome(service=Service(CHROMEDRIVER), options=options)
-    driver.set_page_load_timeout(30)
+    driver.set_page_load_timeout(page_load_timeout)
     driver.set_script_timeout(30)
     try:
         yield driver
     finally:
         driver.quit()
         shutil.rmtree(profile, ignore_errors=True)
+
+
+@pytest.fixture(scope="module")
+def browser():
+    with chromium(window="1100,1300") as driver:
+        yield driver
 
 
 def open_player(browser, path):
