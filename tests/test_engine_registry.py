@@ -155,3 +155,16 @@ def test_the_command_lines_compare_takes_the_apis_engine_rule():
     assert parser.parse_args(["compare", "--seeds", "auto"]).engine is None
     assert parser.parse_args(["compare", "--engine", "auto"]).engine == "auto"
     assert parser.parse_args(["run", "scene.toml"]).engine == "pymunk"  # one run: the reference
+
+
+def test_the_engine_flag_takes_what_the_registry_knows_and_names_itself(tmp_path, capsys):
+    """``--engine`` is checked by the registry (so an installed package's engine reaches the
+    command line), and a misspelt one is one line naming the flag with the nearest name."""
+    from asperity2d.cli.main import main
+
+    assert main(["run", "scenes/default.toml", "--engine", "batchd", "-o", str(tmp_path / "x.png")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.endswith("`--engine` must be one of pymunk, batched, got 'batchd' (did you mean 'batched'?)")
+    assert "\n" not in err
+    assert main(["compare", "--engine", "nosuch", "--seeds", "2"]) == 2
+    assert "`--engine`" in capsys.readouterr().err

@@ -40,11 +40,23 @@ def _checked_duration(scene, duration: float, arg: str) -> float:
     return duration
 
 
+def _engine(args, *, auto: bool = False) -> str | None:
+    """``--engine`` as written, checked against the engine registry under the flag's own name (an
+    installed package's engine, or "module:name", too); None or "auto" pass where ``auto``."""
+    engine = getattr(args, "engine", None if auto else "pymunk")
+    if not (auto and engine in (None, "auto")):
+        from ..engine.registry import ENGINES
+
+        ENGINES.lookup(engine, "--engine")
+    return engine
+
+
 def run(args) -> int:
     """``asperity2d run SCENE``: a scene script's ``main(argv)``, or a TOML scene."""
     path = _io.input_path("scene", args.scene)
     if path.suffix == ".py":
         return _run_script(path, args)
+    engine = _engine(args)  # after the cheap checks: the registry imports the engines
     if path.suffix != ".toml":
         raise SceneError(f"`scene` must be a .py script or a .toml scene file, got {str(path)!r}")
     save = None if args.save is None else _io.output_path("--save", args.save, suffixes=(".npz",))
@@ -60,7 +72,7 @@ def run(args) -> int:
         duration = None
     from ..run import simulate, stops_from_settings
 
-    result = simulate(scene, duration, stop=stops_from_settings(scene, settings), engine=getattr(args, "engine", "pymunk"))
+    result = simulate(scene, duration, stop=stops_from_settings(scene, settings), engine=engine)
     written = []
     if save:
         with _io.argument("--save"), _io.writing("--save", save):
@@ -203,6 +215,7 @@ def _parse_set(items: list[str]) -> dict:
 
 def compare(args) -> int:
     """``asperity2d compare``: a measure of each spacing over seeds, with statistics."""
+    engine = _engine(args, auto=True)
     save = None if args.save is None else _io.output_path("--save", args.save, suffixes=(".json",))
     output = None if args.output is None else _io.output_path("--output", args.output, suffixes=PLOT_SUFFIXES)
     from ..experiments.compare import Comparison
@@ -232,7 +245,7 @@ def compare(args) -> int:
         comparison = run_compare(args.measure, variants, "auto" if auto else range(args.seeds), base=base,
                                  progress=not args.json, workers=args.workers, scheduler=args.scheduler,
                                  max_seeds=args.max_seeds if auto else None,
-                                 engine=getattr(args, "engine", None))
+                                 engine=engine)
     if save:
         with _io.argument("--save"), _io.writing("--save", save):
             comparison.save(save)

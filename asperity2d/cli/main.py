@@ -162,20 +162,23 @@ def _belt_common() -> Parser:
     return common
 
 
-#: The asperity engines (asperity2d.engine.ENGINES; named here so that --help imports no engine).
+#: The built-in asperity engines, for --help only (named here so that --help imports no engine); the
+#: flag takes any name the registry knows (asperity2d.engine.ENGINES: an installed package's engine
+#: too, or "module:name"), and the registry refuses an unknown one in one line with the nearest names.
 ENGINE_NAMES = ("pymunk", "batched")
 
 
 def _engine_flag(p, *, ensemble: bool = False) -> None:
     if ensemble:  # compare: the API's default (auto with --seeds auto: batched where installed and covered)
-        p.add_argument("--engine", choices=("auto",) + ENGINE_NAMES, default=None,
-                       help="the engine that steps the scenes: pymunk (the reference), batched (many scenes "
-                            "in one compiled loop; pip install \"asperity2d[batch]\") or auto (batched where "
-                            "installed and every scene is covered); default: auto with --seeds auto, else pymunk")
+        p.add_argument("--engine", default=None, metavar="ENGINE",
+                       help=f"the engine that steps the scenes ({', '.join(ENGINE_NAMES)}, an installed one, or "
+                            "auto: batched where installed and every scene is covered; pip install "
+                            "\"asperity2d[batch]\" for batched); default: auto with --seeds auto, else pymunk")
         return
-    p.add_argument("--engine", choices=ENGINE_NAMES, default="pymunk",
-                   help="the engine that steps the scenes: pymunk (the reference, default) or batched "
-                        "(many scenes in one compiled loop; pip install \"asperity2d[batch]\")")
+    p.add_argument("--engine", default="pymunk", metavar="ENGINE",
+                   help=f"the engine that steps the scenes ({', '.join(ENGINE_NAMES)} or an installed one; "
+                        "default pymunk, the reference; batched: many scenes in one compiled loop, pip install "
+                        "\"asperity2d[batch]\")")
 
 
 def _add_belt(subparsers) -> None:
