@@ -35,9 +35,9 @@ from dataclasses import dataclass
 
 from ._inputs import check_choice, check_int, check_positive, check_tolerance
 from .errors import SceneError
-from .engine.registry import check_engine
+from .engine.registry import check_engine, refuse
 from .scene import ConstantForce, Scene
-from .run import MAX_STEPS, Run, default_dt, default_duration, default_stops
+from .run import MAX_STEPS, Run, Stuck, default_dt, default_duration, default_stops, settle_cap
 
 STARTS = ("rest", "entry", "run-up")
 #: The settling push of ``start="rest"``, as a fraction of the flank-law estimate.
@@ -248,14 +248,29 @@ def smallest_passing(test, estimate: float, *, rel_tol: float = REL_TOL, scan_st
     ``test`` is any predicate of a force (the simulations of :func:`~asperity2d.critical_force_bracket`,
     or a toy with a known answer). Returns ``(stops, passes, band, tried)``: the final
     bracket, ``(lowest passing, highest stopping)`` if some force above ``passes`` stopped
-    (else None), and every ``(force, passed)`` pair in the order tried.
+    (else None), and every ``(force, passed)`` pair in the order tried. (The search itself is
+    :func:`searching`, which many searches run in lockstep on the batched engine.)
     """
+    search = searching(estimate, rel_tol=rel_tol, scan_step=scan_step, window=window, first=first)
+    try:
+        force = next(search)
+        while True:
+            force = search.send(bool(test(force)))
+    except StopIteration as done:
+        return done.value
+
+
+def searching(estimate: float, *, rel_tol: float = REL_TOL, scan_step: float = SCAN_STEP,
+              window: float = SCAN_WINDOW, first: int = 0):
+    """:func:`smallest_passing`'s search as a generator: it yields each force to try, is sent
+    whether that force passed, and returns ``(stops, passes, band, tried)``. A force tried
+    once is never yielded again."""
     tried: list[tuple[float, bool]] = []
     seen: dict[float, bool] = {}
 
-    def run(force: float) -> bool:
+    def run(force: float):
         if force not in seen:
-            seen[force] = bool(test(force))
+            seen[force] = bool((yield force))
             tried.append((force, seen[force]))
         return seen[force]
 
@@ -263,7 +278,7 @@ def smallest_passing(test, estimate: float, *, rel_tol: float = REL_TOL, scan_st
     force = math.ldexp(estimate, first)  # exact: a power of two
     lo = hi = None
     while lo is None or hi is None:
-        if run(force):
+        if (yield from run(force)):
             hi = force
             if force < FORCE_FLOOR * estimate:  # nothing ahead resists: (0, this force)
                 return 0.0, hi, None, tried
@@ -272,39 +287,42 @@ def smallest_passing(test, estimate: float, *, rel_tol: float = REL_TOL, scan_st
             lo = force
             force = force * 2.0
 
-    def bisect(lo: float, hi: float) -> tuple[float, float]:
+    def bisect(lo: float, hi: float):
         while (hi - lo) / hi > rel_tol:
             mid = 0.5 * (lo + hi)
-            if run(mid):
+            if (yield from run(mid)):
                 hi = mid
             else:
                 lo = mid
         return lo, hi
 
-    lo, hi = bisect(lo, hi)
+    lo, hi = yield from bisect(lo, hi)
     steps = int(round(window / scan_step))
     while True:
         below = [hi * (1.0 - j * scan_step) for j in range(1, steps + 1)]
-        passing = [f for f in below if f > 0 and run(f)]
+        passing = []
+        for f in below:
+            if f > 0 and (yield from run(f)):
+                passing.append(f)
         if not passing:
             break
         lowest = min(passing)
         under = [f for f, ok in seen.items() if f < lowest and not ok]
-        lo, hi = bisect(max(under) if under else lowest / 2.0, lowest)
+        lo, hi = yield from bisect(max(under) if under else lowest / 2.0, lowest)
         if not under:  # nothing below it stopped yet: bracket it from below first
-            lo, hi = _bracket_below(run, hi)
-            lo, hi = bisect(lo, hi)
+            lo, hi = yield from _bracket_below(run, hi)
+            lo, hi = yield from bisect(lo, hi)
     for j in range(1, steps + 1):
-        run(hi * (1.0 + j * scan_step))
+        yield from run(hi * (1.0 + j * scan_step))
     stopping_above = [f for f, ok in seen.items() if f > hi and not ok]
     band = (hi, max(stopping_above)) if stopping_above else None
     return lo, hi, band, tried
 
 
-def _bracket_below(run, hi: float) -> tuple[float, float]:
+def _bracket_below(run, hi: float):
     """Halve ``hi`` (a passing force) until a force stops: the bracket (stop, smallest pass)."""
     force = hi
-    while run(force):
+    while (yield from run(force)):
         hi, force = force, force / 2.0
     return force, hi
 
@@ -365,13 +383,7 @@ def critical_force_bracket(scene: Scene, *, start: str = "rest", rel_tol: float 
     """
     if not isinstance(scene, Scene):
         raise SceneError(f"`scene` must be a Scene, got {type(scene).__name__}")
-    rel_tol = check_tolerance("rel_tol", rel_tol)
-    max_runs = check_int("max_runs", max_runs, minimum=2)
-    halvings = math.ceil(math.log2(1.0 / rel_tol))  # bisections from a factor-2 bracket at least
-    if halvings > max_runs:
-        raise SceneError(f"`rel_tol` = {rel_tol:g} needs at least {halvings} runs to bisect, more than "
-                         f"`max_runs` = {max_runs}: raise one or the other")
-    check_choice("start", start, STARTS)
+    rel_tol, max_runs = _check_search(rel_tol, max_runs, start)
     base = settled_run(scene, start=start, dt=measure_dt(scene, start) if dt is None else dt,
                        iterations=iterations, max_steps=max_steps)
     runs = 0
@@ -387,6 +399,137 @@ def critical_force_bracket(scene: Scene, *, start: str = "rest", rel_tol: float 
                                            first=FIRST_POWER[scene.slider.track, start])
     return CriticalForce(stops=lo, passes=hi, runs=runs, start=start, band=band, checked=SCAN_WINDOW,
                          tried=tuple(tried), dt=float(base.dt))
+
+
+def _check_search(rel_tol, max_runs, start) -> tuple[float, int]:
+    rel_tol = check_tolerance("rel_tol", rel_tol)
+    max_runs = check_int("max_runs", max_runs, minimum=2)
+    halvings = math.ceil(math.log2(1.0 / rel_tol))  # bisections from a factor-2 bracket at least
+    if halvings > max_runs:
+        raise SceneError(f"`rel_tol` = {rel_tol:g} needs at least {halvings} runs to bisect, more than "
+                         f"`max_runs` = {max_runs}: raise one or the other")
+    check_choice("start", start, STARTS)
+    return rel_tol, max_runs
+
+
+def critical_force_brackets(scenes, *, start: str = "rest", rel_tol: float = REL_TOL, max_runs: int = 80,
+                            dt: float | None = None, iterations: int = 20, max_steps: int | None = None,
+                            engine: str = "batched") -> list[CriticalForce]:
+    """:func:`critical_force_bracket` of every scene of ``scenes``, in order, on ``engine``.
+
+    On ``"batched"`` the searches run in lockstep: each scene is settled as
+    :func:`settled_run` settles it (all at once, :meth:`asperity2d.engine.batched.Batch.settle`),
+    then every round runs each unfinished search's next force as a fork of its settled scene,
+    all in one batch, with the run loop's stops (passed; stuck; a free slider off the surface)
+    and :func:`passes`' time limits and step budget, until each search has its bracket. The
+    searches are :func:`searching`, the one the reference runs, so a scene's bracket differs
+    from the reference's only where a run's outcome does. On ``"pymunk"`` the scenes run one
+    after the other (:func:`critical_force_bracket`).
+
+    Examples
+    --------
+    >>> import asperity2d as a
+    >>> scenes = [a.make_scene(lower_count=4, upper_count=2, spacing="random", seed=s) for s in (1, 2)]
+    >>> [f"{b.value * 1e3:.4g} mN" for b in critical_force_brackets(scenes, engine="pymunk")]
+    ['7.532 mN', '6.838 mN']
+    """
+    scenes = list(scenes)
+    for scene in scenes:
+        if not isinstance(scene, Scene):
+            raise SceneError(f"`scenes` must hold Scene objects (see make_scene), got {type(scene).__name__}")
+    if not scenes:
+        raise SceneError("`scenes` is empty: give at least one scene")
+    engine = check_engine(engine)
+    if engine == "pymunk":
+        return [critical_force_bracket(scene, start=start, rel_tol=rel_tol, max_runs=max_runs, dt=dt,
+                                       iterations=iterations, max_steps=max_steps) for scene in scenes]
+    rel_tol, max_runs = _check_search(rel_tol, max_runs, start)
+    max_steps = MAX_STEPS if max_steps is None else check_int("max_steps", max_steps, minimum=1, maximum=None)
+    for scene in scenes:
+        refuse(engine, scene, settle=True)
+    return _batched_brackets(scenes, start, rel_tol, max_runs, dt, iterations, max_steps)
+
+
+def _batched_brackets(scenes, start, rel_tol, max_runs, dt, iterations, max_steps) -> list[CriticalForce]:
+    import numpy as np
+
+    from .engine.batched import Batch
+
+    bare = [scene.replace(drive=ConstantForce(force=0.0)) for scene in scenes]
+    dts = [measure_dt(scene, start) if dt is None else check_positive("dt", dt) for scene in scenes]
+    base = Batch(bare, dts, iterations=check_int("iterations", iterations, minimum=1, maximum=10_000),
+                 engaged=start == "rest")
+    caps = [settle_cap(scene) for scene in bare]  # as Run.settle: the scene under a constant force
+    if start in ("rest", "entry"):  # settled_run's pushes, every scene at once
+        push = np.array([PUSH_FRACTION * flank_estimate(scene) for scene in scenes])
+        x0 = [base.sp[b, 0] * base.units[b].length for b in range(len(scenes))]
+        reach = [2.0 * scene.lower.spacing.mean_pitch for scene in scenes]
+        base.settle(push, caps)
+        for _ in range(MAX_PUSHES):
+            again = [b for b in range(len(scenes)) if not (base.c_n[b].any()
+                     or base.sp[b, 0] * base.units[b].length - x0[b] > reach[b])]
+            if not again:
+                break
+            base.settle(push, [caps[b] if b in again else None for b in range(len(scenes))])
+    elif any(scene.slider.track == "free" for scene in scenes):
+        base.settle(np.zeros(len(scenes)), [cap if s.slider.track == "free" else None for s, cap in zip(scenes, caps)])
+    for b in range(len(scenes)):
+        err = base.error(b)
+        if err is not None:
+            raise err
+    searches = [searching(flank_estimate(scene), rel_tol=rel_tol, first=FIRST_POWER[scene.slider.track, start])
+                for scene in scenes]
+    force = {b: next(search) for b, search in enumerate(searches)}
+    out: dict[int, CriticalForce] = {}
+    runs = [0] * len(scenes)
+    while force:
+        rows = sorted(force)
+        for b in rows:
+            runs[b] += 1
+            if runs[b] > max_runs:
+                raise SceneError(f"`max_runs` = {max_runs} runs did not bracket the critical force")
+        passed = _trials(base, rows, [force[b] for b in rows], max_steps)
+        for b, ok in zip(rows, passed):
+            try:
+                force[b] = searches[b].send(ok)
+            except StopIteration as done:
+                del force[b]
+                lo, hi, band, tried = done.value
+                out[b] = CriticalForce(stops=lo, passes=hi, runs=runs[b], start=start, band=band,
+                                       checked=SCAN_WINDOW, tried=tuple(tried), dt=float(dts[b]))
+    return [out[b] for b in range(len(scenes))]
+
+
+def _trials(base, rows, forces, max_steps) -> list[bool]:
+    """:func:`passes` for each ``forces[k]`` on a fork of ``base``'s scene ``rows[k]``, all in one
+    batch: limit by limit (the time limit of that force), until it passes or stops, within the
+    step budget ``max_steps``."""
+    scenes = [base.scenes[b].replace(drive=ConstantForce(force=f)) for b, f in zip(rows, forces)]
+    trials = base.forks(scenes, rows)
+    stuck = [next((s.speed, s.dwell) for s in default_stops(scene) if isinstance(s, Stuck)) for scene in scenes]
+    trials.set_stops(passed=[True] * len(scenes), stuck=stuck)
+    limits = [default_duration(scene) for scene in scenes]
+    outcome: list[bool | None] = [None] * len(scenes)
+    while any(o is None for o in outcome):
+        durations = []
+        for k, scene in enumerate(scenes):
+            dt = float(trials.dt_s[k])
+            room = 0.999 * (max_steps - int(trials.nstep[k])) * dt
+            if outcome[k] is None and room < dt:
+                outcome[k] = False
+            durations.append(min(limits[k], room) if outcome[k] is None else 0.0)
+        if all(o is not None for o in outcome):
+            break
+        statuses = trials.advance_for(durations)
+        for k, status in enumerate(statuses):
+            if outcome[k] is not None:
+                continue
+            err = trials.error(k)
+            if err is not None:
+                raise err
+            if status != "duration":
+                outcome[k] = status == "passed"
+    return [bool(o) for o in outcome]
 
 
 def critical_force(scene: Scene, *, start: str = "rest", rel_tol: float = REL_TOL, max_runs: int = 80,
@@ -424,9 +567,8 @@ def critical_force(scene: Scene, *, start: str = "rest", rel_tol: float = REL_TO
     max_steps : int, optional
         Step budget of each run.
     engine : str, default "pymunk"
-        The engine (``asperity2d.engine.ENGINES``). The search settles the slider against the
-        flanks (from rest) and forks settled runs, which only ``"pymunk"`` does: another engine is
-        refused in one line.
+        The engine (``asperity2d.engine.ENGINES``): ``"batched"`` settles and forks as the
+        reference does (:func:`critical_force_brackets`; many scenes at once are its use).
 
     Returns
     -------
@@ -460,11 +602,10 @@ def critical_force(scene: Scene, *, start: str = "rest", rel_tol: float = REL_TO
     >>> f"{a.critical_force(scene, start='entry') * 1e3:.3g} mN"
     '3.83 mN'
     """
-    if check_engine(engine) != "pymunk":
-        raise SceneError(f"critical_force is not available on engine={engine!r} (its runs settle against the "
-                         "flanks and fork a settled run); engine=\"pymunk\" runs it")
-    bracket = critical_force_bracket(scene, start=start, rel_tol=rel_tol, max_runs=max_runs, dt=dt,
-                                     iterations=iterations, max_steps=max_steps)
+    if not isinstance(scene, Scene):
+        raise SceneError(f"`scene` must be a Scene, got {type(scene).__name__}")
+    bracket = critical_force_brackets([scene], start=start, rel_tol=rel_tol, max_runs=max_runs, dt=dt,
+                                      iterations=iterations, max_steps=max_steps, engine=engine)[0]
     if bracket.band is not None:
         low, high = bracket.band
         warnings.warn(f"passing is not monotone in the force (start={start!r}): {low:.4g} N passes, "

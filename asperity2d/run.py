@@ -319,20 +319,23 @@ def simulate_many(scenes: Iterable[Scene], duration: float | None = None, *, dt:
     record_every = check_int("record_every", record_every, minimum=1)
     iterations = check_int("iterations", iterations, minimum=1, maximum=10_000)
     max_steps = check_int("max_steps", max_steps, minimum=1, maximum=None)
-    dts, durations, passed = [], [], []
+    dts, durations, passed, stuck, settles = [], [], [], [], []
     for scene in scenes:
-        if duration is None and isinstance(scene.drive, ConstantForce) and scene.drive.force != 0:
-            raise SceneError(f"`duration` = None with a constant force (the Stuck stop) is not available on "
-                             f"engine={engine!r}: give a duration, or engine=\"pymunk\" runs it")
-        refuse(engine, scene, settle=scene.slider.track == "free" if settle is None else bool(settle))
+        settles_here = scene.slider.track == "free" if settle is None else bool(settle)
+        refuse(engine, scene, settle=settles_here)
         step = resolve_dt(scene, dt, unsafe_dt)
         span = default_duration(scene) if duration is None else check_positive("duration", check_finite("duration", duration))
-        check_budget(scene, step, max_steps, duration=span)
+        cap = settle_cap(scene) if settles_here else None
+        check_budget(scene, step, max_steps, settle=cap or 0.0, duration=span)
         dts.append(step)
         durations.append(span)
         passed.append(duration is None)
+        # the default stops' Stuck (a constant force), as (speed, dwell)
+        rule = next((s for s in default_stops(scene) if isinstance(s, Stuck)), None) if duration is None else None
+        stuck.append(None if rule is None else (rule.speed, rule.dwell))
+        settles.append(cap)
     results = ENGINES[engine].run(scenes, dts, durations, record_every=record_every, iterations=iterations,
-                                  passed=passed)
+                                  passed=passed, stuck=stuck, settle=settles)
     out = []
     for scene, record, stopped in zip(scenes, results, passed):
         if isinstance(record, Exception):

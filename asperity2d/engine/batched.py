@@ -13,9 +13,12 @@ What it covers, and refuses (one :class:`~asperity2d.errors.SceneError` line nam
 and saying ``engine="pymunk"`` runs it): every profile (full and half triangles, flat tops),
 random heights and measured profiles' asperities -- each asperity one strictly convex outline,
 as Chipmunk keeps it -- but no lattice links, no substrate (a measured profile's rigid
-valleys), the ``static-kinetic`` contact law, and no settling (a free slider runs with
-``settle=False``). The floor is not modelled: a slider
-tip that goes below it stops that scene with a :class:`~asperity2d.errors.SimulationError`.
+valleys), the ``static-kinetic`` contact law only. It settles as :meth:`.core.Engine.settle`
+does (:meth:`Batch.settle`: the same phases, damping, hold and calm test), forks a settled scene
+into many (:meth:`Batch.forks`, the critical force's trial runs) and stops a scene at the run
+loop's stops (passed, :class:`asperity2d.Stuck`, a free slider off the far end). The floor is
+not modelled: a slider tip that goes below it stops that scene with a
+:class:`~asperity2d.errors.SimulationError`.
 
 A batch is refused up front when its arrays would pass :data:`MAX_BATCH_BYTES`; a scene that
 diverges stops alone with its own ``SimulationError`` while its neighbours finish.
@@ -31,7 +34,7 @@ import numpy as np
 from .._version import __version__
 from ..errors import SceneError, SimulationError
 from ..units import Units, check_scales
-from .run_checks import check_scene
+from .run_checks import check_scene, off_surface_message, surface_end
 from .space import COLLISION_SLOP, CORRECTION_PER_STEP, per_step_bias
 
 #: How to get the compiled loop.
@@ -40,6 +43,12 @@ INSTALL = 'pip install "asperity2d[batch]"'
 MAX_BATCH_BYTES = 2 << 30
 #: The engine's name in the registry and in its results' meta.
 ENGINE = "batched"
+#: The error bias of settling's hold on the slider's x: pymunk's default for a joint
+#: (``Constraint.error_bias``, Chipmunk's ``cpfpow(1 - 0.1, 60)`` in single precision), which
+#: :meth:`asperity2d.engine.core.Engine.settle` leaves its hold at.
+HOLD_ERROR_BIAS = 0.0017970074436457143
+#: Why a scene's call ended, by the kernel's stop code: the statuses of the run loop.
+STATUS = {0: "duration", 1: "passed", 2: "stuck", 3: "off-surface"}
 
 
 def unavailable() -> str | None:
@@ -59,7 +68,8 @@ def _strictly_convex(points) -> bool:
 
 
 def refusal(scene, *, settle: bool = False) -> str | None:
-    """The scene option the batched engine does not implement (one line), or None."""
+    """The scene option the batched engine does not implement (one line), or None (``settle``:
+    whether the run settles first, which it implements)."""
     lower, contact = scene.lower, scene.contact
     tail = '; engine="pymunk" runs it'
     if lower.is_lattice:
@@ -74,8 +84,6 @@ def refusal(scene, *, settle: bool = False) -> str | None:
         return "`slider_start` (a start of the scene's own) is not implemented on engine=\"batched\"" + tail
     if contact.law != "static-kinetic":
         return f"`law` = {contact.law!r} is not implemented on engine=\"batched\" (static-kinetic only)" + tail
-    if settle:
-        return "`settle` (settling before the run) is not implemented on engine=\"batched\"" + tail
     return None
 
 
@@ -95,8 +103,10 @@ class Batch:
     many samples each scene's record holds; ``record_every``: steps between samples.
     """
 
-    def __init__(self, scenes, dts, *, iterations: int = 20, record_every: int = 10, samples: int = 1):
+    def __init__(self, scenes, dts, *, iterations: int = 20, record_every: int = 10, samples: int = 1,
+                 engaged: bool = False):
         kernel = _kernel()
+        self.engaged = bool(engaged)
         self.kernel = kernel
         self.scenes = list(scenes)
         B = len(self.scenes)
@@ -145,6 +155,13 @@ class Batch:
         self.switch_on = np.zeros(B, np.bool_)
         self.floor_y, self.stop_x = f8(B), np.full(B, np.inf)
         self.first = np.ones(B, np.bool_)
+        # settling (Batch.settle) and the stops (Batch.set_stops): off but while asked for
+        self.settling, self.damp, self.push = np.zeros(B, np.bool_), np.ones(B), f8(B)
+        self.hold, self.hold_x, self.hold_j, self.hold_coef = np.zeros(B, np.bool_), f8(B), f8(B, 2), f8(B)
+        self.stop_code = np.zeros(B, np.int64)
+        self.stuck_v, self.stuck_dwell, self.slow_since = f8(B), f8(B), np.full(B, -1.0)
+        self.v_unit, self.off_x = f8(B), np.full(B, np.inf)
+        self.track_y0 = f8(B)  # the fixed track's working height (track_y starts above it when engaged)
         self.rec = np.zeros((B, kernel.N_REC, samples))
         self.rec_at = np.zeros(B, np.int64)
         for b, (scene, dt) in enumerate(zip(self.scenes, dts)):
@@ -191,18 +208,24 @@ class Batch:
         h_up = slider.depth / u.length
         height = lower.top / u.length
         left = float(np.ravel(lower.runs()[0])[0]) / u.length
-        if slider.track == "fixed":
+        if slider.track == "fixed" and not self.engaged:
             right = float(np.ravel(slider.runs()[1])[-1]) / u.length
             sx = x0[0] - left - right - apex[-1] - 0.1
             sy = height - slider.interference / u.length + h_up
             self.fixed[b] = True
-        else:
+        else:  # over the first valley, just clear of the tips (a fixed track engaged: its track raised there)
             flat = lower.profile.kind == "flat"
             x_tip = 0.5 * (x0[0] + x0[1]) if n > 1 else x0[0] - (0.0 if flat else 0.5 * left)
             sx = x_tip - apex[0]
             sy = height + h_up + 1e-3
+            self.fixed[b] = slider.track == "fixed"
         self.sp[b] = sx, sy
         self.track_y[b] = sy
+        self.track_y0[b] = height - slider.interference / u.length + h_up if self.fixed[b] else sy
+        self.v_unit[b] = u.velocity
+        self.hold_coef[b] = 1.0 - math.pow(HOLD_ERROR_BIAS, dt / u.time)
+        if slider.track == "free":
+            self.off_x[b] = surface_end(_Layout(scene, u))[0]
         self.g_y[b] = -scene.gravity / u.acceleration
         if drive.__class__.__name__ == "SpringDrive":
             self.spring[b] = True
@@ -249,6 +272,113 @@ class Batch:
         else:
             self.stop_x[b] = math.inf
 
+    def settle(self, push, max_time, *, damping_per_period: float = 0.5, rest_speed: float = 1e-7) -> np.ndarray:
+        """:meth:`asperity2d.engine.core.Engine.settle` for every scene at once: the same phases
+        (a free slider's drop with its x held, a fixed track lowered into place when
+        ``engaged``, the spring drive's equilibrium, the ``push[b]`` (N) along +x), the same
+        global damping, windows, calm test and shares of ``max_time[b]`` (s), each scene on its
+        own schedule (``max_time[b]`` None: scene ``b`` does not settle); then every velocity is
+        zeroed and the contacts at rest start stuck. Returns each scene's time spent (s)."""
+        B = len(self.scenes)
+        plan = []
+        for b, scene in enumerate(self.scenes):
+            u = self.units[b]
+            if max_time[b] is None:  # this scene does not settle
+                plan.append({"phases": [], "spent": 0})
+                continue
+            lowering = bool(self.fixed[b]) and self.track_y[b] != self.track_y0[b]
+            phases = (["drop"] if scene.slider.track == "free" or lowering else []) + \
+                (["spring"] if self.spring[b] else []) + (["push"] if push[b] else [])
+            dt = float(self.dt_s[b])
+            period = max(1, int(scene.slowest_period() / dt))
+            share = max(2, int(max_time[b] / dt) // max(1, len(phases)))
+            rate = -math.log(damping_per_period) / (2.0 * math.pi)  # per internal time unit
+            slowest = 2.0 * math.pi * u.time / scene.slowest_period()
+            # Chipmunk damps v by cpfpow(space.damping, dt) every step
+            self.damp[b] = math.pow(math.exp(-min(rate, 2.0 * slowest)), float(self.dt[b]))
+            plan.append({"phases": phases, "at": 0, "done": 0, "calm": 0, "spent": 0, "period": period,
+                         "window": max(1, period // 4), "share": share, "lowering": lowering,
+                         "y_start": float(self.track_y[b]), "push": float(push[b]) / u.force})
+        self.hold_x[:] = self.sp[:, 0]
+        live = [b for b in range(B) if plan[b]["phases"]]
+        while live:
+            steps = np.zeros(B, np.int64)
+            for b in live:
+                p = plan[b]
+                phase = p["phases"][p["at"]]
+                if phase == "drop" and not self.hold[b]:
+                    self.hold[b], self.hold_j[b] = True, 0.0
+                elif phase != "drop" and self.hold[b]:
+                    self.hold[b] = False
+                n = min(p["window"], p["share"] - p["done"])
+                if phase == "drop" and p["lowering"]:  # Engine._lower_track
+                    fraction = min(1.0, (p["done"] + n) / p["period"])
+                    self.track_y[b] = p["y_start"] + fraction * (self.track_y0[b] - p["y_start"])
+                self.push[b] = p["push"] if phase == "push" else 0.0
+                steps[b] = n
+            self.settling[:] = steps > 0
+            self.advance(steps)
+            for b in list(live):
+                p = plan[b]
+                p["done"] += int(steps[b])
+                n_low = int(self.n_lower[b])
+                fastest = max(float(np.abs(self.lv[b, :n_low]).max(initial=0.0)), float(np.abs(self.sv[b]).max()))
+                p["calm"] = p["calm"] + 1 if fastest < rest_speed else 0
+                if self.fail[b] != 0 or not (p["done"] < p["share"] and p["calm"] < 4):
+                    p["spent"] += p["done"]
+                    p["at"], p["done"], p["calm"] = p["at"] + 1, 0, 0
+                    if p["at"] == len(p["phases"]) or self.fail[b] != 0:
+                        live.remove(b)
+        self.settling[:] = False
+        self.hold[:] = False
+        self.damp[:] = 1.0
+        self.push[:] = 0.0
+        for b in range(B):
+            if not plan[b]["phases"]:  # as Engine.settle with nothing to do: untouched
+                continue
+            self.lv[b] = 0.0
+            self.sv[b] = 0.0
+            if self.switch_on[b]:  # contacts at rest start stuck, with mu_static (the switch at zero slip)
+                touching = self.c_n[b].sum(axis=0) > 0
+                self.present[b] = touching
+                self.stuck[b] = touching
+                self.slid[b] = 0.0
+                self.mu[b] = np.where(touching, self.mu_s[b], self.mu_k[b])
+        return np.array([p["spent"] * float(self.dt_s[b]) for b, p in enumerate(plan)])
+
+    #: The arrays that carry a scene's state from one step to the next (what a fork copies).
+    STATE = ("lp", "lv", "lvb", "gj", "sp", "sv", "svb", "sgj", "c_n", "c_key", "c_jn", "c_jt", "stuck",
+             "slid", "mu", "present", "nstep", "first", "track_y", "fail", "fail_step")
+
+    def forks(self, scenes, rows) -> "Batch":
+        """A new batch of ``scenes`` (this batch's scenes, but for their drive), scene ``k`` going
+        on from this batch's scene ``rows[k]`` as it is now: the state copied, bit for bit."""
+        out = Batch(scenes, [self.dt_s[r] for r in rows], iterations=int(self.iterations[0]),
+                    record_every=self.record_every, samples=1, engaged=self.engaged)
+        rows = np.asarray(rows, np.int64)
+        for name in self.STATE:
+            getattr(out, name)[...] = getattr(self, name)[rows]
+        return out
+
+    def set_stops(self, *, passed, stuck=None) -> None:
+        """The run loop's stop conditions, per scene: ``passed[b]`` (the slider passed the surface)
+        and ``stuck[b]`` = ``(speed m/s, dwell s)`` of :class:`asperity2d.Stuck`, or None."""
+        for b in range(len(self.scenes)):
+            self.set_stop(b, bool(passed[b]))
+            rule = None if stuck is None else stuck[b]
+            self.stuck_v[b], self.stuck_dwell[b] = (0.0, 0.0) if rule is None else rule
+
+    def advance_for(self, durations) -> list[str]:
+        """Advance scene ``b`` for ``durations[b]`` (s; 0: not at all) as one call of
+        :meth:`asperity2d.Run.advance` does (its steps, its stops at its samples, the
+        :class:`~asperity2d.Stuck` stop's memory reset): each scene's status."""
+        steps = np.array([int(math.ceil(d / dt - 1e-9)) if d > 0 else 0 for d, dt in zip(durations, self.dt_s)],
+                         np.int64)
+        self.stop_code[:] = 0
+        self.slow_since[:] = -1.0
+        self.advance(steps)
+        return [STATUS[int(c)] for c in self.stop_code]
+
     def advance(self, steps) -> None:
         """Advance scene ``b`` by ``steps[b]`` steps (all scenes in one compiled call)."""
         k = self.kernel
@@ -260,7 +390,10 @@ class Batch:
                   self.fixed, self.track_y, self.g_x, self.g_y, self.spring, self.dk, self.dc, self.dv,
                   self.dorigin, self.dforce, self.load, self.dt, self.iterations, COLLISION_SLOP,
                   self.bias_coef, self.joint_bias_coef, self.restitution, self.mu_s, self.mu_k,
-                  self.v_stick, self.slip_dist, self.switch_on, self.floor_y, self.stop_x, self.first)
+                  self.v_stick, self.slip_dist, self.switch_on, self.floor_y, self.stop_x, self.first,
+                  self.settling, self.damp, self.push, self.hold, self.hold_x, self.hold_j, self.hold_coef,
+                  self.stop_code, self.stuck_v, self.stuck_dwell, self.slow_since, self.v_unit, self.dt_s,
+                  self.off_x)
 
     def error(self, b: int, *, offset: int = 0) -> SimulationError | None:
         """Scene ``b``'s own failure (None if it ran), naming it as scene ``offset + b``."""
@@ -297,6 +430,18 @@ class Batch:
                 "units": u.to_dict(), "asperity2d_version": __version__, "numpy_version": np.__version__,
                 "record_lower": False, **meta}
         return arrays, meta
+
+
+class _Layout:
+    """What :func:`~asperity2d.engine.run_checks.surface_end` reads of an engine, for a scene
+    as :class:`Batch` places it."""
+
+    def __init__(self, scene, u: Units):
+        from types import SimpleNamespace
+
+        self.scene, self.units = scene, u
+        self.layout = SimpleNamespace(lower_apex_x=scene.lower.tips() / u.length,
+                                      upper_apex=scene.slider.tips() / u.length)
 
 
 def _rear(batch: Batch, b: int) -> float:
@@ -346,31 +491,42 @@ def batch_size(scenes, steps: int, *, record_every: int = 10) -> int:
     return max(1, min(len(scenes), CHUNK_BYTES // max(1, per_scene)))
 
 
-def run(scenes, dts, durations, *, record_every: int = 10, iterations: int = 20, passed=None):
-    """Run each scene for its duration (s) from rest: per scene, in order, its record
-    ``(arrays, meta)`` (:meth:`Batch.result`) or the SimulationError that stopped it.
+def run(scenes, dts, durations, *, record_every: int = 10, iterations: int = 20, passed=None, stuck=None,
+        settle=None):
+    """Run each scene for its duration (s): per scene, in order, its record ``(arrays, meta)``
+    (:meth:`Batch.result`) or the SimulationError that stopped it.
 
-    ``passed[b]``: stop scene ``b`` when its slider has passed the surface (the default stop).
+    ``passed[b]``: stop scene ``b`` when its slider has passed the surface (the default stop);
+    ``stuck[b]``: ``(speed, dwell)`` of the :class:`asperity2d.Stuck` stop, or None; ``settle[b]``:
+    settle it first for at most this long (s, :meth:`Batch.settle` without a push), or None.
     Scenes run in batches of at most :data:`CHUNK_BYTES` (a scene that alone is over
     :data:`MAX_BATCH_BYTES` is refused by :class:`Batch`).
     """
     scenes = list(scenes)
+    B = len(scenes)
     dts = [float(d) for d in dts]
-    passed = [False] * len(scenes) if passed is None else [bool(p) for p in passed]
+    passed = [False] * B if passed is None else [bool(p) for p in passed]
+    stuck = [None] * B if stuck is None else list(stuck)
+    settle = [None] * B if settle is None else list(settle)
     steps = [max(0, int(math.ceil(d / dt - 1e-9))) for d, dt in zip(durations, dts)]
     size = batch_size(scenes, max(steps), record_every=record_every)
     out = []
-    for start in range(0, len(scenes), size):
-        out += _run_chunk(scenes[start:start + size], dts[start:start + size], steps[start:start + size],
-                          record_every, iterations, passed[start:start + size], start)
+    for start in range(0, B, size):
+        part = slice(start, start + size)
+        out += _run_chunk(scenes[part], dts[part], steps[part], record_every, iterations, passed[part],
+                          stuck[part], settle[part], start)
     return out
 
 
-def _run_chunk(scenes, dts, steps, record_every, iterations, passed, offset):
+def _run_chunk(scenes, dts, steps, record_every, iterations, passed, stuck, settle, offset):
+    from .._format import si
+
     samples = max(1, max(steps) // record_every)
     batch = Batch(scenes, dts, iterations=iterations, record_every=record_every, samples=samples)
-    for b in range(len(scenes)):
-        batch.set_stop(b, passed[b])
+    batch.set_stops(passed=passed, stuck=stuck)
+    spent = np.zeros(len(scenes))
+    if any(t is not None for t in settle):
+        spent = batch.settle(np.zeros(len(scenes)), settle)
     batch.advance(steps)
     out = []
     for b in range(len(scenes)):
@@ -378,8 +534,14 @@ def _run_chunk(scenes, dts, steps, record_every, iterations, passed, offset):
         if err is not None:
             out.append(err)
             continue
-        done = int(batch.nstep[b])
-        status = "passed" if done < steps[b] else "duration"
-        message = "the slider passed the lower surface" if status == "passed" else "ran its duration"
-        out.append(batch.result(b, status=status, meta={"status": status, "message": message}))
+        status = STATUS[int(batch.stop_code[b])]
+        t = float(batch.nstep[b] * batch.dt_s[b])
+        if status == "off-surface":
+            message = off_surface_message(_Layout(scenes[b], batch.units[b]), float(batch.sp[b, 0]), t)
+        elif status == "duration":
+            message = "reached the requested duration"
+        else:
+            message = f"stop condition {status!r} met at t = {si(t, 's', 4)}"
+        out.append(batch.result(b, status=status, meta={"status": status, "message": message,
+                                                        "settle_time": float(spent[b])}))
     return out

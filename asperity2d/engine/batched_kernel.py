@@ -63,6 +63,9 @@ MAX_OVERLAP = 0.5
 KEY_BASE = 1 << 16
 
 DBL_MAX = 1.7976931348623157e308
+#: Why a scene's call ended before its steps were done (``stop_code``): 0 it ran them all;
+#: its slider passed the surface, stuck, or (a free slider) ran off its far end.
+STOP_NONE, STOP_PASSED, STOP_STUCK, STOP_OFF = 0, 1, 2, 3
 
 
 @njit(inline="always")
@@ -93,7 +96,9 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                 uverts, unorms, nv_u, n_upper, s_m_inv, fixed, track_y, g_x, g_y,
                 spring, dk, dc, dv, dorigin, dforce, load,
                 dt, iterations, slop, bias_coef, joint_bias_coef, restitution,
-                mu_s, mu_k, v_stick, slip_dist, switch_on, floor_y, stop_x, first):
+                mu_s, mu_k, v_stick, slip_dist, switch_on, floor_y, stop_x, first,
+                settling, damp, push, hold, hold_x, hold_j, hold_coef, stop_code, stuck_v, stuck_dwell,
+                slow_since, v_unit, dt_s, off_x):
     """Advance scene ``b`` by ``steps[b]`` steps (see the module docstring)."""
     N = n_lower[b]
     U = n_upper[b]
@@ -177,13 +182,19 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
         s_vcoef[i] = 1.0 - math.exp(-lc[b, i] * h * lm_inv[b, i])
     touched = np.zeros(N, np.bool_)
     still = g_x[b] == 0.0 and g_y[b] == 0.0
+    settle = settling[b]
+    dmp = damp[b]
+    local = 0
     for _ in range(steps[b]):
         if fail[b] != OK:
             break
         k = nstep[b]
+        local += 1
         # 1. the slider's force
         x, vx = sp[b, 0], sv[b, 0]
-        if spring[b]:
+        if settle:  # Engine.settle's force: the spring towards its far end at rest, plus the push
+            fx = (dk[b] * (dorigin[b] - x) if spring[b] else 0.0) + push[b]
+        elif spring[b]:
             x_d = dorigin[b] + dv[b] * (k + 1) * h
             fx = dk[b] * (x_d - (x + vx * h)) + dc[b] * (dv[b] - vx)
         else:
@@ -367,13 +378,16 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
             g_by[i] = -(lp[b, i, 1] - ay) * joint_bias_coef[b] / h
         if fixed[b]:  # the slider's groove along x at the track's height; n = (0, 1)
             sgb_y = -(sp[b, 1] - track_y[b]) * joint_bias_coef[b] / h
+        if hold[b]:  # settling's hold: a groove along y at hold_x (added last); n = (-1, 0)
+            hgb_x = -(sp[b, 0] - hold_x[b]) * hold_coef[b] / h
         # 5. velocities
-        sv[b, 0] = sv[b, 0] + (g_x[b] + fx * sm_inv) * h
-        sv[b, 1] = sv[b, 1] + (g_y[b] + fy * sm_inv) * h
+        # (v damp + (g + f / m) dt: the space's damping, 1 but while settling)
+        sv[b, 0] = sv[b, 0] * dmp + (g_x[b] + fx * sm_inv) * h
+        sv[b, 1] = sv[b, 1] * dmp + (g_y[b] + fy * sm_inv) * h
         for q in range(n_act):
             i = act[q]
-            lv[b, i, 0] = lv[b, i, 0] + g_x[b] * h
-            lv[b, i, 1] = lv[b, i, 1] + g_y[b] * h
+            lv[b, i, 0] = lv[b, i, 0] * dmp + g_x[b] * h
+            lv[b, i, 1] = lv[b, i, 1] * dmp + g_y[b] * h
         # 6. cached impulses (dt / previous dt: 0 on a space's first step, else 1)
         coef = 0.0 if first[b] else 1.0
         for a in range(na):
@@ -395,6 +409,9 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
         if fixed[b]:
             sv[b, 0] += sgj[b, 0] * coef * sm_inv
             sv[b, 1] += sgj[b, 1] * coef * sm_inv
+        if hold[b]:
+            sv[b, 0] += hold_j[b, 0] * coef * sm_inv
+            sv[b, 1] += hold_j[b, 1] * coef * sm_inv
         first[b] = False
         # The sweeps. Only the island -- the slider, its contacts, the lower bodies they touch --
         # is coupled; a moving lower body with no contact is its own system (its spring and
@@ -458,6 +475,7 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                 n_c += 1
         s0, s1, sb0, sb1 = sv[b, 0], sv[b, 1], svb[b, 0], svb[b, 1]
         sg0, sg1 = sgj[b, 0], sgj[b, 1]
+        hg0, hg1 = hold_j[b, 0], hold_j[b, 1]
         for _it in range(iterations[b]):
             changed = False
             for m in range(n_c):
@@ -531,10 +549,21 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                 sg0, sg1 = sx, sy
                 s0 += (sx - ox) * sm_inv
                 s1 += (sy - oy) * sm_inv
+            if hold[b]:
+                kinv = sm_inv / (sm_inv * sm_inv)
+                jx = kinv * (hgb_x - s0)
+                ox, oy = hg0, hg1
+                sx, sy = ox + jx, 0.0  # never at the groove's ends: projected onto n = (-1, 0)
+                if sx != ox or sy != oy:
+                    changed = True
+                hg0, hg1 = sx, sy
+                s0 += (sx - ox) * sm_inv
+                s1 += (sy - oy) * sm_inv
             if not changed:
                 break
         sv[b, 0], sv[b, 1], svb[b, 0], svb[b, 1] = s0, s1, sb0, sb1
         sgj[b, 0], sgj[b, 1] = sg0, sg1
+        hold_j[b, 0], hold_j[b, 1] = hg0, hg1
         for q in range(n_isl):
             i = isl[q]
             lv[b, i, 0], lv[b, i, 1] = bv0[q], bv1[q]
@@ -556,7 +585,8 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                 c_key[b, j, i, c] = key[a, c]
                 c_jn[b, j, i, c] = jn[a, c]
                 c_jt[b, j, i, c] = jt[a, c]
-        nstep[b] = k + 1
+        if not settle:  # settling is before t = 0: it counts no step
+            nstep[b] = k + 1
         # 7. projection back onto the tracks
         drift = 0.0
         for i in range(N):
@@ -571,7 +601,7 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                 sp[b, 1] = track_y[b]
                 sv[b, 1] = 0.0
         # the static/kinetic switch: per lower asperity the largest slip over its contacts
-        if switch_on[b]:
+        if switch_on[b] and not settle:
             for i in range(N):
                 slips[i] = -1.0
                 seen[i] = False
@@ -610,10 +640,28 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
             fail[b] = NONFINITE
             fail_step[b] = k + 1
             break
+        if settle:
+            continue
         if (k + 1) % rec_every == 0 and rec_at[b] < rec.shape[2]:
             _record(b, rec, rec_at, sp, sv, na, a_nx, a_ny, a_cnt, jn, jt, h, spring, dk, dc, dv,
                     dorigin, dforce, k + 1)
-            if sp[b, 0] > stop_x[b]:  # a stop is checked at the samples, as the run loop's
+        # the stops, at the run loop's samples: every rec_every steps of this call and at its end
+        if local % rec_every == 0 or local == steps[b]:
+            if sp[b, 0] > stop_x[b]:  # Passed
+                stop_code[b] = STOP_PASSED
+                break
+            if stuck_v[b] > 0.0:  # Stuck: |v| under stuck_v (m/s) for stuck_dwell (s)
+                t = (k + 1) * dt_s[b]
+                if abs(sv[b, 0] * v_unit[b]) >= stuck_v[b]:
+                    slow_since[b] = -1.0
+                else:
+                    if slow_since[b] < 0.0:
+                        slow_since[b] = t
+                    if t - slow_since[b] >= stuck_dwell[b]:
+                        stop_code[b] = STOP_STUCK
+                        break
+            if sp[b, 0] > off_x[b]:  # a free slider past the far end of the surface
+                stop_code[b] = STOP_OFF
                 break
 
 
@@ -661,7 +709,9 @@ def advance(steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, sgj,
             uverts, unorms, nv_u, n_upper, s_m_inv, fixed, track_y, g_x, g_y,
             spring, dk, dc, dv, dorigin, dforce, load,
             dt, iterations, slop, bias_coef, joint_bias_coef, restitution,
-            mu_s, mu_k, v_stick, slip_dist, switch_on, floor_y, stop_x, first):
+            mu_s, mu_k, v_stick, slip_dist, switch_on, floor_y, stop_x, first,
+            settling, damp, push, hold, hold_x, hold_j, hold_coef, stop_code, stuck_v, stuck_dwell,
+            slow_since, v_unit, dt_s, off_x):
     """Advance every scene ``b`` of the batch by ``steps[b]`` steps, in parallel over scenes."""
     for b in prange(steps.shape[0]):
         _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, sgj,
@@ -670,4 +720,6 @@ def advance(steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, sgj,
                     uverts, unorms, nv_u, n_upper, s_m_inv, fixed, track_y, g_x, g_y,
                     spring, dk, dc, dv, dorigin, dforce, load,
                     dt, iterations, slop, bias_coef, joint_bias_coef, restitution,
-                    mu_s, mu_k, v_stick, slip_dist, switch_on, floor_y, stop_x, first)
+                    mu_s, mu_k, v_stick, slip_dist, switch_on, floor_y, stop_x, first,
+                    settling, damp, push, hold, hold_x, hold_j, hold_coef, stop_code, stuck_v, stuck_dwell,
+                    slow_since, v_unit, dt_s, off_x)
