@@ -91,7 +91,8 @@ def stick_slip_run(out, size: dict, frames: int | None, progress: bool):
 # stages until the verdict against the regular surface is decided, under a sequential design
 # that keeps the chance of a false verdict at 0.01 despite looking after every stage.
 # ``engine="auto"``: where Numba is installed (the ``[batch]`` extra), the comparisons the batched
-# engine covers (the peak stick force on the fixed track) run on it, every pass in one batch, and
+# engine covers (every one here: the critical forces and the peak stick forces, on both set-ups)
+# run on it, every run of a stage in one batch, and
 # the summary says so; everything else, and every run without Numba, runs on pymunk.
 
 def spacing_comparison(measure: str, setup: str, size: dict, seeds: int | str, workers, progress: bool,

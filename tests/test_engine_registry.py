@@ -63,10 +63,11 @@ def test_the_batched_engine_refuses_what_it_does_not_implement_in_one_line(kwarg
     assert message.startswith(option) and message.endswith('engine="pymunk" runs it') and "\n" not in message
 
 
-def test_settling_is_refused_on_the_batched_engine():
+def test_settling_is_not_refused_on_the_batched_engine():
+    # it settles as the reference does (tests/test_engine_critical.py compares the two)
     scene = a.make_scene(lower_count=4, upper_count=2, track="free")
     assert batched.refusal(scene) is None
-    assert batched.refusal(scene, settle=True).startswith("`settle`")
+    assert batched.refusal(scene, settle=True) is None
 
 
 def test_results_and_comparisons_say_which_engine_made_them(tmp_path):
@@ -83,12 +84,12 @@ def test_results_and_comparisons_say_which_engine_made_them(tmp_path):
     assert Comparison.load(tmp_path / "old.json").engine == "pymunk"
 
 
-def test_the_measures_that_need_settling_are_refused_on_the_batched_engine():
-    # without Numba the install line comes first; with it, the critical force's own refusal
+def test_the_critical_force_on_the_batched_engine_refuses_what_it_does_not_implement():
+    # without Numba the install line comes first; with it, the option it does not implement, named
     expected = (r"asperity2d\[batch\]" if batched.unavailable() else
-                r'critical_force is not available on engine=\'batched\'.*engine="pymunk" runs it')
+                r'^`lateral_stiffness` .* is not implemented on engine="batched"; engine="pymunk" runs it$')
     with pytest.raises(SceneError, match=expected):
-        a.critical_force(a.make_scene(lower_count=4, upper_count=2), engine="batched")
+        a.critical_force(a.make_scene(lower_count=4, upper_count=2, lateral_stiffness=1e4), engine="batched")
 
 
 def _numba(monkeypatch, present: bool):
@@ -104,9 +105,9 @@ def test_auto_takes_the_batched_engine_only_where_it_is_installed_and_runs_every
     assert choose_engine("auto", [fixed, a.make_scene(lower_count=4, upper_count=2)]) == "batched"
     # one scene it does not implement keeps the whole ensemble on the reference
     assert choose_engine("auto", [fixed, a.make_scene(lower_count=4, upper_count=2, lateral_stiffness=1e4)]) == "pymunk"
-    # a free slider settles unless told otherwise, as simulate decides it
+    # a free slider settles (as simulate decides it), which the batched engine does as well
     free = a.make_scene(lower_count=4, upper_count=2, track="free")
-    assert choose_engine("auto", [free]) == "pymunk"
+    assert choose_engine("auto", [free]) == "batched"
     assert choose_engine("auto", [free], settle=False) == "batched"
     # a named engine is that engine, checked
     assert choose_engine("pymunk", [fixed]) == "pymunk"

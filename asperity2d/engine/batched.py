@@ -174,7 +174,7 @@ class Batch:
         ``vertices`` vertices), and its record."""
         per_lower = 8 * (4 * 2 + 4 + 2 * vertices * 2 + 6) + 2
         per_pair = 8 * 1 + 8 * 2 * 3
-        per_scene = N * per_lower + U * N * per_pair + U * 8 * (4 * vertices + 1) + 8 * 40 + 8 * 9 * samples
+        per_scene = N * per_lower + U * N * per_pair + U * 8 * (4 * vertices + 1) + 8 * 56 + 8 * 9 * samples
         return B * per_scene
 
     def _load(self, b: int, scene, dt: float) -> None:

@@ -8,7 +8,9 @@ default is always ``"pymunk"``. The contract:
 
 1. **In:** validated :class:`~asperity2d.scene.Scene` objects and the run options the run loop
    resolved (per scene its step ``dt`` (s) and duration (s), ``record_every``, ``iterations``,
-   and whether the default stop -- the slider has passed the surface -- ends it).
+   whether the default stop -- the slider has passed the surface -- ends it, the
+   :class:`~asperity2d.Stuck` stop's ``(speed, dwell)`` or None, and how long it may settle
+   first (s) or None).
 2. **Out:** per scene, the record of a :class:`~asperity2d.Result` of the kind the reference
    makes, ``(arrays, meta)`` (the slider's SI columns; ``meta["engine"]`` names the engine that
    made it; :func:`asperity2d.run.simulate_many` makes the Result), or the
@@ -24,8 +26,9 @@ default is always ``"pymunk"``. The contract:
 5. Same scenes and options, same numbers, bit for bit; a scene's result does not depend on
    what else is in its batch. An engine never prints and never writes files.
 
-``"pymunk"`` is the reference: every scene option, settling, the energy books, the lower
-asperities' records, pictures and the workbench; its runs are :class:`asperity2d.Run`.
+``"pymunk"`` is the reference: every scene option, the energy books, the lower asperities'
+records, stop conditions of the user's own, pictures and the workbench; its runs are
+:class:`asperity2d.Run`.
 ``"batched"`` (:mod:`.batched`) steps many scenes of the model's common case at once.
 
 Who asks which engine: a single run, a picture and the workbench's live run take the reference
@@ -43,7 +46,7 @@ Examples
 >>> ENGINES["pymunk"].unavailable() is None  # the reference is always there
 True
 >>> from asperity2d import make_scene
->>> choose_engine("auto", [make_scene(profile="half")])  # half triangles: only the reference runs them
+>>> choose_engine("auto", [make_scene(lateral_stiffness=1e4)])  # lattice links: only the reference runs them
 'pymunk'
 >>> engine_label("pymunk")
 'pymunk'
@@ -71,7 +74,7 @@ class EngineEntry:
     """One asperity engine (the module's contract): ``unavailable()`` says why it cannot run
     here (None: it can), ``refusal(scene, settle)`` names a scene option it does not implement
     (None: it runs the scene), ``run(scenes, dts, durations, record_every=, iterations=,
-    passed=)`` returns one record ``(arrays, meta)`` or SimulationError per scene (None for the reference, whose
+    passed=, stuck=, settle=)`` returns one record ``(arrays, meta)`` or SimulationError per scene (None for the reference, whose
     run loop is :class:`asperity2d.Run`); ``dependency`` names the optional package it runs on,
     for output (:func:`engine_label`)."""
 
@@ -139,7 +142,7 @@ def choose_engine(engine, scenes, *, settle: bool | None = None) -> str:
     >>> from asperity2d import make_scene
     >>> choose_engine("pymunk", [make_scene()])
     'pymunk'
-    >>> choose_engine("auto", [make_scene(track="free")])  # a free slider settles: the reference
+    >>> choose_engine("auto", [make_scene(lateral_stiffness=1e4)])  # lattice links: only the reference
     'pymunk'
     """
     if engine != AUTO:

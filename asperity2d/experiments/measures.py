@@ -47,7 +47,7 @@ import numpy as np
 from .. import analysis
 from .._inputs import check_choice, check_int, check_positive, check_range
 from .._registry import Registry
-from ..critical import DT_FRACTION as CRITICAL_DT_FRACTION, critical_force, settled_run
+from ..critical import DT_FRACTION as CRITICAL_DT_FRACTION, critical_force, critical_force_brackets, settled_run
 from ..errors import SceneError
 from ..run import Run, Stuck, default_dt, default_duration, default_stops
 from ..scene import ConstantForce, Scene, SpringDrive
@@ -234,7 +234,16 @@ def _mean_of(scenes, engine: str) -> list[float]:
     return [f.average("mean") for f in stick_forces_of(scenes, engine=engine)]
 
 
-BATCHED = {"peak-stick": _peak_of, "mean-stick": _mean_of}
+def _critical_of(scenes, engine: str) -> list[float]:
+    return [b.value for b in critical_force_brackets(scenes, engine=engine)]
+
+
+def _critical_run_up_of(scenes, engine: str) -> list[float]:
+    return [b.value for b in critical_force_brackets(scenes, start="run-up", engine=engine)]
+
+
+BATCHED = {"peak-stick": _peak_of, "mean-stick": _mean_of, "critical": _critical_of,
+           "critical-run-up": _critical_run_up_of}
 #: Runs handed to one engine call by :func:`stick_forces_of` (their records are reduced to their
 #: stick forces before the next call).
 BATCH_RUNS = 128
