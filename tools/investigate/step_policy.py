@@ -5,8 +5,9 @@ the batched engine.
     python tools/investigate/step_policy.py table [--tracks fixed,free] [--store PATH]
 
 ``run``: Ooten's 10/3 scenes (``asperity2d.studies.ooten``: ``STUDY_SIZE``, both ``SETUPS``),
-random spacing, seeds FIRST_SEED .. FIRST_SEED+COUNT-1, each scene's 3-pass ``stick_forces`` at
-dt, dt/2 and dt/4 (dt = ``default_dt``) on ``engine="batched"``. Seeds run in chunks of
+random spacing, seeds FIRST_SEED .. FIRST_SEED+COUNT-1, each scene's 3-pass ``stick_forces`` and
+its critical forces from rest and with a run-up (``critical_force_brackets``) at dt, dt/2 and dt/4
+(dt = ``default_dt``) on ``engine="batched"``. Seeds run in chunks of
 ``--chunk``; after each chunk the store (renders/measures/step_policy.json, key
 "track/seed/factor") is rewritten atomically, so a stopped run keeps every finished chunk and
 a rerun skips what is stored. The runs behind the findings page's table are kept in
@@ -14,7 +15,8 @@ docs/data/measures/step_policy_runs.json (``--store`` reads or extends it). A sc
 one-line reason and left out of the table (the table counts them).
 
 ``table``: per track and measure (first-breakaway: the nominal-speed pass, the measure's own
-single pass; peak-stick and mean-stick: the 3-pass means, as the measures take them), the shift of dt and dt/2 against dt/4:
+single pass; peak-stick and mean-stick: the 3-pass means, as the measures take them; critical and
+critical-run-up: the critical force from rest and with a run-up), the shift of dt and dt/2 against dt/4:
 the mean over seeds of the per-seed relative shift with its 95 % interval (t over seeds), the
 ratio of the ensemble means with its 95 % bootstrap interval (seeds resampled, 2,000 draws, seed
 0), and the two-sided Wilcoxon signed-rank p; written atomically to
@@ -35,6 +37,7 @@ import numpy as np
 
 import asperity2d as a
 from asperity2d._io import atomic_write_text
+from asperity2d.critical import critical_force_brackets
 from asperity2d.experiments.measures import stick_forces_of
 from asperity2d.run import default_dt
 from asperity2d.studies.ooten import SETUPS, STUDY_SIZE
@@ -61,7 +64,11 @@ MEASURES = {
     "first-breakaway": lambda r: _middle(r["first_breakaway"], 1)[0],  # the nominal-speed pass
     "peak-stick": lambda r: _mean(_middle(r["peak"])),
     "mean-stick": lambda r: _mean(_middle(r["mean"])),
+    "critical": lambda r: r.get("critical", {}).get("rest", math.nan),
+    "critical-run-up": lambda r: r.get("critical", {}).get("run-up", math.nan),
 }
+#: The critical forces' starts, by the name of their measure.
+STARTS = {"rest": "critical", "run-up": "critical-run-up"}
 
 
 def _mean(values) -> float:
@@ -80,6 +87,33 @@ def _load() -> dict:
 def _save(data: dict) -> None:
     STORE.parent.mkdir(parents=True, exist_ok=True)
     atomic_write_text(STORE, json.dumps(data, indent=0, sort_keys=True))
+
+
+def _critical(data: dict, track: str, seeds, f: float) -> None:
+    """The critical forces of the stored seeds at dt x ``f`` that have none yet (stored beside
+    their stick forces)."""
+    todo = [s for s in seeds if "error" not in data[f"{track}/{s}/{f}"]
+            and set(data[f"{track}/{s}/{f}"].get("critical", {})) != set(STARTS)]
+    if not todo:
+        return
+    scenes = [scene(track, s) for s in todo]
+    t0 = time.perf_counter()
+    for start in STARTS:
+        try:
+            values = [b.value for b in critical_force_brackets(scenes, start=start, dt=f * default_dt(scenes[0]),
+                                                               engine=ENGINE)]
+        except (a.SceneError, a.SimulationError):  # one by one: who failed (stored as NaN, counted out)
+            values = []
+            for sc in scenes:
+                try:
+                    values.append(critical_force_brackets([sc], start=start, dt=f * default_dt(sc), engine=ENGINE)[0].value)
+                except (a.SceneError, a.SimulationError):
+                    values.append(math.nan)
+        for s, v in zip(todo, values):
+            data[f"{track}/{s}/{f}"].setdefault("critical", {})[start] = v
+    _save(data)
+    print(f"{track} seeds {todo[0]}-{todo[-1]} dt x {f}: critical forces {time.perf_counter() - t0:.1f} s wall",
+          flush=True)
 
 
 def run(first: int, count: int, tracks, chunk: int) -> None:
@@ -111,6 +145,8 @@ def run(first: int, count: int, tracks, chunk: int) -> None:
                 _save(data)
                 print(f"{track} seeds {todo[0]}-{todo[-1]} dt x {f}: {wall:.1f} s wall, {cpu:.1f} s CPU",
                       flush=True)
+            for f in FACTORS:
+                _critical(data, track, seeds, f)
 
 
 def _interval_t(x: np.ndarray) -> tuple[float, float, float]:
