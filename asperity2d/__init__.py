@@ -25,6 +25,7 @@ _LAZY = {
     "Result": "result", "load": "saved",
     "Passed": "stops", "Stuck": "stops", "Travelled": "stops", "simulate": "run", "Run": "run_loop",
     "CriticalForce": "critical", "critical_force": "critical", "critical_force_bracket": "critical",
+    "critical_force_brackets": "critical",
     "Event": "events", "breakaway_force": "forces", "event_statistics": "events",
     "friction_traces": "forces", "stick_slip_events": "events", "peak_stick_force": "forces",
     "mean_stick_force": "forces", "events_table": "events",
@@ -44,7 +45,7 @@ __all__ = [
     "__version__", "SceneError", "SimulationError", "Profile", "RegularSpacing",
     "RandomSpacing", "ConstantForce", "Contact", "LowerSurface", "Scene", "Slider",
     "SpringDrive", "make_scene", "Result", "load", "simulate", "Run", "Passed", "Stuck", "Travelled",
-    "CriticalForce", "critical_force", "critical_force_bracket", "Event", "breakaway_force",
+    "CriticalForce", "critical_force", "critical_force_bracket", "critical_force_brackets", "Event", "breakaway_force",
     "peak_stick_force", "mean_stick_force", "event_statistics", "friction_traces", "stick_slip_events",
     "events_table", "Comparison", "compare", "render", "explore",
 ]

@@ -504,8 +504,8 @@ def _trials(base, rows, forces, max_steps) -> list[bool]:
     """:func:`passes` for each ``forces[k]`` on a fork of ``base``'s scene ``rows[k]``, all in one
     batch: limit by limit (the time limit of that force), until it passes or stops, within the
     step budget ``max_steps``."""
-    scenes = [base.scenes[b].replace(drive=ConstantForce(force=f)) for b, f in zip(rows, forces)]
-    trials = base.forks(scenes, rows)
+    trials = base.forks(forces, rows)
+    scenes = trials.scenes
     stuck = [next((s.speed, s.dwell) for s in default_stops(scene) if isinstance(s, Stuck)) for scene in scenes]
     trials.set_stops(passed=[True] * len(scenes), stuck=stuck)
     limits = [default_duration(scene) for scene in scenes]

@@ -9,6 +9,11 @@
   pymunk path costs, which on P cores at perfect efficiency takes that over P of wall time). The
   ratio is that ideal pymunk wall time over the batched wall time, both on this machine in this
   run; the per-seed values of the seeds both ran are compared.
+* **critical**: the critical force from rest (``critical_force_brackets``) of the default scene with
+  random spacing on ``seeds`` seeds, on ``engine="batched"`` (every seed's search in lockstep,
+  each round's trial runs in one batch) and on ``engine="pymunk"`` for every one of those seeds
+  too, in one worker process per core (``asperity2d.sweep.map_calls``): both wall times measured
+  in this run, nothing scaled; and the per-seed values compared.
 * **load**: the first call in this process (Numba loads the compiled loop from its cache; the
   first call after an install compiles it, a one-time cost stated separately by ``compile_s``
   when the cache was empty).
@@ -43,7 +48,7 @@ from asperity2d.engine import batched  # noqa: E402
 from asperity2d.experiments.measures import PASSES, STICK_DT_FRACTION, stick_forces_of  # noqa: E402
 from asperity2d.run import default_dt, default_duration  # noqa: E402
 
-TARGETS = {"peak_stick_ratio": 30.0, "memory_1000_MB": 1024.0}
+TARGETS = {"peak_stick_ratio": 30.0, "critical_ratio": 10.0, "memory_1000_MB": 1024.0}
 SEED0 = 9401
 
 
@@ -75,6 +80,28 @@ def _peak_stick(seeds: int, pymunk_seeds: int) -> dict:
             "ratio_wall": pymunk_ideal_wall / b_wall,
             "ratio_cpu": per_pass * seeds * PASSES / b_cpu,
             "max_relative_difference_per_seed": max(diffs) if diffs else math.nan}
+
+
+def _critical_one(seed: int) -> float:
+    """One seed's critical force from rest on pymunk (module level: worker processes run it)."""
+    from asperity2d.critical import critical_force_brackets
+
+    return critical_force_brackets([a.make_scene(spacing="random", seed=seed)], engine="pymunk")[0].value
+
+
+def _critical(seeds: int) -> dict:
+    from asperity2d.critical import critical_force_brackets
+    from asperity2d.sweep import map_calls
+
+    cores = os.cpu_count() or 1
+    scenes = [a.make_scene(spacing="random", seed=SEED0 + s) for s in range(seeds)]
+    got, b_wall, b_cpu = _timed(lambda: critical_force_brackets(scenes, engine="batched"))
+    ref, p_wall, _ = _timed(lambda: map_calls(_critical_one, [{"seed": SEED0 + s} for s in range(seeds)],
+                                                workers=cores))
+    diffs = [abs(g.value / r - 1.0) for g, r in zip(got, ref)]
+    return {"seeds": seeds, "start": "rest", "cores": cores, "batched_wall_s": b_wall, "batched_cpu_s": b_cpu,
+            "pymunk_wall_s": p_wall, "pymunk_workers": cores, "ratio_wall": p_wall / b_wall,
+            "max_relative_difference_per_seed": max(diffs), "seeds_the_same_number": int(sum(d == 0 for d in diffs))}
 
 
 def _memory() -> dict:
@@ -149,6 +176,7 @@ def run(quick: bool = False, *, cost_only: bool = False) -> dict:
     out = {"load": _load()}
     if not cost_only:
         out["peak_stick"] = _peak_stick(8 if quick else 64, 1 if quick else 2)
+        out["critical"] = _critical(8 if quick else 64)
     out["memory"] = _memory()
     out["cost"] = _cost(quick)
     out["targets"] = TARGETS
@@ -163,6 +191,12 @@ def headline(res: dict) -> list[tuple[str, float, str]]:
         (f"batched / pymunk, {p['seeds']} seeds x {p['passes']} peak-stick passes (wall, {p['cores']} cores)",
          p["ratio_wall"], ">= 30"),
         ("batched: largest per-seed peak-stick difference to pymunk", p["max_relative_difference_per_seed"], "< 0.01")]
+    c = res.get("critical")
+    if c is not None:
+        rows += [(f"batched / pymunk, critical force from rest of {c['seeds']} seeds (wall, {c['cores']} cores each)",
+                  c["ratio_wall"], ">= 10"),
+                 ("batched: largest per-seed critical-force difference to pymunk",
+                  c["max_relative_difference_per_seed"], "< 0.01")]
     return rows + [
             ("batched: 1,000 scenes' state (MB)", m["state_MB"], "< 1024"),
             ("batched: 1,000 scenes' state + full-pass record (MB)", m["state_MB"] + m["record_MB_full_pass"], "< 1024"),

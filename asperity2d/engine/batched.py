@@ -346,18 +346,25 @@ class Batch:
                 self.mu[b] = np.where(touching, self.mu_s[b], self.mu_k[b])
         return np.array([p["spent"] * float(self.dt_s[b]) for b, p in enumerate(plan)])
 
-    #: The arrays that carry a scene's state from one step to the next (what a fork copies).
-    STATE = ("lp", "lv", "lvb", "gj", "sp", "sv", "svb", "sgj", "c_n", "c_key", "c_jn", "c_jt", "stuck",
-             "slid", "mu", "present", "nstep", "first", "track_y", "fail", "fail_step")
+    def forks(self, forces, rows) -> "Batch":
+        """A new batch whose scene ``k`` goes on from this batch's scene ``rows[k]`` as it is now
+        (every array copied, bit for bit) under the constant force ``forces[k]`` (N): the
+        critical force's trial runs (:meth:`asperity2d.Run.fork` and ``set_drive_force``)."""
+        from ..scene import ConstantForce
 
-    def forks(self, scenes, rows) -> "Batch":
-        """A new batch of ``scenes`` (this batch's scenes, but for their drive), scene ``k`` going
-        on from this batch's scene ``rows[k]`` as it is now: the state copied, bit for bit."""
-        out = Batch(scenes, [self.dt_s[r] for r in rows], iterations=int(self.iterations[0]),
-                    record_every=self.record_every, samples=1, engaged=self.engaged)
         rows = np.asarray(rows, np.int64)
-        for name in self.STATE:
-            getattr(out, name)[...] = getattr(self, name)[rows]
+        out = object.__new__(Batch)
+        out.kernel, out.engaged, out.record_every, out.samples = self.kernel, self.engaged, self.record_every, 1
+        out.scenes = [self.scenes[r].replace(drive=ConstantForce(force=float(f))) for r, f in zip(rows, forces)]
+        out.units = [self.units[r] for r in rows]
+        for name, value in vars(self).items():
+            if isinstance(value, np.ndarray):
+                setattr(out, name, value[rows])  # (advanced indexing copies)
+        out.rec = np.zeros((len(rows), self.kernel.N_REC, 1))
+        out.rec_at[:] = 0
+        out.spring[:] = False
+        out.dforce[:] = [float(f) / u.force for f, u in zip(forces, out.units)]
+        out._initial = out._sample0()
         return out
 
     def set_stops(self, *, passed, stuck=None) -> None:
