@@ -47,7 +47,6 @@ def test_without_numba_the_batched_engine_says_how_to_install_it(monkeypatch):
 
 @pytest.mark.parametrize("kwargs, option", [
     ({"lateral_stiffness": 1e4}, "`lateral_stiffness`"),
-    ({"lower_surface": MEASURED}, "`substrate`"),
     ({"slider_start": -4e-6}, "`slider_start`"),
 ])
 def test_the_batched_engine_refuses_what_it_does_not_implement_in_one_line(kwargs, option):

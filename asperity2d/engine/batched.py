@@ -12,13 +12,12 @@ with its hold rule follows every step, as in :mod:`.core`. The step itself is in
 What it covers, and refuses (one :class:`~asperity2d.errors.SceneError` line naming the option
 and saying ``engine="pymunk"`` runs it): every profile (full and half triangles, flat tops),
 random heights and measured profiles' asperities -- each asperity one strictly convex outline,
-as Chipmunk keeps it -- but no lattice links, no substrate (a measured profile's rigid
-valleys), the ``static-kinetic`` contact law only. It settles as :meth:`.core.Engine.settle`
+as Chipmunk keeps it -- with the guard floor and a measured profile's rigid valleys (the
+substrate) as Chipmunk's static segments; but no lattice links, and the ``static-kinetic``
+contact law only. It settles as :meth:`.core.Engine.settle`
 does (:meth:`Batch.settle`: the same phases, damping, hold and calm test), forks a settled scene
 into many (:meth:`Batch.forks`, the critical force's trial runs) and stops a scene at the run
-loop's stops (passed, :class:`asperity2d.Stuck`, a free slider off the far end). The floor is
-not modelled: a slider tip that goes below it stops that scene with a
-:class:`~asperity2d.errors.SimulationError`.
+loop's stops (passed, :class:`asperity2d.Stuck`, a free slider off the far end).
 
 A batch is refused up front when its arrays would pass :data:`MAX_BATCH_BYTES`; a scene that
 diverges stops alone with its own ``SimulationError`` while its neighbours finish.
@@ -74,8 +73,6 @@ def refusal(scene, *, settle: bool = False) -> str | None:
     tail = '; engine="pymunk" runs it'
     if lower.is_lattice:
         return "`lateral_stiffness` (lattice links between lower asperities) is not implemented on engine=\"batched\"" + tail
-    if lower.substrate:
-        return "`substrate` (a profile's rigid valleys) is not implemented on engine=\"batched\"" + tail
     for what, outlines in (("lower", lower.outlines()), ("slider", scene.slider.outlines())):
         if not all(_strictly_convex(outline) for outline in outlines):
             return (f"`shapes`: a {what} asperity's outline is not strictly convex (collinear or reflex "
@@ -120,7 +117,8 @@ class Batch:
         U = max(s.slider.count for s in self.scenes)
         V = max(max(len(o) for o in s.lower.outlines()) for s in self.scenes)
         W = max(max(len(o) for o in s.slider.outlines()) for s in self.scenes)
-        need = self.nbytes_for(B, N, U, samples, vertices=max(V, W))
+        S = max(_segment_count(scene) for scene in self.scenes)
+        need = self.nbytes_for(B, N, U, samples, vertices=max(V, W), segments=S)
         if need > MAX_BATCH_BYTES:
             raise SceneError(
                 f"a batch of {B} scenes ({N} lower and {U} upper asperities, {samples} samples each) needs "
@@ -153,7 +151,13 @@ class Batch:
         self.bias_coef, self.joint_bias_coef, self.restitution = f8(B), f8(B), f8(B)
         self.mu_s, self.mu_k, self.v_stick, self.slip_dist = f8(B), f8(B), f8(B), f8(B)
         self.switch_on = np.zeros(B, np.bool_)
-        self.floor_y, self.stop_x = f8(B), np.full(B, np.inf)
+        self.stop_x = np.full(B, np.inf)
+        # the static segments: the floor, then a profile's valleys (each line's segments in order)
+        self.seg_a, self.seg_b, self.seg_n = f8(B, S, 2), f8(B, S, 2), f8(B, S, 2)
+        self.n_seg, self.seg_mu = np.zeros(B, np.int64), f8(B)
+        self.s_n = np.zeros((B, U, S), np.int64)
+        self.s_key = np.zeros((B, U, S, 2), np.int64)
+        self.s_jn, self.s_jt = f8(B, U, S, 2), f8(B, U, S, 2)
         self.first = np.ones(B, np.bool_)
         # settling (Batch.settle) and the stops (Batch.set_stops): off but while asked for
         self.settling, self.damp, self.push = np.zeros(B, np.bool_), np.ones(B), f8(B)
@@ -169,12 +173,13 @@ class Batch:
         self._initial = self._sample0()
 
     @staticmethod
-    def nbytes_for(B: int, N: int, U: int, samples: int, *, vertices: int = 3) -> int:
+    def nbytes_for(B: int, N: int, U: int, samples: int, *, vertices: int = 3, segments: int = 1) -> int:
         """Bytes of a batch's arrays: state and geometry per scene (outlines of up to
-        ``vertices`` vertices), and its record."""
+        ``vertices`` vertices, ``segments`` static segments), and its record."""
         per_lower = 8 * (4 * 2 + 4 + 2 * vertices * 2 + 6) + 2
         per_pair = 8 * 1 + 8 * 2 * 3
-        per_scene = N * per_lower + U * N * per_pair + U * 8 * (4 * vertices + 1) + 8 * 56 + 8 * 9 * samples
+        per_scene = N * per_lower + U * N * per_pair + U * 8 * (4 * vertices + 1) + 8 * 56 + 8 * 9 * samples \
+            + segments * (8 * 6 + U * 8 * 5)
         return B * per_scene
 
     def _load(self, b: int, scene, dt: float) -> None:
@@ -253,7 +258,24 @@ class Batch:
                 v = min(v, 0.1 * drive.velocity / u.velocity)
             self.v_stick[b] = v
         self.switch_on[b] = contact.mu_static != contact.mu_kinetic
-        self.floor_y[b] = scene.floor / u.length
+        # as space._build_floor: the floor from far left to far right of the scene and the slider's
+        # way, then the substrate's segments; each segment's normal as Chipmunk's
+        # (cpvrperp(cpvnormalize(b - a)), with cpvnormalize's + DBL_MIN)
+        y = scene.floor / u.length
+        extent = (sx, float(x0[-1]) + float(apex[-1] - apex[0]) + 1.0)
+        lo = min(float(x0[0]) - 1e6, min(extent) - 1e5)
+        hi = max(1e6 - float(x0[0]), max(extent) + 1e5)
+        segments = [((lo, y), (hi, y))]
+        for line in scene.lower.substrate or ():
+            pts = [(vx / u.length, vz / u.length) for vx, vz in line]
+            segments += list(zip(pts[:-1], pts[1:]))
+        for k, ((ax, ay), (bx, by)) in enumerate(segments):
+            dx, dy = bx - ax, by - ay
+            inv = 1.0 / (math.sqrt(dx * dx + dy * dy) + 2.2250738585072014e-308)
+            self.seg_a[b, k], self.seg_b[b, k] = (ax, ay), (bx, by)
+            self.seg_n[b, k] = dy * inv, -(dx * inv)
+        self.n_seg[b] = len(segments)
+        self.seg_mu[b] = contact.mu_kinetic  # the floor's and valleys' coefficient, as build gives it
 
     def _sample0(self) -> np.ndarray:
         out = np.zeros((len(self.scenes), self.kernel.N_REC))
@@ -397,7 +419,8 @@ class Batch:
                   self.fixed, self.track_y, self.g_x, self.g_y, self.spring, self.dk, self.dc, self.dv,
                   self.dorigin, self.dforce, self.load, self.dt, self.iterations, COLLISION_SLOP,
                   self.bias_coef, self.joint_bias_coef, self.restitution, self.mu_s, self.mu_k,
-                  self.v_stick, self.slip_dist, self.switch_on, self.floor_y, self.stop_x, self.first,
+                  self.v_stick, self.slip_dist, self.switch_on, self.seg_a, self.seg_b, self.seg_n, self.n_seg, self.seg_mu, self.s_n,
+                  self.s_key, self.s_jn, self.s_jt, self.stop_x, self.first,
                   self.settling, self.damp, self.push, self.hold, self.hold_x, self.hold_j, self.hold_coef,
                   self.stop_code, self.stuck_v, self.stuck_dwell, self.slow_since, self.v_unit, self.dt_s,
                   self.off_x)
@@ -410,8 +433,6 @@ class Batch:
         k = self.kernel
         t = self.fail_step[b] * self.dt_s[b]
         why = {k.NONFINITE: "its state became non-finite", k.OVERLAP: "a contact overlapped more than half a base",
-               k.FLOOR: "a slider tip reached the floor, which engine=\"batched\" does not model "
-                        "(engine=\"pymunk\" runs it)",
                k.PAIRS: f"a slider tip touched more than {k.PAIRS_PER_TIP} lower asperities at once"}[code]
         return SimulationError(f"scene {offset + b} ({self.scenes[b].name}) stopped at t = {t:.4g} s: {why}")
 
@@ -437,6 +458,11 @@ class Batch:
                 "units": u.to_dict(), "asperity2d_version": __version__, "numpy_version": np.__version__,
                 "record_lower": False, **meta}
         return arrays, meta
+
+
+def _segment_count(scene) -> int:
+    """The static segments of a scene: the floor and its substrate's."""
+    return 1 + sum(max(0, len(line) - 1) for line in (scene.lower.substrate or ()))
 
 
 class _Layout:
@@ -534,6 +560,7 @@ def _run_chunk(scenes, dts, steps, record_every, iterations, passed, stuck, sett
     spent = np.zeros(len(scenes))
     if any(t is not None for t in settle):
         spent = batch.settle(np.zeros(len(scenes)), settle)
+        batch._initial = batch._sample0()  # the record starts from the settled state
     batch.advance(steps)
     out = []
     for b in range(len(scenes)):

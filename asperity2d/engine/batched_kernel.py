@@ -52,8 +52,10 @@ MAX_CONTACTS = 2
 #: Pairs in contact per scene and step the scratch arrays hold (a slider asperity touches at
 #: most its two neighbouring lower flanks, and the lower asperity under it near an apex).
 PAIRS_PER_TIP = 4
+#: Static segments (the floor, a profile's valleys) a tip touches at once, at most.
+STATIC_PER_TIP = 2
 #: Failure codes (per scene): 0 ok; the others name why a scene stopped.
-OK, NONFINITE, OVERLAP, FLOOR, PAIRS = 0, 1, 2, 3, 4
+OK, NONFINITE, OVERLAP, PAIRS = 0, 1, 2, 4
 #: Recorded columns per sample (the Result's slider columns but t and drive_x, which the
 #: Python side makes from the step count).
 N_REC = 9  # x, vx, y, vy, drive force, fx, fy, f_tangential, contact count
@@ -96,13 +98,14 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                 uverts, unorms, nv_u, n_upper, s_m_inv, fixed, track_y, g_x, g_y,
                 spring, dk, dc, dv, dorigin, dforce, load,
                 dt, iterations, slop, bias_coef, joint_bias_coef, restitution,
-                mu_s, mu_k, v_stick, slip_dist, switch_on, floor_y, stop_x, first,
+                mu_s, mu_k, v_stick, slip_dist, switch_on, seg_a, seg_b, seg_n, n_seg, seg_mu, s_n, s_key, s_jn, s_jt, stop_x, first,
                 settling, damp, push, hold, hold_x, hold_j, hold_coef, stop_code, stuck_v, stuck_dwell,
                 slow_since, v_unit, dt_s, off_x):
     """Advance scene ``b`` by ``steps[b]`` steps (see the module docstring)."""
     N = n_lower[b]
     U = n_upper[b]
-    max_pairs = PAIRS_PER_TIP * U
+    S = n_seg[b]
+    max_pairs = (PAIRS_PER_TIP + STATIC_PER_TIP) * U
     # this step's pairs: tip j, lower i, normal, count, per contact r1 (from the slider),
     # r2 (from the lower body), key, jn, jt, jbias, masses, bias, bounce
     a_j = np.empty(max_pairs, np.int64)
@@ -133,11 +136,12 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
     in_contact = np.zeros(N, np.bool_)
     # the island in registers: per island body (slot) and per contact point
     slot = np.zeros(N, np.int64)
-    bmi = np.empty(N)
-    bv0 = np.empty(N)
-    bv1 = np.empty(N)
-    bb0 = np.empty(N)
-    bb1 = np.empty(N)
+    # (one slot more: the static segments' body, which never moves)
+    bmi = np.empty(N + 1)
+    bv0 = np.empty(N + 1)
+    bv1 = np.empty(N + 1)
+    bb0 = np.empty(N + 1)
+    bb1 = np.empty(N + 1)
     bg0 = np.empty(N)
     bg1 = np.empty(N)
     btg = np.empty(N)
@@ -233,8 +237,86 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                 uvy[q] = uverts[b, j, q, 1] + spy
                 ul, ur = min(ul, uvx[q]), max(ur, uvx[q])
                 ub, ut = min(ub, uvy[q]), max(ut, uvy[q])
-            if ub < floor_y[b]:
-                fail[b] = FLOOR
+            # The static segments first (the floor; a profile's valleys): Chipmunk collides the
+            # moving shapes with the static index before with each other, so their arbiters come
+            # first in the sweep. Chipmunk's pair is (a = the segment, b = the tip), its normal n
+            # from the segment to the tip; here the pair is kept as every other (a = the slider,
+            # b = the segment's static body at the origin), its normal -n (exact: a negation).
+            for sg in range(S):
+                sax, say = seg_a[b, sg, 0], seg_a[b, sg, 1]
+                sbx, sby = seg_b[b, sg, 0], seg_b[b, sg, 1]
+                if not (ul <= max(sax, sbx) and min(sax, sbx) <= ur and ub <= max(say, sby) and min(say, sby) <= ut):
+                    s_n[b, j, sg] = 0
+                    continue
+                tnx, tny = seg_n[b, sg, 0], seg_n[b, sg, 1]
+                # minimum penetration over the segment's two faces and the tip's negated normals
+                best, mx, my = np.inf, 0.0, 0.0
+                for e in range(2 + nu):
+                    if e == 0:
+                        ex, ey = tnx, tny
+                    elif e == 1:
+                        ex, ey = -tnx, -tny
+                    else:
+                        ex, ey = -unorms[b, j, e - 2, 0], -unorms[b, j, e - 2, 1]
+                    hb = max(sax * ex + say * ey, sbx * ex + sby * ey)
+                    ha = np.inf
+                    for q in range(nu):
+                        ha = min(ha, uvx[q] * ex + uvy[q] * ey)
+                    depth = hb - ha
+                    if depth < best:
+                        best, mx, my = depth, ex, ey
+                if best < 0.0:  # separated
+                    s_n[b, j, sg] = 0
+                    continue
+                # ContactPoints(SupportEdgeForSegment(seg, n), SupportEdgeForPoly(tip, -n))
+                if tnx * mx + tny * my > 0.0:
+                    e1ax, e1ay, e1bx, e1by = sax, say, sbx, sby
+                else:
+                    e1ax, e1ay, e1bx, e1by = sbx, sby, sax, say
+                a0, a1 = _support_edge(uverts[b, j, :, 0], uverts[b, j, :, 1], unorms[b, j, :, 0],
+                                       unorms[b, j, :, 1], spx, spy, -mx, -my, nu)
+                e2ax, e2ay, e2bx, e2by = uvx[a0], uvy[a0], uvx[a1], uvy[a1]
+                d_e1_a = e1ax * my - e1ay * mx
+                d_e1_b = e1bx * my - e1by * mx
+                d_e2_a = e2ax * my - e2ay * mx
+                d_e2_b = e2bx * my - e2by * mx
+                e1_denom = min(1.0 / (d_e1_b - d_e1_a), DBL_MAX)
+                e2_denom = min(1.0 / (d_e2_b - d_e2_a), DBL_MAX)
+                if na >= max_pairs:
+                    fail[b] = PAIRS
+                    break
+                cnt = 0
+                for which in range(2):
+                    if which == 0:
+                        t1 = _clamp01((d_e2_b - d_e1_a) * e1_denom)
+                        t2 = _clamp01((d_e1_a - d_e2_a) * e2_denom)
+                        kk = a1  # the segment's ends share one hash: the tip's vertex keys it
+                    else:
+                        t1 = _clamp01((d_e2_a - d_e1_a) * e1_denom)
+                        t2 = _clamp01((d_e1_b - d_e2_a) * e2_denom)
+                        kk = a0
+                    p1x = e1ax * (1.0 - t1) + e1bx * t1
+                    p1y = e1ay * (1.0 - t1) + e1by * t1
+                    p2x = e2ax * (1.0 - t2) + e2bx * t2
+                    p2y = e2ay * (1.0 - t2) + e2by * t2
+                    if (p2x - p1x) * mx + (p2y - p1y) * my <= 0.0:
+                        r1x[na, cnt], r1y[na, cnt] = p2x - spx, p2y - spy
+                        r2x[na, cnt], r2y[na, cnt] = p1x, p1y
+                        key[na, cnt] = kk
+                        jn[na, cnt] = 0.0
+                        jt[na, cnt] = 0.0
+                        for o in range(s_n[b, j, sg]):
+                            if s_key[b, j, sg, o] == kk:
+                                jn[na, cnt] = s_jn[b, j, sg, o]
+                                jt[na, cnt] = s_jt[b, j, sg, o]
+                        cnt += 1
+                if cnt == 0:
+                    s_n[b, j, sg] = 0
+                    continue
+                a_first[na] = s_n[b, j, sg] == 0
+                a_j[na], a_i[na], a_nx[na], a_ny[na], a_cnt[na] = j, N + sg, -mx, -my, cnt
+                a_u[na] = seg_mu[b]
+                na += 1
             for i in range(N):
                 lpx, lpy = lp[b, i, 0], lp[b, i, 1]
                 if lpx + lxhi[i] < ul or lpx + lxlo[i] > ur:
@@ -331,9 +413,14 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
         for a in range(na):
             i = a_i[a]
             n_x, n_y = a_nx[a], a_ny[a]
-            m_sum = sm_inv + lm_inv[b, i]
-            bdx, bdy = lp[b, i, 0] - spx, lp[b, i, 1] - spy
-            vrx, vry = lv[b, i, 0] - sv[b, 0], lv[b, i, 1] - sv[b, 1]
+            if i < N:
+                m_sum = sm_inv + lm_inv[b, i]
+                bdx, bdy = lp[b, i, 0] - spx, lp[b, i, 1] - spy
+                vrx, vry = lv[b, i, 0] - sv[b, 0], lv[b, i, 1] - sv[b, 1]
+            else:  # a static segment
+                m_sum = sm_inv + 0.0
+                bdx, bdy = 0.0 - spx, 0.0 - spy
+                vrx, vry = 0.0 - sv[b, 0], 0.0 - sv[b, 1]
             for c in range(a_cnt[a]):
                 nmass[a, c] = 1.0 / m_sum
                 tmass[a, c] = 1.0 / m_sum
@@ -400,8 +487,9 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                 jy = (n_x * jt[a, c] + n_y * jn[a, c]) * coef
                 sv[b, 0] -= jx * sm_inv
                 sv[b, 1] -= jy * sm_inv
-                lv[b, i, 0] += jx * lm_inv[b, i]
-                lv[b, i, 1] += jy * lm_inv[b, i]
+                if i < N:
+                    lv[b, i, 0] += jx * lm_inv[b, i]
+                    lv[b, i, 1] += jy * lm_inv[b, i]
         for q in range(n_act):
             i = act[q]
             lv[b, i, 0] += gj[b, i, 0] * coef * lm_inv[b, i]
@@ -465,9 +553,10 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
             bb0[q], bb1[q] = lvb[b, i, 0], lvb[b, i, 1]
             bg0[q], bg1[q] = gj[b, i, 0], gj[b, i, 1]
             btg[q] = s_target[i]
+        bmi[n_isl], bv0[n_isl], bv1[n_isl], bb0[n_isl], bb1[n_isl] = 0.0, 0.0, 0.0, 0.0, 0.0  # the static body
         n_c = 0
         for a in range(na):
-            q = slot[a_i[a]]
+            q = slot[a_i[a]] if a_i[a] < N else n_isl
             for c in range(a_cnt[a]):
                 fs[n_c], fnx[n_c], fny[n_c], fu[n_c] = q, a_nx[a], a_ny[a], a_u[a]
                 fnm[n_c], ftm[n_c], fcb[n_c], fbo[n_c] = nmass[a, c], tmass[a, c], cbias[a, c], bounce[a, c]
@@ -578,13 +667,22 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
         for j in range(U):
             for i in range(N):
                 c_n[b, j, i] = 0
+            for sg in range(S):
+                s_n[b, j, sg] = 0
         for a in range(na):
             j, i = a_j[a], a_i[a]
-            c_n[b, j, i] = a_cnt[a]
-            for c in range(a_cnt[a]):
-                c_key[b, j, i, c] = key[a, c]
-                c_jn[b, j, i, c] = jn[a, c]
-                c_jt[b, j, i, c] = jt[a, c]
+            if i < N:
+                c_n[b, j, i] = a_cnt[a]
+                for c in range(a_cnt[a]):
+                    c_key[b, j, i, c] = key[a, c]
+                    c_jn[b, j, i, c] = jn[a, c]
+                    c_jt[b, j, i, c] = jt[a, c]
+            else:
+                s_n[b, j, i - N] = a_cnt[a]
+                for c in range(a_cnt[a]):
+                    s_key[b, j, i - N, c] = key[a, c]
+                    s_jn[b, j, i - N, c] = jn[a, c]
+                    s_jt[b, j, i - N, c] = jt[a, c]
         if not settle:  # settling is before t = 0: it counts no step
             nstep[b] = k + 1
         # 7. projection back onto the tracks
@@ -607,6 +705,8 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                 seen[i] = False
             for a in range(na):
                 i = a_i[a]
+                if i >= N:  # a static segment keeps its coefficient
+                    continue
                 n_x, n_y = a_nx[a], a_ny[a]
                 s = abs((sv[b, 0] - lv[b, i, 0]) * n_y - (sv[b, 1] - lv[b, i, 1]) * n_x)
                 if s > slips[i]:
@@ -709,7 +809,7 @@ def advance(steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, sgj,
             uverts, unorms, nv_u, n_upper, s_m_inv, fixed, track_y, g_x, g_y,
             spring, dk, dc, dv, dorigin, dforce, load,
             dt, iterations, slop, bias_coef, joint_bias_coef, restitution,
-            mu_s, mu_k, v_stick, slip_dist, switch_on, floor_y, stop_x, first,
+            mu_s, mu_k, v_stick, slip_dist, switch_on, seg_a, seg_b, seg_n, n_seg, seg_mu, s_n, s_key, s_jn, s_jt, stop_x, first,
             settling, damp, push, hold, hold_x, hold_j, hold_coef, stop_code, stuck_v, stuck_dwell,
             slow_since, v_unit, dt_s, off_x):
     """Advance every scene ``b`` of the batch by ``steps[b]`` steps, in parallel over scenes."""
@@ -720,6 +820,6 @@ def advance(steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, sgj,
                     uverts, unorms, nv_u, n_upper, s_m_inv, fixed, track_y, g_x, g_y,
                     spring, dk, dc, dv, dorigin, dforce, load,
                     dt, iterations, slop, bias_coef, joint_bias_coef, restitution,
-                    mu_s, mu_k, v_stick, slip_dist, switch_on, floor_y, stop_x, first,
+                    mu_s, mu_k, v_stick, slip_dist, switch_on, seg_a, seg_b, seg_n, n_seg, seg_mu, s_n, s_key, s_jn, s_jt, stop_x, first,
                     settling, damp, push, hold, hold_x, hold_j, hold_coef, stop_code, stuck_v, stuck_dwell,
                     slow_since, v_unit, dt_s, off_x)

@@ -107,7 +107,7 @@ ENGINES: Registry = Registry("engine", "asperity2d.engines", key=lambda e: e.nam
 ENGINES.register(EngineEntry("pymunk", "pymunk (Chipmunk 2D), one scene at a time: the reference; every "
                              "scene option", _always, _everything))
 ENGINES.register(EngineEntry("batched", "the model's own compiled loop (Numba), many scenes in lockstep: "
-                             "convex asperities of every profile on spring tracks, no lattice or substrate",
+                             "convex asperities of every profile on spring tracks, the floor and a substrate; no lattice links",
                              batched.unavailable, batched.refusal, batched.run, dependency="Numba"))
 
 
