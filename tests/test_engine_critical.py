@@ -128,3 +128,30 @@ def test_critical_force_per_seed_within_one_percent_on_24_seeds(track, profile, 
     print(f"{track}/{profile}/{start}: largest per-seed difference {rel.max():.2e}, "
           f"{int(np.sum(rel == 0))}/{len(rel)} seeds the same number")
     assert rel.max() < 0.01
+
+
+def test_a_seed_s_bracket_does_not_depend_on_the_others_in_its_batch():
+    """The searches run in lockstep, each round's trials in one batch: a seed alone and beside
+    others gives the same bracket, bit for bit (every force tried and its outcome)."""
+    scenes = [a.make_scene(**SMALL, spacing="random", seed=s) for s in (1, 2, 3)]
+    alone = critical_force_brackets([scenes[1]], engine="batched")[0]
+    together = critical_force_brackets(scenes, engine="batched")[1]
+    assert alone == together
+
+
+def test_the_command_line_finds_a_critical_force_on_the_batched_engine(tmp_path, capsys):
+    import json
+
+    from asperity2d.cli.main import main
+
+    scene = a.make_scene(**SMALL, spacing="random", seed=2)
+    path = tmp_path / "scene.toml"
+    scene.to_toml(path)
+    out = {}
+    for engine in ("pymunk", "batched"):
+        assert main(["critical", str(path), "--start", "run-up", "--engine", engine, "--json"]) == 0
+        out[engine] = json.loads(capsys.readouterr().out)
+    assert out["batched"]["engine"] == "batched" and out["batched"]["start"] == "run-up"
+    assert out["batched"]["critical_force_N"] == out["pymunk"]["critical_force_N"]  # the fixed track: the same bits
+    assert main(["critical", str(path), "--engine", "batchd"]) == 2
+    assert "--engine" in capsys.readouterr().err

@@ -173,15 +173,17 @@ def critical(args) -> int:
     if path.suffix != ".toml":
         raise SceneError(f"`scene` must be a .toml scene file, got {str(path)!r}")
     scene, _ = scene_from_toml(path)
-    from ..critical import critical_force_bracket
+    engine = _engine(args)
+    from ..critical import critical_force_brackets
 
-    bracket = critical_force_bracket(scene, rel_tol=args.rel_tol)
+    bracket = critical_force_brackets([scene], start=args.start, rel_tol=args.rel_tol, engine=engine)[0]
     summary = {"critical_force_N": bracket.value, "stops_N": bracket.stops,
                "passes_N": bracket.passes, "runs": bracket.runs, "monotone": bracket.monotone,
-               "band_N": list(bracket.band) if bracket.band else None}
+               "band_N": list(bracket.band) if bracket.band else None, "start": args.start, "engine": engine}
     text = (f"critical force {si(bracket.value, 'N', 4)}: the slider stops at {si(bracket.stops, 'N', 4)} "
             f"and passes at {si(bracket.passes, 'N', 4)} ({bracket.runs} runs, bisection to "
-            f"{100 * args.rel_tol:g} %)")
+            f"{100 * args.rel_tol:g} %, from {args.start}"
+            + ("" if engine == "pymunk" else f", engine {engine}") + ")")
     if bracket.band:
         text += (f"; passing is not monotone in the force between {si(bracket.band[0], 'N', 4)} and "
                  f"{si(bracket.band[1], 'N', 4)}: the value is the smallest force seen to pass")

@@ -108,6 +108,10 @@ def build_parser() -> Parser:
     p = sub.add_parser("critical", help="critical constant drive force of a TOML scene")
     p.add_argument("scene", help="TOML scene file")
     p.add_argument("--rel-tol", type=tolerance, default=0.0025, help="bracket width (default 0.0025)")
+    p.add_argument("--start", choices=("rest", "entry", "run-up"), default="rest",
+                   help="how each run begins: at rest on the surface (default), at rest against the first "
+                        "flank, or from the builder's start with a run-up")
+    _engine_flag(p)
     _json_flag(p)
     p.set_defaults(handler=asperity.critical)
 
