@@ -8,8 +8,10 @@ in the last bits of the settled state (8e-18 bases measured); a free slider's da
 carries it to at most ~3e-7 bases (measured: 1e-10 on a regular surface, 3e-7 on a random one).
 
 The critical-force search is one generator on both engines (``asperity2d.critical.searching``):
-a scene's bracket can differ from the reference's only where a trial run's outcome does. The issue's
-criterion is 1 % per seed; on the scenes here every trial's outcome is the reference's.
+a scene's bracket can differ from the reference's only where a trial run's outcome does. Each trial
+is a fork of the settled scene, made as the reference makes it (its contacts' impulses kept, its
+joints' dropped: what pymunk's pickled copy keeps). The issue's criterion is 1 % per seed; on the
+scenes here every trial's outcome is the reference's.
 
 The slow test is the issue's cross-check (24 seeds, both tracks, both profiles, from rest and
 with a run-up): ``python -m pytest -n 0 -m slow tests/test_engine_critical.py`` (about ten
