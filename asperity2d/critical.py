@@ -430,8 +430,8 @@ def critical_force_brackets(scenes, *, start: str = "rest", rel_tol: float = REL
     --------
     >>> import asperity2d as a
     >>> scenes = [a.make_scene(lower_count=4, upper_count=2, spacing="random", seed=s) for s in (1, 2)]
-    >>> [f"{b.value * 1e3:.4g} mN" for b in critical_force_brackets(scenes, engine="pymunk")]
-    ['7.532 mN', '6.838 mN']
+    >>> [f"{b.value * 1e3:.4g} mN" for b in a.critical_force_brackets(scenes, engine="pymunk")]
+    ['6.949 mN', '3.846 mN']
     """
     scenes = list(scenes)
     for scene in scenes:

@@ -12,7 +12,7 @@ import pytest
 pytest.importorskip("numba", reason='the batched engine needs Numba: pip install "asperity2d[batch]"')
 
 import asperity2d as a  # noqa: E402
-from asperity2d import analysis  # noqa: E402
+from asperity2d import analysis, closed_forms  # noqa: E402
 from asperity2d.engine import batched  # noqa: E402
 from asperity2d.errors import SceneError, SimulationError  # noqa: E402
 from asperity2d.experiments.measures import stick_forces_of  # noqa: E402
@@ -274,3 +274,18 @@ def test_stick_force_distributions_agree_over_24_seeds():
     rp = np.concatenate([f.peak for f in ref])
     gp = np.concatenate([f.peak for f in got])
     assert mannwhitneyu(rp[np.isfinite(rp)], gp[np.isfinite(gp)]).pvalue > 0.05
+
+
+@pytest.mark.parametrize("check_id", [i for i in closed_forms.CHECKS if "batched" in closed_forms.ENGINES_OF[i]])
+def test_every_closed_form_check_of_the_asperity_mechanics_holds_on_it(check_id):
+    """``asperity2d validate --engine batched``: the wedge law at four angles, the flat block's
+    static and kinetic limits, the incline (a critical force), the force balances at rest and the
+    flank law of all tips, each within the tolerance it has on the reference."""
+    check = closed_forms.run_all([check_id], engine="batched")[0]
+    assert check.passed, check.line()
+
+
+def test_the_reference_s_own_checks_are_refused_on_it_by_name():
+    with pytest.raises(SceneError, match=r"energy-books-asperity.*engine=\"pymunk\" runs them"):
+        closed_forms.run_all(["energy-books-asperity"], engine="batched")
+    assert len(closed_forms.run_all(["wedge-45-0.3"], engine="batched")) == 1

@@ -20,7 +20,7 @@ PACKAGE = Path(__file__).resolve().parents[1] / "asperity2d"
 #: The most lines one module may hold (the project's rule, above).
 MAX_LINES = 700
 #: Modules still over the limit (shrinks; never grows): each is to be split by role.
-OVER_THE_LIMIT = {"asperity2d/closed_forms.py", "asperity2d/sweep/executors.py"}
+OVER_THE_LIMIT = {"asperity2d/sweep/executors.py"}
 
 
 def module_sizes() -> dict[str, int]:

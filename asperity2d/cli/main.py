@@ -144,6 +144,7 @@ def build_parser() -> Parser:
 
     p = sub.add_parser("validate", help="run the closed-form checks of both models (exit status 1 if one fails)")
     p.add_argument("checks", nargs="*", metavar="CHECK", help="checks to run (default all)")
+    _engine_flag(p)
     _json_flag(p)
     p.set_defaults(handler=asperity.validate)
 

@@ -47,6 +47,9 @@ import math
 import numpy as np
 from numba import njit, prange
 
+from .batched_collide import (DBL_MAX, KEY_BASE, N_REC, NONFINITE, OK, OVERLAP, PAIRS,  # noqa: F401
+                              clamp01, record, static_pairs, support_edge)
+
 #: Contact points per pair (Chipmunk's CP_MAX_CONTACTS_PER_ARBITER).
 MAX_CONTACTS = 2
 #: Pairs in contact per scene and step the scratch arrays hold (a slider asperity touches at
@@ -54,41 +57,12 @@ MAX_CONTACTS = 2
 PAIRS_PER_TIP = 4
 #: Static segments (the floor, a profile's valleys) a tip touches at once, at most.
 STATIC_PER_TIP = 2
-#: Failure codes (per scene): 0 ok; the others name why a scene stopped.
-OK, NONFINITE, OVERLAP, PAIRS = 0, 1, 2, 4
-#: Recorded columns per sample (the Result's slider columns but t and drive_x, which the
-#: Python side makes from the step count).
-N_REC = 9  # x, vx, y, vy, drive force, fx, fy, f_tangential, contact count
 #: The divergence guard's deepest overlap (bases), as the pymunk path's (recorder.MAX_OVERLAP).
 MAX_OVERLAP = 0.5
-#: A contact's key, the pair of vertices it joins: a * KEY_BASE + b (more than any outline's vertices).
-KEY_BASE = 1 << 16
 
-DBL_MAX = 1.7976931348623157e308
 #: Why a scene's call ended before its steps were done (``stop_code``): 0 it ran them all;
 #: its slider passed the surface, stuck, or (a free slider) ran off its far end.
 STOP_NONE, STOP_PASSED, STOP_STUCK, STOP_OFF = 0, 1, 2, 3
-
-
-@njit(inline="always")
-def _clamp01(t):
-    return 0.0 if t < 0.0 else (1.0 if t > 1.0 else t)
-
-
-@njit(cache=True)
-def _support_edge(vx, vy, nxs, nys, px, py, n_x, n_y, nv):
-    """Chipmunk's SupportEdgeForPoly for a convex polygon of ``nv`` vertices translated by
-    (px, py): the edge's two vertex indices (a, b)."""
-    best, i1 = -np.inf, 0
-    for i in range(nv):
-        d = (vx[i] + px) * n_x + (vy[i] + py) * n_y
-        if d > best:
-            best, i1 = d, i
-    i0 = (i1 - 1 + nv) % nv
-    i2 = (i1 + 1) % nv
-    if n_x * nxs[i1] + n_y * nys[i1] > n_x * nxs[i2] + n_y * nys[i2]:
-        return i0, i1
-    return i1, i2
 
 
 @njit(cache=True)
@@ -105,6 +79,9 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
     N = n_lower[b]
     U = n_upper[b]
     S = n_seg[b]
+    seg_top = -np.inf  # the highest point of any static segment: a tip above it touches none
+    for sg in range(S):
+        seg_top = max(seg_top, seg_a[b, sg, 1], seg_b[b, sg, 1])
     max_pairs = (PAIRS_PER_TIP + STATIC_PER_TIP) * U
     # this step's pairs: tip j, lower i, normal, count, per contact r1 (from the slider),
     # r2 (from the lower body), key, jn, jt, jbias, masses, bias, bounce
@@ -238,85 +215,13 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                 ul, ur = min(ul, uvx[q]), max(ur, uvx[q])
                 ub, ut = min(ub, uvy[q]), max(ut, uvy[q])
             # The static segments first (the floor; a profile's valleys): Chipmunk collides the
-            # moving shapes with the static index before with each other, so their arbiters come
-            # first in the sweep. Chipmunk's pair is (a = the segment, b = the tip), its normal n
-            # from the segment to the tip; here the pair is kept as every other (a = the slider,
-            # b = the segment's static body at the origin), its normal -n (exact: a negation).
-            for sg in range(S):
-                sax, say = seg_a[b, sg, 0], seg_a[b, sg, 1]
-                sbx, sby = seg_b[b, sg, 0], seg_b[b, sg, 1]
-                if not (ul <= max(sax, sbx) and min(sax, sbx) <= ur and ub <= max(say, sby) and min(say, sby) <= ut):
-                    s_n[b, j, sg] = 0
-                    continue
-                tnx, tny = seg_n[b, sg, 0], seg_n[b, sg, 1]
-                # minimum penetration over the segment's two faces and the tip's negated normals
-                best, mx, my = np.inf, 0.0, 0.0
-                for e in range(2 + nu):
-                    if e == 0:
-                        ex, ey = tnx, tny
-                    elif e == 1:
-                        ex, ey = -tnx, -tny
-                    else:
-                        ex, ey = -unorms[b, j, e - 2, 0], -unorms[b, j, e - 2, 1]
-                    hb = max(sax * ex + say * ey, sbx * ex + sby * ey)
-                    ha = np.inf
-                    for q in range(nu):
-                        ha = min(ha, uvx[q] * ex + uvy[q] * ey)
-                    depth = hb - ha
-                    if depth < best:
-                        best, mx, my = depth, ex, ey
-                if best < 0.0:  # separated
-                    s_n[b, j, sg] = 0
-                    continue
-                # ContactPoints(SupportEdgeForSegment(seg, n), SupportEdgeForPoly(tip, -n))
-                if tnx * mx + tny * my > 0.0:
-                    e1ax, e1ay, e1bx, e1by = sax, say, sbx, sby
-                else:
-                    e1ax, e1ay, e1bx, e1by = sbx, sby, sax, say
-                a0, a1 = _support_edge(uverts[b, j, :, 0], uverts[b, j, :, 1], unorms[b, j, :, 0],
-                                       unorms[b, j, :, 1], spx, spy, -mx, -my, nu)
-                e2ax, e2ay, e2bx, e2by = uvx[a0], uvy[a0], uvx[a1], uvy[a1]
-                d_e1_a = e1ax * my - e1ay * mx
-                d_e1_b = e1bx * my - e1by * mx
-                d_e2_a = e2ax * my - e2ay * mx
-                d_e2_b = e2bx * my - e2by * mx
-                e1_denom = min(1.0 / (d_e1_b - d_e1_a), DBL_MAX)
-                e2_denom = min(1.0 / (d_e2_b - d_e2_a), DBL_MAX)
-                if na >= max_pairs:
-                    fail[b] = PAIRS
+            # moving shapes with the static index before with each other
+            if ub <= seg_top:  # a segment can be under the tip
+                na = static_pairs(b, j, N, S, nu, uvx, uvy, ul, ur, ub, ut, spx, spy, uverts, unorms, seg_a, seg_b,
+                                  seg_n, seg_mu, s_n, s_key, s_jn, s_jt, na, max_pairs, a_j, a_i, a_nx, a_ny,
+                                  a_cnt, a_first, a_u, r1x, r1y, r2x, r2y, key, jn, jt, fail)
+                if fail[b] != OK:
                     break
-                cnt = 0
-                for which in range(2):
-                    if which == 0:
-                        t1 = _clamp01((d_e2_b - d_e1_a) * e1_denom)
-                        t2 = _clamp01((d_e1_a - d_e2_a) * e2_denom)
-                        kk = a1  # the segment's ends share one hash: the tip's vertex keys it
-                    else:
-                        t1 = _clamp01((d_e2_a - d_e1_a) * e1_denom)
-                        t2 = _clamp01((d_e1_b - d_e2_a) * e2_denom)
-                        kk = a0
-                    p1x = e1ax * (1.0 - t1) + e1bx * t1
-                    p1y = e1ay * (1.0 - t1) + e1by * t1
-                    p2x = e2ax * (1.0 - t2) + e2bx * t2
-                    p2y = e2ay * (1.0 - t2) + e2by * t2
-                    if (p2x - p1x) * mx + (p2y - p1y) * my <= 0.0:
-                        r1x[na, cnt], r1y[na, cnt] = p2x - spx, p2y - spy
-                        r2x[na, cnt], r2y[na, cnt] = p1x, p1y
-                        key[na, cnt] = kk
-                        jn[na, cnt] = 0.0
-                        jt[na, cnt] = 0.0
-                        for o in range(s_n[b, j, sg]):
-                            if s_key[b, j, sg, o] == kk:
-                                jn[na, cnt] = s_jn[b, j, sg, o]
-                                jt[na, cnt] = s_jt[b, j, sg, o]
-                        cnt += 1
-                if cnt == 0:
-                    s_n[b, j, sg] = 0
-                    continue
-                a_first[na] = s_n[b, j, sg] == 0
-                a_j[na], a_i[na], a_nx[na], a_ny[na], a_cnt[na] = j, N + sg, -mx, -my, cnt
-                a_u[na] = seg_mu[b]
-                na += 1
             for i in range(N):
                 lpx, lpy = lp[b, i, 0], lp[b, i, 1]
                 if lpx + lxhi[i] < ul or lpx + lxlo[i] > ur:
@@ -354,9 +259,9 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                     continue
                 n_x, n_y = -mx, -my  # from the slider (a) to the lower body (b)
                 # ContactPoints(SupportEdgeForPoly(a, n), SupportEdgeForPoly(b, -n))
-                a0, a1 = _support_edge(uverts[b, j, :, 0], uverts[b, j, :, 1], unorms[b, j, :, 0],
+                a0, a1 = support_edge(uverts[b, j, :, 0], uverts[b, j, :, 1], unorms[b, j, :, 0],
                                        unorms[b, j, :, 1], spx, spy, n_x, n_y, nu)
-                b0, b1 = _support_edge(lverts[b, i, :, 0], lverts[b, i, :, 1], lnorms[b, i, :, 0],
+                b0, b1 = support_edge(lverts[b, i, :, 0], lverts[b, i, :, 1], lnorms[b, i, :, 0],
                                        lnorms[b, i, :, 1], lpx, lpy, -n_x, -n_y, nl)
                 e1ax, e1ay, e1bx, e1by = uvx[a0], uvy[a0], uvx[a1], uvy[a1]
                 e2ax, e2ay, e2bx, e2by = wvx[b0], wvy[b0], wvx[b1], wvy[b1]
@@ -372,12 +277,12 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                 cnt = 0
                 for which in range(2):
                     if which == 0:
-                        t1 = _clamp01((d_e2_b - d_e1_a) * e1_denom)
-                        t2 = _clamp01((d_e1_a - d_e2_a) * e2_denom)
+                        t1 = clamp01((d_e2_b - d_e1_a) * e1_denom)
+                        t2 = clamp01((d_e1_a - d_e2_a) * e2_denom)
                         kk = a0 * KEY_BASE + b1
                     else:
-                        t1 = _clamp01((d_e2_a - d_e1_a) * e1_denom)
-                        t2 = _clamp01((d_e1_b - d_e2_a) * e2_denom)
+                        t1 = clamp01((d_e2_a - d_e1_a) * e1_denom)
+                        t2 = clamp01((d_e1_b - d_e2_a) * e2_denom)
                         kk = a1 * KEY_BASE + b0
                     p1x = e1ax * (1.0 - t1) + e1bx * t1
                     p1y = e1ay * (1.0 - t1) + e1by * t1
@@ -743,7 +648,7 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
         if settle:
             continue
         if (k + 1) % rec_every == 0 and rec_at[b] < rec.shape[2]:
-            _record(b, rec, rec_at, sp, sv, na, a_nx, a_ny, a_cnt, jn, jt, h, spring, dk, dc, dv,
+            record(b, rec, rec_at, sp, sv, na, a_nx, a_ny, a_cnt, jn, jt, h, spring, dk, dc, dv,
                     dorigin, dforce, k + 1)
         # the stops, at the run loop's samples: every rec_every steps of this call and at its end
         if local % rec_every == 0 or local == steps[b]:
@@ -763,43 +668,6 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
             if sp[b, 0] > off_x[b]:  # a free slider past the far end of the surface
                 stop_code[b] = STOP_OFF
                 break
-
-
-@njit(cache=True)
-def _record(b, rec, rec_at, sp, sv, na, a_nx, a_ny, a_cnt, jn, jt, h, spring, dk, dc, dv, dorigin,
-            dforce, step):
-    """One sample of scene ``b``: the slider's state, the drive force, the contact forces."""
-    x, vx = sp[b, 0], sv[b, 0]
-    if spring[b]:
-        f_drive = dk[b] * ((dorigin[b] + dv[b] * step * h) - x) + dc[b] * (dv[b] - vx)
-    else:
-        f_drive = dforce[b]
-    fx = fy = ft = 0.0
-    deepest = 0.0
-    count = 0
-    for a in range(na):
-        n_x, n_y = a_nx[a], a_ny[a]
-        for c in range(a_cnt[a]):
-            # the impulse on the slider (body a of the pair): -(n jn + perp(n) jt)
-            jx = -(n_x * jn[a, c] - n_y * jt[a, c])
-            jy = -(n_x * jt[a, c] + n_y * jn[a, c])
-            fx += jx
-            fy += jy
-            jnn = jx * n_x + jy * n_y
-            ty = -n_x if n_y >= 0 else n_x
-            ft += (jx - jnn * n_x) * abs(n_y) + (jy - jnn * n_y) * ty
-        count += 1
-    r = rec_at[b]
-    rec[b, 0, r] = x
-    rec[b, 1, r] = vx
-    rec[b, 2, r] = sp[b, 1]
-    rec[b, 3, r] = sv[b, 1]
-    rec[b, 4, r] = f_drive
-    rec[b, 5, r] = fx / h
-    rec[b, 6, r] = fy / h
-    rec[b, 7, r] = -ft / h
-    rec[b, 8, r] = count
-    rec_at[b] = r + 1
 
 
 @njit(parallel=True, cache=True)

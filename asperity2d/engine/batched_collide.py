@@ -1,0 +1,171 @@
+"""The batched engine's contact geometry and record (Numba): Chipmunk's support edges and contact
+points, the slider's tips against the static segments, one sample of a scene.
+
+Part of :mod:`asperity2d.engine` (used by :mod:`.batched_kernel`, only where Numba is installed).
+Everything is in the engine's internal units.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+#: Failure codes (per scene): 0 ok; the others name why a scene stopped.
+OK, NONFINITE, OVERLAP, PAIRS = 0, 1, 2, 4
+#: A contact's key, the pair of vertices it joins: a * KEY_BASE + b (more than any outline's vertices).
+KEY_BASE = 1 << 16
+#: Recorded columns per sample (the Result's slider columns but t and drive_x, which the
+#: Python side makes from the step count).
+N_REC = 9  # x, vx, y, vy, drive force, fx, fy, f_tangential, contact count
+
+DBL_MAX = 1.7976931348623157e308
+
+
+@njit(inline="always")
+def clamp01(t):
+    return 0.0 if t < 0.0 else (1.0 if t > 1.0 else t)
+
+
+@njit(cache=True)
+def support_edge(vx, vy, nxs, nys, px, py, n_x, n_y, nv):
+    """Chipmunk's SupportEdgeForPoly for a convex polygon of ``nv`` vertices translated by
+    (px, py): the edge's two vertex indices (a, b)."""
+    best, i1 = -np.inf, 0
+    for i in range(nv):
+        d = (vx[i] + px) * n_x + (vy[i] + py) * n_y
+        if d > best:
+            best, i1 = d, i
+    i0 = (i1 - 1 + nv) % nv
+    i2 = (i1 + 1) % nv
+    if n_x * nxs[i1] + n_y * nys[i1] > n_x * nxs[i2] + n_y * nys[i2]:
+        return i0, i1
+    return i1, i2
+
+
+@njit(cache=True)
+def static_pairs(b, j, N, S, nu, uvx, uvy, ul, ur, ub, ut, spx, spy, uverts, unorms, seg_a, seg_b, seg_n, seg_mu,
+                 s_n, s_key, s_jn, s_jt, na, max_pairs, a_j, a_i, a_nx, a_ny, a_cnt, a_first, a_u, r1x, r1y,
+                 r2x, r2y, key, jn, jt, fail):
+    """Tip ``j`` (its world vertices ``uvx``, ``uvy`` and bounding box) of scene ``b`` against the
+    scene's ``S`` static segments (the floor, a profile's valleys): each touching pair appended to
+    the step's pairs from ``na`` on, warm-started from ``s_*``; returns the new ``na``.
+
+    Chipmunk's pair is (a = the segment, b = the tip), its normal n from the segment to the tip
+    (``SegmentToPoly``: the minimum-penetration axis, then ``ContactPoints`` of the segment's
+    support edge and the tip's); the pair is kept here as every other (a = the slider, b = the
+    segment's static body at the origin, numbered ``N + segment``), its normal -n (exact: a
+    negation). The segment's two ends share one hash, so a contact is keyed by the tip's vertex.
+    """
+    for sg in range(S):
+        sax, say = seg_a[b, sg, 0], seg_a[b, sg, 1]
+        sbx, sby = seg_b[b, sg, 0], seg_b[b, sg, 1]
+        if not (ul <= max(sax, sbx) and min(sax, sbx) <= ur and ub <= max(say, sby) and min(say, sby) <= ut):
+            s_n[b, j, sg] = 0
+            continue
+        tnx, tny = seg_n[b, sg, 0], seg_n[b, sg, 1]
+        # minimum penetration over the segment's two faces and the tip's negated normals
+        best, mx, my = np.inf, 0.0, 0.0
+        for e in range(2 + nu):
+            if e == 0:
+                ex, ey = tnx, tny
+            elif e == 1:
+                ex, ey = -tnx, -tny
+            else:
+                ex, ey = -unorms[b, j, e - 2, 0], -unorms[b, j, e - 2, 1]
+            hb = max(sax * ex + say * ey, sbx * ex + sby * ey)
+            ha = np.inf
+            for q in range(nu):
+                ha = min(ha, uvx[q] * ex + uvy[q] * ey)
+            depth = hb - ha
+            if depth < best:
+                best, mx, my = depth, ex, ey
+        if best < 0.0:  # separated
+            s_n[b, j, sg] = 0
+            continue
+        # ContactPoints(SupportEdgeForSegment(seg, n), SupportEdgeForPoly(tip, -n))
+        if tnx * mx + tny * my > 0.0:
+            e1ax, e1ay, e1bx, e1by = sax, say, sbx, sby
+        else:
+            e1ax, e1ay, e1bx, e1by = sbx, sby, sax, say
+        a0, a1 = support_edge(uverts[b, j, :, 0], uverts[b, j, :, 1], unorms[b, j, :, 0],
+                               unorms[b, j, :, 1], spx, spy, -mx, -my, nu)
+        e2ax, e2ay, e2bx, e2by = uvx[a0], uvy[a0], uvx[a1], uvy[a1]
+        d_e1_a = e1ax * my - e1ay * mx
+        d_e1_b = e1bx * my - e1by * mx
+        d_e2_a = e2ax * my - e2ay * mx
+        d_e2_b = e2bx * my - e2by * mx
+        e1_denom = min(1.0 / (d_e1_b - d_e1_a), DBL_MAX)
+        e2_denom = min(1.0 / (d_e2_b - d_e2_a), DBL_MAX)
+        if na >= max_pairs:
+            fail[b] = PAIRS
+            break
+        cnt = 0
+        for which in range(2):
+            if which == 0:
+                t1 = clamp01((d_e2_b - d_e1_a) * e1_denom)
+                t2 = clamp01((d_e1_a - d_e2_a) * e2_denom)
+                kk = a1  # the segment's ends share one hash: the tip's vertex keys it
+            else:
+                t1 = clamp01((d_e2_a - d_e1_a) * e1_denom)
+                t2 = clamp01((d_e1_b - d_e2_a) * e2_denom)
+                kk = a0
+            p1x = e1ax * (1.0 - t1) + e1bx * t1
+            p1y = e1ay * (1.0 - t1) + e1by * t1
+            p2x = e2ax * (1.0 - t2) + e2bx * t2
+            p2y = e2ay * (1.0 - t2) + e2by * t2
+            if (p2x - p1x) * mx + (p2y - p1y) * my <= 0.0:
+                r1x[na, cnt], r1y[na, cnt] = p2x - spx, p2y - spy
+                r2x[na, cnt], r2y[na, cnt] = p1x, p1y
+                key[na, cnt] = kk
+                jn[na, cnt] = 0.0
+                jt[na, cnt] = 0.0
+                for o in range(s_n[b, j, sg]):
+                    if s_key[b, j, sg, o] == kk:
+                        jn[na, cnt] = s_jn[b, j, sg, o]
+                        jt[na, cnt] = s_jt[b, j, sg, o]
+                cnt += 1
+        if cnt == 0:
+            s_n[b, j, sg] = 0
+            continue
+        a_first[na] = s_n[b, j, sg] == 0
+        a_j[na], a_i[na], a_nx[na], a_ny[na], a_cnt[na] = j, N + sg, -mx, -my, cnt
+        a_u[na] = seg_mu[b]
+        na += 1
+    return na
+
+
+@njit(cache=True)
+def record(b, rec, rec_at, sp, sv, na, a_nx, a_ny, a_cnt, jn, jt, h, spring, dk, dc, dv, dorigin,
+            dforce, step):
+    """One sample of scene ``b``: the slider's state, the drive force, the contact forces."""
+    x, vx = sp[b, 0], sv[b, 0]
+    if spring[b]:
+        f_drive = dk[b] * ((dorigin[b] + dv[b] * step * h) - x) + dc[b] * (dv[b] - vx)
+    else:
+        f_drive = dforce[b]
+    fx = fy = ft = 0.0
+    deepest = 0.0
+    count = 0
+    for a in range(na):
+        n_x, n_y = a_nx[a], a_ny[a]
+        for c in range(a_cnt[a]):
+            # the impulse on the slider (body a of the pair): -(n jn + perp(n) jt)
+            jx = -(n_x * jn[a, c] - n_y * jt[a, c])
+            jy = -(n_x * jt[a, c] + n_y * jn[a, c])
+            fx += jx
+            fy += jy
+            jnn = jx * n_x + jy * n_y
+            ty = -n_x if n_y >= 0 else n_x
+            ft += (jx - jnn * n_x) * abs(n_y) + (jy - jnn * n_y) * ty
+        count += 1
+    r = rec_at[b]
+    rec[b, 0, r] = x
+    rec[b, 1, r] = vx
+    rec[b, 2, r] = sp[b, 1]
+    rec[b, 3, r] = sv[b, 1]
+    rec[b, 4, r] = f_drive
+    rec[b, 5, r] = fx / h
+    rec[b, 6, r] = fy / h
+    rec[b, 7, r] = -ft / h
+    rec[b, 8, r] = count
+    rec_at[b] = r + 1
