@@ -417,14 +417,14 @@ def critical_force_brackets(scenes, *, start: str = "rest", rel_tol: float = REL
                             engine: str = "batched") -> list[CriticalForce]:
     """:func:`critical_force_bracket` of every scene of ``scenes``, in order, on ``engine``.
 
-    On ``"batched"`` the searches run in lockstep: each scene is settled as
-    :func:`settled_run` settles it (all at once, :meth:`asperity2d.engine.batched.Batch.settle`),
-    then every round runs each unfinished search's next force as a fork of its settled scene,
-    all in one batch, with the run loop's stops (passed; stuck; a free slider off the surface)
-    and :func:`passes`' time limits and step budget, until each search has its bracket. The
-    searches are :func:`searching`, the one the reference runs, so a scene's bracket differs
-    from the reference's only where a run's outcome does. On ``"pymunk"`` the scenes run one
-    after the other (:func:`critical_force_bracket`).
+    On ``"batched"`` the searches run in lockstep: every scene is settled as the reference
+    settles it (``critical.settled_run``), all at once, then every round runs each unfinished
+    search's next force as a fork of its settled scene, all in one batch, with the run loop's
+    stops (passed; stuck; a free slider off the surface) and the reference's time limits and step
+    budget (``critical.passes``), until each search has its bracket. The search is the one the
+    reference runs (``critical.searching``), so a scene's bracket differs from the reference's
+    only where a trial run's outcome does. On ``"pymunk"`` the scenes run one after the other
+    (:func:`~asperity2d.critical_force_bracket`).
 
     Examples
     --------
