@@ -426,6 +426,36 @@ def critical_force_brackets(scenes, *, start: str = "rest", rel_tol: float = REL
     only where a trial run's outcome does. On ``"pymunk"`` the scenes run one after the other
     (:func:`~asperity2d.critical_force_bracket`).
 
+    Parameters
+    ----------
+    scenes : iterable of Scene
+        The scenes; each one's drive is replaced by constant forces.
+    start : {"rest", "entry", "run-up"}, default "rest"
+        How each run begins (see :func:`~asperity2d.critical_force`).
+    rel_tol : float, default 0.0025
+        Relative width of each bracket, in (0, 1).
+    max_runs : int, default 80
+        Most simulations allowed per scene (>= 2).
+    dt : float, optional
+        Step (s); default half the simulation's default step from rest, a quarter with a run-up.
+    iterations : int, default 20
+        Contact solver iterations.
+    max_steps : int, optional
+        Step budget of each run.
+    engine : str, default "batched"
+        The engine (``asperity2d.engine.ENGINES``).
+
+    Returns
+    -------
+    list of CriticalForce
+        One bracket per scene, in order.
+
+    Raises
+    ------
+    SceneError
+        A bad parameter (named), an option the engine does not implement, or more than
+        ``max_runs`` runs needed.
+
     Examples
     --------
     >>> import asperity2d as a
