@@ -427,8 +427,8 @@ class Batch:
                   self.fixed, self.track_y, self.g_x, self.g_y, self.spring, self.dk, self.dc, self.dv,
                   self.dorigin, self.dforce, self.load, self.dt, self.iterations, COLLISION_SLOP,
                   self.bias_coef, self.joint_bias_coef, self.restitution, self.mu_s, self.mu_k,
-                  self.v_stick, self.slip_dist, self.switch_on, self.seg_a, self.seg_b, self.seg_n, self.n_seg, self.seg_mu, self.s_n,
-                  self.s_key, self.s_jn, self.s_jt, self.stop_x, self.first,
+                  self.v_stick, self.slip_dist, self.switch_on, self.seg_a, self.seg_b, self.seg_n, self.n_seg,
+                  self.seg_mu, self.s_n, self.s_key, self.s_jn, self.s_jt, self.stop_x, self.first,
                   self.settling, self.damp, self.push, self.hold, self.hold_x, self.hold_j, self.hold_coef,
                   self.stop_code, self.stuck_v, self.stuck_dwell, self.slow_since, self.v_unit, self.dt_s,
                   self.off_x)
@@ -528,7 +528,8 @@ def batch_size(scenes, steps: int, *, record_every: int = 10) -> int:
     U = max(s.slider.count for s in scenes)
     V = max(max(len(o) for o in s.lower.outlines()) for s in scenes)
     W = max(max(len(o) for o in s.slider.outlines()) for s in scenes)
-    per_scene = Batch.nbytes_for(1, N, U, max(1, steps // record_every), vertices=max(V, W))
+    S = max(_segment_count(s) for s in scenes)
+    per_scene = Batch.nbytes_for(1, N, U, max(1, steps // record_every), vertices=max(V, W), segments=S)
     return max(1, min(len(scenes), CHUNK_BYTES // max(1, per_scene)))
 
 
