@@ -473,6 +473,8 @@ def critical_force_brackets(scenes, *, start: str = "rest", rel_tol: float = REL
     if engine == "pymunk":
         return [critical_force_bracket(scene, start=start, rel_tol=rel_tol, max_runs=max_runs, dt=dt,
                                        iterations=iterations, max_steps=max_steps) for scene in scenes]
+    if engine != "batched":  # an installed package's engine: its runs have no settle and forks here
+        raise SceneError(f"critical forces run on engine=\"pymunk\" and engine=\"batched\", not engine={engine!r}")
     rel_tol, max_runs = _check_search(rel_tol, max_runs, start)
     max_steps = MAX_STEPS if max_steps is None else check_int("max_steps", max_steps, minimum=1, maximum=None)
     for scene in scenes:
