@@ -37,7 +37,8 @@ from ._inputs import check_choice, check_int, check_positive, check_tolerance
 from .errors import SceneError
 from .engine.registry import check_engine, refuse
 from .scene import ConstantForce, Scene
-from .run import MAX_STEPS, Run, Stuck, default_dt, default_duration, default_stops, settle_cap
+from .run import (MAX_STEPS, Run, Stuck, check_scenes, default_dt, default_duration, default_stops,
+                  settle_cap)
 
 STARTS = ("rest", "entry", "run-up")
 #: The settling push of ``start="rest"``, as a fraction of the flank-law estimate.
@@ -463,12 +464,7 @@ def critical_force_brackets(scenes, *, start: str = "rest", rel_tol: float = REL
     >>> [f"{b.value * 1e3:.4g} mN" for b in a.critical_force_brackets(scenes, engine="pymunk")]
     ['6.949 mN', '3.846 mN']
     """
-    scenes = list(scenes)
-    for scene in scenes:
-        if not isinstance(scene, Scene):
-            raise SceneError(f"`scenes` must hold Scene objects (see make_scene), got {type(scene).__name__}")
-    if not scenes:
-        raise SceneError("`scenes` is empty: give at least one scene")
+    scenes = check_scenes(scenes)
     engine = check_engine(engine)
     if engine == "pymunk":
         return [critical_force_bracket(scene, start=start, rel_tol=rel_tol, max_runs=max_runs, dt=dt,

@@ -280,6 +280,18 @@ def _simulation(scene: Scene, duration: float | None = None, *, dt: float | None
     return run.result()
 
 
+def check_scenes(scenes) -> list:
+    """``scenes`` as a non-empty list of :class:`~asperity2d.scene.Scene` (a ``SceneError`` line
+    otherwise): what every function of many scenes takes."""
+    scenes = list(scenes)
+    for scene in scenes:
+        if not isinstance(scene, Scene):
+            raise SceneError(f"`scenes` must hold Scene objects (see make_scene), got {type(scene).__name__}")
+    if not scenes:
+        raise SceneError("`scenes` is empty: give at least one scene")
+    return scenes
+
+
 def simulate_many(scenes: Iterable[Scene], duration: float | None = None, *, dt: float | None = None,
                   record_every: int = 10, settle: bool | None = None, iterations: int = 20,
                   unsafe_dt: bool = False, max_steps: int = MAX_STEPS, engine: str = "batched") -> list:
@@ -300,12 +312,7 @@ def simulate_many(scenes: Iterable[Scene], duration: float | None = None, *, dt:
     ['pymunk', 'pymunk']
     """
     engine = check_engine(engine)
-    scenes = list(scenes)
-    for scene in scenes:
-        if not isinstance(scene, Scene):
-            raise SceneError(f"`scenes` must hold Scene objects (see make_scene), got {type(scene).__name__}")
-    if not scenes:
-        raise SceneError("`scenes` is empty: give at least one scene")
+    scenes = check_scenes(scenes)
     if engine == DEFAULT_ENGINE:
         out = []
         for scene in scenes:
