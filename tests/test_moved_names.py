@@ -42,6 +42,8 @@ MOVED = {
         "asperity2d.contact_states": ["ContactStates", "contact_states"],
     },
 }
+#: Public names a new module has defined since the split (not moved: nothing older names them).
+ADDED = {"asperity2d.run": ["check_scenes"]}
 CASES = [(old, new, name) for old, homes in MOVED.items() for new, names in homes.items() for name in names]
 
 
@@ -67,7 +69,7 @@ def test_every_name_the_new_modules_define_is_listed():
     # no name was dropped in the move or left off the checks above
     for homes in MOVED.values():
         for new, names in homes.items():
-            assert _defined(new) == set(names), new
+            assert _defined(new) == set(names) | set(ADDED.get(new, [])), new
 
 
 def test_a_pickle_that_names_the_old_module_loads():

@@ -124,3 +124,41 @@ def test_local_workers_stay_warm_for_the_next_ensemble():
     assert executors.warm_pools() >= {2}
     again = set(map_calls(sweep_fixtures.pid_call, [{"x": x} for x in range(6)], workers=2))
     assert os.getpid() not in first and again <= first  # the same processes, not new ones
+
+
+_HELD = r"""
+import os, signal, subprocess, sys, threading, time
+import numpy  # its threads do not block SIGINT: one of them may be the one the kernel hands it to
+from asperity2d.sweep import executors
+
+def blocked_at_start():
+    out = subprocess.run([sys.executable, "-c", "print(open('/proc/self/status').read())"],
+                         capture_output=True, text=True).stdout
+    mask = int(next(l for l in out.splitlines() if l.startswith("SigBlk")).split()[1], 16)
+    return bool(mask & (1 << (signal.SIGINT - 1)))
+
+try:
+    with executors._sigint_deferred():  # a fresh process: this starts the resource tracker
+        os.kill(os.getpid(), signal.SIGINT)  # a Ctrl-C mid-spawn
+        time.sleep(0.05)
+        child = blocked_at_start()  # a worker started now holds it until its initializer
+        print("inside", child, flush=True)
+except KeyboardInterrupt:
+    print("raised after", flush=True)
+else:
+    print("lost", flush=True)
+"""
+
+
+@pytest.mark.skipif(not hasattr(__import__("signal"), "pthread_sigmask") or not os.path.exists("/proc/self/status"),
+                    reason="POSIX signal masks, read from /proc")
+def test_a_ctrl_c_while_workers_spawn_is_held_for_the_command_not_lost():
+    # Ignoring SIGINT for a spawn (what the command did) dropped a Ctrl-C that arrived then: the
+    # command ran on to its end. Held, it is raised once the spawn is over, and a worker started
+    # meanwhile begins with it blocked -- even in a fresh process, whose first spawn starts
+    # multiprocessing's resource tracker (which unblocks SIGINT in the spawning thread).
+    import subprocess
+    import sys
+
+    out = subprocess.run([sys.executable, "-c", _HELD], capture_output=True, text=True, timeout=120)
+    assert out.stdout.split("\n")[:2] == ["inside True", "raised after"], out.stdout + out.stderr[-2000:]

@@ -303,40 +303,61 @@ _pools_lock = threading.Lock()
 
 
 @contextlib.contextmanager
-def _sigint_ignored():
-    """Ignore SIGINT while this (main) thread starts worker processes, which inherit it.
+def _sigint_deferred():
+    """Hold a Ctrl-C back while this (main) thread starts worker processes, and keep it from them.
 
     A terminal's Ctrl-C goes to the whole process group: a worker still starting its interpreter
     would die of it with a traceback of its own, and its pool would break under the parent's
-    cancelled calls. Only an ignored signal survives the ``exec`` of a spawned worker (a blocked
-    one does not: multiprocessing resets the mask), so the parent ignores SIGINT for the few
-    milliseconds of a spawn; the workers then ignore it for life (their initializer says so again)
-    and the parent alone stops the run and ends them. Outside the main thread nothing changes
-    (Python lets only the main thread set handlers); the workers' initializer still ignores it."""
+    cancelled calls. So SIGINT is blocked in this thread while it spawns: a spawned worker inherits
+    the mask through its ``exec``, holds a Ctrl-C pending until its initializer ignores the signal
+    (which discards it) and then ignores it for life; the parent alone stops the run and ends them.
+    The parent's own Ctrl-C is noted meanwhile (any thread may take it: numerical libraries'
+    threads do not block it) and raised once the workers are started.
+
+    Multiprocessing's resource tracker is started first: starting it unblocks SIGINT. Ignoring the
+    signal instead (it survives ``exec`` too) lost the parent's Ctrl-C: the command ran on to its
+    end. Outside the main thread the mask is set the same way and the handler is left alone
+    (Python lets only the main thread set handlers). Without ``pthread_sigmask`` (Windows) the
+    main thread's spawn ignores the signal.
+    """
     import signal
 
-    if threading.current_thread() is not threading.main_thread():
-        yield
+    main = threading.current_thread() is threading.main_thread()
+    mask = getattr(signal, "pthread_sigmask", None)
+    if mask is None:  # pragma: no cover - not POSIX
+        old = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
+        try:
+            yield
+        finally:
+            if main:
+                signal.signal(signal.SIGINT, old)
         return
-    old = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    from multiprocessing import resource_tracker
+
+    resource_tracker.ensure_running()
+    caught = []
+    before = mask(signal.SIG_BLOCK, {signal.SIGINT})
+    old = signal.signal(signal.SIGINT, lambda *_: caught.append(True)) if main else None
     try:
         yield
     finally:
-        signal.signal(signal.SIGINT, old)
+        if main:
+            signal.signal(signal.SIGINT, old)
+        mask(signal.SIG_SETMASK, before)  # one held in this thread goes to the handler now
+    if caught:
+        signal.raise_signal(signal.SIGINT)
 
 
 def prepare_workers() -> None:
-    """Start multiprocessing's resource tracker now, from the main thread with SIGINT ignored
-    (:func:`_sigint_ignored`): a pool first made in another thread would start it there,
-    unprotected from a Ctrl-C that arrives while it starts."""
+    """Start multiprocessing's resource tracker now, from the main thread: a Ctrl-C while it starts
+    then interrupts the command where it stands (the tracker protects itself from the signal)."""
     from multiprocessing import resource_tracker
 
-    with _sigint_ignored():
-        resource_tracker.ensure_running()
+    resource_tracker.ensure_running()
 
 
 def _die_with(parent: int, death_signal: bool) -> None:
-    """Worker initializer: ignore SIGINT (the parent handles a Ctrl-C: :func:`_sigint_ignored`)
+    """Worker initializer: ignore SIGINT (the parent handles a Ctrl-C: :func:`_sigint_deferred`)
     and exit as soon as process ``parent`` is gone.
 
     ``death_signal``: ask the kernel for SIGKILL when the parent dies (Linux; the signal follows
@@ -355,7 +376,9 @@ def _die_with(parent: int, death_signal: bool) -> None:
             pass
     import signal
 
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # discards a Ctrl-C held since the spawn
+    if hasattr(signal, "pthread_sigmask"):
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
     if os.getppid() != parent:  # the parent died before the signal was asked for
         os._exit(1)
 
@@ -377,11 +400,18 @@ def shared_pool(workers: int) -> cf.ProcessPoolExecutor:
         # spawn: workers start clean (no inherited threads, RNGs or engine state)
         main = threading.current_thread() is threading.main_thread()
         launch = getattr(cf.ProcessPoolExecutor, "_launch_processes", None)
-        with _sigint_ignored():  # the pool may start multiprocessing's resource tracker
-            pool = cf.ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("spawn"),
-                                          initializer=_die_with, initargs=(os.getpid(), main and launch is not None))
-            if main and launch is not None:
-                launch(pool)  # every worker now, from this thread (the death signal follows it)
+        pool = None
+        try:
+            with _sigint_deferred():
+                pool = cf.ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("spawn"),
+                                              initializer=_die_with,
+                                              initargs=(os.getpid(), main and launch is not None))
+                if main and launch is not None:
+                    launch(pool)  # every worker now, from this thread (the death signal follows it)
+        except BaseException:  # a Ctrl-C held while they started: end them (not yet listed)
+            if pool is not None:
+                _end(pool)
+            raise
         _pools[workers] = pool
         return pool
 
@@ -415,6 +445,11 @@ def kill_pool(pool: cf.ProcessPoolExecutor) -> None:
         for n, p in list(_pools.items()):
             if p is pool:
                 del _pools[n]
+    _end(pool)
+
+
+def _end(pool: cf.ProcessPoolExecutor) -> None:
+    """Kill ``pool``'s workers and shut it down without waiting (:func:`kill_pool`, unlisted)."""
     for process in list((getattr(pool, "_processes", None) or {}).values()):
         with contextlib.suppress(Exception):
             process.kill()
@@ -486,7 +521,7 @@ class LocalExecutor:
                 if nxt is None:
                     return
                 pool = self._start()
-                with _sigint_ignored():  # a submit may start a worker
+                with _sigint_deferred():  # a submit may start a worker
                     in_flight[pool.submit(fn, *nxt[1])] = nxt
 
         try:
