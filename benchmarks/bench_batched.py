@@ -2,7 +2,7 @@
 
     python benchmarks/bench_batched.py [--quick] [--json]
 
-* **peak-stick**: ``stick_forces_of`` (3 passes per seed at the step policy's dt/2) of the default
+* **peak-stick**: ``stick_forces_of`` (3 passes per seed at the step policy's step) of the default
   scene with random spacing on ``seeds`` seeds, on ``engine="batched"`` (every pass of every seed
   in one batch, the engine's threads on every core) and on ``engine="pymunk"`` for the first
   ``pymunk_seeds`` of them (one process; its CPU per scene-pass, times the passes, is what the
@@ -14,6 +14,10 @@
   each round's trial runs in one batch) and on ``engine="pymunk"`` for every one of those seeds
   too, in one worker process per core (``asperity2d.sweep.map_calls``): both wall times measured
   in this run, nothing scaled; and the per-seed values compared.
+* **study**: a 155-seed x 5-pass peak-stick study (``stick_forces_of(scenes, passes=5)``, the
+  seeds a 5 % difference in the peak needed at dt/2 by the findings page's estimate) on the
+  batched engine alone, at the step policy's step: its wall time against the issue's 2 minutes
+  (the pymunk side would take about an hour of CPU; the peak-stick ratio above is the comparison).
 * **load**: the first call in this process (Numba loads the compiled loop from its cache; the
   first call after an install compiles it, a one-time cost stated separately by ``compile_s``
   when the cache was empty).
@@ -48,7 +52,7 @@ from asperity2d.engine import batched  # noqa: E402
 from asperity2d.experiments.measures import PASSES, STICK_DT_FRACTION, stick_forces_of  # noqa: E402
 from asperity2d.run import default_dt, default_duration  # noqa: E402
 
-TARGETS = {"peak_stick_ratio": 30.0, "critical_ratio": 10.0, "memory_1000_MB": 1024.0}
+TARGETS = {"peak_stick_ratio": 30.0, "critical_ratio": 10.0, "memory_1000_MB": 1024.0, "study_155x5_wall_s": 120.0}
 SEED0 = 9401
 
 
@@ -80,6 +84,14 @@ def _peak_stick(seeds: int, pymunk_seeds: int) -> dict:
             "ratio_wall": pymunk_ideal_wall / b_wall,
             "ratio_cpu": per_pass * seeds * PASSES / b_cpu,
             "max_relative_difference_per_seed": max(diffs) if diffs else math.nan}
+
+
+def _study(seeds: int, passes: int) -> dict:
+    scenes = [a.make_scene(spacing="random", seed=SEED0 + 1000 + s) for s in range(seeds)]
+    got, wall, cpu = _timed(lambda: stick_forces_of(scenes, passes=passes, engine="batched"))
+    assert all(math.isfinite(f.average("peak")) for f in got), "a study seed has no stick"
+    return {"seeds": seeds, "passes": passes, "dt_fraction": STICK_DT_FRACTION, "wall_s": wall, "cpu_s": cpu,
+            "cores": os.cpu_count() or 1}
 
 
 def _critical_one(seed: int) -> float:
@@ -177,6 +189,7 @@ def run(quick: bool = False, *, cost_only: bool = False) -> dict:
     if not cost_only:
         out["peak_stick"] = _peak_stick(8 if quick else 64, 1 if quick else 2)
         out["critical"] = _critical(8 if quick else 64)
+        out["study"] = _study(8 if quick else 155, 5)
     out["memory"] = _memory()
     out["cost"] = _cost(quick)
     out["targets"] = TARGETS
@@ -195,6 +208,10 @@ def headline(res: dict) -> list[tuple[str, float, str]]:
         # their distributions over seeds are what agrees (tests/test_engine_crossval.py)
         ("batched: largest per-seed peak-stick difference to pymunk (chaotic)", p["max_relative_difference_per_seed"],
          "stated")]
+    st = res.get("study")
+    if st is not None:
+        rows.append((f"batched: {st['seeds']} seeds x {st['passes']} peak-stick passes, wall s ({st['cores']} cores)",
+                     st["wall_s"], "< 120"))
     c = res.get("critical")
     if c is not None:
         rows += [(f"batched / pymunk, critical force from rest of {c['seeds']} seeds (wall, {c['cores']} cores each)",

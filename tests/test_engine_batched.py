@@ -208,7 +208,7 @@ def test_a_batch_too_large_is_refused_up_front_naming_its_size(monkeypatch):
 
 
 def test_a_thousand_full_passes_run_in_batches_under_a_gigabyte():
-    """1,000 default scenes, each a full pass at the stick step (dt/2): their records alone
+    """1,000 default scenes, each a full pass at dt/2 (twice the stick step's record): their records alone
     would be 3.5 GB, so :func:`batched.run` steps them in batches whose arrays -- state,
     geometry and record, as allocated -- stay within CHUNK_BYTES (256 MiB), well under 1 GB."""
     from asperity2d.run import default_dt, default_duration

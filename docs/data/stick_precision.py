@@ -11,7 +11,8 @@ For each stick force of a pass (first breakaway, peak, mean; the 5-pass ensemble
 
 * the step bias: the per-seed relative shift from dt to dt/2 and from dt/2 to dt/4, its mean, one
   standard error over the seeds and a two-sided Wilcoxon p (is it distinguishable from zero?);
-* the per-seed precision at the policy's step (dt/2): the standard deviation over seeds of the
+* the per-seed precision at the policy's step (``measures.measure_step``: dt for the peak and mean,
+  dt/2 for the first breakaway): the standard deviation over seeds of the
   per-seed value relative to its mean -- the spread of the per-seed ratio to a seed-independent
   reference such as the regular surface -- and one pass's spread about its seed's mean;
 * the regular surface's shift from step to step (``"regular"``; NaN where it was not measured:
@@ -35,6 +36,16 @@ import numpy as np
 DATA = Path(__file__).resolve().parent / "measures" / "stick_bias.json"
 FACTORS = ("1.0", "0.5", "0.25")
 MEASURES = {"first_breakaway": "first breakaway", "peak": "peak stick force", "mean": "mean stick force"}
+#: each stick force's named measure, whose step policy says where its precision is read
+NAMED = {"first_breakaway": "first-breakaway", "peak": "peak-stick", "mean": "mean-stick"}
+STEP_NAMES = {"1.0": "dt", "0.5": "dt/2", "0.25": "dt/4"}
+
+
+def policy_factor(name: str) -> str:
+    """The step (a key of :data:`FACTORS`) the stick force ``name`` runs at under the step policy."""
+    from asperity2d.experiments import measures
+
+    return repr(float(measures.MEASURES.lookup(NAMED[name], "name").dt_fraction))
 #: the verdict rule's numbers and the power asked of it
 ALPHA, MIN_EFFECT, EFFECT, POWER, DRAWS = 0.01, 0.01, 0.05, 0.8, 2000
 
@@ -120,12 +131,13 @@ def summary(path: Path = DATA, *, setup: str = "fixed", seeds: tuple[int, int] |
                 "sd": float(r.std(ddof=1)), "n": int(len(r)), "up": int(np.sum(r > 1e-12)),
                 "down": int(np.sum(r < -1e-12)),
                 "p_wilcoxon": float(wilcoxon(nonzero).pvalue) if len(nonzero) >= 2 else math.nan}
-        at_policy = avg["0.5"][np.isfinite(avg["0.5"])]
+        step = policy_factor(name)
+        at_policy = avg[step][np.isfinite(avg[step])]
         relative = at_policy / at_policy.mean()
-        rel = np.concatenate([np.asarray(data[f"{setup}/{s}/0.5"][name], float)
-                              / np.nanmean(data[f"{setup}/{s}/0.5"][name]) - 1 for s in used])
+        rel = np.concatenate([np.asarray(data[f"{setup}/{s}/{step}"][name], float)
+                              / np.nanmean(data[f"{setup}/{s}/{step}"][name]) - 1 for s in used])
         rel = rel[np.isfinite(rel)]
-        entry.update(per_seed_sd=float(relative.std(ddof=1)),
+        entry.update(step=STEP_NAMES[step], per_seed_sd=float(relative.std(ddof=1)),
                      per_pass_sd=float(math.sqrt(np.sum(rel ** 2) / (len(rel) - len(used)))),
                      seeds_for_5_percent=seeds_needed(relative))
         regular = [np.nanmean(data[f"{setup}-regular/0/{f}"][name]) if f"{setup}-regular/0/{f}" in data else math.nan
@@ -156,7 +168,7 @@ def report(result: dict) -> str:
                          f"error; sd {100 * s['sd']:.1f} %; {s['up']} up, {s['down']} down; Wilcoxon p {s['p_wilcoxon']:.2g})")
         lines.append(f"  {name:15s} regular surface: dt -> dt/2 {100 * e['regular']['1.0->0.5']:+.2f} %, "
                      f"dt/2 -> dt/4 {100 * e['regular']['0.5->0.25']:+.2f} %")
-        lines.append(f"  {name:15s} at dt/2: per-seed sd {100 * e['per_seed_sd']:.1f} %, one pass {100 * e['per_pass_sd']:.1f} %; "
+        lines.append(f"  {name:15s} at {e['step']}: per-seed sd {100 * e['per_seed_sd']:.1f} %, one pass {100 * e['per_pass_sd']:.1f} %; "
                      f"a 5 % difference needs {e['seeds_for_5_percent']} seeds (one-sided Wilcoxon p < {ALPHA:g}, "
                      f"{100 * POWER:.0f} % of the time)")
     return "\n".join(lines)
