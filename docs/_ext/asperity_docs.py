@@ -387,12 +387,12 @@ class StickPrecisionTable(_Generated):
         except (OSError, ValueError, KeyError) as exc:
             raise self.error(f"stick-precision-table: {exc}")
         self.state.document.settings.record_dependencies.add(str(module.DATA))
-        rows = [[e["label"], _shift(e["1.0->0.5"]), _shift(e["0.5->0.25"]), _percent(e["per_seed_sd"]),
+        rows = [[e["label"], _shift(e["1.0->0.5"]), _shift(e["0.5->0.25"]), e["step"], _percent(e["per_seed_sd"]),
                  _percent(e["per_pass_sd"]), _seeds_for(e["seeds_for_5_percent"])]
                 for e in result["measures"].values()]
-        lines = list_table(["stick force (mean of the passes)", "dt → dt/2", "dt/2 → dt/4 (the policy's check)",
-                            "per-seed sd at dt/2", "one pass's sd", "seeds for a 5 % difference"],
-                           rows, widths="16 19 19 14 12 20", cls="stick-precision-table")
+        lines = list_table(["stick force (mean of the passes)", "dt → dt/2", "dt/2 → dt/4", "its step",
+                            "per-seed sd at its step", "one pass's sd", "seeds for a 5 % difference"],
+                           rows, widths="16 17 17 8 12 11 19", cls="stick-precision-table")
         return lines + [f"Seeds {module.seeds_text(result['seeds'])}, {result['setup']} track 10/3, random spacing, "
                         f"{result['passes']} passes each at dt, dt/2 and dt/4 ({result['cpu_minutes']:.0f} CPU-minutes); "
                         "shifts are the mean over seeds ± one standard error, with the seeds up and down and a "
