@@ -197,7 +197,7 @@ def stick_forces_of(scenes, *, passes: int = PASSES, dt: float | None = None,
             runs.append((scene.replace(drive=dataclasses.replace(scene.drive, velocity=speed)), step))
             where.append(k)
     # per run: its events' peak forces and its step, kept instead of the run's record (a pass
-    # records ~3.5 MB: 155 seeds x 5 passes held at once would be 2.7 GB)
+    # records ~1.8 MB at dt: 155 seeds x 5 passes held at once would be 1.4 GB)
     kept: list = [None] * len(runs)
     failure = None
     for step in sorted({step for _, step in runs}):  # one step per call (all share one when dt is given)
