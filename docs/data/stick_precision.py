@@ -46,6 +46,8 @@ def policy_factor(name: str) -> str:
     from asperity2d.experiments import measures
 
     return repr(float(measures.MEASURES.lookup(NAMED[name], "name").dt_fraction))
+
+
 #: the verdict rule's numbers and the power asked of it
 ALPHA, MIN_EFFECT, EFFECT, POWER, DRAWS = 0.01, 0.01, 0.05, 0.8, 2000
 
