@@ -127,7 +127,7 @@ def test_local_workers_stay_warm_for_the_next_ensemble():
 
 
 _HELD = r"""
-import os, signal, subprocess, sys, threading, time
+import os, signal, subprocess, sys, time
 import numpy  # its threads do not block SIGINT: one of them may be the one the kernel hands it to
 from asperity2d.sweep import executors
 
