@@ -43,6 +43,29 @@ def support_edge(vx, vy, nxs, nys, px, py, n_x, n_y, nv):
 
 
 @njit(cache=True)
+def contact_points(e1ax, e1ay, e1bx, e1by, e2ax, e2ay, e2bx, e2by, n_x, n_y):
+    """Chipmunk's ContactPoints of edge e1 (body a's) and edge e2 (body b's) along the normal n
+    (from a to b): its two candidates, each ``(kept, p1x, p1y, p2x, p2y)`` in turn (ten values),
+    p1 on e1 and p2 on e2, ``kept`` where they overlap along n."""
+    d_e1_a = e1ax * n_y - e1ay * n_x
+    d_e1_b = e1bx * n_y - e1by * n_x
+    d_e2_a = e2ax * n_y - e2ay * n_x
+    d_e2_b = e2bx * n_y - e2by * n_x
+    e1_denom = min(1.0 / (d_e1_b - d_e1_a), DBL_MAX)
+    e2_denom = min(1.0 / (d_e2_b - d_e2_a), DBL_MAX)
+    t1 = clamp01((d_e2_b - d_e1_a) * e1_denom)
+    t2 = clamp01((d_e1_a - d_e2_a) * e2_denom)
+    ax, ay = e1ax * (1.0 - t1) + e1bx * t1, e1ay * (1.0 - t1) + e1by * t1
+    bx, by = e2ax * (1.0 - t2) + e2bx * t2, e2ay * (1.0 - t2) + e2by * t2
+    t1 = clamp01((d_e2_a - d_e1_a) * e1_denom)
+    t2 = clamp01((d_e1_b - d_e2_a) * e2_denom)
+    cx, cy = e1ax * (1.0 - t1) + e1bx * t1, e1ay * (1.0 - t1) + e1by * t1
+    dx, dy = e2ax * (1.0 - t2) + e2bx * t2, e2ay * (1.0 - t2) + e2by * t2
+    return ((bx - ax) * n_x + (by - ay) * n_y <= 0.0, ax, ay, bx, by,
+            (dx - cx) * n_x + (dy - cy) * n_y <= 0.0, cx, cy, dx, dy)
+
+
+@njit(cache=True)
 def static_pairs(b, j, N, S, nu, uvx, uvy, ul, ur, ub, ut, spx, spy, uverts, unorms, seg_a, seg_b, seg_n, seg_mu,
                  s_n, s_key, s_jn, s_jt, na, max_pairs, a_j, a_i, a_nx, a_ny, a_cnt, a_first, a_u, r1x, r1y,
                  r2x, r2y, key, jn, jt, fail):
@@ -90,40 +113,26 @@ def static_pairs(b, j, N, S, nu, uvx, uvy, ul, ur, ub, ut, spx, spy, uverts, uno
         a0, a1 = support_edge(uverts[b, j, :, 0], uverts[b, j, :, 1], unorms[b, j, :, 0],
                                unorms[b, j, :, 1], spx, spy, -mx, -my, nu)
         e2ax, e2ay, e2bx, e2by = uvx[a0], uvy[a0], uvx[a1], uvy[a1]
-        d_e1_a = e1ax * my - e1ay * mx
-        d_e1_b = e1bx * my - e1by * mx
-        d_e2_a = e2ax * my - e2ay * mx
-        d_e2_b = e2bx * my - e2by * mx
-        e1_denom = min(1.0 / (d_e1_b - d_e1_a), DBL_MAX)
-        e2_denom = min(1.0 / (d_e2_b - d_e2_a), DBL_MAX)
         if na >= max_pairs:
             fail[b] = PAIRS
             break
+        q = contact_points(e1ax, e1ay, e1bx, e1by, e2ax, e2ay, e2bx, e2by, mx, my)
         cnt = 0
-        for which in range(2):
-            if which == 0:
-                t1 = clamp01((d_e2_b - d_e1_a) * e1_denom)
-                t2 = clamp01((d_e1_a - d_e2_a) * e2_denom)
-                kk = a1  # the segment's ends share one hash: the tip's vertex keys it
-            else:
-                t1 = clamp01((d_e2_a - d_e1_a) * e1_denom)
-                t2 = clamp01((d_e1_b - d_e2_a) * e2_denom)
-                kk = a0
-            p1x = e1ax * (1.0 - t1) + e1bx * t1
-            p1y = e1ay * (1.0 - t1) + e1by * t1
-            p2x = e2ax * (1.0 - t2) + e2bx * t2
-            p2y = e2ay * (1.0 - t2) + e2by * t2
-            if (p2x - p1x) * mx + (p2y - p1y) * my <= 0.0:
-                r1x[na, cnt], r1y[na, cnt] = p2x - spx, p2y - spy
-                r2x[na, cnt], r2y[na, cnt] = p1x, p1y
-                key[na, cnt] = kk
-                jn[na, cnt] = 0.0
-                jt[na, cnt] = 0.0
-                for o in range(s_n[b, j, sg]):
-                    if s_key[b, j, sg, o] == kk:
-                        jn[na, cnt] = s_jn[b, j, sg, o]
-                        jt[na, cnt] = s_jt[b, j, sg, o]
-                cnt += 1
+        for w in range(2):
+            kept, p1x, p1y, p2x, p2y = q[:5] if w == 0 else q[5:]
+            if not kept:
+                continue
+            kk = a1 if w == 0 else a0  # the segment's ends share one hash: the tip's vertex keys it
+            r1x[na, cnt], r1y[na, cnt] = p2x - spx, p2y - spy
+            r2x[na, cnt], r2y[na, cnt] = p1x, p1y
+            key[na, cnt] = kk
+            jn[na, cnt] = 0.0
+            jt[na, cnt] = 0.0
+            for o in range(s_n[b, j, sg]):
+                if s_key[b, j, sg, o] == kk:
+                    jn[na, cnt] = s_jn[b, j, sg, o]
+                    jt[na, cnt] = s_jt[b, j, sg, o]
+            cnt += 1
         if cnt == 0:
             s_n[b, j, sg] = 0
             continue

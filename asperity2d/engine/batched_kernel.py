@@ -48,7 +48,7 @@ import numpy as np
 from numba import njit, prange
 
 from .batched_collide import (DBL_MAX, KEY_BASE, N_REC, NONFINITE, OK, OVERLAP, PAIRS,  # noqa: F401
-                              clamp01, record, static_pairs, support_edge)
+                              contact_points, record, static_pairs, support_edge)
 
 #: Contact points per pair (Chipmunk's CP_MAX_CONTACTS_PER_ARBITER).
 MAX_CONTACTS = 2
@@ -265,41 +265,27 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                                        lnorms[b, i, :, 1], lpx, lpy, -n_x, -n_y, nl)
                 e1ax, e1ay, e1bx, e1by = uvx[a0], uvy[a0], uvx[a1], uvy[a1]
                 e2ax, e2ay, e2bx, e2by = wvx[b0], wvy[b0], wvx[b1], wvy[b1]
-                d_e1_a = e1ax * n_y - e1ay * n_x
-                d_e1_b = e1bx * n_y - e1by * n_x
-                d_e2_a = e2ax * n_y - e2ay * n_x
-                d_e2_b = e2bx * n_y - e2by * n_x
-                e1_denom = min(1.0 / (d_e1_b - d_e1_a), DBL_MAX)
-                e2_denom = min(1.0 / (d_e2_b - d_e2_a), DBL_MAX)
                 if na >= max_pairs:
                     fail[b] = PAIRS
                     break
+                q = contact_points(e1ax, e1ay, e1bx, e1by, e2ax, e2ay, e2bx, e2by, n_x, n_y)
                 cnt = 0
-                for which in range(2):
-                    if which == 0:
-                        t1 = clamp01((d_e2_b - d_e1_a) * e1_denom)
-                        t2 = clamp01((d_e1_a - d_e2_a) * e2_denom)
-                        kk = a0 * KEY_BASE + b1
-                    else:
-                        t1 = clamp01((d_e2_a - d_e1_a) * e1_denom)
-                        t2 = clamp01((d_e1_b - d_e2_a) * e2_denom)
-                        kk = a1 * KEY_BASE + b0
-                    p1x = e1ax * (1.0 - t1) + e1bx * t1
-                    p1y = e1ay * (1.0 - t1) + e1by * t1
-                    p2x = e2ax * (1.0 - t2) + e2bx * t2
-                    p2y = e2ay * (1.0 - t2) + e2by * t2
-                    if (p2x - p1x) * n_x + (p2y - p1y) * n_y <= 0.0:
-                        r1x[na, cnt], r1y[na, cnt] = p1x - spx, p1y - spy
-                        r2x[na, cnt], r2y[na, cnt] = p2x - lpx, p2y - lpy
-                        key[na, cnt] = kk
-                        jn[na, cnt] = 0.0
-                        jt[na, cnt] = 0.0
-                        # warm start: the previous step's impulses of the same vertex pair
-                        for o in range(c_n[b, j, i]):
-                            if c_key[b, j, i, o] == kk:
-                                jn[na, cnt] = c_jn[b, j, i, o]
-                                jt[na, cnt] = c_jt[b, j, i, o]
-                        cnt += 1
+                for w in range(2):
+                    kept, p1x, p1y, p2x, p2y = q[:5] if w == 0 else q[5:]
+                    if not kept:
+                        continue
+                    kk = a0 * KEY_BASE + b1 if w == 0 else a1 * KEY_BASE + b0
+                    r1x[na, cnt], r1y[na, cnt] = p1x - spx, p1y - spy
+                    r2x[na, cnt], r2y[na, cnt] = p2x - lpx, p2y - lpy
+                    key[na, cnt] = kk
+                    jn[na, cnt] = 0.0
+                    jt[na, cnt] = 0.0
+                    # warm start: the previous step's impulses of the same vertex pair
+                    for o in range(c_n[b, j, i]):
+                        if c_key[b, j, i, o] == kk:
+                            jn[na, cnt] = c_jn[b, j, i, o]
+                            jt[na, cnt] = c_jt[b, j, i, o]
+                    cnt += 1
                 if cnt == 0:
                     c_n[b, j, i] = 0
                     continue
