@@ -66,6 +66,17 @@ def contact_points(e1ax, e1ay, e1bx, e1by, e2ax, e2ay, e2bx, e2by, n_x, n_y):
 
 
 @njit(cache=True)
+def warm_start(keys, jns, jts, n, kk):
+    """The previous step's impulses (jn, jt) of the contact keyed ``kk`` among a pair's ``n``
+    cached ones (``keys``, ``jns``, ``jts``); (0, 0) for a new contact."""
+    jn = jt = 0.0
+    for o in range(n):
+        if keys[o] == kk:
+            jn, jt = jns[o], jts[o]
+    return jn, jt
+
+
+@njit(cache=True)
 def static_pairs(b, j, N, S, nu, uvx, uvy, ul, ur, ub, ut, spx, spy, uverts, unorms, seg_a, seg_b, seg_n, seg_mu,
                  s_n, s_key, s_jn, s_jt, na, max_pairs, a_j, a_i, a_nx, a_ny, a_cnt, a_first, a_u, r1x, r1y,
                  r2x, r2y, key, jn, jt, fail):
@@ -126,12 +137,7 @@ def static_pairs(b, j, N, S, nu, uvx, uvy, ul, ur, ub, ut, spx, spy, uverts, uno
             r1x[na, cnt], r1y[na, cnt] = p2x - spx, p2y - spy
             r2x[na, cnt], r2y[na, cnt] = p1x, p1y
             key[na, cnt] = kk
-            jn[na, cnt] = 0.0
-            jt[na, cnt] = 0.0
-            for o in range(s_n[b, j, sg]):
-                if s_key[b, j, sg, o] == kk:
-                    jn[na, cnt] = s_jn[b, j, sg, o]
-                    jt[na, cnt] = s_jt[b, j, sg, o]
+            jn[na, cnt], jt[na, cnt] = warm_start(s_key[b, j, sg], s_jn[b, j, sg], s_jt[b, j, sg], s_n[b, j, sg], kk)
             cnt += 1
         if cnt == 0:
             s_n[b, j, sg] = 0

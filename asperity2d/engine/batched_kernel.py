@@ -48,7 +48,7 @@ import numpy as np
 from numba import njit, prange
 
 from .batched_collide import (DBL_MAX, KEY_BASE, N_REC, NONFINITE, OK, OVERLAP, PAIRS,  # noqa: F401
-                              contact_points, record, static_pairs, support_edge)
+                              contact_points, record, static_pairs, support_edge, warm_start)
 
 #: Contact points per pair (Chipmunk's CP_MAX_CONTACTS_PER_ARBITER).
 MAX_CONTACTS = 2
@@ -278,13 +278,9 @@ def _step_scene(b, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, 
                     r1x[na, cnt], r1y[na, cnt] = p1x - spx, p1y - spy
                     r2x[na, cnt], r2y[na, cnt] = p2x - lpx, p2y - lpy
                     key[na, cnt] = kk
-                    jn[na, cnt] = 0.0
-                    jt[na, cnt] = 0.0
                     # warm start: the previous step's impulses of the same vertex pair
-                    for o in range(c_n[b, j, i]):
-                        if c_key[b, j, i, o] == kk:
-                            jn[na, cnt] = c_jn[b, j, i, o]
-                            jt[na, cnt] = c_jt[b, j, i, o]
+                    jn[na, cnt], jt[na, cnt] = warm_start(c_key[b, j, i], c_jn[b, j, i], c_jt[b, j, i], c_n[b, j, i],
+                                                          kk)
                     cnt += 1
                 if cnt == 0:
                     c_n[b, j, i] = 0
