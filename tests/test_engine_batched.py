@@ -237,6 +237,31 @@ def test_results_do_not_depend_on_how_a_call_is_batched(monkeypatch):
         np.testing.assert_array_equal(one.friction_force, two.friction_force)
 
 
+def test_results_do_not_depend_on_the_scenes_interleaved_with_them(monkeypatch):
+    """A thread steps up to ``LANES`` scenes together, their sweeps interleaved contact by
+    contact; each scene's numbers are those it has stepped alone, down to the last bit -- here
+    with lanes that differ in asperities, profile, track and when they stop."""
+    import numba
+
+    from asperity2d.engine import batched_kernel
+
+    scenes = ([a.make_scene(**SMALL, spacing="random", seed=s) for s in range(4)]
+              + [a.make_scene(lower_count=6, upper_count=3, profile="half", spacing="random", seed=7, track="free"),
+                 a.make_scene(lower_count=5, upper_count=2, spacing="random", seed=8)])
+    threads = numba.get_num_threads()
+    try:
+        numba.set_num_threads(1)  # one thread: every scene shares a group of LANES
+        assert batched_kernel.lanes(len(scenes)) == batched_kernel.LANES > 1
+        grouped = simulate_many(scenes, 40e-9, engine="batched")
+        monkeypatch.setattr(batched_kernel, "LANES", 1)
+        alone = simulate_many(scenes, 40e-9, engine="batched")
+    finally:
+        numba.set_num_threads(threads)
+    for one, two in zip(grouped, alone):
+        for name in ("x", "v", "y", "vy", "drive_force", "normal_force", "friction_force", "contact_count"):
+            np.testing.assert_array_equal(getattr(one, name), getattr(two, name), err_msg=name)
+
+
 @pytest.mark.parametrize("option", [{"energy": True}, {"contact_work": True}, {"stop": a.Passed()},
                                     {"observers": [print]}])
 def test_what_only_the_reference_runs_is_refused_in_one_line(option):
