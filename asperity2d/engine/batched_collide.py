@@ -1,5 +1,6 @@
 """The batched engine's contact geometry and record (Numba): Chipmunk's support edges and contact
-points, the slider's tips against the static segments, one sample of a scene.
+points, the slider's tips against the static segments, the contacts kept for the next step's
+warm start, one sample of a scene.
 
 Part of :mod:`asperity2d.engine` (used by :mod:`.batched_kernel`, only where Numba is installed).
 Everything is in the engine's internal units.
@@ -74,6 +75,30 @@ def warm_start(keys, jns, jts, n, kk):
         if keys[o] == kk:
             jn, jt = jns[o], jts[o]
     return jn, jt
+
+
+@njit(cache=True)
+def remember(b, N, U, S, na, a_j, a_i, a_cnt, key, jn, jt, c_n, c_key, c_jn, c_jt, s_n, s_key, s_jn, s_jt):
+    """Scene ``b``'s ``na`` contact pairs of this step (tip ``a_j``, lower asperity or ``N`` +
+    segment ``a_i``, their points' keys and impulses) kept for the next step's :func:`warm_start`.
+    The collision has set every other tip-asperity pair's count to 0; the segments' are reset here."""
+    for j in range(U):
+        for sg in range(S):
+            s_n[b, j, sg] = 0
+    for a in range(na):
+        j, i = a_j[a], a_i[a]
+        if i < N:
+            c_n[b, j, i] = a_cnt[a]
+            for c in range(a_cnt[a]):
+                c_key[b, j, i, c] = key[a, c]
+                c_jn[b, j, i, c] = jn[a, c]
+                c_jt[b, j, i, c] = jt[a, c]
+        else:
+            s_n[b, j, i - N] = a_cnt[a]
+            for c in range(a_cnt[a]):
+                s_key[b, j, i - N, c] = key[a, c]
+                s_jn[b, j, i - N, c] = jn[a, c]
+                s_jt[b, j, i - N, c] = jt[a, c]
 
 
 @njit(cache=True)

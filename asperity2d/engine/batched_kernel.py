@@ -40,7 +40,8 @@ projection and stick/slip switch (:mod:`.core`, :mod:`.contacts`):
    nothing (no accumulated impulse, no spring target, no damping impulse) is a fixed point,
    which the sweeps left would repeat exactly: that lane's sweeps stop there;
 7. the projection back onto the tracks when a body drifted more than ``1e-9`` bases, and the
-   static/kinetic switch with its hold rule (:class:`asperity2d.contact_laws.StaticKineticSwitch`).
+   static/kinetic switch with its hold rule (:class:`asperity2d.contact_laws.StaticKineticSwitch`),
+   then the record and the run loop's stops (:mod:`.batched_rules`).
 
 Everything is in the engine's internal units (:mod:`asperity2d.units`).
 """
@@ -53,7 +54,8 @@ import numpy as np
 from numba import get_num_threads, njit, prange
 
 from .batched_collide import (DBL_MAX, KEY_BASE, N_REC, NONFINITE, OK, OVERLAP, PAIRS,  # noqa: F401
-                              contact_points, record, static_pairs, support_edge, warm_start)
+                              contact_points, record, remember, static_pairs, support_edge, warm_start)
+from .batched_rules import STOP_NONE, project, stop, switch
 
 #: Contact points per pair (Chipmunk's CP_MAX_CONTACTS_PER_ARBITER).
 MAX_CONTACTS = 2
@@ -81,10 +83,6 @@ N_POINT = 10
 #: benchmark, 2 cores (AMD EPYC, Zen): 101.8 CPU-s with 1 lane, 87.3 with 2, 83.9 with 4, 83.0
 #: with 8.
 LANES = 4
-
-#: Why a scene's call ended before its steps were done (``stop_code``): 0 it ran them all;
-#: its slider passed the surface, stuck, or (a free slider) ran off its far end.
-STOP_NONE, STOP_PASSED, STOP_STUCK, STOP_OFF = 0, 1, 2, 3
 
 
 @njit(cache=True, error_model="numpy")
@@ -637,76 +635,15 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
                 for c in range(a_cnt[l, a]):
                     jn[l, a, c], jt[l, a, c] = pt[l, n_c, JN], pt[l, n_c, JT]
                     n_c += 1
-            # remember this step's contacts for the next step's warm start (the collision above
-            # set every other tip-asperity pair's count to 0)
-            for j in range(U):
-                for sg in range(S):
-                    s_n[b, j, sg] = 0
-            for a in range(na):
-                j, i = a_j[l, a], a_i[l, a]
-                if i < N:
-                    c_n[b, j, i] = a_cnt[l, a]
-                    for c in range(a_cnt[l, a]):
-                        c_key[b, j, i, c] = key[l, a, c]
-                        c_jn[b, j, i, c] = jn[l, a, c]
-                        c_jt[b, j, i, c] = jt[l, a, c]
-                else:
-                    s_n[b, j, i - N] = a_cnt[l, a]
-                    for c in range(a_cnt[l, a]):
-                        s_key[b, j, i - N, c] = key[l, a, c]
-                        s_jn[b, j, i - N, c] = jn[l, a, c]
-                        s_jt[b, j, i - N, c] = jt[l, a, c]
+            remember(b, N, U, S, na, a_j[l], a_i[l], a_cnt[l], key[l], jn[l], jt[l], c_n, c_key, c_jn, c_jt, s_n, s_key,
+                     s_jn, s_jt)
             if not settle:  # settling is before t = 0: it counts no step
                 nstep[b] = k + 1
-            # 7. projection back onto the tracks
-            drift = 0.0
-            for i in range(N):
-                drift = max(drift, abs(lp[b, i, 0] - lx0[b, i]))
-            if fixed[b]:
-                drift = max(drift, abs(sp[b, 1] - track_y[b]))
-            if drift > 1e-9:
-                for i in range(N):
-                    lp[b, i, 0] = lx0[b, i]
-                    lv[b, i, 0] = 0.0
-                if fixed[b]:
-                    sp[b, 1] = track_y[b]
-                    sv[b, 1] = 0.0
-            # the static/kinetic switch: per lower asperity the largest slip over its contacts
+            # 7. projection back onto the tracks; the static/kinetic switch
+            project(b, N, lp, lv, lx0, sp, sv, fixed, track_y)
             if switch_on[b] and not settle:
-                for i in range(N):
-                    slips[i] = -1.0
-                    seen[i] = False
-                for a in range(na):
-                    i = a_i[l, a]
-                    if i >= N:  # a static segment keeps its coefficient
-                        continue
-                    n_x, n_y = a_nx[l, a], a_ny[l, a]
-                    s = abs((sv[b, 0] - lv[b, i, 0]) * n_y - (sv[b, 1] - lv[b, i, 1]) * n_x)
-                    if s > slips[i]:
-                        slips[i] = s
-                    seen[i] = True
-                for i in range(N):
-                    if not seen[i]:
-                        if present[b, i]:
-                            stuck[b, i], slid[b, i], mu[b, i] = False, 0.0, mu_k[b]
-                        present[b, i] = False
-                        continue
-                    s = slips[i]
-                    if not present[b, i]:
-                        st, sd = s < v_stick[b], 0.0
-                    elif stuck[b, i]:
-                        if s > v_stick[b]:
-                            sd = slid[b, i] + s * h
-                            st = not (sd > slip_dist[b])
-                        else:
-                            st, sd = True, 0.0
-                    elif s < v_stick[b]:
-                        st, sd = True, 0.0
-                    else:
-                        st, sd = False, slid[b, i]
-                    stuck[b, i], slid[b, i] = st, sd
-                    mu[b, i] = mu_s[b] if st else mu_k[b]
-                    present[b, i] = True
+                switch(b, N, na, a_i[l], a_nx[l], a_ny[l], sv, lv, slips, seen, present, stuck, slid, mu, mu_s, mu_k,
+                       v_stick, slip_dist, h)
             # divergence guard and the record
             if not (math.isfinite(sp[b, 0]) and math.isfinite(sp[b, 1]) and math.isfinite(sv[b, 0])
                     and math.isfinite(sv[b, 1])):
@@ -721,25 +658,10 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
                         dorigin, dforce, k + 1)
             # the stops, at the run loop's samples: every rec_every steps of this call and at its end
             if local[l] % rec_every == 0 or local[l] == steps[b]:
-                if sp[b, 0] > stop_x[b]:  # Passed
-                    stop_code[b] = STOP_PASSED
+                code = stop(b, k, sp, sv, stop_x, stuck_v, stuck_dwell, slow_since, v_unit, dt_s, off_x)
+                if code != STOP_NONE:
+                    stop_code[b] = code
                     running[l] = False
-                    continue
-                if stuck_v[b] > 0.0:  # Stuck: |v| under stuck_v (m/s) for stuck_dwell (s)
-                    t = (k + 1) * dt_s[b]
-                    if abs(sv[b, 0] * v_unit[b]) >= stuck_v[b]:
-                        slow_since[b] = -1.0
-                    else:
-                        if slow_since[b] < 0.0:
-                            slow_since[b] = t
-                        if t - slow_since[b] >= stuck_dwell[b]:
-                            stop_code[b] = STOP_STUCK
-                            running[l] = False
-                            continue
-                if sp[b, 0] > off_x[b]:  # a free slider past the far end of the surface
-                    stop_code[b] = STOP_OFF
-                    running[l] = False
-                    continue
 
 
 def lanes(B: int) -> int:
