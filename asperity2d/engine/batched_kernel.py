@@ -79,9 +79,9 @@ NX, NY, MU, NM, TM, CB, BO, JB, JN, JT = range(10)
 N_POINT = 10
 
 #: Scenes a thread steps together, interleaved in the sweeps (their independent chains of
-#: dependent operations overlap in the processor). Measured on the 64-seed x 3-pass peak-stick
-#: benchmark, 2 cores (AMD EPYC, Zen): 101.8 CPU-s with 1 lane, 87.3 with 2, 83.9 with 4, 83.0
-#: with 8.
+#: dependent operations overlap in the processor). Measured on 16 seeds x 3 peak-stick passes,
+#: 2 cores (AMD EPYC, Zen 1), four alternating pairs of runs: one scene a thread took 1.12-1.18x
+#: the CPU of four; eight were no better than four (64 seeds: 83.0 against 83.9 CPU-s).
 LANES = 4
 
 
@@ -233,8 +233,9 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
                 lvb[b, i, 0] = 0.0
                 lvb[b, i, 1] = 0.0
             spx, spy = sp[b, 0], sp[b, 1]
-            # 3. contacts
+            # 3. contacts (at most the scene's own number of pairs, whatever its lanes' sizes)
             na = 0
+            room = (PAIRS_PER_TIP + STATIC_PER_TIP) * U
             # Chipmunk's broad phase reports the pairs of the slider's asperities last-added
             # first (measured: this order reproduces pymunk to 1e-16 through two tips meeting
             # their flanks in the same step; the x order left 2.7e-6 of the slider's speed, the
@@ -251,7 +252,7 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
                 # the moving shapes with the static index before with each other
                 if ub <= seg_top[l]:  # a segment can be under the tip
                     na = static_pairs(b, j, N, S, nu, uvx, uvy, ul, ur, ub, ut, spx, spy, uverts, unorms, seg_a,
-                                      seg_b, seg_n, seg_mu, s_n, s_key, s_jn, s_jt, na, max_pairs, a_j[l],
+                                      seg_b, seg_n, seg_mu, s_n, s_key, s_jn, s_jt, na, room, a_j[l],
                                       a_i[l], a_nx[l], a_ny[l], a_cnt[l], a_first, a_u, r1x, r1y, r2x, r2y,
                                       key[l], jn[l], jt[l], fail)
                     if fail[b] != OK:
@@ -299,7 +300,7 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
                                             lnorms[b, i, :, 1], lpx, lpy, -n_x, -n_y, nl)
                     e1ax, e1ay, e1bx, e1by = uvx[a0], uvy[a0], uvx[a1], uvy[a1]
                     e2ax, e2ay, e2bx, e2by = wvx[b0_], wvy[b0_], wvx[b1_], wvy[b1_]
-                    if na >= max_pairs:
+                    if na >= room:
                         fail[b] = PAIRS
                         break
                     q = contact_points(e1ax, e1ay, e1bx, e1by, e2ax, e2ay, e2bx, e2by, n_x, n_y)
