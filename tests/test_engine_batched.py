@@ -245,13 +245,13 @@ def test_results_do_not_depend_on_the_scenes_interleaved_with_them(monkeypatch):
 
     from asperity2d.engine import batched_kernel
 
-    scenes = ([a.make_scene(**SMALL, spacing="random", seed=s) for s in range(4)]
+    scenes = ([a.make_scene(**SMALL, spacing="random", seed=s) for s in range(6)]
               + [a.make_scene(lower_count=6, upper_count=3, profile="half", spacing="random", seed=7, track="free"),
                  a.make_scene(lower_count=5, upper_count=2, spacing="random", seed=8)])
     threads = numba.get_num_threads()
     try:
-        numba.set_num_threads(1)  # one thread: every scene shares a group of LANES
-        assert batched_kernel.lanes(len(scenes)) == batched_kernel.LANES > 1
+        numba.set_num_threads(1)  # one thread: the 8 scenes in 2 groups of LANES
+        assert batched_kernel.groups(len(scenes)) * batched_kernel.LANES == len(scenes) and batched_kernel.LANES > 1
         grouped = simulate_many(scenes, 40e-9, engine="batched")
         monkeypatch.setattr(batched_kernel, "LANES", 1)
         alone = simulate_many(scenes, 40e-9, engine="batched")

@@ -431,7 +431,7 @@ class Batch:
                   self.seg_mu, self.s_n, self.s_key, self.s_jn, self.s_jt, self.stop_x, self.first,
                   self.settling, self.damp, self.push, self.hold, self.hold_x, self.hold_j, self.hold_coef,
                   self.stop_code, self.stuck_v, self.stuck_dwell, self.slow_since, self.v_unit, self.dt_s,
-                  self.off_x, k.lanes(len(self.dt)))
+                  self.off_x, k.groups(len(self.dt)))
 
     def error(self, b: int, *, offset: int = 0) -> SimulationError | None:
         """Scene ``b``'s own failure (None if it ran), naming it as scene ``offset + b``."""

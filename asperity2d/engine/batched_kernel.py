@@ -665,10 +665,12 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
                     running[l] = False
 
 
-def lanes(B: int) -> int:
-    """Scenes per group for a batch of ``B`` scenes: up to :data:`LANES`, but never so many
-    that one of Numba's threads is left without a group."""
-    return min(LANES, max(1, -(-B // get_num_threads())))
+def groups(B: int) -> int:
+    """How many groups a batch of ``B`` scenes is stepped in: a multiple of Numba's threads, each
+    of at most :data:`LANES` scenes, the scenes shared out as evenly as they go (a thread left
+    with fewer scenes than the others would wait for them; at most ``B``)."""
+    threads = get_num_threads()
+    return min(B, threads * -(-B // (threads * LANES)))
 
 
 @njit(parallel=True, cache=True, error_model="numpy")
@@ -680,13 +682,13 @@ def advance(steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, sgj,
             dt, iterations, slop, bias_coef, joint_bias_coef, restitution,
             mu_s, mu_k, v_stick, slip_dist, switch_on, seg_a, seg_b, seg_n, n_seg, seg_mu, s_n, s_key, s_jn, s_jt, stop_x, first,
             settling, damp, push, hold, hold_x, hold_j, hold_coef, stop_code, stuck_v, stuck_dwell,
-            slow_since, v_unit, dt_s, off_x, per):
-    """Advance every scene ``b`` of the batch by ``steps[b]`` steps: groups of ``per``
-    consecutive scenes (:func:`lanes`), in parallel over the groups."""
+            slow_since, v_unit, dt_s, off_x, n_groups):
+    """Advance every scene ``b`` of the batch by ``steps[b]`` steps: ``n_groups`` groups of
+    consecutive scenes (:func:`groups`), in parallel over the groups."""
     B = steps.shape[0]
-    for g in prange(-(-B // per)):
-        b0 = g * per
-        _step_group(b0, min(per, B - b0), steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, sgj,
+    for g in prange(n_groups):
+        b0 = g * B // n_groups
+        _step_group(b0, (g + 1) * B // n_groups - b0, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, sgj,
                     c_n, c_key, c_jn, c_jt, stuck, slid, mu, present, nstep, fail, fail_step,
                     lx0, lverts, lnorms, nv_l, lm_inv, lk, lc, ldown, lup, n_lower,
                     uverts, unorms, nv_u, n_upper, s_m_inv, fixed, track_y, g_x, g_y,
