@@ -28,6 +28,19 @@ def clamp01(t):
 
 
 @njit(cache=True)
+def placed(verts, nv, px, py, wx, wy):
+    """The first ``nv`` vertices of an outline, ``verts``, moved by (px, py) into ``wx`` and ``wy``;
+    their bounding box (left, right, bottom, top)."""
+    left, right, bottom, top = np.inf, -np.inf, np.inf, -np.inf
+    for q in range(nv):
+        wx[q] = verts[q, 0] + px
+        wy[q] = verts[q, 1] + py
+        left, right = min(left, wx[q]), max(right, wx[q])
+        bottom, top = min(bottom, wy[q]), max(top, wy[q])
+    return left, right, bottom, top
+
+
+@njit(cache=True)
 def support_edge(vx, vy, nxs, nys, px, py, n_x, n_y, nv):
     """Chipmunk's SupportEdgeForPoly for a convex polygon of ``nv`` vertices translated by
     (px, py): the edge's two vertex indices (a, b)."""

@@ -54,7 +54,8 @@ import numpy as np
 from numba import get_num_threads, njit, prange
 
 from .batched_collide import (DBL_MAX, KEY_BASE, N_REC, NONFINITE, OK, OVERLAP, PAIRS,  # noqa: F401
-                              contact_points, record, remember, static_pairs, support_edge, warm_start)
+                              contact_points, placed, record, remember, static_pairs, support_edge,
+                              warm_start)
 from .batched_rules import STOP_NONE, project, stop, switch
 
 #: Contact points per pair (Chipmunk's CP_MAX_CONTACTS_PER_ARBITER).
@@ -241,13 +242,8 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
             # their flanks in the same step; the x order left 2.7e-6 of the slider's speed, the
             # residual of 20 Gauss-Seidel sweeps that have not converged at a hard impact)
             for j in range(U - 1, -1, -1):
-                ul, ur, ub, ut = np.inf, -np.inf, np.inf, -np.inf
                 nu = nv_u[b, j]
-                for q in range(nu):
-                    uvx[q] = uverts[b, j, q, 0] + spx
-                    uvy[q] = uverts[b, j, q, 1] + spy
-                    ul, ur = min(ul, uvx[q]), max(ur, uvx[q])
-                    ub, ut = min(ub, uvy[q]), max(ut, uvy[q])
+                ul, ur, ub, ut = placed(uverts[b, j], nu, spx, spy, uvx, uvy)
                 # The static segments first (the floor; a profile's valleys): Chipmunk collides
                 # the moving shapes with the static index before with each other
                 if ub <= seg_top[l]:  # a segment can be under the tip
@@ -262,13 +258,8 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
                     if lpx + lxhi[l, i] < ul or lpx + lxlo[l, i] > ur:
                         c_n[b, j, i] = 0
                         continue
-                    ll, lr, lb, lt = np.inf, -np.inf, np.inf, -np.inf
                     nl = nv_l[b, i]
-                    for q in range(nl):
-                        wvx[q] = lverts[b, i, q, 0] + lpx
-                        wvy[q] = lverts[b, i, q, 1] + lpy
-                        ll, lr = min(ll, wvx[q]), max(lr, wvx[q])
-                        lb, lt = min(lb, wvy[q]), max(lt, wvy[q])
+                    ll, lr, lb, lt = placed(lverts[b, i], nl, lpx, lpy, wvx, wvy)
                     if not (ul <= lr and ll <= ur and ub <= lt and lb <= ut):
                         c_n[b, j, i] = 0
                         continue
