@@ -471,14 +471,17 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
                 bd[l, q, TG] = s_target[i]
                 bd[l, q, SX], bd[l, q, SY], bd[l, q, VC] = sn_x[i], sn_y[i], s_vcoef[l, i]
                 bd[l, q, GX], bd[l, q, GY], bd[l, q, CL] = g_bx[i], g_by[i], g_clamp[i]
-                bd[l, q, M1], bd[l, q, KI] = 1.0 / bd[l, q, MI], bd[l, q, MI] / (bd[l, q, MI] * bd[l, q, MI])
-            bd[l, n_isl, MI], bd[l, n_isl, V0], bd[l, n_isl, V1], bd[l, n_isl, B0], bd[l, n_isl, B1] = 0.0, 0.0, 0.0, 0.0, 0.0
+                mi = bd[l, q, MI]
+                bd[l, q, M1], bd[l, q, KI] = 1.0 / mi, mi / (mi * mi)
+            for f in (MI, V0, V1, B0, B1):  # the static body's slot
+                bd[l, n_isl, f] = 0.0
             n_c = 0
             for a in range(na):
                 q = slot[a_i[l, a]] if a_i[l, a] < N else n_isl
                 for c in range(a_cnt[l, a]):
                     fs[l, n_c], pt[l, n_c, NX], pt[l, n_c, NY], pt[l, n_c, MU] = q, a_nx[l, a], a_ny[l, a], a_u[a]
-                    pt[l, n_c, NM], pt[l, n_c, TM], pt[l, n_c, CB], pt[l, n_c, BO] = nmass[a, c], tmass[a, c], cbias[a, c], bounce[a, c]
+                    pt[l, n_c, NM], pt[l, n_c, TM] = nmass[a, c], tmass[a, c]
+                    pt[l, n_c, CB], pt[l, n_c, BO] = cbias[a, c], bounce[a, c]
                     pt[l, n_c, JB], pt[l, n_c, JN], pt[l, n_c, JT] = jb[a, c], jn[l, a, c], jt[l, a, c]
                     n_c += 1
             r_s[l, 0], r_s[l, 1], r_s[l, 2], r_s[l, 3] = sv[b, 0], sv[b, 1], svb[b, 0], svb[b, 1]
