@@ -174,7 +174,6 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
                 lxhi[l, i] = max(lxhi[l, i], lverts[b, i, q, 0])
             s_vcoef[l, i] = 1.0 - math.exp(-lc[b, i] * dt[b] * lm_inv[b, i])
     local = np.zeros(L, np.int64)
-    kstep = np.zeros(L, np.int64)
     running = np.ones(L, np.bool_)
     live = np.zeros(L, np.bool_)  # the lanes whose step reached the sweeps
     sweep = np.zeros(L, np.bool_)  # the lanes still sweeping
@@ -198,7 +197,6 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
             dmp = damp[b]
             still = g_x[b] == 0.0 and g_y[b] == 0.0
             k = nstep[b]
-            kstep[l] = k
             local[l] += 1
             # 1. the slider's force
             x, vx = sp[b, 0], sv[b, 0]
@@ -615,7 +613,7 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
             S = n_seg[b]
             h = dt[b]
             settle = settling[b]
-            k = kstep[l]
+            k = nstep[b]  # as at this step's start: only the lines below advance it
             na, n_isl = na_[l], n_isl_[l]
             sv[b, 0], sv[b, 1], svb[b, 0], svb[b, 1] = r_s[l, 0], r_s[l, 1], r_s[l, 2], r_s[l, 3]
             sgj[b, 0], sgj[b, 1] = r_s[l, 4], r_s[l, 5]
