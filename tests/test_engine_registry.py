@@ -46,7 +46,7 @@ def test_without_numba_the_batched_engine_says_how_to_install_it(monkeypatch):
 
 
 @pytest.mark.parametrize("kwargs, option", [
-    ({"lateral_stiffness": 1e4}, "`lateral_stiffness`"),
+    ({"contact_law": "viscous"}, "`contact_law`"),
     ({"slider_start": -4e-6}, "`slider_start`"),
 ])
 def test_the_batched_engine_refuses_what_it_does_not_implement_in_one_line(kwargs, option):
@@ -86,9 +86,9 @@ def test_results_and_comparisons_say_which_engine_made_them(tmp_path):
 def test_the_critical_force_on_the_batched_engine_refuses_what_it_does_not_implement():
     # without Numba the install line comes first; with it, the option it does not implement, named
     expected = (r"asperity2d\[batch\]" if batched.unavailable() else
-                r'^`lateral_stiffness` .* is not implemented on engine="batched"; engine="pymunk" runs it$')
+                r'^`contact_law` .* is not implemented on engine="batched" .*; engine="pymunk" runs it$')
     with pytest.raises(SceneError, match=expected):
-        a.critical_force(a.make_scene(lower_count=4, upper_count=2, lateral_stiffness=1e4), engine="batched")
+        a.critical_force(a.make_scene(lower_count=4, upper_count=2, contact_law="viscous"), engine="batched")
 
 
 def _numba(monkeypatch, present: bool):
@@ -103,7 +103,7 @@ def test_auto_takes_the_batched_engine_only_where_it_is_installed_and_runs_every
     _numba(monkeypatch, True)
     assert choose_engine("auto", [fixed, a.make_scene(lower_count=4, upper_count=2)]) == "batched"
     # one scene it does not implement keeps the whole ensemble on the reference
-    assert choose_engine("auto", [fixed, a.make_scene(lower_count=4, upper_count=2, lateral_stiffness=1e4)]) == "pymunk"
+    assert choose_engine("auto", [fixed, a.make_scene(lower_count=4, upper_count=2, contact_law="viscous")]) == "pymunk"
     # a free slider settles (as simulate decides it), which the batched engine does as well
     free = a.make_scene(lower_count=4, upper_count=2, track="free")
     assert choose_engine("auto", [free]) == "batched"

@@ -72,12 +72,12 @@ def test_the_reference_runs_it_without_numba_or_when_a_run_is_not_covered(monkey
     session = sweep.run_study(_study(), store=tmp_path / "a", workers=1, progress=False)
     assert GIVEN == [] and session.executor == "in-process" and session.done == 6
     _numba(monkeypatch, True)
-    for name, grid in (("lattice", {"lateral_stiffness": (1e4,)}), ("option", {"reference_only": (True,)})):
+    for name, grid in (("law", {"contact_law": ("viscous",)}), ("option", {"reference_only": (True,)})):
         session = sweep.run_study(_study(**grid), store=tmp_path / name, workers=1, progress=False)
         assert GIVEN == [] and session.done == 3, name
     # asked by name, a run the batched engine cannot take is one line naming the way out
     with pytest.raises(SceneError, match=r'engine="pymunk" runs it'):
-        sweep.run_study(_study(lateral_stiffness=(1e4,)), store=tmp_path / "named", progress=False, engine="batched")
+        sweep.run_study(_study(contact_law=("viscous",)), store=tmp_path / "named", progress=False, engine="batched")
     values = [r.quantities["value"] for r in sweep.ResultStore(tmp_path / "a").records(_study()).values()]
     assert sorted(values) == [-13.0, -13.0, -12.0, -12.0, -11.0, -11.0] and not any(math.isnan(v) for v in values)
 

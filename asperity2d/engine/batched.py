@@ -13,7 +13,8 @@ What it covers, and refuses (one :class:`~asperity2d.errors.SceneError` line nam
 and saying ``engine="pymunk"`` runs it): every profile (full and half triangles, flat tops),
 random heights and measured profiles' asperities -- each asperity one strictly convex outline,
 as Chipmunk keeps it -- with the guard floor and a measured profile's rigid valleys (the
-substrate) as Chipmunk's static segments; but no lattice links, and the ``static-kinetic``
+substrate) as Chipmunk's static segments; Ooten's MATLAB lattice (its links Chipmunk's damped
+springs between the peaks and to the walls, :mod:`.batched_links`); the ``static-kinetic``
 contact law only. It settles as :meth:`.core.Engine.settle`
 does (:meth:`Batch.settle`: the same phases, damping, hold and calm test), forks a settled scene
 into many (:meth:`Batch.forks`, the critical force's trial runs) and stops a scene at the run
@@ -71,8 +72,6 @@ def refusal(scene, *, settle: bool = False) -> str | None:
     whether the run settles first, which it implements)."""
     lower, contact = scene.lower, scene.contact
     tail = '; engine="pymunk" runs it'
-    if lower.is_lattice:
-        return "`lateral_stiffness` (lattice links between lower asperities) is not implemented on engine=\"batched\"" + tail
     for what, outlines in (("lower", lower.outlines()), ("slider", scene.slider.outlines())):
         if not all(_strictly_convex(outline) for outline in outlines):
             return (f"`shapes`: a {what} asperity's outline is not strictly convex (collinear or reflex "
@@ -80,7 +79,7 @@ def refusal(scene, *, settle: bool = False) -> str | None:
     if scene.slider.start is not None:
         return "`slider_start` (a start of the scene's own) is not implemented on engine=\"batched\"" + tail
     if contact.law != "static-kinetic":
-        return f"`law` = {contact.law!r} is not implemented on engine=\"batched\" (static-kinetic only)" + tail
+        return f"`contact_law` = {contact.law!r} is not implemented on engine=\"batched\" (static-kinetic only)" + tail
     return None
 
 
@@ -118,7 +117,8 @@ class Batch:
         V = max(max(len(o) for o in s.lower.outlines()) for s in self.scenes)
         W = max(max(len(o) for o in s.slider.outlines()) for s in self.scenes)
         S = max(_segment_count(scene) for scene in self.scenes)
-        need = self.nbytes_for(B, N, U, samples, vertices=max(V, W), segments=S)
+        K = max(_link_count(scene) for scene in self.scenes)
+        need = self.nbytes_for(B, N, U, samples, vertices=max(V, W), segments=S, links=K)
         if need > MAX_BATCH_BYTES:
             raise SceneError(
                 f"a batch of {B} scenes ({N} lower and {U} upper asperities, {samples} samples each) needs "
@@ -166,6 +166,10 @@ class Batch:
         self.stuck_v, self.stuck_dwell, self.slow_since = f8(B), f8(B), np.full(B, -1.0)
         self.v_unit, self.off_x = f8(B), np.full(B, np.inf)
         self.track_y0 = f8(B)  # the fixed track's working height (track_y starts above it when engaged)
+        # Ooten's MATLAB lattice: per link its bodies (-1: the static body), its ends' anchors
+        # (a wall's on the static body), its rest length, stiffness and damping
+        self.lat, self.n_link = np.zeros(B, np.bool_), np.zeros(B, np.int64)
+        self.link_ab, self.link_p, self.link_kc = np.full((B, K, 2), -1, np.int64), f8(B, K, 4), f8(B, K, 3)
         self.rec = np.zeros((B, kernel.N_REC, samples))
         self.rec_at = np.zeros(B, np.int64)
         for b, (scene, dt) in enumerate(zip(self.scenes, dts)):
@@ -173,13 +177,15 @@ class Batch:
         self._initial = self._sample0()
 
     @staticmethod
-    def nbytes_for(B: int, N: int, U: int, samples: int, *, vertices: int = 3, segments: int = 1) -> int:
+    def nbytes_for(B: int, N: int, U: int, samples: int, *, vertices: int = 3, segments: int = 1,
+                   links: int = 1) -> int:
         """Bytes of a batch's arrays: state and geometry per scene (outlines of up to
-        ``vertices`` vertices, ``segments`` static segments), and its record."""
+        ``vertices`` vertices, ``segments`` static segments, room for ``links`` lattice links),
+        and its record."""
         per_lower = 8 * (4 * 2 + 4 + 2 * vertices * 2 + 6) + 2
         per_pair = 8 * 1 + 8 * 2 * 3
         per_scene = N * per_lower + U * N * per_pair + U * 8 * (4 * vertices + 1) + 8 * 56 + 8 * 9 * samples \
-            + segments * (8 * 6 + U * 8 * 5)
+            + segments * (8 * 6 + U * 8 * 5) + 9 + links * 8 * 9
         return B * per_scene
 
     def _load(self, b: int, scene, dt: float) -> None:
@@ -198,6 +204,8 @@ class Batch:
             self.nv_l[b, i] = len(v)
             self.lverts[b, i, :len(v)], self.lnorms[b, i, :len(v)] = v, nrm
         self.lm_inv[b, :n] = 1.0 / (np.asarray(lower.mass, float) / u.mass)
+        if lower.is_lattice:
+            self._links(b, lower, u, x0)
         self.lk[b, :n] = np.asarray(lower.stiffness, float) / u.stiffness
         self.lc[b, :n] = np.asarray(lower.damping, float) / u.damping
         self.ldown[b, :n] = lower.travel_down / u.length
@@ -276,6 +284,27 @@ class Batch:
             self.seg_n[b, k] = dy * inv, -(dx * inv)
         self.n_seg[b] = len(segments)
         self.seg_mu[b] = contact.mu_kinetic  # the floor's and valleys' coefficient, as build gives it
+
+    def _links(self, b: int, lower, u: Units, x) -> None:
+        """Scene ``b``'s lattice links as :func:`asperity2d.engine.space`'s lattice builds them:
+        wall-peak 1, peak 1-peak 2, ..., peak n-wall, those of zero stiffness and damping left out;
+        a wall's end is a point of the static body one mean pitch outside the end peak."""
+        self.lat[b] = True
+        pitch = lower.spacing.mean_pitch / u.length
+        e = 0
+        for j, (k, c) in enumerate(zip(lower.lateral_stiffness, lower.lateral_damping)):
+            if k == 0 and c == 0:
+                continue
+            if j == 0:
+                ends, anchors, rest = (-1, 0), (x[0] - pitch, 0.0, 0.0, 0.0), pitch
+            elif j == len(x):
+                ends, anchors, rest = (len(x) - 1, -1), (0.0, 0.0, x[-1] + pitch, 0.0), pitch
+            else:
+                ends, anchors, rest = (j - 1, j), (0.0, 0.0, 0.0, 0.0), x[j] - x[j - 1]
+            self.link_ab[b, e], self.link_p[b, e] = ends, anchors
+            self.link_kc[b, e] = rest, k / u.stiffness, c / u.damping
+            e += 1
+        self.n_link[b] = e
 
     def _sample0(self) -> np.ndarray:
         out = np.zeros((len(self.scenes), self.kernel.N_REC))
@@ -431,7 +460,7 @@ class Batch:
                   self.seg_mu, self.s_n, self.s_key, self.s_jn, self.s_jt, self.stop_x, self.first,
                   self.settling, self.damp, self.push, self.hold, self.hold_x, self.hold_j, self.hold_coef,
                   self.stop_code, self.stuck_v, self.stuck_dwell, self.slow_since, self.v_unit, self.dt_s,
-                  self.off_x, k.groups(len(self.dt)))
+                  self.off_x, self.lat, self.n_link, self.link_ab, self.link_p, self.link_kc, k.groups(len(self.dt)))
 
     def error(self, b: int, *, offset: int = 0) -> SimulationError | None:
         """Scene ``b``'s own failure (None if it ran), naming it as scene ``offset + b``."""
@@ -471,6 +500,11 @@ class Batch:
 def _segment_count(scene) -> int:
     """The static segments of a scene: the floor and its substrate's."""
     return 1 + sum(max(0, len(line) - 1) for line in (scene.lower.substrate or ()))
+
+
+def _link_count(scene) -> int:
+    """Room for a scene's lattice links (one per gap and wall; one slot for a scene without)."""
+    return scene.lower.count + 1 if scene.lower.is_lattice else 1
 
 
 class _Layout:
@@ -529,7 +563,9 @@ def batch_size(scenes, steps: int, *, record_every: int = 10) -> int:
     V = max(max(len(o) for o in s.lower.outlines()) for s in scenes)
     W = max(max(len(o) for o in s.slider.outlines()) for s in scenes)
     S = max(_segment_count(s) for s in scenes)
-    per_scene = Batch.nbytes_for(1, N, U, max(1, steps // record_every), vertices=max(V, W), segments=S)
+    K = max(_link_count(s) for s in scenes)
+    per_scene = Batch.nbytes_for(1, N, U, max(1, steps // record_every), vertices=max(V, W), segments=S,
+                                 links=K)
     return max(1, min(len(scenes), CHUNK_BYTES // max(1, per_scene)))
 
 

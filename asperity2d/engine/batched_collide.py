@@ -41,6 +41,30 @@ def placed(verts, nv, px, py, wx, wy):
 
 
 @njit(cache=True)
+def penetration(norms_b, nb, norms_a, na, bx, by, ax, ay):
+    """The separating-axis test of two placed convex outlines, B (``nb`` vertices ``bx``, ``by``,
+    outward normals ``norms_b``) and A: the minimum penetration over the Minkowski difference's
+    edge normals m (B's outward normals and A's negated), h(m) = max_B m.b - min_A m.a, as
+    ``(depth, m_x, m_y)``; a negative depth: separated."""
+    best, mx, my = np.inf, 0.0, 0.0
+    for side in range(2):
+        for e in range(nb if side == 0 else na):
+            if side == 0:
+                ex, ey = norms_b[e, 0], norms_b[e, 1]
+            else:
+                ex, ey = -norms_a[e, 0], -norms_a[e, 1]
+            hb, ha = -np.inf, np.inf
+            for q in range(nb):
+                hb = max(hb, bx[q] * ex + by[q] * ey)
+            for q in range(na):
+                ha = min(ha, ax[q] * ex + ay[q] * ey)
+            depth = hb - ha
+            if depth < best:
+                best, mx, my = depth, ex, ey
+    return best, mx, my
+
+
+@njit(cache=True)
 def support_edge(vx, vy, nxs, nys, px, py, n_x, n_y, nv):
     """Chipmunk's SupportEdgeForPoly for a convex polygon of ``nv`` vertices translated by
     (px, py): the edge's two vertex indices (a, b)."""

@@ -29,10 +29,15 @@ projection and stick/slip switch (:mod:`.core`, :mod:`.contacts`):
    ``collision_persistence = 1`` makes them);
 4. pre-step: contact masses, the position bias ``-bias min(0, d + slop) / dt``, the bounce;
    each track spring's force as an impulse and its exact damping coefficient
-   ``1 - exp(-c dt / m)``; each groove's anchor, clamp and bias;
+   ``1 - exp(-c dt / m)``; each groove's anchor, clamp and bias; a lattice's links (Chipmunk's
+   damped springs between the peaks and to the walls, :mod:`.batched_links`), in the space's
+   order after the tracks' springs;
 5. velocities: ``v = v + (g + f / m) dt``;
 6. cached impulses (contacts, grooves), then ``iterations`` sweeps of sequential impulses over
-   the contacts, then the springs' damping and the grooves. Two rearrangements that change no
+   the contacts, then the springs' damping and the grooves, then the links (each damping
+   impulse taken through the spring's accumulated impulse, ``(jAcc + j) - jAcc``, as pymunk 7's
+   Chipmunk takes it to clamp it to the spring's maximum force, here unbounded; a lattice has no
+   grooves and all its bodies are one island). Two rearrangements that change no
    bit: a moving lower body without a contact is a system of its own (its spring and groove
    touch nothing else), so its sweeps run alone, in registers; the island -- the slider, its
    contacts and the bodies they touch -- is swept on per-lane copies (one row of fields per
@@ -54,8 +59,9 @@ import numpy as np
 from numba import get_num_threads, njit, prange
 
 from .batched_collide import (DBL_MAX, KEY_BASE, N_REC, NONFINITE, OK, OVERLAP, PAIRS,  # noqa: F401
-                              contact_points, placed, record, remember, static_pairs, support_edge,
-                              warm_start)
+                              contact_points, penetration, placed, record, remember, static_pairs,
+                              support_edge, warm_start)
+from .batched_links import N_LINK, links_prestep, links_sweep
 from .batched_rules import STOP_NONE, project, stop, switch
 
 #: Contact points per pair (Chipmunk's CP_MAX_CONTACTS_PER_ARBITER).
@@ -70,9 +76,9 @@ MAX_OVERLAP = 0.5
 
 #: The island's per-body fields (``bd[lane, slot, field]``): inverse mass, velocity, bias
 #: velocity, groove impulse, spring target, spring direction, damping coefficient, groove bias,
-#: groove clamp, 1 / inverse mass, groove mass.
-MI, V0, V1, B0, B1, G0, G1, TG, SX, SY, VC, GX, GY, CL, M1, KI = range(16)
-N_BODY = 16
+#: groove clamp, 1 / inverse mass, groove mass, the spring's accumulated impulse.
+MI, V0, V1, B0, B1, G0, G1, TG, SX, SY, VC, GX, GY, CL, M1, KI, JA = range(17)
+N_BODY = 17
 #: The island's per-contact-point fields (``pt[lane, point, field]``): normal, friction
 #: coefficient, normal and tangent masses, bias, bounce, accumulated bias, normal and tangent
 #: impulses.
@@ -95,7 +101,7 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
                 dt, iterations, slop, bias_coef, joint_bias_coef, restitution,
                 mu_s, mu_k, v_stick, slip_dist, switch_on, seg_a, seg_b, seg_n, n_seg, seg_mu, s_n, s_key, s_jn, s_jt, stop_x, first,
                 settling, damp, push, hold, hold_x, hold_j, hold_coef, stop_code, stuck_v, stuck_dwell,
-                slow_since, v_unit, dt_s, off_x):
+                slow_since, v_unit, dt_s, off_x, lat, n_link, link_ab, link_p, link_kc):
     """Advance the ``L`` scenes ``b0 .. b0 + L - 1`` (the group's lanes) by ``steps[b]`` steps
     each (see the module docstring)."""
     Nm, Um = 1, 1
@@ -123,6 +129,9 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
     n_isl_ = np.zeros(L, np.int64)
     n_c_ = np.zeros(L, np.int64)
     r_s = np.empty((L, 8))  # s0, s1, sb0, sb1, sg0, sg1, hg0, hg1
+    lq = np.empty((L, link_ab.shape[1], 2), np.int64)  # per lattice link its bodies' slots
+    lf = np.empty((L, link_ab.shape[1], N_LINK))  # and its LINK fields
+    n_lk_ = np.zeros(L, np.int64)
     sgb_y_ = np.zeros(L)
     hgb_x_ = np.zeros(L)
     # Shared by the lanes in turn (each lane's use ends within its part of a step): the
@@ -141,6 +150,7 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
     sn_x = np.empty(Nm)
     sn_y = np.empty(Nm)
     s_target = np.empty(Nm)
+    s_jacc = np.empty(Nm)
     in_contact = np.zeros(Nm, np.bool_)
     slot = np.zeros(Nm, np.int64)
     g_clamp = np.empty(Nm)
@@ -195,7 +205,7 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
             sm_inv = s_m_inv[b]
             settle = settling[b]
             dmp = damp[b]
-            still = g_x[b] == 0.0 and g_y[b] == 0.0
+            still = g_x[b] == 0.0 and g_y[b] == 0.0 and not lat[b]  # (a lattice's links move a body at rest)
             k = nstep[b]
             local[l] += 1
             # 1. the slider's force
@@ -261,23 +271,7 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
                     if not (ul <= lr and ll <= ur and ub <= lt and lb <= ut):
                         c_n[b, j, i] = 0
                         continue
-                    # minimum penetration over the Minkowski difference's edge normals m
-                    # (B's outward normals and A's negated): h(m) = max_B m.b - min_A m.a
-                    best, mx, my = np.inf, 0.0, 0.0
-                    for side in range(2):
-                        for e in range(nl if side == 0 else nu):
-                            if side == 0:
-                                ex, ey = lnorms[b, i, e, 0], lnorms[b, i, e, 1]
-                            else:
-                                ex, ey = -unorms[b, j, e, 0], -unorms[b, j, e, 1]
-                            hb, ha = -np.inf, np.inf
-                            for q in range(nl):
-                                hb = max(hb, wvx[q] * ex + wvy[q] * ey)
-                            for q in range(nu):
-                                ha = min(ha, uvx[q] * ex + uvy[q] * ey)
-                            depth = hb - ha
-                            if depth < best:
-                                best, mx, my = depth, ex, ey
+                    best, mx, my = penetration(lnorms[b, i], nl, unorms[b, j], nu, wvx, wvy, uvx, uvy)
                     if best < 0.0:  # separated (d > 0)
                         c_n[b, j, i] = 0
                         continue
@@ -361,6 +355,7 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
                 sn_x[i], sn_y[i] = dx * inv, dy * inv
                 s_target[i] = 0.0
                 j_spring = (100.0 - dist) * lk[b, i] * h
+                s_jacc[i] = j_spring
                 lv[b, i, 0] = lv[b, i, 0] + sn_x[i] * j_spring * m_inv
                 lv[b, i, 1] = lv[b, i, 1] + sn_y[i] * j_spring * m_inv
                 # groove along y at x0 from -down to up; n = (-1, 0), td = y
@@ -376,6 +371,8 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
                     ay = td
                 g_bx[i] = -(lp[b, i, 0] - lx0[b, i]) * joint_bias_coef[b] / h
                 g_by[i] = -(lp[b, i, 1] - ay) * joint_bias_coef[b] / h
+            if lat[b]:  # a lattice's links
+                links_prestep(b, l, h, lp, lv, lm_inv, n_link, link_ab, link_p, link_kc, lf)
             if fixed[b]:  # the slider's groove along x at the track's height; n = (0, 1)
                 sgb_y_[l] = -(sp[b, 1] - track_y[b]) * joint_bias_coef[b] / h
             if hold[b]:  # settling's hold: a groove along y at hold_x (added last); n = (-1, 0)
@@ -425,14 +422,14 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
             n_isl = 0
             for q in range(n_act):
                 i = act[q]
-                if in_contact[i]:
+                if in_contact[i] or lat[b]:  # (a lattice's links join all its bodies)
                     isl[l, n_isl] = i
                     n_isl += 1
                     continue
                 mi = lm_inv[b, i]
                 v0, v1 = lv[b, i, 0], lv[b, i, 1]
                 o0, o1 = gj[b, i, 0], gj[b, i, 1]
-                tgt = s_target[i]
+                tgt, ja = s_target[i], s_jacc[i]
                 snx, sny, vco, bx, by, clamp = sn_x[i], sn_y[i], s_vcoef[l, i], g_bx[i], g_by[i], g_clamp[i]
                 kinv = mi / (mi * mi)
                 m_1 = 1.0 / mi
@@ -440,7 +437,8 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
                     vrn = v0 * snx + v1 * sny
                     v_damp = (tgt - vrn) * vco
                     tgt_new = vrn + v_damp
-                    j_damp = v_damp * m_1
+                    j_damp = (ja + v_damp * m_1) - ja  # through jAcc, as Chipmunk clamps it (to no bound)
+                    ja += j_damp
                     v0 += snx * j_damp * mi
                     v1 += sny * j_damp * mi
                     jx = kinv * (bx - v0)
@@ -466,13 +464,17 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
                 bd[l, q, V0], bd[l, q, V1] = lv[b, i, 0], lv[b, i, 1]
                 bd[l, q, B0], bd[l, q, B1] = lvb[b, i, 0], lvb[b, i, 1]
                 bd[l, q, G0], bd[l, q, G1] = gj[b, i, 0], gj[b, i, 1]
-                bd[l, q, TG] = s_target[i]
+                bd[l, q, TG], bd[l, q, JA] = s_target[i], s_jacc[i]
                 bd[l, q, SX], bd[l, q, SY], bd[l, q, VC] = sn_x[i], sn_y[i], s_vcoef[l, i]
                 bd[l, q, GX], bd[l, q, GY], bd[l, q, CL] = g_bx[i], g_by[i], g_clamp[i]
                 mi = bd[l, q, MI]
                 bd[l, q, M1], bd[l, q, KI] = 1.0 / mi, mi / (mi * mi)
             for f in (MI, V0, V1, B0, B1):  # the static body's slot
                 bd[l, n_isl, f] = 0.0
+            for e in range(n_link[b]):  # the links' bodies' slots
+                ia, ib = link_ab[b, e, 0], link_ab[b, e, 1]
+                lq[l, e, 0], lq[l, e, 1] = slot[ia] if ia >= 0 else n_isl, slot[ib] if ib >= 0 else n_isl
+            n_lk_[l] = n_link[b]
             n_c = 0
             for a in range(na):
                 q = slot[a_i[l, a]] if a_i[l, a] < N else n_isl
@@ -553,9 +555,12 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
                     if v_damp != 0.0 or tgt_new != bd[l, q, TG]:
                         changed[l] = True
                     bd[l, q, TG] = tgt_new
-                    j_damp = v_damp * bd[l, q, M1]
+                    j_damp = (bd[l, q, JA] + v_damp * bd[l, q, M1]) - bd[l, q, JA]
+                    bd[l, q, JA] += j_damp
                     bd[l, q, V0] += bd[l, q, SX] * j_damp * mi
                     bd[l, q, V1] += bd[l, q, SY] * j_damp * mi
+                    if lat[b0 + l]:  # a lattice's bodies have no groove
+                        continue
                     # the groove (its mass tensor is m I for a body that cannot rotate)
                     kinv = bd[l, q, KI]
                     jx = kinv * (bd[l, q, GX] - bd[l, q, V0])
@@ -575,6 +580,8 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
                     continue
                 b = b0 + l
                 sm_inv = s_m_inv[b]
+                if n_lk_[l] and links_sweep(n_lk_[l], lq[l], lf[l], bd[l], MI, V0, V1):  # the lattice's, in order
+                    changed[l] = True
                 if fixed[b]:
                     s0, s1 = r_s[l, 0], r_s[l, 1]
                     kinv = sm_inv / (sm_inv * sm_inv)
@@ -633,7 +640,7 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
             if not settle:  # settling is before t = 0: it counts no step
                 nstep[b] = k + 1
             # 7. projection back onto the tracks; the static/kinetic switch
-            project(b, N, lp, lv, lx0, sp, sv, fixed, track_y)
+            project(b, 0 if lat[b] else N, lp, lv, lx0, sp, sv, fixed, track_y)  # (a lattice has no tracks)
             if switch_on[b] and not settle:
                 switch(b, N, na, a_i[l], a_nx[l], a_ny[l], sv, lv, slips, seen, present, stuck, slid, mu, mu_s, mu_k,
                        v_stick, slip_dist, h)
@@ -674,7 +681,7 @@ def advance(steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, sgj,
             dt, iterations, slop, bias_coef, joint_bias_coef, restitution,
             mu_s, mu_k, v_stick, slip_dist, switch_on, seg_a, seg_b, seg_n, n_seg, seg_mu, s_n, s_key, s_jn, s_jt, stop_x, first,
             settling, damp, push, hold, hold_x, hold_j, hold_coef, stop_code, stuck_v, stuck_dwell,
-            slow_since, v_unit, dt_s, off_x, n_groups):
+            slow_since, v_unit, dt_s, off_x, lat, n_link, link_ab, link_p, link_kc, n_groups):
     """Advance every scene ``b`` of the batch by ``steps[b]`` steps: ``n_groups`` groups of
     consecutive scenes (:func:`groups`), in parallel over the groups."""
     B = steps.shape[0]
@@ -688,4 +695,4 @@ def advance(steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, svb, sgj,
                     dt, iterations, slop, bias_coef, joint_bias_coef, restitution,
                     mu_s, mu_k, v_stick, slip_dist, switch_on, seg_a, seg_b, seg_n, n_seg, seg_mu, s_n, s_key, s_jn, s_jt, stop_x, first,
                     settling, damp, push, hold, hold_x, hold_j, hold_coef, stop_code, stuck_v, stuck_dwell,
-                    slow_since, v_unit, dt_s, off_x)
+                    slow_since, v_unit, dt_s, off_x, lat, n_link, link_ab, link_p, link_kc)

@@ -46,7 +46,7 @@ Examples
 >>> ENGINES["pymunk"].unavailable() is None  # the reference is always there
 True
 >>> from asperity2d import make_scene
->>> choose_engine("auto", [make_scene(lateral_stiffness=1e4)])  # lattice links: only the reference runs them
+>>> choose_engine("auto", [make_scene(contact_law="viscous")])  # a law of slip speed: only the reference runs it
 'pymunk'
 >>> engine_label("pymunk")
 'pymunk'
@@ -142,7 +142,7 @@ def choose_engine(engine, scenes, *, settle: bool | None = None) -> str:
     >>> from asperity2d import make_scene
     >>> choose_engine("pymunk", [make_scene()])
     'pymunk'
-    >>> choose_engine("auto", [make_scene(lateral_stiffness=1e4)])  # lattice links: only the reference
+    >>> choose_engine("auto", [make_scene(contact_law="viscous")])  # a law of slip speed: only the reference
     'pymunk'
     """
     if engine != AUTO:
