@@ -286,7 +286,7 @@ class Batch:
         self.seg_mu[b] = contact.mu_kinetic  # the floor's and valleys' coefficient, as build gives it
 
     def _links(self, b: int, lower, u: Units, x) -> None:
-        """Scene ``b``'s lattice links as :func:`asperity2d.engine.space`'s lattice builds them:
+        """Scene ``b``'s lattice links as :mod:`asperity2d.engine.space`'s lattice builds them:
         wall-peak 1, peak 1-peak 2, ..., peak n-wall, those of zero stiffness and damping left out;
         a wall's end is a point of the static body one mean pitch outside the end peak."""
         self.lat[b] = True

@@ -3,7 +3,7 @@ their neighbours and the two walls by horizontal spring-dampers.
 
 Part of :mod:`asperity2d.engine` (used by :mod:`.batched_kernel`, only where Numba is installed).
 Each link is Chipmunk's ``cpDampedSpring`` (``cpDampedSpring.c``) as the pymunk adapter builds it
-(:func:`asperity2d.engine.space`'s lattice: between body centres, a wall's end a point of the
+(:mod:`asperity2d.engine.space`'s lattice: between body centres, a wall's end a point of the
 static body one mean pitch outside the end peak); its sweep, ``applyImpulse``, runs in the
 kernel's island sweeps. Everything is in the engine's internal units.
 """
