@@ -131,7 +131,6 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
     r_s = np.empty((L, 8))  # s0, s1, sb0, sb1, sg0, sg1, hg0, hg1
     lq = np.empty((L, link_ab.shape[1], 2), np.int64)  # per lattice link its bodies' slots
     lf = np.empty((L, link_ab.shape[1], N_LINK))  # and its LINK fields
-    n_lk_ = np.zeros(L, np.int64)
     sgb_y_ = np.zeros(L)
     hgb_x_ = np.zeros(L)
     # Shared by the lanes in turn (each lane's use ends within its part of a step): the
@@ -474,7 +473,6 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
             for e in range(n_link[b]):  # the links' bodies' slots
                 ia, ib = link_ab[b, e, 0], link_ab[b, e, 1]
                 lq[l, e, 0], lq[l, e, 1] = slot[ia] if ia >= 0 else n_isl, slot[ib] if ib >= 0 else n_isl
-            n_lk_[l] = n_link[b]
             n_c = 0
             for a in range(na):
                 q = slot[a_i[l, a]] if a_i[l, a] < N else n_isl
@@ -580,7 +578,7 @@ def _step_group(b0, L, steps, rec_every, rec_at, rec, lp, lv, lvb, gj, sp, sv, s
                     continue
                 b = b0 + l
                 sm_inv = s_m_inv[b]
-                if n_lk_[l] and links_sweep(n_lk_[l], lq[l], lf[l], bd[l], MI, V0, V1):  # the lattice's, in order
+                if n_link[b] and links_sweep(n_link[b], lq[l], lf[l], bd[l], MI, V0, V1):  # the lattice's, in order
                     changed[l] = True
                 if fixed[b]:
                     s0, s1 = r_s[l, 0], r_s[l, 1]
