@@ -122,8 +122,12 @@ def test_auto_times_the_first_call_here_and_says_where_the_rest_ran(monkeypatch)
 def test_local_workers_stay_warm_for_the_next_ensemble():
     first = set(map_calls(sweep_fixtures.pid_call, [{"x": x} for x in range(6)], workers=2))
     assert executors.warm_pools() >= {2}
+    pool = executors.shared_pool(2)
     again = set(map_calls(sweep_fixtures.pid_call, [{"x": x} for x in range(6)], workers=2))
-    assert os.getpid() not in first and again <= first  # the same processes, not new ones
+    # the same pool and at most its two processes: which worker takes which call is the OS's
+    # choice (CI once ran all six first calls on one worker while the other was starting)
+    assert executors.shared_pool(2) is pool
+    assert os.getpid() not in first | again and len(first | again) <= 2
 
 
 _HELD = r"""
