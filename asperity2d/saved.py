@@ -100,6 +100,15 @@ def register_drawers(family: str, drawers: dict) -> None:
                 kind.drawers.setdefault(renderer, draw)
 
 
+def forget_drawers(renderer: str, drawers: dict) -> None:
+    """Take back the drawers (family -> function) of the renderer family ``renderer`` that
+    :func:`register_drawers` gave the kinds from an output format now removed (a drawer a kind
+    brought of its own stays)."""
+    for kind in RESULT_KINDS.values():
+        if kind.drawers.get(renderer) is not None and kind.drawers[renderer] is drawers.get(kind.family):
+            del kind.drawers[renderer]
+
+
 def kind_of_result(result) -> ResultKind | None:
     """The registered kind of the object ``result`` (its class or nearest registered base), or None."""
     for cls in type(result).__mro__:
@@ -217,4 +226,4 @@ def export(result, path: str | os.PathLike):
 
 
 __all__ = ["RESULT_KINDS", "ResultKind", "export", "kind_of", "kind_of_result", "load", "register",
-           "register_drawers", "result_kind"]
+           "register_drawers", "forget_drawers", "result_kind"]

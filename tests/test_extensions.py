@@ -19,6 +19,7 @@ from asperity2d.cli import main
 from asperity2d.experiments.measures import MEASURES, Measure, register_measure, unregister_measure
 from asperity2d.experiments.verdicts import VerdictRule
 from asperity2d.renderers import FORMATS, OutputFormat, register_format, render, unregister_format
+from asperity2d.saved import RESULT_KINDS
 
 TINY = {"lower_count": 6, "upper_count": 2}
 
@@ -82,6 +83,8 @@ def toy_format():
     yield fmt
     unregister_format(".csv")
     assert ".csv" not in FORMATS
+    # nor its drawer on the kinds it drew (a later test reading the belt's drawers would see it)
+    assert "table" not in RESULT_KINDS["belt"].drawers
 
 
 def test_a_format_added_through_the_registry_is_rendered_and_in_the_help(toy_format, tmp_path, capsys):

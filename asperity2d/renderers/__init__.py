@@ -200,7 +200,8 @@ def register_format(fmt: OutputFormat, *, replace: bool = False) -> OutputFormat
 
 
 def unregister_format(extension: str) -> OutputFormat:
-    """Remove the format of ``extension`` from :data:`FORMATS` and return it.
+    """Remove the format of ``extension`` from :data:`FORMATS` and return it; the result kinds
+    given its drawers (:func:`register_kind_drawers`) lose them too.
 
     Parameters
     ----------
@@ -224,7 +225,11 @@ def unregister_format(extension: str) -> OutputFormat:
     >>> unregister_format(".stamp") is fmt, ".stamp" in FORMATS
     (True, False)
     """
-    return FORMATS.unregister(extension)
+    from ..saved import forget_drawers
+
+    fmt = FORMATS.unregister(extension)
+    forget_drawers(fmt.renderer, fmt.drawers)
+    return fmt
 
 
 _BOTH = ("asperity", "belt")
