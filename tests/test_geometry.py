@@ -289,3 +289,16 @@ def test_explicit_positions_limits_and_names():
     with pytest.raises(a.SceneError, match="`positions` is too small"):
         ExplicitSpacing(positions=(0.0, 0.5e-6)).tips(0.5e-6, 0.5e-6)
     assert RegularSpacing(count=3, pitch=1.0, offset=0).tips(0.1, 0.1).dtype == np.float64
+
+
+def test_tips_are_drawn_once_and_handed_out_as_copies():
+    """The parts keep their drawn tips (a critical-force search asks for them thousands of times):
+    the same floats every time, and a caller writing into what it got changes nothing."""
+    scene = a.make_scene(spacing="random", seed=7)
+    lower, upper = scene.lower.tips(), scene.slider.tips()
+    assert np.array_equal(lower, scene.lower.spacing.tips(*scene.lower.runs()))
+    lower[:] = -1.0
+    upper[:] = -1.0
+    assert np.array_equal(scene.lower.tips(), scene.lower.spacing.tips(*scene.lower.runs()))
+    assert scene.slider.tips()[0] == 0.0 and np.all(np.diff(scene.slider.tips()) > 0)
+    assert scene.replace(drive=a.ConstantForce(force=1e-3)).lower.tips()[0] == scene.lower.tips()[0]
