@@ -166,3 +166,42 @@ def test_a_ctrl_c_while_workers_spawn_is_held_for_the_command_not_lost():
 
     out = subprocess.run([sys.executable, "-c", _HELD], capture_output=True, text=True, timeout=120)
     assert out.stdout.split("\n")[:2] == ["inside True", "raised after"], out.stdout + out.stderr[-2000:]
+
+
+_KILLED_MID_RUN = r"""
+import os, sys, time
+from pathlib import Path
+
+def run(marker):
+    from tqdm.auto import tqdm
+    tqdm(total=1, disable=True)  # what a run's progress bar does in a worker
+    Path(marker).touch()
+    time.sleep(60)
+
+if __name__ == "__main__":
+    from asperity2d.sweep import executors
+    pool = executors.shared_pool(2)
+    markers = [os.path.join(sys.argv[1], f"in{i}") for i in range(2)]
+    futures = [pool.submit(run, m) for m in markers]
+    deadline = time.monotonic() + 100
+    while not all(map(os.path.exists, markers)):
+        assert time.monotonic() < deadline, "the workers did not start"
+        time.sleep(0.02)
+    executors.kill_pool(pool)  # what a Ctrl-C does to them, mid-run
+"""
+
+
+def test_workers_killed_mid_run_leave_no_semaphores_for_the_tracker_to_report(tmp_path):
+    # A worker's progress bar took tqdm's default lock, a multiprocessing RLock: in a spawned
+    # process a named semaphore registered with the resource tracker. Killed mid-run it never
+    # unregistered, and at the command's exit the tracker printed "There appear to be 2 leaked
+    # semaphore objects" under its one line "asperity2d: interrupted".
+    import subprocess
+    import sys
+
+    script = tmp_path / "killed.py"
+    script.write_text(_KILLED_MID_RUN)
+    out = subprocess.run([sys.executable, str(script), str(tmp_path)], capture_output=True, text=True,
+                         timeout=150, cwd=tmp_path)
+    assert out.returncode == 0, out.stderr[-2000:]
+    assert "leaked" not in out.stderr and out.stderr.strip() == "", out.stderr[-2000:]

@@ -379,6 +379,14 @@ def _die_with(parent: int, death_signal: bool) -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # discards a Ctrl-C held since the spawn
     if hasattr(signal, "pthread_sigmask"):
         signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+    # tqdm's default lock holds a multiprocessing RLock, which in a spawned process is a named
+    # semaphore registered with the resource tracker; a worker killed mid-run (a Ctrl-C ends
+    # them so) never unregisters it, and the tracker's "leaked semaphore objects" warning lands
+    # under the command's one line. A spawned worker's RLock is its own anyway (a spawn shares
+    # no lock with its siblings), so a thread lock is the same exclusion without the semaphore.
+    from tqdm import tqdm
+
+    tqdm.set_lock(threading.RLock())
     if os.getppid() != parent:  # the parent died before the signal was asked for
         os._exit(1)
 
